@@ -1,0 +1,5 @@
+//! Wound opening in a thin incompressible Kelvin-Voigt tissue with substrate friction,
+//! as a simulation component: a safe solver ([`solver`]) and an FMI 2.0 co-simulation
+//! boundary on top of it.
+
+pub mod solver;
