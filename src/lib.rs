@@ -3,3 +3,4 @@
 //! boundary on top of it.
 
 pub mod solver;
+pub mod fmi;

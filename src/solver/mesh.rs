@@ -30,7 +30,6 @@ pub struct MeshSpec {
 /// Element breaks and global node positions of a [`MeshSpec`] on `[1, r_inf]`.
 #[derive(Debug, Clone)]
 pub struct Mesh {
-    pub(crate) spec: MeshSpec,
     pub(crate) breaks: Vec<f64>,
     /// Reference GLL nodes of one element, on `[-1, 1]`.
     pub(crate) reference_nodes: Vec<f64>,
@@ -52,7 +51,7 @@ impl Mesh {
             let (a, b) = (w[0], w[1]);
             nodes.extend(reference_nodes[1..].iter().map(|x| 0.5 * (a + b) + 0.5 * (b - a) * x));
         }
-        Self { spec, breaks, reference_nodes, nodes }
+        Self { breaks, reference_nodes, nodes }
     }
 
     pub fn len(&self) -> usize {

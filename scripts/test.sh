@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Every test: Rust unit and integration tests, then the FMU built and driven by fmpy.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/venv.sh
+cargo test --release
+cargo run --release --quiet -- fmu
+python -m pytest -q tests/python

@@ -1,0 +1,333 @@
+//! The exported FMI 2.0 functions: thin `extern "C"` shims that convert pointers and hand
+//! over to the safe [`Instance`]. Each is framed by [`with_instance`] (null check, panic
+//! boundary, state machine, logging) or, without an instance, by [`guard`].
+#![allow(non_snake_case, clippy::missing_safety_doc)]
+
+use super::boundary::{CallbackLogger, guard, slice, slice_mut, status_code, text, with_instance};
+use super::instance::{Call, Instance, Status};
+use super::types::*;
+use super::variables::GUID;
+use std::ffi::{c_char, CString};
+
+const OK: Result<Status, String> = Ok(Status::Ok);
+
+fn no_variables(kind: &str, vr: &[fmi2ValueReference]) -> Result<Status, String> {
+    match vr.first() {
+        None => OK,
+        Some(v) => Err(format!("no {kind} variable has value reference {v} (this FMU has Real variables only)")),
+    }
+}
+
+fn not_supported(what: &str) -> Result<Status, String> {
+    Err(format!("{what} is not supported by this FMU (see the capability flags of modelDescription.xml)"))
+}
+
+fn handle(state: fmi2FMUstate) -> Option<u64> {
+    (!state.is_null()).then_some(state as u64)
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
+    c"default".as_ptr()
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn fmi2GetVersion() -> *const c_char {
+    c"2.0".as_ptr()
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Instantiate(
+    instanceName: fmi2String,
+    fmuType: fmi2Type,
+    fmuGUID: fmi2String,
+    _fmuResourceLocation: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+    _visible: fmi2Boolean,
+    loggingOn: fmi2Boolean,
+) -> fmi2Component {
+    let made = guard(|| {
+        let f = unsafe { functions.as_ref() }?;
+        let (logger, env) = (f.logger, f.componentEnvironment);
+        let name = unsafe { text(instanceName) };
+        let shown = name.clone().unwrap_or_else(|| "?".into());
+        let fail = |msg: String| {
+            CallbackLogger::log_once(logger, env, &shown, &format!("fmi2Instantiate: {msg}"));
+            None
+        };
+        let Some(name) = name else { return fail("instanceName is NULL".into()) };
+        if fmuType != FMI2_CO_SIMULATION {
+            return fail(format!("fmuType = {fmuType}: this FMU supports co-simulation (1) only"));
+        }
+        let guid = unsafe { text(fmuGUID) };
+        if guid.as_deref() != Some(GUID) {
+            return fail(format!("Expected GUID {GUID} but was {}", guid.as_deref().unwrap_or("NULL")));
+        }
+        let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
+        Some(Box::new(Instance::new(&name, Box::new(sink), loggingOn != FMI2_FALSE)))
+    });
+    match made {
+        Ok(Some(b)) => Box::into_raw(b) as fmi2Component,
+        _ => std::ptr::null_mut(),
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
+    if !c.is_null() {
+        let _ = guard(|| drop(unsafe { Box::from_raw(c as *mut Instance) }));
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetDebugLogging(
+    c: fmi2Component,
+    loggingOn: fmi2Boolean,
+    nCategories: usize,
+    categories: *const fmi2String,
+) -> fmi2Status {
+    let Some(inst) = (unsafe { (c as *mut Instance).as_mut() }) else {
+        return status_code(Status::Error);
+    };
+    let result = guard(|| {
+        let names = unsafe { slice(categories, nCategories, "categories") }?;
+        let names: Vec<String> = names.iter().map(|&p| unsafe { text(p) }.unwrap_or_default()).collect();
+        inst.set_debug_logging(loggingOn != FMI2_FALSE, &names)
+    });
+    match result {
+        Ok(Ok(())) => status_code(Status::Ok),
+        Ok(Err(why)) | Err(why) => {
+            unsafe { &*(c as *const Instance) }.log_error(&format!("fmi2SetDebugLogging: {why}"));
+            status_code(Status::Error)
+        }
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetupExperiment(
+    c: fmi2Component,
+    toleranceDefined: fmi2Boolean,
+    tolerance: fmi2Real,
+    startTime: fmi2Real,
+    stopTimeDefined: fmi2Boolean,
+    stopTime: fmi2Real,
+) -> fmi2Status {
+    let tol = (toleranceDefined != FMI2_FALSE).then_some(tolerance);
+    let stop = (stopTimeDefined != FMI2_FALSE).then_some(stopTime);
+    unsafe {
+        with_instance(c, Call::SetupExperiment, || format!("fmi2SetupExperiment(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"), |i| {
+            i.setup_experiment(tol, startTime, stop).map(|_| Status::Ok)
+        })
+    }
+}
+
+macro_rules! simple_call {
+    ($fname:ident, $call:expr, $method:ident) => {
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $fname(c: fmi2Component) -> fmi2Status {
+            unsafe { with_instance(c, $call, || stringify!($fname).to_string(), |i| i.$method().map(|_| Status::Ok)) }
+        }
+    };
+}
+
+simple_call!(fmi2EnterInitializationMode, Call::EnterInitializationMode, enter_initialization_mode);
+simple_call!(fmi2ExitInitializationMode, Call::ExitInitializationMode, exit_initialization_mode);
+simple_call!(fmi2Terminate, Call::Terminate, terminate);
+simple_call!(fmi2Reset, Call::Reset, reset);
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Real) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::Get, || format!("fmi2GetReal(nvr={nvr})"), |i| {
+            let vr = slice(vr, nvr, "vr")?;
+            let out = slice_mut(value, nvr, "value")?;
+            i.get_real(vr, out).map(|_| Status::Ok)
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Real) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::Set, || format!("fmi2SetReal(nvr={nvr})"), |i| {
+            let vr = slice(vr, nvr, "vr")?;
+            let values = slice(value, nvr, "value")?;
+            i.set_real(vr, values).map(|_| Status::Ok)
+        })
+    }
+}
+
+macro_rules! no_such_variables {
+    ($fname:ident, $call:expr, $kind:literal, $ptr:ty) => {
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $fname(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: $ptr) -> fmi2Status {
+            unsafe {
+                with_instance(c, $call, || format!("{}(nvr={nvr})", stringify!($fname)), |_| {
+                    no_variables($kind, slice(vr, nvr, "vr")?)
+                })
+            }
+        }
+    };
+}
+
+no_such_variables!(fmi2GetInteger, Call::Get, "Integer", *mut fmi2Integer);
+no_such_variables!(fmi2GetBoolean, Call::Get, "Boolean", *mut fmi2Boolean);
+no_such_variables!(fmi2GetString, Call::Get, "String", *mut fmi2String);
+no_such_variables!(fmi2SetInteger, Call::Set, "Integer", *const fmi2Integer);
+no_such_variables!(fmi2SetBoolean, Call::Set, "Boolean", *const fmi2Boolean);
+no_such_variables!(fmi2SetString, Call::Set, "String", *const fmi2String);
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::GetFmuState, || "fmi2GetFMUstate".into(), |i| {
+            let slot = FMUstate.as_mut().ok_or("FMUstate is NULL")?;
+            *slot = i.get_fmu_state(handle(*slot))? as fmi2FMUstate;
+            OK
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::SetFmuState, || "fmi2SetFMUstate".into(), |i| {
+            i.set_fmu_state(handle(FMUstate).ok_or("FMUstate is NULL")?).map(|_| Status::Ok)
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::FreeFmuState, || "fmi2FreeFMUstate".into(), |i| {
+            let slot = FMUstate.as_mut().ok_or("FMUstate is NULL")?;
+            // Freeing NULL is a no-op, as for free().
+            if let Some(h) = handle(*slot) {
+                i.free_fmu_state(h)?;
+                *slot = std::ptr::null_mut();
+            }
+            OK
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: fmi2FMUstate, size: *mut usize) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::SerializeFmuState, || "fmi2SerializedFMUstateSize".into(), |i| {
+            let out = size.as_mut().ok_or("size is NULL")?;
+            *out = i.serialize_fmu_state(handle(FMUstate).ok_or("FMUstate is NULL")?)?.len();
+            OK
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate, serializedState: *mut fmi2Byte, size: usize) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::SerializeFmuState, || format!("fmi2SerializeFMUstate(size={size})"), |i| {
+            let bytes = i.serialize_fmu_state(handle(FMUstate).ok_or("FMUstate is NULL")?)?;
+            if size < bytes.len() {
+                return Err(format!("buffer of {size} bytes is too small: the state needs {}", bytes.len()));
+            }
+            let out = slice_mut(serializedState as *mut u8, bytes.len(), "serializedState")?;
+            out.copy_from_slice(&bytes);
+            OK
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2DeSerializeFMUstate(c: fmi2Component, serializedState: *const fmi2Byte, size: usize, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::DeSerializeFmuState, || format!("fmi2DeSerializeFMUstate(size={size})"), |i| {
+            let slot = FMUstate.as_mut().ok_or("FMUstate is NULL")?;
+            let bytes = slice(serializedState as *const u8, size, "serializedState")?;
+            *slot = i.deserialize_fmu_state(bytes, handle(*slot))? as fmi2FMUstate;
+            OK
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
+    c: fmi2Component,
+    _vUnknown_ref: *const fmi2ValueReference,
+    _nUnknown: usize,
+    _vKnown_ref: *const fmi2ValueReference,
+    _nKnown: usize,
+    _dvKnown: *const fmi2Real,
+    _dvUnknown: *mut fmi2Real,
+) -> fmi2Status {
+    unsafe { with_instance(c, Call::GetDirectionalDerivative, || "fmi2GetDirectionalDerivative".into(), |_| not_supported("fmi2GetDirectionalDerivative")) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: fmi2Component, _vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer, _value: *const fmi2Real) -> fmi2Status {
+    unsafe { with_instance(c, Call::SetRealInputDerivatives, || "fmi2SetRealInputDerivatives".into(), |_| not_supported("fmi2SetRealInputDerivatives (canInterpolateInputs)")) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(c: fmi2Component, _vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer, _value: *mut fmi2Real) -> fmi2Status {
+    unsafe { with_instance(c, Call::GetRealOutputDerivatives, || "fmi2GetRealOutputDerivatives".into(), |_| not_supported("fmi2GetRealOutputDerivatives (maxOutputDerivativeOrder = 0)")) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2DoStep(c: fmi2Component, currentCommunicationPoint: fmi2Real, communicationStepSize: fmi2Real, _noSetFMUStatePriorToCurrentPoint: fmi2Boolean) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::DoStep, || format!("fmi2DoStep(currentCommunicationPoint={currentCommunicationPoint}, communicationStepSize={communicationStepSize})"), |i| {
+            i.do_step(currentCommunicationPoint, communicationStepSize).map(|_| Status::Ok)
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
+    unsafe { with_instance(c, Call::CancelStep, || "fmi2CancelStep".into(), |_| not_supported("fmi2CancelStep")) }
+}
+
+fn status_kind_unavailable(kind: fmi2StatusKind) -> Result<Status, String> {
+    Err(format!("status kind {kind} is not available (fmi2DoStep is synchronous)"))
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Status) -> fmi2Status {
+    unsafe { with_instance(c, Call::GetStatus, || format!("fmi2GetStatus({s})"), |_| status_kind_unavailable(s)) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::GetStatus, || format!("fmi2GetRealStatus({s})"), |i| {
+            if s != FMI2_LAST_SUCCESSFUL_TIME {
+                return status_kind_unavailable(s);
+            }
+            *value.as_mut().ok_or("value is NULL")? = i.last_successful_time();
+            OK
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Integer) -> fmi2Status {
+    unsafe { with_instance(c, Call::GetStatus, || format!("fmi2GetIntegerStatus({s})"), |_| status_kind_unavailable(s)) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::GetStatus, || format!("fmi2GetBooleanStatus({s})"), |i| {
+            if s != FMI2_TERMINATED {
+                return status_kind_unavailable(s);
+            }
+            *value.as_mut().ok_or("value is NULL")? = if i.wants_to_terminate() { FMI2_TRUE } else { FMI2_FALSE };
+            OK
+        })
+    }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2String) -> fmi2Status {
+    unsafe { with_instance(c, Call::GetStatus, || format!("fmi2GetStringStatus({s})"), |_| status_kind_unavailable(s)) }
+}

@@ -1,0 +1,493 @@
+//! One FMU instance in safe Rust: the FMI 2.0 co-simulation state machine, the variables,
+//! FMU states and logging. It knows nothing of C: the `ffi` layer converts pointers.
+//!
+//! Every call goes through [`Instance::call`]: log the call (category `logCalls`), check
+//! that it is allowed in the current state, run it. A call that is rejected (not allowed
+//! now, or an invalid argument) is logged under `logStatusError`, returns
+//! [`Status::Error`], and changes nothing: every check runs before any mutation, so the
+//! master may go on with the instance as it was, restore a saved FMU state, or reset.
+
+use super::state::{self, Machine, Saved};
+use super::variables::{Causality, LOG_CATEGORIES, Variability, Vr};
+use crate::solver::{Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// `fmi2Status`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Status {
+    Ok = 0,
+    Warning = 1,
+    Discard = 2,
+    Error = 3,
+    Fatal = 4,
+}
+
+/// Where log messages go (the importer's callback, or a test's collector).
+pub trait Logger {
+    fn log(&self, status: Status, category: &str, message: &str);
+}
+
+/// The FMI calls, for the state-machine check and the call log.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Call {
+    SetupExperiment,
+    EnterInitializationMode,
+    ExitInitializationMode,
+    Terminate,
+    Reset,
+    Get,
+    Set,
+    GetFmuState,
+    SetFmuState,
+    FreeFmuState,
+    SerializeFmuState,
+    DeSerializeFmuState,
+    DoStep,
+    CancelStep,
+    GetStatus,
+    GetDirectionalDerivative,
+    SetRealInputDerivatives,
+    GetRealOutputDerivatives,
+}
+
+impl Call {
+    /// States in which FMI 2.0 (section 4.2.4) allows the call.
+    fn allowed(self, m: Machine) -> bool {
+        use Machine::*;
+        if m == Error {
+            // After an internal failure only recovery and inspection remain.
+            return matches!(
+                self,
+                Call::Reset | Call::Get | Call::GetFmuState | Call::SetFmuState | Call::FreeFmuState
+                    | Call::SerializeFmuState | Call::DeSerializeFmuState
+            );
+        }
+        match self {
+            Call::SetupExperiment | Call::EnterInitializationMode => m == Instantiated,
+            Call::ExitInitializationMode => m == InitializationMode,
+            Call::Terminate | Call::DoStep => m == StepComplete,
+            Call::Reset
+            | Call::GetFmuState
+            | Call::SetFmuState
+            | Call::FreeFmuState
+            | Call::SerializeFmuState
+            | Call::DeSerializeFmuState => true,
+            Call::Get | Call::GetDirectionalDerivative => m != Instantiated,
+            Call::Set | Call::SetRealInputDerivatives => m != Terminated,
+            Call::GetStatus | Call::GetRealOutputDerivatives => matches!(m, StepComplete | Terminated),
+            Call::CancelStep => false,
+        }
+    }
+
+    pub fn fmi_name(self) -> &'static str {
+        match self {
+            Call::SetupExperiment => "fmi2SetupExperiment",
+            Call::EnterInitializationMode => "fmi2EnterInitializationMode",
+            Call::ExitInitializationMode => "fmi2ExitInitializationMode",
+            Call::Terminate => "fmi2Terminate",
+            Call::Reset => "fmi2Reset",
+            Call::Get => "fmi2Get*",
+            Call::Set => "fmi2Set*",
+            Call::GetFmuState => "fmi2GetFMUstate",
+            Call::SetFmuState => "fmi2SetFMUstate",
+            Call::FreeFmuState => "fmi2FreeFMUstate",
+            Call::SerializeFmuState => "fmi2SerializeFMUstate",
+            Call::DeSerializeFmuState => "fmi2DeSerializeFMUstate",
+            Call::DoStep => "fmi2DoStep",
+            Call::CancelStep => "fmi2CancelStep",
+            Call::GetStatus => "fmi2Get*Status",
+            Call::GetDirectionalDerivative => "fmi2GetDirectionalDerivative",
+            Call::SetRealInputDerivatives => "fmi2SetRealInputDerivatives",
+            Call::GetRealOutputDerivatives => "fmi2GetRealOutputDerivatives",
+        }
+    }
+}
+
+/// A rejected call: the reason, for the logger.
+pub type Rejected = String;
+
+/// The instance's model data: what an FMU state saves (with the machine state).
+#[derive(Debug, Clone)]
+struct Model {
+    params: Params,
+    settings: Settings,
+    edge_stress: f64,
+    start_time: f64,
+    stop_time: Option<f64>,
+    /// Master time of the last communication point.
+    time: f64,
+    /// Built when first needed after the parameters are final; dropped when they change.
+    solver: Option<Solver>,
+}
+
+impl Model {
+    fn new() -> Self {
+        let start = |vr: Vr| vr.var().start.unwrap_or(0.0);
+        Self {
+            params: Params { lambda: start(Vr::Lambda), sigma: start(Vr::Sigma), r_inf: start(Vr::RInf) },
+            settings: Settings::default(),
+            edge_stress: start(Vr::EdgeStress),
+            start_time: 0.0,
+            stop_time: None,
+            time: 0.0,
+            solver: None,
+        }
+    }
+}
+
+/// A saved FMU state, as held in the instance's table of states.
+#[derive(Debug, Clone)]
+struct Snapshot {
+    machine: Machine,
+    model: Model,
+}
+
+/// An FMU instance.
+pub struct Instance {
+    name: String,
+    logger: Box<dyn Logger>,
+    /// Debug categories switched on (index into `LOG_CATEGORIES`); errors always log.
+    categories: [bool; LOG_CATEGORIES.len()],
+    machine: Machine,
+    model: Model,
+    /// FMU states handed to the master, by handle (never 0).
+    states: HashMap<u64, Snapshot>,
+    next_handle: u64,
+}
+
+const LOG_CALLS: usize = 2;
+
+impl Instance {
+    pub fn new(name: &str, logger: Box<dyn Logger>, logging_on: bool) -> Self {
+        Self {
+            name: name.to_owned(),
+            logger,
+            categories: [true, true, logging_on],
+            machine: Machine::Instantiated,
+            model: Model::new(),
+            states: HashMap::new(),
+            next_handle: 1,
+        }
+    }
+
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    pub fn machine(&self) -> Machine {
+        self.machine
+    }
+
+    /// After an internal failure (a caught panic): the model data may be half-updated,
+    /// so only reset, restoring a saved FMU state, or inspection remain allowed.
+    pub fn fail(&mut self, message: &str) {
+        self.machine = Machine::Error;
+        self.log_error(message);
+    }
+
+    /// Log under an error category (always on).
+    pub fn log_error(&self, message: &str) {
+        self.logger.log(Status::Error, "logStatusError", message);
+    }
+
+    fn log_calls_on(&self) -> bool {
+        self.categories[LOG_CALLS]
+    }
+
+    fn log_debug(&self, message: &str) {
+        if self.log_calls_on() {
+            self.logger.log(Status::Ok, "logCalls", message);
+        }
+    }
+
+    /// Frame one FMI call: log it, check the state machine, run `body`, log a rejection.
+    pub fn call<T>(
+        &mut self,
+        call: Call,
+        describe: impl FnOnce() -> String,
+        body: impl FnOnce(&mut Self) -> Result<T, Rejected>,
+    ) -> Result<T, Status> {
+        if self.log_calls_on() {
+            let text = describe();
+            self.log_debug(&text);
+        }
+        if !call.allowed(self.machine) {
+            self.log_error(&format!("{} is not allowed in state {:?}", call.fmi_name(), self.machine));
+            return Err(Status::Error);
+        }
+        body(self).map_err(|why| {
+            self.log_error(&format!("{}: {why}", call.fmi_name()));
+            Status::Error
+        })
+    }
+
+    /// `fmi2SetDebugLogging`: switch the listed categories (all when empty).
+    pub fn set_debug_logging(&mut self, on: bool, names: &[String]) -> Result<(), Rejected> {
+        let mut idx = Vec::with_capacity(names.len());
+        for n in names {
+            let i = LOG_CATEGORIES.iter().position(|(c, _)| c == n);
+            idx.push(i.ok_or_else(|| format!("unknown log category \"{n}\"; declared: {}", category_list()))?);
+        }
+        if idx.is_empty() {
+            idx = (0..LOG_CATEGORIES.len()).collect();
+        }
+        idx.into_iter().for_each(|i| self.categories[i] = on);
+        self.categories[0] = true;
+        Ok(())
+    }
+
+    pub fn setup_experiment(&mut self, tolerance: Option<f64>, start: f64, stop: Option<f64>) -> Result<(), Rejected> {
+        if !start.is_finite() {
+            return Err(format!("startTime = {start} is invalid: it must be finite"));
+        }
+        if let Some(s) = stop.filter(|&s| !(s.is_finite() && s >= start)) {
+            return Err(format!("stopTime = {s} is invalid: it must be finite and >= startTime = {start}"));
+        }
+        if let Some(tol) = tolerance.filter(|&t| !(t.is_finite() && t > 0.0)) {
+            return Err(format!("tolerance = {tol} is invalid: it must be finite and > 0"));
+        }
+        self.model.start_time = start;
+        self.model.time = start;
+        self.model.stop_time = stop;
+        Ok(())
+    }
+
+    pub fn enter_initialization_mode(&mut self) -> Result<(), Rejected> {
+        self.machine = Machine::InitializationMode;
+        Ok(())
+    }
+
+    pub fn exit_initialization_mode(&mut self) -> Result<(), Rejected> {
+        self.ensure_solver()?;
+        self.machine = Machine::StepComplete;
+        Ok(())
+    }
+
+    pub fn terminate(&mut self) -> Result<(), Rejected> {
+        self.machine = Machine::Terminated;
+        Ok(())
+    }
+
+    /// `fmi2Reset`: back to the state after instantiation (saved FMU states are kept).
+    pub fn reset(&mut self) -> Result<(), Rejected> {
+        self.machine = Machine::Instantiated;
+        self.model = Model::new();
+        Ok(())
+    }
+
+    fn ensure_solver(&mut self) -> Result<&Solver, Rejected> {
+        if self.model.solver.is_none() {
+            let solver = Solver::new(&self.model.params, &self.model.settings).map_err(|e| e.to_string())?;
+            self.log_debug(&format!(
+                "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns ({:?})",
+                self.model.params.lambda,
+                self.model.params.sigma,
+                self.model.params.r_inf,
+                solver.operator().len(),
+                self.model.settings.mesh
+            ));
+            self.model.solver = Some(solver);
+        }
+        Ok(self.model.solver.as_ref().expect("built above"))
+    }
+
+    pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
+        let vrs: Vec<Vr> = vrs.iter().map(|&v| real_vr(v)).collect::<Result<_, _>>()?;
+        let p = self.model.edge_stress;
+        let params = self.model.params;
+        let needs_solver = vrs.iter().any(|v| matches!(v, Vr::WoundRadius | Vr::EdgeVelocity));
+        let solver = if needs_solver { Some(self.ensure_solver()?) } else { None };
+        for (out, vr) in values.iter_mut().zip(vrs) {
+            *out = match vr {
+                Vr::Lambda => params.lambda,
+                Vr::Sigma => params.sigma,
+                Vr::RInf => params.r_inf,
+                Vr::EdgeStress => p,
+                Vr::WoundRadius => solver.expect("built").wound_radius(),
+                Vr::EdgeVelocity => solver.expect("built").edge_velocity(p),
+            };
+        }
+        Ok(())
+    }
+
+    /// `fmi2SetReal`: all values are checked first; any rejection sets none of them.
+    pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
+        let mut checked = Vec::with_capacity(vrs.len());
+        for (&v, &x) in vrs.iter().zip(values) {
+            let vr = real_vr(v)?;
+            let var = vr.var();
+            let fixed_now = var.variability == Variability::Fixed
+                && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
+            if var.causality == Causality::Output {
+                return Err(format!("{} (value reference {v}) is an output and cannot be set", var.name));
+            }
+            if fixed_now {
+                return Err(format!(
+                    "{} is a fixed parameter: it can only be set before fmi2ExitInitializationMode (state is {:?})",
+                    var.name, self.machine
+                ));
+            }
+            let ok = match vr {
+                Vr::Lambda => check_lambda(x),
+                Vr::Sigma => check_sigma(x),
+                Vr::RInf => check_r_inf(x),
+                _ => check_edge_stress(x),
+            };
+            checked.push((vr, ok.map_err(|e| e.to_string())?));
+        }
+        for (vr, x) in checked {
+            let m = &mut self.model;
+            match vr {
+                Vr::Lambda => m.params.lambda = x,
+                Vr::Sigma => m.params.sigma = x,
+                Vr::RInf => m.params.r_inf = x,
+                _ => m.edge_stress = x,
+            }
+            if vr != Vr::EdgeStress {
+                m.solver = None;
+            }
+        }
+        Ok(())
+    }
+
+    /// `fmi2DoStep`: the edge stress set before the call is held over `[t, t + h]`.
+    pub fn do_step(&mut self, t: f64, h: f64) -> Result<(), Rejected> {
+        let now = self.model.time;
+        if !t.is_finite() || (t - now).abs() > 1e-12 * now.abs().max(1.0) {
+            return Err(format!("Expected currentCommunicationPoint = {now} but was {t}"));
+        }
+        if !(h.is_finite() && h > 0.0) {
+            return Err(format!("communicationStepSize = {h} is invalid: it must be finite and > 0"));
+        }
+        if let Some(stop) = self.model.stop_time.filter(|&s| now + h > s + 1e-12 * s.abs().max(1.0)) {
+            return Err(format!("a step of {h} from {now} would pass stopTime = {stop}"));
+        }
+        let p = self.model.edge_stress;
+        self.ensure_solver()?;
+        let solver = self.model.solver.as_mut().expect("built above");
+        solver.advance(h, p).map_err(|e| e.to_string())?;
+        self.model.time = now + h;
+        Ok(())
+    }
+
+    /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`.
+    pub fn last_successful_time(&self) -> f64 {
+        self.model.time
+    }
+
+    /// `fmi2GetBooleanStatus(fmi2Terminated)`: true once the stop time is reached.
+    pub fn wants_to_terminate(&self) -> bool {
+        self.model.stop_time.is_some_and(|s| self.model.time >= s - 1e-12 * s.abs().max(1.0))
+    }
+
+    /// `fmi2GetFMUstate`: save into `handle` if given (it must be ours), else a new one.
+    pub fn get_fmu_state(&mut self, handle: Option<u64>) -> Result<u64, Rejected> {
+        let snap = Snapshot { machine: self.machine, model: self.model.clone() };
+        let h = match handle {
+            Some(h) if self.states.contains_key(&h) => h,
+            Some(h) => return Err(format!("FMU state {h:#x} was not allocated by this instance")),
+            None => self.new_handle(),
+        };
+        self.states.insert(h, snap);
+        Ok(h)
+    }
+
+    fn new_handle(&mut self) -> u64 {
+        let h = self.next_handle;
+        self.next_handle += 1;
+        h
+    }
+
+    fn snapshot(&self, handle: u64) -> Result<&Snapshot, Rejected> {
+        self.states
+            .get(&handle)
+            .ok_or_else(|| format!("FMU state {handle:#x} is unknown (never allocated here, or already freed)"))
+    }
+
+    pub fn set_fmu_state(&mut self, handle: u64) -> Result<(), Rejected> {
+        let snap = self.snapshot(handle)?.clone();
+        self.machine = snap.machine;
+        self.model = snap.model;
+        Ok(())
+    }
+
+    pub fn free_fmu_state(&mut self, handle: u64) -> Result<(), Rejected> {
+        self.snapshot(handle)?;
+        self.states.remove(&handle);
+        Ok(())
+    }
+
+    pub fn serialize_fmu_state(&self, handle: u64) -> Result<Vec<u8>, Rejected> {
+        let snap = self.snapshot(handle)?;
+        let m = &snap.model;
+        Ok(state::encode(&Saved {
+            machine: snap.machine,
+            params: m.params,
+            settings: m.settings,
+            edge_stress: m.edge_stress,
+            start_time: m.start_time,
+            time: m.time,
+            stop_time: m.stop_time,
+            solver: m.solver.as_ref().map(Solver::state),
+        }))
+    }
+
+    /// `fmi2DeSerializeFMUstate`: the bytes must come from an instance with the same
+    /// parameters (a state is a point of one trajectory, not a parameter set).
+    /// Into `target` if given (it must be ours), else into a new state.
+    pub fn deserialize_fmu_state(&mut self, bytes: &[u8], target: Option<u64>) -> Result<u64, Rejected> {
+        let saved = state::decode(bytes)?;
+        let (mine, theirs) = (self.model.params, saved.params);
+        for (name, a, b) in [
+            ("lambda", mine.lambda, theirs.lambda),
+            ("sigma", mine.sigma, theirs.sigma),
+            ("R_inf", mine.r_inf, theirs.r_inf),
+        ] {
+            if a.to_bits() != b.to_bits() {
+                return Err(format!("serialized FMU state has {name} = {b} but this instance has {name} = {a}"));
+            }
+        }
+        if saved.settings != self.model.settings {
+            return Err(format!(
+                "serialized FMU state has mesh {:?} but this instance uses {:?}",
+                saved.settings.mesh, self.model.settings.mesh
+            ));
+        }
+        let solver = match &saved.solver {
+            None => None,
+            Some(st) => {
+                let mut s = match &self.model.solver {
+                    Some(own) => Solver::with_operator(Arc::clone(own.operator()), saved.params.sigma),
+                    None => Solver::new(&saved.params, &saved.settings),
+                }
+                .map_err(|e| e.to_string())?;
+                s.restore(st).map_err(|e| format!("serialized FMU state: {e}"))?;
+                Some(s)
+            }
+        };
+        let model = Model {
+            params: saved.params,
+            settings: saved.settings,
+            edge_stress: saved.edge_stress,
+            start_time: saved.start_time,
+            stop_time: saved.stop_time,
+            time: saved.time,
+            solver,
+        };
+        let handle = match target {
+            Some(h) => self.snapshot(h).map(|_| h)?,
+            None => self.new_handle(),
+        };
+        self.states.insert(handle, Snapshot { machine: saved.machine, model });
+        Ok(handle)
+    }
+}
+
+fn real_vr(v: u32) -> Result<Vr, Rejected> {
+    Vr::from_u32(v).ok_or_else(|| format!("no Real variable has value reference {v}"))
+}
+
+fn category_list() -> String {
+    LOG_CATEGORIES.iter().map(|(c, _)| *c).collect::<Vec<_>>().join(", ")
+}

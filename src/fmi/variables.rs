@@ -1,0 +1,181 @@
+//! The component's variables: the one table that `modelDescription.xml` must match
+//! (checked by `tests/model_description.rs`).
+
+/// `modelIdentifier` of the FMU (and the name of its shared object).
+pub const MODEL_IDENTIFIER: &str = "WoundOpening";
+/// `guid` of `modelDescription.xml`; `fmi2Instantiate` rejects any other.
+pub const GUID: &str = "{8c4e1f0a-3b7d-4e52-9a61-2f0d5c7b9e14}";
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Causality {
+    Parameter,
+    Input,
+    Output,
+}
+
+impl Causality {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Parameter => "parameter",
+            Self::Input => "input",
+            Self::Output => "output",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variability {
+    Fixed,
+    Continuous,
+}
+
+impl Variability {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Fixed => "fixed",
+            Self::Continuous => "continuous",
+        }
+    }
+}
+
+/// Value references, in the order of the table (index = value reference).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Vr {
+    Lambda = 0,
+    Sigma = 1,
+    RInf = 2,
+    EdgeStress = 3,
+    WoundRadius = 4,
+    EdgeVelocity = 5,
+}
+
+impl Vr {
+    pub const ALL: [Vr; 6] =
+        [Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress, Vr::WoundRadius, Vr::EdgeVelocity];
+
+    pub fn from_u32(vr: u32) -> Option<Self> {
+        Self::ALL.get(vr as usize).copied()
+    }
+
+    pub fn var(self) -> &'static Variable {
+        &VARIABLES[self as usize]
+    }
+}
+
+/// One `ScalarVariable` of type Real.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Variable {
+    pub name: &'static str,
+    pub value_reference: u32,
+    pub causality: Causality,
+    pub variability: Variability,
+    /// `Some` for parameters and inputs (`initial` is then exact or absent).
+    pub start: Option<f64>,
+    pub unit: &'static str,
+    pub description: &'static str,
+}
+
+pub const VARIABLES: [Variable; 6] = [
+    Variable {
+        name: "lambda",
+        value_reference: 0,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        start: Some(1.0),
+        unit: "1",
+        description: "Viscous length over wound radius, 2 sqrt(eta/zeta)/R0 (>= 0)",
+    },
+    Variable {
+        name: "sigma",
+        value_reference: 1,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        start: Some(1.0),
+        unit: "G",
+        description: "Homeostatic tension over shear modulus",
+    },
+    Variable {
+        name: "R_inf",
+        value_reference: 2,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        start: Some(10.0),
+        unit: "R0",
+        description: "Outer radius of the tissue over wound radius (> 1)",
+    },
+    Variable {
+        name: "edge_stress",
+        value_reference: 3,
+        causality: Causality::Input,
+        variability: Variability::Continuous,
+        start: Some(0.0),
+        unit: "G",
+        description: "Radial stress applied at the wound edge, held over each step (0 = free edge)",
+    },
+    Variable {
+        name: "wound_radius",
+        value_reference: 4,
+        causality: Causality::Output,
+        variability: Variability::Continuous,
+        start: None,
+        unit: "R0",
+        description: "Wound radius R(t) = 1 + u(1, t)",
+    },
+    Variable {
+        name: "edge_velocity",
+        value_reference: 5,
+        causality: Causality::Output,
+        variability: Variability::Continuous,
+        start: None,
+        unit: "R0/T",
+        description: "Edge velocity dR/dt under the current edge_stress",
+    },
+];
+
+/// `ModelStructure/Outputs`: each output with the inputs it depends on directly, and
+/// the `dependenciesKind` of each (`fixed`: linear with a factor set by fixed parameters).
+pub const OUTPUT_DEPENDENCIES: [(Vr, &[(Vr, &str)]); 2] = [
+    (Vr::WoundRadius, &[]),
+    (Vr::EdgeVelocity, &[(Vr::EdgeStress, "fixed")]),
+];
+
+/// `ModelStructure/InitialUnknowns`: the outputs at initialization and the knowns they
+/// depend on (`R1 = 1 + sigma/6`; the initial velocity depends on everything).
+pub const INITIAL_DEPENDENCIES: [(Vr, &[Vr]); 2] = [
+    (Vr::WoundRadius, &[Vr::Sigma]),
+    (Vr::EdgeVelocity, &[Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress]),
+];
+
+/// Log categories declared in `modelDescription.xml`, with their descriptions.
+pub const LOG_CATEGORIES: [(&str, &str); 3] = [
+    ("logStatusError", "Errors: rejected calls and values, with the reason"),
+    ("logStatusWarning", "Warnings"),
+    ("logCalls", "Every FMI call with its arguments, and solver set-up details"),
+];
+
+/// Capability flags of `<CoSimulation>` that the code relies on.
+pub const CAPABILITIES: [(&str, &str); 8] = [
+    ("canHandleVariableCommunicationStepSize", "true"),
+    ("canGetAndSetFMUstate", "true"),
+    ("canSerializeFMUstate", "true"),
+    ("providesDirectionalDerivative", "false"),
+    ("canInterpolateInputs", "false"),
+    ("maxOutputDerivativeOrder", "0"),
+    ("canRunAsynchronuously", "false"),
+    ("canNotUseMemoryManagementFunctions", "true"),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn value_references_are_table_indices() {
+        for (i, v) in VARIABLES.iter().enumerate() {
+            assert_eq!(v.value_reference as usize, i, "{}", v.name);
+            assert_eq!(Vr::from_u32(i as u32).map(|vr| vr.var().name), Some(v.name));
+        }
+        assert_eq!(Vr::from_u32(6), None);
+    }
+}

@@ -1,0 +1,28 @@
+//! Command line of the project.
+//!
+//! `cargo run --release -- fmu` writes `target/fmu/WoundOpening.fmu`.
+
+mod package;
+
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("fmu") => package::build_fmu(),
+        _ => {
+            eprintln!("usage: wound_opening fmu    # writes <target>/fmu/WoundOpening.fmu");
+            return ExitCode::from(2);
+        }
+    };
+    match result {
+        Ok(path) => {
+            println!("wrote {}", path.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,78 @@
+"""Shared pytest setup for the FMU tests.
+
+* puts `python/` (the exact reference, wound_exact.py) and this folder (fmu_harness.py)
+  on sys.path;
+* locates the FMU relative to the repository root (two levels above this file); if it is
+  missing, every test that needs it fails (it is never skipped) with a message saying how
+  to build it;
+* prints the measured accuracy figures collected by the tests at the end of the run.
+"""
+
+from __future__ import annotations
+
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+for _p in (ROOT / "python", HERE):
+    if str(_p) not in sys.path:
+        sys.path.insert(0, str(_p))
+
+import fmu_harness  # noqa: E402  (needs the sys.path entries above)
+
+FMU_PATH = ROOT / "target" / "fmu" / "WoundOpening.fmu"
+
+
+@pytest.fixture(scope="session")
+def fmu_path() -> str:
+    if not FMU_PATH.is_file():
+        pytest.fail(
+            f"FMU not found: {FMU_PATH}\n"
+            f"Build it first, from {ROOT}: cargo run --release -- fmu",
+            pytrace=False,
+        )
+    return str(FMU_PATH)
+
+
+@pytest.fixture(scope="session")
+def model_description(fmu_path):
+    from fmpy import read_model_description
+
+    return read_model_description(fmu_path)
+
+
+@pytest.fixture(scope="session")
+def unzipdir(fmu_path):
+    """The FMU extracted once per session; every FMU2Slave of the session loads it."""
+    from fmpy import extract
+
+    directory = extract(fmu_path)
+    yield str(directory)
+    shutil.rmtree(directory, ignore_errors=True)
+
+
+@pytest.fixture
+def make_slave(unzipdir, model_description):
+    """Factory for harness Slaves; every Slave made by a test is freed after it."""
+    made = []
+
+    def make(**kwargs):
+        slave = fmu_harness.Slave(unzipdir, model_description, **kwargs)
+        made.append(slave)
+        return slave
+
+    yield make
+    for slave in reversed(made):
+        slave.close()
+
+
+def pytest_terminal_summary(terminalreporter):
+    if not fmu_harness.MEASURED:
+        return
+    terminalreporter.section("measured errors (max over the communication points)")
+    for key in sorted(fmu_harness.MEASURED):
+        terminalreporter.write_line(f"{key}: {fmu_harness.MEASURED[key]:.3e}")

@@ -1,0 +1,254 @@
+"""A thin harness around fmpy's FMU2Slave for the WoundOpening tests.
+
+What it adds to fmpy:
+
+* log capture per instance.  The FMU calls the logger printf-style
+  (logger(env, name, status, category, "%s", message)); ctypes cannot read C varargs,
+  so the formatting is left to fmpy's native proxy (fmpy.logging.addLoggerProxy), which
+  vsnprintf's the message and forwards it to one Python callback.  That proxy keeps a
+  single process-wide target, so there is exactly one Python callback (_dispatch) for the
+  whole session, and it routes each message to its instance by the componentEnvironment
+  pointer, which is a distinct integer per Slave.  Messages of instances not made here
+  (fmpy's default callbacks, e.g. inside simulate_fmu) are printed.
+* value references by name, master-side time keeping, and `run` over a time grid with a
+  piecewise-constant edge stress (held over each communication step, as the FMU does).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+from ctypes import byref
+from dataclasses import dataclass
+
+import numpy as np
+from fmpy import calloc, free
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import (
+    FMU2Slave,
+    fmi2CallbackAllocateMemoryTYPE,
+    fmi2CallbackFreeMemoryTYPE,
+    fmi2CallbackFunctions,
+    fmi2CallbackLoggerTYPE,
+    fmi2Error,
+)
+from fmpy.logging import addLoggerProxy
+
+import wound_exact
+
+# The paper's case: R_inf = 10, sigma = 1 (lengths in R0, stresses in G, time in T).
+SIGMA = 1.0
+R_INF = 10.0
+R1 = wound_exact.initial_radius(SIGMA)
+R_FINAL = wound_exact.final_radius(SIGMA, R_INF)
+AMPLITUDE = R_FINAL - R1  # the opening R_final - R1 (about 0.507)
+
+# The requirement: |wound_radius - R_exact| <= 1e-6 (R_final - R1) at every t >= 0.01.
+RADIUS_TOL = 1e-6
+T_MIN = 0.01
+
+# Velocity: relative 1e-6 where the edge moves, and below the mean opening speed over a
+# 100 T horizon, AMPLITUDE / 100 (~5e-3), absolute 1e-6 of that speed: a velocity error at
+# that level, integrated over the horizon, is 1e-6 of the amplitude, i.e. the same
+# requirement as for the radius.
+VELOCITY_TOL = 1e-6
+VELOCITY_FLOOR = AMPLITUDE / 100.0
+
+# Largest measured errors, printed at the end of the run by conftest.py.
+MEASURED: dict[str, float] = {}
+
+
+def record(key: str, value: float) -> None:
+    MEASURED[key] = max(MEASURED.get(key, 0.0), float(value))
+
+
+def exact(lam, t, p=0.0, sigma=SIGMA, r_inf=R_INF):
+    """Exact (R, dR/dt) at the times t (> 0) for a constant edge stress p from t = 0."""
+    return wound_exact.edge(lam, sigma, r_inf, np.asarray(t, dtype=float), p=p)
+
+
+def radius_error(r, r_exact):
+    """|R - R_exact| / (R_final - R1), elementwise."""
+    return np.abs(np.asarray(r) - r_exact) / AMPLITUDE
+
+
+def velocity_error(v, v_exact):
+    """|v - v_exact| / max(|v_exact|, VELOCITY_FLOOR), elementwise."""
+    return np.abs(np.asarray(v) - v_exact) / np.maximum(np.abs(v_exact), VELOCITY_FLOOR)
+
+
+def communication_grid(t_end=100.0, extra=(0.0123, 0.5555, 37.777)):
+    """Step 0.01 up to t = 1, then 0.1 up to t_end, plus a few off-grid points.
+
+    The off-grid points make the communication step size vary irregularly (0.0023,
+    0.0077, 0.0055, ...), besides the switch from 0.01 to 0.1 at t = 1.
+    """
+    fine = np.arange(1, 101) / 100.0
+    coarse = np.arange(11, int(round(t_end * 10)) + 1) / 10.0
+    return np.unique(np.concatenate([fine, coarse, np.asarray(extra, dtype=float)]))
+
+
+def value_regex(value: float) -> str:
+    """A regex for a double as the FMU may print it (Rust {} or C %g): -1, -1.0, NaN, inf."""
+    if math.isnan(value):
+        return r"[-+]?nan"
+    if math.isinf(value):
+        return ("-" if value < 0 else r"\+?") + r"inf(inity)?"
+    text = re.escape(f"{value:g}")
+    if value == int(value):
+        text += r"(\.0*)?"
+    return text + r"(?![\d.])"
+
+
+def names_value(name: str, value: float) -> re.Pattern:
+    """Pattern for 'name = value' in a log message (case-insensitive)."""
+    return re.compile(rf"(?<![\w]){re.escape(name)}\s*=\s*{value_regex(value)}", re.I)
+
+
+# --------------------------------------------------------------------------- logging
+
+
+@dataclass
+class LogMessage:
+    instance: str
+    status: int
+    category: str
+    message: str
+
+    def __str__(self):
+        label = ["OK", "WARNING", "DISCARD", "ERROR", "FATAL", "PENDING"]
+        status = label[self.status] if 0 <= self.status < len(label) else str(self.status)
+        return f"[{status}] {self.instance} {self.category}: {self.message}"
+
+
+_LOGS: dict[int, list[LogMessage]] = {}
+_ENV_IDS = itertools.count(0x1000)
+
+
+def _text(b) -> str:
+    return "" if b is None else b.decode("utf-8", errors="replace")
+
+
+def _dispatch(env, instance_name, status, category, message):
+    entry = LogMessage(_text(instance_name), int(status), _text(category), _text(message))
+    target = _LOGS.get(env or 0)
+    if target is None:
+        print(f"(unrouted FMU log) {entry}")
+    else:
+        target.append(entry)
+
+
+_DISPATCH = fmi2CallbackLoggerTYPE(_dispatch)  # module global: must outlive every instance
+
+
+class InstantiateFailed(Exception):
+    """fmi2Instantiate returned NULL; `log` holds what the FMU logged meanwhile."""
+
+    def __init__(self, log):
+        super().__init__("fmi2Instantiate returned NULL")
+        self.log = log
+
+
+# --------------------------------------------------------------------------- the slave
+
+
+class Slave:
+    """One co-simulation instance of the FMU, with its own captured log."""
+
+    def __init__(self, unzipdir, model_description, *, instance_name="wound", guid=None,
+                 logging_on=False):
+        md = model_description
+        self.vr = {v.name: v.valueReference for v in md.modelVariables}
+        self.log: list[LogMessage] = []
+        self.env = next(_ENV_IDS)
+        _LOGS[self.env] = self.log
+
+        cb = fmi2CallbackFunctions()
+        cb.logger = _DISPATCH
+        cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        cb.componentEnvironment = self.env
+        addLoggerProxy(byref(cb))  # cb.logger := native formatting proxy -> _dispatch
+        self.callbacks = cb
+
+        self.fmu = FMU2Slave(
+            guid=md.guid if guid is None else guid,
+            unzipDirectory=unzipdir,
+            modelIdentifier=md.coSimulation.modelIdentifier,
+            instanceName=instance_name,
+        )
+        self.alive = False
+        self.initialized = False
+        self.time = None
+        try:
+            self.fmu.instantiate(callbacks=cb, loggingOn=logging_on)
+        except Exception:
+            self.fmu.freeLibrary()
+            raise InstantiateFailed(self.log) from None
+        self.alive = True
+
+    # values by name
+    def set(self, values: dict) -> None:
+        names = list(values)
+        self.fmu.setReal([self.vr[n] for n in names], [float(values[n]) for n in names])
+
+    def get(self, *names) -> list[float]:
+        return self.fmu.getReal([self.vr[n] for n in names])
+
+    def outputs(self) -> tuple[float, float]:
+        r, v = self.get("wound_radius", "edge_velocity")
+        return r, v
+
+    # life cycle
+    def initialize(self, params: dict | None = None, start_time=0.0, stop_time=None) -> None:
+        self.fmu.setupExperiment(startTime=start_time, stopTime=stop_time)
+        if params:
+            self.set(params)
+        self.fmu.enterInitializationMode()
+        self.fmu.exitInitializationMode()
+        self.initialized = True
+        self.time = float(start_time)
+
+    def step_to(self, t_next: float) -> None:
+        """doStep(time, t_next - time), as a master on a time grid does it."""
+        self.fmu.doStep(self.time, t_next - self.time)
+        self.time = float(t_next)
+
+    def run(self, times, edge_stress=None):
+        """Step to each of `times` in turn; outputs (R, v) arrays after each step.
+
+        edge_stress: None (leave the input alone) or a function of the step's start time
+        giving the value to hold over that step.
+        """
+        r = np.empty(len(times))
+        v = np.empty(len(times))
+        for i, t_next in enumerate(times):
+            if edge_stress is not None:
+                self.set({"edge_stress": edge_stress(self.time)})
+            self.step_to(t_next)
+            r[i], v[i] = self.outputs()
+        return r, v
+
+    def reset(self) -> None:
+        self.fmu.reset()
+        self.initialized = False
+        self.time = None
+
+    def close(self) -> None:
+        if not self.alive:
+            return
+        self.alive = False
+        if self.initialized:
+            try:
+                self.fmu.terminate()
+            except FMICallException:
+                pass
+        self.fmu.freeInstance()
+
+    # the log
+    def errors(self) -> list[LogMessage]:
+        return [m for m in self.log if m.status >= fmi2Error]
+
+    def log_text(self) -> str:
+        return "\n".join(str(m) for m in self.log) or "(nothing logged)"
