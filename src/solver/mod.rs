@@ -86,10 +86,6 @@ pub struct Operator {
     modes: Modes,
     /// Row of the mode shapes at the wound edge, `X[0, :]`.
     edge_row: DVector<f64>,
-    /// Row of the mode shapes at the outer edge, `X[last, :]`.
-    outer_row: DVector<f64>,
-    /// Modal coordinates of the uniform-tension state `u = r / 6` (sigma = 1).
-    unit_tension: DVector<f64>,
 }
 
 impl Operator {
@@ -106,12 +102,8 @@ impl Operator {
         let m = galerkin::assemble(&mesh);
         let mass = 4.0 * &m.mass + lambda * lambda * &m.stiffness;
         let modes = Modes::new(&m.stiffness, &mass).map_err(SolverError::Modal)?;
-        let last = mesh.len() - 1;
         let edge_row = modes.shapes.row(0).transpose();
-        let outer_row = modes.shapes.row(last).transpose();
-        let tension = DVector::from_iterator(mesh.len(), mesh.nodes.iter().map(|r| r / 6.0));
-        let unit_tension = modes.shapes.tr_mul(&(&m.stiffness * tension));
-        Ok(Self { lambda, r_inf, mesh, modes, edge_row, outer_row, unit_tension })
+        Ok(Self { lambda, r_inf, mesh, modes, edge_row })
     }
 
     pub fn lambda(&self) -> f64 {
@@ -135,13 +127,23 @@ impl Operator {
         self.modes.len() == 0
     }
 
-    /// Modal target `g = X^T F`, `F = R_inf sigma e_last - p e_first`.
+    /// Modal target of the departure `v = u - sigma r / 6` from the uniform tension:
+    ///
+    /// ```text
+    /// A (sigma r / 6) = F(p = sigma) exactly (the uniform tension balances both edge
+    /// tractions, galerkin.rs), so  B v_t = -A v + F(p) - F(sigma) = -A v + (sigma - p) e_first
+    /// and in modes  g = X^T (sigma - p) e_first = (sigma - p) X[0, :].
+    /// ```
+    ///
+    /// Working with `v` (zero at the cut) keeps `R(0) = 1 + sigma / 6` exact and makes
+    /// `p = sigma` a state of rest to the last bit.
     fn target(&self, sigma: f64, p: f64) -> DVector<f64> {
-        (self.r_inf * sigma) * &self.outer_row - p * &self.edge_row
+        (sigma - p) * &self.edge_row
     }
 }
 
-/// A solver state that can be saved and restored: the time and the modal coefficients.
+/// A solver state that can be saved and restored: the time and the modal coefficients
+/// of `v = u - sigma r / 6`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolverState {
     pub time: f64,
@@ -154,6 +156,7 @@ pub struct Solver {
     op: Arc<Operator>,
     sigma: f64,
     time: f64,
+    /// Modal coordinates of `v = u - sigma r / 6`.
     coeffs: DVector<f64>,
     /// `(h, exp(-h / nu))` of the last step size, reused while `h` repeats.
     decay: Option<(f64, DVector<f64>)>,
@@ -170,7 +173,7 @@ impl Solver {
     /// A solver on an existing operator (shared, not rebuilt).
     pub fn with_operator(op: Arc<Operator>, sigma: f64) -> Result<Self, SolverError> {
         check_sigma(sigma)?;
-        let coeffs = sigma * &op.unit_tension;
+        let coeffs = DVector::zeros(op.len());
         Ok(Self { op, sigma, time: 0.0, coeffs, decay: None })
     }
 
@@ -206,9 +209,9 @@ impl Solver {
         Ok(())
     }
 
-    /// Wound radius `R = 1 + u(1, t)`, in R0.
+    /// Wound radius `R = 1 + u(1, t) = 1 + sigma / 6 + v(1, t)`, in R0.
     pub fn wound_radius(&self) -> f64 {
-        1.0 + self.op.edge_row.dot(&self.coeffs)
+        1.0 + self.sigma / 6.0 + self.op.edge_row.dot(&self.coeffs)
     }
 
     /// Edge velocity `dR/dt = u_t(1, t)` with edge stress `p` applied now, in R0 / T:
@@ -225,7 +228,8 @@ impl Solver {
 
     /// Displacement `u(r)` at each requested radius (clamped into `[1, R_inf]`).
     pub fn displacement(&self, radii: &[f64]) -> Vec<f64> {
-        self.profile(&self.coeffs, radii)
+        let v = self.profile(&self.coeffs, radii);
+        radii.iter().zip(v).map(|(r, v)| self.sigma * r.clamp(1.0, self.op.r_inf) / 6.0 + v).collect()
     }
 
     /// Velocity `u_t(r)` with edge stress `p`, at each requested radius.

@@ -73,6 +73,6 @@ def make_slave(unzipdir, model_description):
 def pytest_terminal_summary(terminalreporter):
     if not fmu_harness.MEASURED:
         return
-    terminalreporter.section("measured errors (max over the communication points)")
+    terminalreporter.section("measured errors (maxima; tolerances are in the tests)")
     for key in sorted(fmu_harness.MEASURED):
         terminalreporter.write_line(f"{key}: {fmu_harness.MEASURED[key]:.3e}")

@@ -55,6 +55,11 @@ T_MIN = 0.01
 VELOCITY_TOL = 1e-6
 VELOCITY_FLOOR = AMPLITUDE / 100.0
 
+def PARAMS(lam):
+    """The parameter set of the paper's case for one lambda."""
+    return {"lambda": lam, "sigma": SIGMA, "R_inf": R_INF}
+
+
 # Largest measured errors, printed at the end of the run by conftest.py.
 MEASURED: dict[str, float] = {}
 
@@ -78,6 +83,37 @@ def velocity_error(v, v_exact):
     return np.abs(np.asarray(v) - v_exact) / np.maximum(np.abs(v_exact), VELOCITY_FLOOR)
 
 
+def check_against(label, t, r, v, r_exact, v_exact, mask=None):
+    """Assert the requirement on the points selected by mask; record the maxima."""
+    t, r, v = map(np.asarray, (t, r, v))
+    mask = np.ones(t.shape, bool) if mask is None else mask
+    er = radius_error(r[mask], r_exact[mask])
+    ev = velocity_error(v[mask], v_exact[mask])
+    record(f"{label} radius", er.max())
+    record(f"{label} velocity", ev.max())
+    i, j = er.argmax(), ev.argmax()
+    tm = t[mask]
+    assert er.max() <= RADIUS_TOL, (
+        f"{label}: radius error {er.max():.3e} (in units of R_final - R1) at t = {tm[i]}: "
+        f"FMU {r[mask][i]!r}, exact {r_exact[mask][i]!r}"
+    )
+    assert ev.max() <= VELOCITY_TOL, (
+        f"{label}: velocity error {ev.max():.3e} (relative) at t = {tm[j]}: "
+        f"FMU {v[mask][j]!r}, exact {v_exact[mask][j]!r}"
+    )
+
+
+def check_free_opening(label, lam, t, r, v, p=0.0):
+    """Edge stress p (default 0) held from t = 0: compare at t >= T_MIN with the exact
+    solution."""
+    t = np.asarray(t)
+    mask = t >= T_MIN
+    r_exact = np.full(t.shape, np.nan)
+    v_exact = np.full(t.shape, np.nan)
+    r_exact[mask], v_exact[mask] = exact(lam, t[mask], p=p)
+    check_against(label, t, r, v, r_exact, v_exact, mask)
+
+
 def communication_grid(t_end=100.0, extra=(0.0123, 0.5555, 37.777)):
     """Step 0.01 up to t = 1, then 0.1 up to t_end, plus a few off-grid points.
 
@@ -86,7 +122,8 @@ def communication_grid(t_end=100.0, extra=(0.0123, 0.5555, 37.777)):
     """
     fine = np.arange(1, 101) / 100.0
     coarse = np.arange(11, int(round(t_end * 10)) + 1) / 10.0
-    return np.unique(np.concatenate([fine, coarse, np.asarray(extra, dtype=float)]))
+    extra = np.asarray(extra, dtype=float)
+    return np.unique(np.concatenate([fine, coarse, extra[extra < t_end]]))
 
 
 def value_regex(value: float) -> str:

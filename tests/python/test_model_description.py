@@ -2,6 +2,7 @@
 
 import zipfile
 
+from fmpy import platform, sharedLibraryExtension
 from fmpy.validation import validate_fmu
 
 # name: (valueReference, causality, variability, start)
@@ -24,7 +25,7 @@ def test_archive_layout(fmu_path):
     with zipfile.ZipFile(fmu_path) as zf:
         names = zf.namelist()
     assert "modelDescription.xml" in names
-    assert "binaries/linux64/WoundOpening.so" in names, names
+    assert f"binaries/{platform}/WoundOpening{sharedLibraryExtension}" in names, names
 
 
 def test_co_simulation_interface(model_description):
