@@ -1,0 +1,184 @@
+//! The safe FMU instance: state machine, rejected calls that change nothing, messages
+//! that name what was wrong, FMU states. (The C boundary itself is driven by fmpy in
+//! tests/python.)
+
+use std::cell::RefCell;
+use std::rc::Rc;
+use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
+use wound_opening::fmi::state::Machine;
+use wound_opening::fmi::variables::Vr;
+
+#[derive(Clone, Default)]
+struct Collect(Rc<RefCell<Vec<(Status, String, String)>>>);
+
+impl Logger for Collect {
+    fn log(&self, status: Status, category: &str, message: &str) {
+        self.0.borrow_mut().push((status, category.into(), message.into()));
+    }
+}
+
+impl Collect {
+    fn last_error(&self) -> String {
+        let log = self.0.borrow();
+        let (status, cat, msg) = log.last().expect("a message was logged").clone();
+        assert_eq!((status, cat.as_str()), (Status::Error, "logStatusError"));
+        msg
+    }
+}
+
+fn instance() -> (Instance, Collect) {
+    let log = Collect::default();
+    (Instance::new("test", Box::new(log.clone()), false), log)
+}
+
+fn run<T>(i: &mut Instance, call: Call, body: impl FnOnce(&mut Instance) -> Result<T, String>) -> Result<T, Status> {
+    i.call(call, || format!("{call:?}"), body)
+}
+
+fn initialized(lambda: f64) -> (Instance, Collect) {
+    let (mut i, log) = instance();
+    run(&mut i, Call::Set, |i| i.set_real(&[Vr::Lambda as u32], &[lambda])).unwrap();
+    run(&mut i, Call::EnterInitializationMode, |i| i.enter_initialization_mode()).unwrap();
+    run(&mut i, Call::ExitInitializationMode, |i| i.exit_initialization_mode()).unwrap();
+    (i, log)
+}
+
+fn outputs(i: &mut Instance) -> [f64; 2] {
+    let mut out = [0.0; 2];
+    run(i, Call::Get, |i| i.get_real(&[Vr::WoundRadius as u32, Vr::EdgeVelocity as u32], &mut out)).unwrap();
+    out
+}
+
+#[test]
+fn invalid_parameters_are_rejected_by_name_and_change_nothing() {
+    let cases: [(Vr, f64, &str); 6] = [
+        (Vr::Lambda, -1.0, "lambda = -1 is invalid"),
+        (Vr::Lambda, f64::NAN, "lambda = NaN is invalid"),
+        (Vr::RInf, 1.0, "R_inf = 1 is invalid"),
+        (Vr::RInf, 0.5, "R_inf = 0.5 is invalid"),
+        (Vr::Sigma, f64::INFINITY, "sigma = inf is invalid"),
+        (Vr::EdgeStress, f64::NEG_INFINITY, "edge_stress = -inf is invalid"),
+    ];
+    for (vr, value, message) in cases {
+        let (mut i, log) = instance();
+        // A valid value first in the same call: a rejected call sets none of its values.
+        let r = run(&mut i, Call::Set, |i| i.set_real(&[Vr::Sigma as u32, vr as u32], &[2.0, value]));
+        assert_eq!(r, Err(Status::Error));
+        assert!(log.last_error().contains(message), "{}", log.last_error());
+        assert_eq!(i.machine(), Machine::Instantiated);
+        run(&mut i, Call::EnterInitializationMode, |i| i.enter_initialization_mode()).unwrap();
+        let mut sigma = [0.0];
+        run(&mut i, Call::Get, |i| i.get_real(&[Vr::Sigma as u32], &mut sigma)).unwrap();
+        assert_eq!(sigma[0], 1.0, "sigma keeps its start value");
+    }
+}
+
+#[test]
+fn illegal_sequences_are_errors_that_leave_the_instance_usable() {
+    let (mut i, log) = instance();
+    assert_eq!(run(&mut i, Call::DoStep, |i| i.do_step(0.0, 0.1)), Err(Status::Error));
+    assert!(log.last_error().contains("fmi2DoStep is not allowed in state Instantiated"));
+    let (mut i, log) = initialized(1.0);
+    assert_eq!(run(&mut i, Call::Set, |i| i.set_real(&[Vr::Lambda as u32], &[2.0])), Err(Status::Error));
+    assert!(log.last_error().contains("lambda is a fixed parameter"), "{}", log.last_error());
+    assert_eq!(run(&mut i, Call::DoStep, |i| i.do_step(0.5, 0.1)), Err(Status::Error));
+    assert!(log.last_error().contains("Expected currentCommunicationPoint = 0 but was 0.5"));
+    for h in [0.0, -0.1, f64::NAN] {
+        assert_eq!(run(&mut i, Call::DoStep, |i| i.do_step(0.0, h)), Err(Status::Error));
+        assert!(log.last_error().contains("communicationStepSize"), "{}", log.last_error());
+    }
+    assert_eq!(run(&mut i, Call::Set, |i| i.set_real(&[Vr::WoundRadius as u32], &[2.0])), Err(Status::Error));
+    assert_eq!(run(&mut i, Call::Set, |i| i.set_real(&[99], &[2.0])), Err(Status::Error));
+    assert!(log.last_error().contains("value reference 99"));
+    // Still usable after every rejection.
+    run(&mut i, Call::DoStep, |i| i.do_step(0.0, 0.1)).unwrap();
+    assert!(outputs(&mut i)[0] > 1.0 + 1.0 / 6.0);
+}
+
+#[test]
+fn stop_time_is_enforced_and_reported() {
+    let (mut i, log) = instance();
+    run(&mut i, Call::SetupExperiment, |i| i.setup_experiment(None, 2.0, Some(2.5))).unwrap();
+    run(&mut i, Call::EnterInitializationMode, |i| i.enter_initialization_mode()).unwrap();
+    run(&mut i, Call::ExitInitializationMode, |i| i.exit_initialization_mode()).unwrap();
+    run(&mut i, Call::DoStep, |i| i.do_step(2.0, 0.5)).unwrap();
+    assert!(i.wants_to_terminate());
+    assert_eq!(i.last_successful_time(), 2.5);
+    assert_eq!(run(&mut i, Call::DoStep, |i| i.do_step(2.5, 0.1)), Err(Status::Error));
+    assert!(log.last_error().contains("stopTime = 2.5"));
+    let r = run(&mut i, Call::SetupExperiment, |i| i.setup_experiment(None, 0.0, None));
+    assert_eq!(r, Err(Status::Error), "setup only before initialization");
+}
+
+#[test]
+fn fmu_states_restore_and_serialize_bit_for_bit() {
+    let (mut i, log) = initialized(0.1);
+    run(&mut i, Call::DoStep, |i| i.do_step(0.0, 0.3)).unwrap();
+    let saved = run(&mut i, Call::GetFmuState, |i| i.get_fmu_state(None)).unwrap();
+    let bytes = run(&mut i, Call::SerializeFmuState, |i| i.serialize_fmu_state(saved)).unwrap();
+    let mut first = Vec::new();
+    for k in 0..5 {
+        run(&mut i, Call::Set, |i| i.set_real(&[Vr::EdgeStress as u32], &[0.1 * k as f64])).unwrap();
+        run(&mut i, Call::DoStep, |i| i.do_step(0.3 + 0.2 * k as f64, 0.2)).unwrap();
+        first.push(outputs(&mut i));
+    }
+    let replay = |i: &mut Instance| {
+        (0..5)
+            .map(|k| {
+                run(i, Call::Set, |i| i.set_real(&[Vr::EdgeStress as u32], &[0.1 * k as f64])).unwrap();
+                run(i, Call::DoStep, |i| i.do_step(0.3 + 0.2 * k as f64, 0.2)).unwrap();
+                outputs(i)
+            })
+            .collect::<Vec<_>>()
+    };
+    run(&mut i, Call::SetFmuState, |i| i.set_fmu_state(saved)).unwrap();
+    run(&mut i, Call::Set, |i| i.set_real(&[Vr::EdgeStress as u32], &[0.0])).unwrap();
+    assert_eq!(replay(&mut i), first);
+    let back = run(&mut i, Call::DeSerializeFmuState, |i| i.deserialize_fmu_state(&bytes, None)).unwrap();
+    run(&mut i, Call::SetFmuState, |i| i.set_fmu_state(back)).unwrap();
+    assert_eq!(replay(&mut i), first);
+    // Double free and unknown handles are errors, not crashes.
+    run(&mut i, Call::FreeFmuState, |i| i.free_fmu_state(saved)).unwrap();
+    assert_eq!(run(&mut i, Call::FreeFmuState, |i| i.free_fmu_state(saved)), Err(Status::Error));
+    assert!(log.last_error().contains("unknown"));
+    assert_eq!(run(&mut i, Call::SetFmuState, |i| i.set_fmu_state(12345)), Err(Status::Error));
+}
+
+#[test]
+fn serialized_state_from_other_parameters_is_refused_by_name() {
+    let (mut a, _) = initialized(0.1);
+    let h = run(&mut a, Call::GetFmuState, |i| i.get_fmu_state(None)).unwrap();
+    let bytes = run(&mut a, Call::SerializeFmuState, |i| i.serialize_fmu_state(h)).unwrap();
+    let (mut b, log) = initialized(1.0);
+    assert_eq!(run(&mut b, Call::DeSerializeFmuState, |i| i.deserialize_fmu_state(&bytes, None)), Err(Status::Error));
+    assert!(log.last_error().contains("lambda = 0.1 but this instance has lambda = 1"), "{}", log.last_error());
+    assert_eq!(run(&mut b, Call::DeSerializeFmuState, |i| i.deserialize_fmu_state(&bytes[..20], None)), Err(Status::Error));
+    assert!(log.last_error().contains("truncated") || log.last_error().contains("announces"));
+}
+
+#[test]
+fn reset_returns_to_the_start_values() {
+    let (mut i, _) = initialized(0.1);
+    run(&mut i, Call::DoStep, |i| i.do_step(0.0, 1.0)).unwrap();
+    let end = outputs(&mut i);
+    run(&mut i, Call::Reset, |i| i.reset()).unwrap();
+    assert_eq!(i.machine(), Machine::Instantiated);
+    let mut lambda = [0.0];
+    run(&mut i, Call::EnterInitializationMode, |i| i.enter_initialization_mode()).unwrap();
+    run(&mut i, Call::Get, |i| i.get_real(&[Vr::Lambda as u32], &mut lambda)).unwrap();
+    assert_eq!(lambda[0], 1.0);
+    run(&mut i, Call::Set, |i| i.set_real(&[Vr::Lambda as u32], &[0.1])).unwrap();
+    run(&mut i, Call::ExitInitializationMode, |i| i.exit_initialization_mode()).unwrap();
+    run(&mut i, Call::DoStep, |i| i.do_step(0.0, 1.0)).unwrap();
+    assert_eq!(outputs(&mut i), end);
+}
+
+#[test]
+fn debug_logging_switches_categories_and_rejects_unknown_ones() {
+    let (mut i, log) = instance();
+    i.set_debug_logging(true, &["logCalls".into()]).unwrap();
+    run(&mut i, Call::SetupExperiment, |i| i.setup_experiment(None, 0.0, None)).unwrap();
+    assert!(log.0.borrow().iter().any(|(_, c, m)| c == "logCalls" && m.contains("SetupExperiment")));
+    let err = i.set_debug_logging(true, &["logNothing".into()]).unwrap_err();
+    assert!(err.contains("logNothing") && err.contains("logCalls"), "{err}");
+}
