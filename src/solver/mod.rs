@@ -11,9 +11,11 @@ mod mesh;
 mod modal;
 mod params;
 mod quadrature;
+mod tolerance;
 
 pub use mesh::{Mesh, MeshSpec};
 pub use modal::ModalError;
+pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE};
 pub use params::{
     ParamError, Params, check_edge_stress, check_lambda, check_r_inf, check_sigma,
 };
@@ -51,6 +53,8 @@ pub enum SolverError {
     StateNotFinite,
     /// Mesh settings out of range, with the reason.
     Mesh(&'static str),
+    /// A tolerance that is not finite and positive.
+    Tolerance(f64),
 }
 
 impl std::fmt::Display for SolverError {
@@ -64,6 +68,7 @@ impl std::fmt::Display for SolverError {
             }
             Self::StateNotFinite => write!(f, "state holds a non-finite value"),
             Self::Mesh(why) => write!(f, "mesh settings invalid: {why}"),
+            Self::Tolerance(t) => write!(f, "tolerance = {t} is invalid: it must be finite and > 0"),
         }
     }
 }

@@ -1,0 +1,115 @@
+//! From a tolerance to the cheapest mesh that meets it.
+//!
+//! The error measure is the one every accuracy claim of this project uses: the largest
+//! `|R(t) - R_exact(t)|` over `t >= 0.01`, relative to the opening amplitude
+//! `R_final - R1`. It is independent of sigma (the problem is linear in sigma) and, with
+//! exact time integration, has no time-step part.
+//!
+//! Elements are uniform in `xi = ln(1 + (r - 1) / ell)` (see [`super::mesh`]), so a mesh is
+//! characterised by its degree `p`, its grading length `ell` and its element width `dxi`
+//! in `xi`. The scan of `examples/tune_mesh.rs` (lambda in {0, 1e-3, 1e-2, 0.03, 0.1,
+//! 0.3, 1, 3, 10, 100, 1000} x R_inf in {1.5, 2, 10, 100, 1000}, against the exact
+//! Laplace-domain solution) found `p = 8`, `ell = 0.1` the cheapest family, with an error
+//! governed by `dxi` and nearly independent of lambda (the worst case is lambda -> 0):
+//!
+//! ```text
+//! dxi     0.60    0.75    0.86    0.99    1.15    1.32    1.53    1.84    2.30    3.07
+//! error   1.4e-12 1.1e-11 1.0e-10 8.2e-10 9.2e-09 6.4e-08 5.1e-07 7.4e-06 8.7e-05 3.7e-03
+//! ```
+//!
+//! [`MAX_DXI`] keeps a margin of 2 to 10 below that curve. The number of elements is then
+//! `E = ceil(ln(1 + (R_inf - 1) / ell) / dxi)`, growing only logarithmically with
+//! `R_inf`: 49 unknowns for 1e-9 at `R_inf = 10`, 73 at `R_inf = 100`. Below about 1e-11
+//! rounding in the modal transform dominates; smaller tolerances get the 1e-11 mesh.
+
+use super::{MeshSpec, Params, Settings, SolverError};
+
+/// `(tolerance, largest element width dxi)` pairs, tolerance decreasing.
+const MAX_DXI: [(f64, f64); 10] = [
+    (1e-2, 3.2),
+    (1e-3, 2.7),
+    (1e-4, 2.2),
+    (1e-5, 1.75),
+    (1e-6, 1.5),
+    (1e-7, 1.25),
+    (1e-8, 1.05),
+    (1e-9, 0.9),
+    (1e-10, 0.8),
+    (1e-11, 0.6),
+];
+
+/// Polynomial degree of the tolerance-driven meshes.
+pub const DEGREE: usize = 8;
+/// Grading length of the tolerance-driven meshes (R0).
+pub const EDGE_SCALE: f64 = 0.1;
+/// The smallest tolerance the rule distinguishes; smaller ones get this mesh.
+pub const FINEST_TOLERANCE: f64 = 1e-11;
+
+/// Largest element width in `xi` for a tolerance, interpolated linearly in `log10(tol)`.
+fn max_dxi(tol: f64) -> f64 {
+    let (first, last) = (MAX_DXI[0], MAX_DXI[MAX_DXI.len() - 1]);
+    if tol >= first.0 {
+        return first.1;
+    }
+    if tol <= last.0 {
+        return last.1;
+    }
+    let k = MAX_DXI.windows(2).position(|w| tol <= w[0].0 && tol >= w[1].0).expect("inside the table");
+    let ((t0, d0), (t1, d1)) = (MAX_DXI[k], MAX_DXI[k + 1]);
+    let s = (tol.log10() - t0.log10()) / (t1.log10() - t0.log10());
+    d0 + s * (d1 - d0)
+}
+
+impl Settings {
+    /// The cheapest mesh of the rule above whose error stays below `tol` (relative to the
+    /// opening amplitude, for t >= 0.01), for these parameters.
+    pub fn for_tolerance(params: &Params, tol: f64) -> Result<Settings, SolverError> {
+        params.validate()?;
+        if !(tol.is_finite() && tol > 0.0) {
+            return Err(SolverError::Tolerance(tol));
+        }
+        let span = (1.0 + (params.r_inf - 1.0) / EDGE_SCALE).ln();
+        let elements = ((span / max_dxi(tol)).ceil() as usize).max(1);
+        Ok(Settings { mesh: MeshSpec { degree: DEGREE, elements, edge_scale: EDGE_SCALE } })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn elements(r_inf: f64, tol: f64) -> usize {
+        let params = Params { lambda: 1.0, sigma: 1.0, r_inf };
+        Settings::for_tolerance(&params, tol).unwrap().mesh.elements
+    }
+
+    #[test]
+    fn finer_tolerances_and_larger_domains_get_more_elements() {
+        assert_eq!(elements(10.0, 1e-9), 6); // ln(91) / 0.9 = 5.01
+        assert_eq!(elements(100.0, 1e-10), 9); // ln(991) / 0.8 = 8.6
+        for r_inf in [1.001, 2.0, 10.0, 1e3, 1e6] {
+            let counts: Vec<usize> = [1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12].iter().map(|&t| elements(r_inf, t)).collect();
+            assert!(counts.windows(2).all(|w| w[0] <= w[1]), "{r_inf}: {counts:?}");
+            assert!(counts[0] >= 1);
+        }
+    }
+
+    #[test]
+    fn interpolation_hits_the_table_and_stays_between_its_rows() {
+        for (tol, dxi) in MAX_DXI {
+            assert!((max_dxi(tol) - dxi).abs() < 1e-12);
+        }
+        let mid = max_dxi(10f64.powf(-8.5));
+        assert!(mid > 0.9 && mid < 1.05);
+        assert_eq!(max_dxi(1.0), 3.2);
+        assert_eq!(max_dxi(1e-15), 0.6);
+    }
+
+    #[test]
+    fn rejects_bad_tolerances() {
+        let p = Params::default();
+        for tol in [0.0, -1e-6, f64::NAN, f64::INFINITY] {
+            assert!(Settings::for_tolerance(&p, tol).is_err(), "{tol}");
+        }
+    }
+}
