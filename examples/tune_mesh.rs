@@ -21,7 +21,7 @@ fn error(dir: &str, lam: &str, r: &str, settings: impl Fn(&Params) -> Settings) 
         s.advance(v[0] - s.time(), 0.0).unwrap();
         err = err.max((s.wound_radius() - v[1]).abs() / amp);
     }
-    (err, s.operator().len())
+    (err, s.unknowns())
 }
 
 fn main() {

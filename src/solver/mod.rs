@@ -1,17 +1,26 @@
 //! The wound-opening solver: plain safe Rust, no FMI types, no logging.
 //!
-//! Space: spectral elements ([`mesh`]) in a Galerkin formulation ([`galerkin`]) whose edge
-//! stresses are natural boundary terms. Time: exact, mode by mode ([`modal`]), for an edge
-//! stress held constant over each step. The only error left is the spatial one, which
-//! falls exponentially with the polynomial degree.
+//! The default ([`Scheme::Modal`]): spectral elements ([`mesh`]) in a Galerkin formulation
+//! ([`galerkin`]) whose edge stresses are natural boundary terms, integrated exactly in
+//! time, mode by mode ([`modal`], [`exact_time`]), for an edge stress held constant over
+//! each step. The only error left is the spatial one, which falls exponentially with the
+//! polynomial degree. The other schemes are there to be compared with it: the same
+//! Galerkin system stepped by TR-BDF2 ([`trbdf2`]), the paper's own scheme ([`paper`]) and
+//! an explicit scheme ([`explicit`]) on the paper's finite-difference grid ([`fd`]).
 
+mod engine;
 pub mod exact;
+mod exact_time;
+mod explicit;
+mod fd;
 mod galerkin;
 mod mesh;
 mod modal;
+mod paper;
 mod params;
 mod quadrature;
 mod tolerance;
+mod trbdf2;
 
 pub use mesh::{Mesh, MeshSpec};
 pub use modal::ModalError;
@@ -20,9 +29,10 @@ pub use params::{
     ParamError, Params, check_edge_stress, check_lambda, check_r_inf, check_sigma,
 };
 
-use modal::Modes;
-use nalgebra::DVector;
-use quadrature::LagrangeBasis;
+pub use explicit::stability_limits as explicit_stability_limits;
+
+use engine::Engine;
+use exact_time::{ModalEngine, Operator};
 use std::sync::Arc;
 
 /// Discretisation settings.
@@ -81,74 +91,32 @@ impl From<ParamError> for SolverError {
     }
 }
 
-/// The discretised operator of one `(lambda, R_inf, mesh)`: immutable, shared between
-/// a solver and its saved states.
-#[derive(Debug)]
-pub struct Operator {
-    lambda: f64,
-    r_inf: f64,
-    mesh: Mesh,
-    modes: Modes,
-    /// Row of the mode shapes at the wound edge, `X[0, :]`.
-    edge_row: DVector<f64>,
+/// The time integrators, each with its resolution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scheme {
+    /// Spectral elements, exact in time (the default; see [`Settings::for_tolerance`]).
+    Modal(Settings),
+    /// The same Galerkin system, TR-BDF2 steps of at most `max_step`.
+    TrBdf2 { mesh: MeshSpec, max_step: f64 },
+    /// The paper's appendix scheme on `points` uniform points, internal steps of at most `max_step`.
+    Paper { points: usize, max_step: f64 },
+    /// The explicit lagged-viscosity scheme on the paper's grid.
+    Explicit { points: usize, max_step: f64 },
 }
 
-impl Operator {
-    pub fn new(lambda: f64, r_inf: f64, spec: MeshSpec) -> Result<Self, SolverError> {
-        check_lambda(lambda)?;
-        check_r_inf(r_inf)?;
-        if spec.degree == 0 || spec.elements == 0 || spec.degree * spec.elements > 4000 {
-            return Err(SolverError::Mesh("need degree >= 1, elements >= 1, degree*elements <= 4000"));
+impl Scheme {
+    /// Short name, as used in benchmarks and charts.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Scheme::Modal(_) => "modal",
+            Scheme::TrBdf2 { .. } => "trbdf2",
+            Scheme::Paper { .. } => "paper",
+            Scheme::Explicit { .. } => "explicit",
         }
-        if !(spec.edge_scale.is_finite() && spec.edge_scale > 0.0) {
-            return Err(SolverError::Mesh("edge_scale must be finite and > 0"));
-        }
-        let mesh = Mesh::new(spec, r_inf);
-        let m = galerkin::assemble(&mesh);
-        let mass = 4.0 * &m.mass + lambda * lambda * &m.stiffness;
-        let modes = Modes::new(&m.stiffness, &mass).map_err(SolverError::Modal)?;
-        let edge_row = modes.shapes.row(0).transpose();
-        Ok(Self { lambda, r_inf, mesh, modes, edge_row })
-    }
-
-    pub fn lambda(&self) -> f64 {
-        self.lambda
-    }
-
-    pub fn r_inf(&self) -> f64 {
-        self.r_inf
-    }
-
-    pub fn mesh(&self) -> &Mesh {
-        &self.mesh
-    }
-
-    /// Number of unknowns (nodes = modes).
-    pub fn len(&self) -> usize {
-        self.modes.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.modes.len() == 0
-    }
-
-    /// Modal target of the departure `v = u - sigma r / 6` from the uniform tension:
-    ///
-    /// ```text
-    /// A (sigma r / 6) = F(p = sigma) exactly (the uniform tension balances both edge
-    /// tractions, galerkin.rs), so  B v_t = -A v + F(p) - F(sigma) = -A v + (sigma - p) e_first
-    /// and in modes  g = X^T (sigma - p) e_first = (sigma - p) X[0, :].
-    /// ```
-    ///
-    /// Working with `v` (zero at the cut) keeps `R(0) = 1 + sigma / 6` exact and makes
-    /// `p = sigma` a state of rest to the last bit.
-    fn target(&self, sigma: f64, p: f64) -> DVector<f64> {
-        (sigma - p) * &self.edge_row
     }
 }
 
-/// A solver state that can be saved and restored: the time and the modal coefficients
-/// of `v = u - sigma r / 6`.
+/// A solver state that can be saved and restored: the time and the engine's state.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolverState {
     pub time: f64,
@@ -156,38 +124,70 @@ pub struct SolverState {
 }
 
 /// Time integrator of one wound-opening problem.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Solver {
-    op: Arc<Operator>,
+    engine: Box<dyn Engine>,
     sigma: f64,
     time: f64,
-    /// Modal coordinates of `v = u - sigma r / 6`.
-    coeffs: DVector<f64>,
-    /// `(h, exp(-h / nu))` of the last step size, reused while `h` repeats.
-    decay: Option<(f64, DVector<f64>)>,
+}
+
+impl Clone for Solver {
+    fn clone(&self) -> Self {
+        Self { engine: self.engine.boxed_clone(), sigma: self.sigma, time: self.time }
+    }
+}
+
+fn check_resolution(points: usize, max_step: f64) -> Result<(), SolverError> {
+    if !(3..=100_000).contains(&points) {
+        return Err(SolverError::Mesh("grid points must be in 3 ..= 100000"));
+    }
+    if !(max_step.is_finite() && max_step > 0.0) {
+        return Err(SolverError::Step(max_step));
+    }
+    Ok(())
 }
 
 impl Solver {
-    /// A solver at `t = 0`, in the uniform-tension state `u = sigma r / 6` just after the cut.
+    /// The default scheme at `t = 0`, in the uniform-tension state `u = sigma r / 6`
+    /// just after the cut.
     pub fn new(params: &Params, settings: &Settings) -> Result<Self, SolverError> {
+        Self::with_scheme(params, &Scheme::Modal(*settings))
+    }
+
+    /// Any scheme at `t = 0`.
+    pub fn with_scheme(params: &Params, scheme: &Scheme) -> Result<Self, SolverError> {
         params.validate()?;
-        let op = Arc::new(Operator::new(params.lambda, params.r_inf, settings.mesh)?);
-        Ok(Self::with_operator(op, params.sigma)?)
-    }
-
-    /// A solver on an existing operator (shared, not rebuilt).
-    pub fn with_operator(op: Arc<Operator>, sigma: f64) -> Result<Self, SolverError> {
-        check_sigma(sigma)?;
-        let coeffs = DVector::zeros(op.len());
-        Ok(Self { op, sigma, time: 0.0, coeffs, decay: None })
-    }
-
-    pub fn operator(&self) -> &Arc<Operator> {
-        &self.op
+        let Params { lambda, sigma, r_inf } = *params;
+        let engine: Box<dyn Engine> = match *scheme {
+            Scheme::Modal(settings) => {
+                let op = Arc::new(Operator::new(lambda, r_inf, settings.mesh)?);
+                Box::new(ModalEngine::new(op, sigma))
+            }
+            Scheme::TrBdf2 { mesh, max_step } => {
+                check_resolution(3, max_step)?;
+                Operator::check_mesh(mesh)?;
+                let op = trbdf2::TrBdf2Operator::new(Mesh::new(mesh, r_inf), lambda)?;
+                Box::new(trbdf2::TrBdf2Engine::new(Arc::new(op), sigma, max_step))
+            }
+            Scheme::Paper { points, max_step } => {
+                check_resolution(points, max_step)?;
+                Box::new(paper::PaperEngine::new(Arc::new(fd::Grid::new(points, r_inf)), lambda, sigma, max_step))
+            }
+            Scheme::Explicit { points, max_step } => {
+                check_resolution(points, max_step)?;
+                Box::new(explicit::ExplicitEngine::new(Arc::new(fd::Grid::new(points, r_inf)), lambda, sigma, max_step))
+            }
+        };
+        Ok(Self { engine, sigma, time: 0.0 })
     }
 
     pub fn sigma(&self) -> f64 {
         self.sigma
+    }
+
+    /// Number of spatial unknowns.
+    pub fn unknowns(&self) -> usize {
+        self.engine.unknowns()
     }
 
     /// Time since the cut, in T.
@@ -195,80 +195,51 @@ impl Solver {
         self.time
     }
 
-    /// Advance by `h > 0` with the edge stress `p` held constant: exact in time.
+    /// Advance by `h > 0` with the edge stress `p` held constant.
     pub fn advance(&mut self, h: f64, p: f64) -> Result<(), SolverError> {
         if !(h.is_finite() && h > 0.0) {
             return Err(SolverError::Step(h));
         }
         check_edge_stress(p)?;
-        let nu = &self.op.modes.nu;
-        let decay = match &self.decay {
-            Some((h0, d)) if *h0 == h => d,
-            _ => &self.decay.insert((h, nu.map(|v| (-h / v).exp()))).1,
-        };
-        let target = self.op.target(self.sigma, p);
-        for k in 0..self.coeffs.len() {
-            self.coeffs[k] = target[k] + decay[k] * (self.coeffs[k] - target[k]);
-        }
+        self.engine.advance(h, p);
         self.time += h;
         Ok(())
     }
 
-    /// Wound radius `R = 1 + u(1, t) = 1 + sigma / 6 + v(1, t)`, in R0.
+    /// Wound radius `R = 1 + u(1, t)`, in R0.
     pub fn wound_radius(&self) -> f64 {
-        1.0 + self.sigma / 6.0 + self.op.edge_row.dot(&self.coeffs)
+        self.engine.wound_radius()
     }
 
-    /// Edge velocity `dR/dt = u_t(1, t)` with edge stress `p` applied now, in R0 / T:
-    /// `sum_k X[0, k] (g_k - c_k) / nu_k`.
+    /// Edge velocity `dR/dt = u_t(1, t)` with edge stress `p` applied now, in R0 / T.
     pub fn edge_velocity(&self, p: f64) -> f64 {
-        self.modal_rates(p).dot(&self.op.edge_row)
-    }
-
-    /// Modal rates `c_k' = (g_k - c_k) / nu_k`.
-    fn modal_rates(&self, p: f64) -> DVector<f64> {
-        let target = self.op.target(self.sigma, p);
-        (target - &self.coeffs).component_div(&self.op.modes.nu)
+        self.engine.edge_velocity(p)
     }
 
     /// Displacement `u(r)` at each requested radius (clamped into `[1, R_inf]`).
     pub fn displacement(&self, radii: &[f64]) -> Vec<f64> {
-        let v = self.profile(&self.coeffs, radii);
-        radii.iter().zip(v).map(|(r, v)| self.sigma * r.clamp(1.0, self.op.r_inf) / 6.0 + v).collect()
+        self.engine.displacement(radii)
     }
 
     /// Velocity `u_t(r)` with edge stress `p`, at each requested radius.
     pub fn velocity(&self, p: f64, radii: &[f64]) -> Vec<f64> {
-        self.profile(&self.modal_rates(p), radii)
-    }
-
-    fn profile(&self, coeffs: &DVector<f64>, radii: &[f64]) -> Vec<f64> {
-        let mesh = &self.op.mesh;
-        let nodal = &self.op.modes.shapes * coeffs;
-        let basis = LagrangeBasis::new(&mesh.reference_nodes);
-        radii
-            .iter()
-            .map(|&r| {
-                let (e, x) = mesh.locate(r.clamp(1.0, self.op.r_inf));
-                let (val, _) = basis.eval(x);
-                val.iter().enumerate().map(|(i, l)| l * nodal[mesh.global(e, i)]).sum()
-            })
-            .collect()
+        self.engine.velocity(p, radii)
     }
 
     pub fn state(&self) -> SolverState {
-        SolverState { time: self.time, coeffs: self.coeffs.iter().copied().collect() }
+        SolverState { time: self.time, coeffs: self.engine.state() }
     }
 
     pub fn restore(&mut self, state: &SolverState) -> Result<(), SolverError> {
-        if state.coeffs.len() != self.coeffs.len() {
-            return Err(SolverError::StateLength(self.coeffs.len(), state.coeffs.len()));
+        let want = self.engine.state().len();
+        if state.coeffs.len() != want {
+            return Err(SolverError::StateLength(want, state.coeffs.len()));
         }
         if !state.time.is_finite() || state.coeffs.iter().any(|c| !c.is_finite()) {
             return Err(SolverError::StateNotFinite);
         }
+        self.engine.restore(&state.coeffs)?;
         self.time = state.time;
-        self.coeffs.copy_from_slice(&state.coeffs);
         Ok(())
     }
 }

@@ -1,0 +1,40 @@
+//! The interface every time integrator implements, behind the [`super::Solver`] facade.
+//!
+//! Engines work with the departure `v = u - sigma r / 6` from the uniform tension where
+//! they can (zero at the cut, so `R(0) = R1` exactly); the facade validates arguments and
+//! keeps the time, so an engine sees only valid steps and edge stresses.
+
+use super::SolverError;
+
+pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
+    /// Advance by `h > 0` with the edge stress `p` held constant.
+    fn advance(&mut self, h: f64, p: f64);
+    /// Wound radius `1 + u(1, t)`.
+    fn wound_radius(&self) -> f64;
+    /// Edge velocity `u_t(1, t)` with edge stress `p` applied now.
+    fn edge_velocity(&self, p: f64) -> f64;
+    /// `u(r)` at each radius (inside `[1, R_inf]`).
+    fn displacement(&self, radii: &[f64]) -> Vec<f64>;
+    /// `u_t(r)` at each radius, with edge stress `p`.
+    fn velocity(&self, p: f64, radii: &[f64]) -> Vec<f64>;
+    /// Number of spatial unknowns.
+    fn unknowns(&self) -> usize;
+    /// The evolving state, flattened.
+    fn state(&self) -> Vec<f64>;
+    /// Restore a state of length `state().len()` (checked by the facade).
+    fn restore(&mut self, state: &[f64]) -> Result<(), SolverError>;
+    fn boxed_clone(&self) -> Box<dyn Engine>;
+}
+
+/// Linear interpolation of nodal values on ascending `nodes`, for profile output of the
+/// finite-difference engines.
+pub(crate) fn interpolate(nodes: &[f64], values: &[f64], radii: &[f64]) -> Vec<f64> {
+    radii
+        .iter()
+        .map(|&r| {
+            let k = nodes[1..].partition_point(|&x| x < r).min(nodes.len() - 2);
+            let s = ((r - nodes[k]) / (nodes[k + 1] - nodes[k])).clamp(0.0, 1.0);
+            values[k] + s * (values[k + 1] - values[k])
+        })
+        .collect()
+}
