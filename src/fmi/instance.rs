@@ -11,7 +11,6 @@ use super::state::{self, Machine, Saved};
 use super::variables::{Causality, LOG_CATEGORIES, Variability, Vr};
 use crate::solver::{Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
 use std::collections::HashMap;
-use std::sync::Arc;
 
 /// `fmi2Status`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -284,7 +283,7 @@ impl Instance {
                 self.model.params.lambda,
                 self.model.params.sigma,
                 self.model.params.r_inf,
-                solver.operator().len(),
+                solver.unknowns(),
                 self.model.settings.mesh
             ));
             self.model.solver = Some(solver);
@@ -457,11 +456,11 @@ impl Instance {
         let solver = match &saved.solver {
             None => None,
             Some(st) => {
+                // Same parameters and settings: a clone of our own solver shares its operator.
                 let mut s = match &self.model.solver {
-                    Some(own) => Solver::with_operator(Arc::clone(own.operator()), saved.params.sigma),
-                    None => Solver::new(&saved.params, &saved.settings),
-                }
-                .map_err(|e| e.to_string())?;
+                    Some(own) => own.clone(),
+                    None => Solver::new(&saved.params, &saved.settings).map_err(|e| e.to_string())?,
+                };
                 s.restore(st).map_err(|e| format!("serialized FMU state: {e}"))?;
                 Some(s)
             }
