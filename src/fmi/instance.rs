@@ -110,7 +110,12 @@ pub type Rejected = String;
 #[derive(Debug, Clone)]
 struct Model {
     params: Params,
+    /// The mesh of the solver, derived from the parameters and the tolerance when the
+    /// solver is built.
     settings: Settings,
+    /// The `tolerance` parameter, and the tolerance of `fmi2SetupExperiment` (which wins).
+    tolerance: f64,
+    experiment_tolerance: Option<f64>,
     edge_stress: f64,
     start_time: f64,
     stop_time: Option<f64>,
@@ -126,6 +131,8 @@ impl Model {
         Self {
             params: Params { lambda: start(Vr::Lambda), sigma: start(Vr::Sigma), r_inf: start(Vr::RInf) },
             settings: Settings::default(),
+            tolerance: start(Vr::Tolerance),
+            experiment_tolerance: None,
             edge_stress: start(Vr::EdgeStress),
             start_time: 0.0,
             stop_time: None,
@@ -249,6 +256,8 @@ impl Instance {
         self.model.start_time = start;
         self.model.time = start;
         self.model.stop_time = stop;
+        self.model.experiment_tolerance = tolerance;
+        self.model.solver = None;
         Ok(())
     }
 
@@ -277,7 +286,10 @@ impl Instance {
 
     fn ensure_solver(&mut self) -> Result<&Solver, Rejected> {
         if self.model.solver.is_none() {
-            let solver = Solver::new(&self.model.params, &self.model.settings).map_err(|e| e.to_string())?;
+            let m = &mut self.model;
+            let tol = m.experiment_tolerance.unwrap_or(m.tolerance);
+            m.settings = Settings::for_tolerance(&m.params, tol).map_err(|e| e.to_string())?;
+            let solver = Solver::new(&m.params, &m.settings).map_err(|e| e.to_string())?;
             self.log_debug(&format!(
                 "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns ({:?})",
                 self.model.params.lambda,
@@ -294,7 +306,7 @@ impl Instance {
     pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
         let vrs: Vec<Vr> = vrs.iter().map(|&v| real_vr(v)).collect::<Result<_, _>>()?;
         let p = self.model.edge_stress;
-        let params = self.model.params;
+        let (params, tolerance) = (self.model.params, self.model.tolerance);
         let needs_solver = vrs.iter().any(|v| matches!(v, Vr::WoundRadius | Vr::EdgeVelocity));
         let solver = if needs_solver { Some(self.ensure_solver()?) } else { None };
         for (out, vr) in values.iter_mut().zip(vrs) {
@@ -303,6 +315,7 @@ impl Instance {
                 Vr::Sigma => params.sigma,
                 Vr::RInf => params.r_inf,
                 Vr::EdgeStress => p,
+                Vr::Tolerance => tolerance,
                 Vr::WoundRadius => solver.expect("built").wound_radius(),
                 Vr::EdgeVelocity => solver.expect("built").edge_velocity(p),
             };
@@ -331,6 +344,7 @@ impl Instance {
                 Vr::Lambda => check_lambda(x),
                 Vr::Sigma => check_sigma(x),
                 Vr::RInf => check_r_inf(x),
+                Vr::Tolerance => Ok(check_tolerance(x)?),
                 _ => check_edge_stress(x),
             };
             checked.push((vr, ok.map_err(|e| e.to_string())?));
@@ -341,6 +355,7 @@ impl Instance {
                 Vr::Lambda => m.params.lambda = x,
                 Vr::Sigma => m.params.sigma = x,
                 Vr::RInf => m.params.r_inf = x,
+                Vr::Tolerance => m.tolerance = x,
                 _ => m.edge_stress = x,
             }
             if vr != Vr::EdgeStress {
@@ -424,6 +439,8 @@ impl Instance {
             machine: snap.machine,
             params: m.params,
             settings: m.settings,
+            tolerance: m.tolerance,
+            experiment_tolerance: m.experiment_tolerance,
             edge_stress: m.edge_stress,
             start_time: m.start_time,
             time: m.time,
@@ -447,11 +464,11 @@ impl Instance {
                 return Err(format!("serialized FMU state has {name} = {b} but this instance has {name} = {a}"));
             }
         }
-        if saved.settings != self.model.settings {
-            return Err(format!(
-                "serialized FMU state has mesh {:?} but this instance uses {:?}",
-                saved.settings.mesh, self.model.settings.mesh
-            ));
+        let effective = |t: f64, e: Option<f64>| e.unwrap_or(t);
+        let mine = effective(self.model.tolerance, self.model.experiment_tolerance);
+        let theirs = effective(saved.tolerance, saved.experiment_tolerance);
+        if mine.to_bits() != theirs.to_bits() {
+            return Err(format!("serialized FMU state has tolerance = {theirs} but this instance has tolerance = {mine}"));
         }
         let solver = match &saved.solver {
             None => None,
@@ -468,6 +485,8 @@ impl Instance {
         let model = Model {
             params: saved.params,
             settings: saved.settings,
+            tolerance: saved.tolerance,
+            experiment_tolerance: saved.experiment_tolerance,
             edge_stress: saved.edge_stress,
             start_time: saved.start_time,
             stop_time: saved.stop_time,
@@ -481,6 +500,10 @@ impl Instance {
         self.states.insert(handle, Snapshot { machine: saved.machine, model });
         Ok(handle)
     }
+}
+
+fn check_tolerance(v: f64) -> Result<f64, String> {
+    if v.is_finite() && v > 0.0 { Ok(v) } else { Err(format!("tolerance = {v} is invalid: it must be finite and > 0")) }
 }
 
 fn real_vr(v: u32) -> Result<Vr, Rejected> {

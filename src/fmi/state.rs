@@ -10,7 +10,8 @@
 //! 16+n    4     CRC-32 of bytes 0 .. 16+n (u32 LE)
 //!
 //! payload: machine state (u8), lambda, sigma, R_inf (f64 LE), mesh degree, elements (u32),
-//!          edge scale, edge stress, start time, time (f64), has stop time (u8), stop time (f64),
+//!          edge scale, tolerance, edge stress, start time, time (f64),
+//!          has experiment tolerance (u8), experiment tolerance (f64), has stop time (u8), stop time (f64),
 //!          has solver (u8), [solver time (f64), n (u32), n modal coefficients (f64)]
 //! ```
 //!
@@ -53,6 +54,9 @@ pub struct Saved {
     pub machine: Machine,
     pub params: Params,
     pub settings: Settings,
+    /// The `tolerance` parameter and the tolerance of `fmi2SetupExperiment`, if defined.
+    pub tolerance: f64,
+    pub experiment_tolerance: Option<f64>,
     pub edge_stress: f64,
     pub start_time: f64,
     pub time: f64,
@@ -85,9 +89,11 @@ pub fn encode(s: &Saved) -> Vec<u8> {
     }
     w.u32(s.settings.mesh.degree as u32);
     w.u32(s.settings.mesh.elements as u32);
-    for v in [s.settings.mesh.edge_scale, s.edge_stress, s.start_time, s.time] {
+    for v in [s.settings.mesh.edge_scale, s.tolerance, s.edge_stress, s.start_time, s.time] {
         w.f64(v);
     }
+    w.u8(s.experiment_tolerance.is_some() as u8);
+    w.f64(s.experiment_tolerance.unwrap_or(0.0));
     w.u8(s.stop_time.is_some() as u8);
     w.f64(s.stop_time.unwrap_or(0.0));
     w.u8(s.solver.is_some() as u8);
@@ -173,9 +179,18 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
     let elements = r.u32()? as usize;
     let edge_scale = r.finite("edge scale")?;
     let settings = Settings { mesh: MeshSpec { degree, elements, edge_scale } };
+    let tolerance = r.finite("tolerance")?;
     let edge_stress = r.finite("edge_stress")?;
     let start_time = r.finite("start time")?;
     let time = r.finite("time")?;
+    let has_experiment_tolerance = r.flag("experiment tolerance")?;
+    let experiment_tolerance = r.finite("experiment tolerance")?;
+    let experiment_tolerance = has_experiment_tolerance.then_some(experiment_tolerance);
+    for tol in std::iter::once(tolerance).chain(experiment_tolerance) {
+        if tol <= 0.0 {
+            return Err(format!("serialized FMU state has tolerance = {tol}"));
+        }
+    }
     let has_stop = r.flag("stop time")?;
     let stop = r.finite("stop time")?;
     let solver = if r.flag("solver")? {
@@ -192,7 +207,18 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
     if r.at != HEADER + payload {
         return Err(format!("serialized FMU state has {} unread payload bytes", HEADER + payload - r.at));
     }
-    Ok(Saved { machine, params, settings, edge_stress, start_time, time, stop_time: has_stop.then_some(stop), solver })
+    Ok(Saved {
+        machine,
+        params,
+        settings,
+        tolerance,
+        experiment_tolerance,
+        edge_stress,
+        start_time,
+        time,
+        stop_time: has_stop.then_some(stop),
+        solver,
+    })
 }
 
 #[cfg(test)]
@@ -204,6 +230,8 @@ mod tests {
             machine: Machine::StepComplete,
             params: Params { lambda: 0.1, sigma: 1.0, r_inf: 10.0 },
             settings: Settings::default(),
+            tolerance: 1e-10,
+            experiment_tolerance: Some(1e-6),
             edge_stress: 0.25,
             start_time: 0.0,
             time: 1.5,

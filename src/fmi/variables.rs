@@ -48,11 +48,12 @@ pub enum Vr {
     EdgeStress = 3,
     WoundRadius = 4,
     EdgeVelocity = 5,
+    Tolerance = 6,
 }
 
 impl Vr {
-    pub const ALL: [Vr; 6] =
-        [Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress, Vr::WoundRadius, Vr::EdgeVelocity];
+    pub const ALL: [Vr; 7] =
+        [Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress, Vr::WoundRadius, Vr::EdgeVelocity, Vr::Tolerance];
 
     pub fn from_u32(vr: u32) -> Option<Self> {
         Self::ALL.get(vr as usize).copied()
@@ -76,7 +77,7 @@ pub struct Variable {
     pub description: &'static str,
 }
 
-pub const VARIABLES: [Variable; 6] = [
+pub const VARIABLES: [Variable; 7] = [
     Variable {
         name: "lambda",
         value_reference: 0,
@@ -131,6 +132,15 @@ pub const VARIABLES: [Variable; 6] = [
         unit: "R0/T",
         description: "Edge velocity dR/dt under the current edge_stress",
     },
+    Variable {
+        name: "tolerance",
+        value_reference: 6,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        start: Some(1e-10),
+        unit: "1",
+        description: "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh",
+    },
 ];
 
 /// `ModelStructure/Outputs`: each output with the inputs it depends on directly, and
@@ -144,7 +154,7 @@ pub const OUTPUT_DEPENDENCIES: [(Vr, &[(Vr, &str)]); 2] = [
 /// depend on (`R1 = 1 + sigma/6`; the initial velocity depends on everything).
 pub const INITIAL_DEPENDENCIES: [(Vr, &[Vr]); 2] = [
     (Vr::WoundRadius, &[Vr::Sigma]),
-    (Vr::EdgeVelocity, &[Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress]),
+    (Vr::EdgeVelocity, &[Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress, Vr::Tolerance]),
 ];
 
 /// Log categories declared in `modelDescription.xml`, with their descriptions.
@@ -176,6 +186,6 @@ mod tests {
             assert_eq!(v.value_reference as usize, i, "{}", v.name);
             assert_eq!(Vr::from_u32(i as u32).map(|vr| vr.var().name), Some(v.name));
         }
-        assert_eq!(Vr::from_u32(6), None);
+        assert_eq!(Vr::from_u32(VARIABLES.len() as u32), None);
     }
 }

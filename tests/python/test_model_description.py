@@ -13,6 +13,7 @@ VARIABLES = {
     "edge_stress": (3, "input", "continuous", 0.0),
     "wound_radius": (4, "output", "continuous", None),
     "edge_velocity": (5, "output", "continuous", None),
+    "tolerance": (6, "parameter", "fixed", 1e-10),
 }
 
 
