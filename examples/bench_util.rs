@@ -1,0 +1,71 @@
+//! Shared by the benchmark examples (included with `#[path]`): CPU time, CSV reading, the
+//! scenario of issue 3 and its error measure.
+#![allow(dead_code)]
+
+use std::path::Path;
+use wound_opening::solver::{Params, Scheme, Solver, exact};
+
+/// CPU time of this process, in seconds (CLOCK_PROCESS_CPUTIME_ID).
+pub fn cpu_seconds() -> f64 {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: a valid clock id and a valid out-pointer.
+    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// Best CPU time of `f` over repeats (at least 3, until 0.3 s are spent, at most 50).
+pub fn best_cpu<T>(mut f: impl FnMut() -> T) -> (f64, T) {
+    let (mut best, mut spent, mut out) = (f64::INFINITY, 0.0, None);
+    for k in 0..50 {
+        let t0 = cpu_seconds();
+        let r = f();
+        let dt = cpu_seconds() - t0;
+        best = best.min(dt);
+        spent += dt;
+        out = Some(r);
+        if k >= 2 && spent > 0.3 {
+            break;
+        }
+    }
+    (best, out.expect("ran at least once"))
+}
+
+/// Rows of a headerless numeric CSV.
+pub fn read_csv(path: &Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split(',').map(|x| x.trim().parse().expect("number")).collect())
+        .collect()
+}
+
+pub const SCENARIO_STEPS: usize = 1000;
+pub const SCENARIO_STEP: f64 = 0.1;
+pub const SIGMA: f64 = 1.0;
+pub const R_INF: f64 = 10.0;
+
+pub fn amplitude(r_inf: f64) -> f64 {
+    exact::final_radius(SIGMA, r_inf) - exact::initial_radius(SIGMA)
+}
+
+/// The whole scenario (set-up and 1000 steps of 0.1): wound radius at each point, or
+/// `None` if the scheme cannot be built.
+pub fn scenario(lambda: f64, scheme: &Scheme) -> Option<Vec<f64>> {
+    let params = Params { lambda, sigma: SIGMA, r_inf: R_INF };
+    let mut s = Solver::with_scheme(&params, scheme).ok()?;
+    let mut out = Vec::with_capacity(SCENARIO_STEPS);
+    for _ in 0..SCENARIO_STEPS {
+        s.advance(SCENARIO_STEP, 0.0).ok()?;
+        out.push(s.wound_radius());
+    }
+    Some(out)
+}
+
+/// Max |R - R_exact| / amplitude (infinite when anything is not finite).
+pub fn error(radius: &[f64], reference: &[f64]) -> f64 {
+    let amp = amplitude(R_INF);
+    radius.iter().zip(reference).fold(0.0f64, |m, (r, e)| {
+        let d = (r - e).abs() / amp;
+        if d.is_finite() && m.is_finite() { m.max(d) } else { f64::INFINITY }
+    })
+}
