@@ -69,3 +69,35 @@ pub fn error(radius: &[f64], reference: &[f64]) -> f64 {
         if d.is_finite() && m.is_finite() { m.max(d) } else { f64::INFINITY }
     })
 }
+
+/// Stability status of a run from the cut (p = 0, sigma = 1, R_inf = 10).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Status {
+    Bounded,
+    Oscillating,
+    Unbounded,
+}
+
+/// Classify `steps` steps of size `dt`, judged by the wound radius, whose exact value rises
+/// monotonically from R1 to R_final: `Unbounded` (non-finite, or further than 10
+/// amplitudes from R1), `Oscillating` (it ever decreases by more than 1e-9 amplitude),
+/// else `Bounded`. (Overshooting the exact R_final is an accuracy matter, not counted.)
+pub fn classify(lambda: f64, scheme: &Scheme, dt: f64, steps: usize) -> Status {
+    let params = Params { lambda, sigma: SIGMA, r_inf: R_INF };
+    let mut s = Solver::with_scheme(&params, scheme).expect("valid scheme");
+    let (r1, amp) = (exact::initial_radius(SIGMA), amplitude(R_INF));
+    let mut last = s.wound_radius();
+    let mut status = Status::Bounded;
+    for _ in 0..steps {
+        s.advance(dt, 0.0).expect("valid step");
+        let r = s.wound_radius();
+        if !r.is_finite() || (r - r1).abs() > 10.0 * amp {
+            return Status::Unbounded;
+        }
+        if r < last - 1e-9 * amp {
+            status = Status::Oscillating;
+        }
+        last = r;
+    }
+    status
+}

@@ -5,46 +5,17 @@
 //! Usage: `cargo run --release --example stability_map -- DIR`; writes DIR/stability.csv
 //! and DIR/explicit_limits.csv.
 //!
-//! Status of a run of 200 steps of size dt from the cut (p = 0, R_inf = 10), judged by the
-//! wound radius, whose exact value rises monotonically from R1 to R_final:
-//! `unbounded` (non-finite, or further than 10 amplitudes from R1), `oscillating` (it
-//! decreases, or overshoots R_final, by more than 1e-9 amplitude), else `bounded`.
+//! Status of a run of 200 steps of size dt from the cut (p = 0, R_inf = 10): see
+//! `bench_util::classify`.
 
 #[path = "bench_util.rs"]
 mod bench_util;
 
 use bench_util::*;
 use std::io::Write;
-use wound_opening::solver::{Params, Scheme, Settings, Solver, exact, explicit_stability_limits};
+use wound_opening::solver::{Params, Scheme, Settings, explicit_stability_limits};
 
 const STEPS: usize = 200;
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Status {
-    Bounded,
-    Oscillating,
-    Unbounded,
-}
-
-fn classify(lambda: f64, scheme: &Scheme, dt: f64, steps: usize) -> Status {
-    let params = Params { lambda, sigma: SIGMA, r_inf: R_INF };
-    let mut s = Solver::with_scheme(&params, scheme).expect("valid scheme");
-    let (r1, rf, amp) = (exact::initial_radius(SIGMA), exact::final_radius(SIGMA, R_INF), amplitude(R_INF));
-    let mut last = s.wound_radius();
-    let mut status = Status::Bounded;
-    for _ in 0..steps {
-        s.advance(dt, 0.0).expect("valid step");
-        let r = s.wound_radius();
-        if !r.is_finite() || (r - r1).abs() > 10.0 * amp {
-            return Status::Unbounded;
-        }
-        if r < last - 1e-9 * amp || r > rf + 1e-9 * amp {
-            status = Status::Oscillating;
-        }
-        last = r;
-    }
-    status
-}
 
 /// The schemes of the map; the internal step of the stepping schemes is the map's dt.
 fn scheme(name: &str, points: usize, lambda: f64, dt: f64) -> Scheme {

@@ -1,0 +1,61 @@
+//! Stability where methods fail (issue 3): the explicit scheme's limits, measured, against
+//! its von Neumann theory (src/solver/explicit.rs); and the shipped scheme, bounded and
+//! monotone over the whole map of lambda and step size.
+
+#[path = "../examples/bench_util.rs"]
+mod bench_util;
+
+use bench_util::{R_INF, Status, classify};
+use wound_opening::solver::{Params, Scheme, Settings, explicit_stability_limits};
+
+/// 4000 steps: near the limit the unstable mode grows slowly, so the verdict needs many steps.
+const LONG: usize = 4000;
+
+/// The measured limits (examples/stability_map.rs) lie within 3 % above the theory for
+/// N = 21 .. 201; the test brackets the theory by -5 % / +10 %.
+#[test]
+fn explicit_scheme_fails_exactly_where_its_theory_says() {
+    for points in [21, 51] {
+        let (lambda_max, _) = explicit_stability_limits(points, R_INF, 0.0);
+        for frac in [0.0, 0.5] {
+            let lambda = frac * lambda_max;
+            let (_, dt_max) = explicit_stability_limits(points, R_INF, lambda);
+            let below = Scheme::Explicit { points, max_step: 0.95 * dt_max };
+            let above = Scheme::Explicit { points, max_step: 1.10 * dt_max };
+            assert_ne!(classify(lambda, &below, 0.95 * dt_max, LONG), Status::Unbounded, "N {points} lambda {lambda}");
+            assert_eq!(classify(lambda, &above, 1.10 * dt_max, LONG), Status::Unbounded, "N {points} lambda {lambda}");
+        }
+        // The lagged viscous term alone: unstable beyond lambda_max whatever the step.
+        let dt = 1e-3 * explicit_stability_limits(points, R_INF, 0.0).1;
+        let scheme = Scheme::Explicit { points, max_step: dt };
+        assert_ne!(classify(0.95 * lambda_max, &scheme, dt, LONG), Status::Unbounded, "N {points}");
+        assert_eq!(classify(1.10 * lambda_max, &scheme, dt, LONG), Status::Unbounded, "N {points}");
+    }
+}
+
+/// The theory: lambda_max = 1 / sqrt(kappa_max) ~ dr / 2 and dt_max = 2 / kappa_max - 2 lambda^2.
+#[test]
+fn explicit_limits_follow_the_grid_spacing() {
+    for points in [21, 51, 101, 201] {
+        let dr = (R_INF - 1.0) / (points - 1) as f64;
+        let (lambda_max, dt_max) = explicit_stability_limits(points, R_INF, 0.0);
+        assert!((lambda_max / (dr / 2.0) - 1.0).abs() < 0.01, "N {points}: {lambda_max} vs {}", dr / 2.0);
+        assert!((dt_max / (dr * dr / 2.0) - 1.0).abs() < 0.02, "N {points}: {dt_max}");
+        let (_, dt_half) = explicit_stability_limits(points, R_INF, 0.5 * lambda_max);
+        assert!((dt_half - (dt_max - 0.5 * lambda_max * lambda_max)).abs() < 1e-12 * dt_max.max(1.0));
+    }
+}
+
+/// The default scheme over the map of examples/stability_map.rs: lambda from 0 to 1e4,
+/// steps from 1e-6 to 1e4, 200 steps each: never unbounded, never decreasing.
+#[test]
+fn shipped_scheme_is_bounded_and_monotone_over_the_whole_map() {
+    for lambda in [0.0, 1e-3, 1e-2, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0, 1e3, 1e4] {
+        let params = Params { lambda, sigma: 1.0, r_inf: R_INF };
+        let scheme = Scheme::Modal(Settings::for_tolerance(&params, 1e-10).unwrap());
+        for k in -12..=8 {
+            let dt = 10f64.powf(k as f64 / 2.0);
+            assert_eq!(classify(lambda, &scheme, dt, 200), Status::Bounded, "lambda {lambda} dt {dt}");
+        }
+    }
+}
