@@ -121,19 +121,32 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
     }
 }
 
-macro_rules! simple_call {
-    ($fname:ident, $call:expr, $method:ident) => {
-        #[unsafe(no_mangle)]
-        pub unsafe extern "C" fn $fname(c: fmi2Component) -> fmi2Status {
-            unsafe { with_instance(c, $call, || stringify!($fname).to_string(), |i| i.$method().map(|_| Status::Ok)) }
-        }
-    };
+/// A call without arguments that only moves the state machine: `fmi2EnterInitializationMode`,
+/// `fmi2ExitInitializationMode`, `fmi2Terminate`, `fmi2Reset`. (Written out below, one
+/// function each rather than by a macro, so that cbindgen sees every exported function.)
+unsafe fn transition(c: fmi2Component, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi2Status {
+    unsafe { with_instance(c, call, || call.fmi_name().to_string(), |i| method(i).map(|_| Status::Ok)) }
 }
 
-simple_call!(fmi2EnterInitializationMode, Call::EnterInitializationMode, enter_initialization_mode);
-simple_call!(fmi2ExitInitializationMode, Call::ExitInitializationMode, exit_initialization_mode);
-simple_call!(fmi2Terminate, Call::Terminate, terminate);
-simple_call!(fmi2Reset, Call::Reset, reset);
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
+    unsafe { transition(c, Call::EnterInitializationMode, Instance::enter_initialization_mode) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
+    unsafe { transition(c, Call::ExitInitializationMode, Instance::exit_initialization_mode) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
+    unsafe { transition(c, Call::Terminate, Instance::terminate) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
+    unsafe { transition(c, Call::Reset, Instance::reset) }
+}
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Real) -> fmi2Status {
@@ -157,25 +170,41 @@ pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueRefer
     }
 }
 
-macro_rules! no_such_variables {
-    ($fname:ident, $call:expr, $kind:literal, $ptr:ty) => {
-        #[unsafe(no_mangle)]
-        pub unsafe extern "C" fn $fname(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: $ptr) -> fmi2Status {
-            unsafe {
-                with_instance(c, $call, || format!("{}(nvr={nvr})", stringify!($fname)), |_| {
-                    no_variables($kind, slice(vr, nvr, "vr")?)
-                })
-            }
-        }
-    };
+/// `fmi2{Get,Set}{Integer,Boolean,String}`: this FMU has Real variables only, so any value
+/// reference is an error (and an empty list is fine).
+unsafe fn no_such_variables(c: fmi2Component, call: Call, fname: &str, kind: &str, vr: *const fmi2ValueReference, nvr: usize) -> fmi2Status {
+    unsafe { with_instance(c, call, || format!("{fname}(nvr={nvr})"), |_| no_variables(kind, slice(vr, nvr, "vr")?)) }
 }
 
-no_such_variables!(fmi2GetInteger, Call::Get, "Integer", *mut fmi2Integer);
-no_such_variables!(fmi2GetBoolean, Call::Get, "Boolean", *mut fmi2Boolean);
-no_such_variables!(fmi2GetString, Call::Get, "String", *mut fmi2String);
-no_such_variables!(fmi2SetInteger, Call::Set, "Integer", *const fmi2Integer);
-no_such_variables!(fmi2SetBoolean, Call::Set, "Boolean", *const fmi2Boolean);
-no_such_variables!(fmi2SetString, Call::Set, "String", *const fmi2String);
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *mut fmi2Integer) -> fmi2Status {
+    unsafe { no_such_variables(c, Call::Get, "fmi2GetInteger", "Integer", vr, nvr) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *mut fmi2Boolean) -> fmi2Status {
+    unsafe { no_such_variables(c, Call::Get, "fmi2GetBoolean", "Boolean", vr, nvr) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *mut fmi2String) -> fmi2Status {
+    unsafe { no_such_variables(c, Call::Get, "fmi2GetString", "String", vr, nvr) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *const fmi2Integer) -> fmi2Status {
+    unsafe { no_such_variables(c, Call::Set, "fmi2SetInteger", "Integer", vr, nvr) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *const fmi2Boolean) -> fmi2Status {
+    unsafe { no_such_variables(c, Call::Set, "fmi2SetBoolean", "Boolean", vr, nvr) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *const fmi2String) -> fmi2Status {
+    unsafe { no_such_variables(c, Call::Set, "fmi2SetString", "String", vr, nvr) }
+}
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {

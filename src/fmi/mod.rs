@@ -3,7 +3,7 @@
 //! only `unsafe` code of the crate: the C types, the panic boundary and the exported
 //! functions.
 
-mod boundary;
+pub mod boundary;
 pub mod ffi;
 pub mod instance;
 pub mod state;
