@@ -4,3 +4,4 @@
 
 pub mod solver;
 pub mod fmi;
+pub mod capi;

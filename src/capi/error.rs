@@ -1,0 +1,99 @@
+//! Status codes of the direct C API, the calling thread's last error message, and the
+//! frame every exported `wo_*` function runs in: panic boundary, status, message.
+
+use crate::fmi::boundary::guard;
+use crate::solver::SolverError;
+use std::cell::RefCell;
+use std::ffi::{CString, c_char};
+
+/// Result of every `wo_*` call. On anything but `WO_OK`, `wo_last_error()` names what was
+/// wrong, with the expected and the actual value.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WoStatus {
+    /// Success.
+    WoOk = 0,
+    /// A pointer argument that must not be NULL was NULL.
+    WoNullPointer = 1,
+    /// A value out of range: NaN or infinite, lambda < 0, R_inf <= 1, a tolerance <= 0, a
+    /// grid out of range, a time before the solver's, a radius outside [1, R_inf], or an
+    /// array length other than the one required.
+    WoInvalidArgument = 2,
+    /// A solver or state handle that was never created here, or was already freed.
+    WoUnknownHandle = 3,
+    /// A saved state of another problem (other lambda, sigma, R_inf or grid).
+    WoIncompatibleState = 4,
+    /// The discretisation could not be built (the modal decomposition failed).
+    WoSolverFailed = 5,
+    /// An internal error (a caught panic). The solver involved refuses further use until a
+    /// saved state is restored into it, or it is freed.
+    WoInternalError = 6,
+}
+
+/// A refused call: its status and the reason.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    pub status: WoStatus,
+    pub message: String,
+}
+
+impl Failure {
+    pub fn new(status: WoStatus, message: impl Into<String>) -> Self {
+        Self { status, message: message.into() }
+    }
+
+    pub fn invalid(message: impl Into<String>) -> Self {
+        Self::new(WoStatus::WoInvalidArgument, message)
+    }
+
+    /// A required pointer argument was NULL.
+    pub fn null(what: &str) -> Self {
+        Self::new(WoStatus::WoNullPointer, format!("{what} is NULL (expected a valid pointer)"))
+    }
+}
+
+impl From<SolverError> for Failure {
+    fn from(e: SolverError) -> Self {
+        let status = match e {
+            SolverError::Modal(_) => WoStatus::WoSolverFailed,
+            SolverError::StateLength(..) | SolverError::StateNotFinite => WoStatus::WoIncompatibleState,
+            _ => WoStatus::WoInvalidArgument,
+        };
+        Self::new(status, e.to_string())
+    }
+}
+
+thread_local! {
+    /// Message of the calling thread's last `wo_*` call ("" after a success).
+    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+}
+
+fn set_last_error(message: &str) {
+    let text = CString::new(message.replace('\0', "\\0")).unwrap_or_default();
+    // Fails only while the thread is being torn down, when no one can read it any more.
+    if LAST_ERROR.try_with(|slot| *slot.borrow_mut() = text).is_err() {}
+}
+
+/// Pointer to the calling thread's last message; valid until this thread's next `wo_*` call.
+pub fn last_error_ptr() -> *const c_char {
+    LAST_ERROR.try_with(|slot| slot.borrow().as_ptr()).unwrap_or(c"".as_ptr())
+}
+
+/// Run the body of the exported function `name`: a panic becomes `WO_INTERNAL_ERROR`, a
+/// refusal its status, and the thread's last error is set to `"name: reason"` (or
+/// cleared on success).
+pub fn run(name: &str, body: impl FnOnce() -> Result<(), Failure>) -> WoStatus {
+    let outcome = guard(body).unwrap_or_else(|panic| {
+        Err(Failure::new(WoStatus::WoInternalError, format!("internal error (caught panic: {panic})")))
+    });
+    match outcome {
+        Ok(()) => {
+            set_last_error("");
+            WoStatus::WoOk
+        }
+        Err(f) => {
+            set_last_error(&format!("{name}: {}", f.message));
+            f.status
+        }
+    }
+}

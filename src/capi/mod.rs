@@ -1,0 +1,22 @@
+//! The direct C API: the solver without an FMI master.
+//!
+//! ```text
+//! wo_solver_new(lambda, sigma, R_inf, tolerance, &s)     or wo_solver_new_grid(..., degree, elements, edge_scale, &s)
+//! wo_solver_advance(s, t_end, edge_stress)                exact in time, any t_end >= t
+//! wo_solver_wound_radius / _edge_velocity / _time         scalars
+//! wo_solver_node_count, _nodes, _displacement, _velocity  profiles u(r), u_t(r) into caller arrays
+//! wo_solver_save_state(s, &st), wo_solver_restore_state(s, st), wo_state_free(st)
+//! wo_solver_free(s)
+//! wo_last_error()                                         the calling thread's last message
+//! ```
+//!
+//! Every function returns a [`WoStatus`](error::WoStatus) and sets the calling thread's
+//! last error message (empty on success). Solvers and states are handles looked up in a
+//! table ([`registry`]), so a NULL, stale or freed handle is an error, never a crash. The
+//! safe part is [`solver`]; the `extern "C"` shims are in [`solver_c`]; both run behind the
+//! panic boundary of `fmi::boundary`.
+
+pub mod error;
+pub mod registry;
+pub mod solver;
+pub mod solver_c;
