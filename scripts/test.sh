@@ -5,4 +5,5 @@ cd "$(dirname "$0")/.."
 source scripts/venv.sh
 cargo test --release
 cargo run --release --quiet -- fmu
+bash scripts/c_tests.sh
 python -m pytest -q tests/python

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# The C programs of the test suite (tests/c), built with the system C compiler with
+# -Wall -Wextra -Werror and run under valgrind: any memory error or any leak (of any
+# kind, reachable included) fails. Builds what it needs: the release library and
+# target/fmu/WoundOpening.fmu.
+#
+#   fmi2_signatures  every exported FMI function has the standard's type (compile time)
+#   direct_api       the wo_* API, linked: lambda = 1 against the exact solution, bad input
+#   fmu_master       a minimal FMI 2.0 master, dlopen of the FMU's .so: same, through FMI
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if ! command -v valgrind >/dev/null; then
+    echo "== installing valgrind"
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq valgrind </dev/null
+fi
+CC="${CC:-cc}"
+CFLAGS=(-std=c11 -O1 -g -Wall -Wextra -Werror -Wincompatible-pointer-types)
+out=target/c_tests
+mkdir -p "$out"
+
+cargo build --release --quiet
+cargo run --release --quiet -- fmu >/dev/null
+rm -rf "$out/fmu"
+mkdir -p "$out/fmu"
+if command -v unzip >/dev/null; then
+    unzip -q -o target/fmu/WoundOpening.fmu -d "$out/fmu"
+else
+    python3 -m zipfile -e target/fmu/WoundOpening.fmu "$out/fmu"
+fi
+
+lib="$PWD/target/release"
+"$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/fmi2_signatures.c -L"$lib" -lwound_opening -Wl,-rpath,"$lib" -o "$out/fmi2_signatures"
+"$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/direct_api.c -L"$lib" -lwound_opening -lm -Wl,-rpath,"$lib" -o "$out/direct_api"
+"$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_master.c -ldl -lm -o "$out/fmu_master"
+
+memcheck=(valgrind -q --error-exitcode=1 --leak-check=full --show-leak-kinds=all --errors-for-leak-kinds=all
+          --suppressions=tests/c/valgrind.supp)
+failed=0
+run() {
+    echo "== valgrind $*"
+    if ! "${memcheck[@]}" "$@"; then
+        echo "FAILED: $*"
+        failed=1
+    fi
+}
+run "$out/fmi2_signatures"
+run "$out/direct_api"
+run "$out/fmu_master" "$out/fmu"
+exit "$failed"

@@ -1,0 +1,243 @@
+/*
+ * The direct C API (wo_*), linked against libwound_opening.so:
+ *   1. the paper's lambda = 1 case against the exact solution (reference.h), on a grid
+ *      chosen by tolerance and on the default grid;
+ *   2. profiles u(r), u_t(r) at the grid nodes, consistent with the edge values;
+ *   3. save / restore of a state, bit for bit;
+ *   4. bad input: every refused call gives its status and a message naming what was
+ *      wrong, changes nothing, and the solver still reproduces the reference afterwards.
+ * Run under valgrind by scripts/c_tests.sh: no error, no leak.
+ */
+#include "wound_opening.h"
+
+#include "check.h"
+#include "reference.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A refused call: `status` is `want` and wo_last_error() contains `needle`. */
+#define REFUSED(call, want, needle)                                                                              \
+    do {                                                                                                         \
+        wo_status got_ = (call);                                                                                 \
+        const char *msg_ = wo_last_error();                                                                      \
+        CHECK(got_ == (want) && strstr(msg_, (needle)) != NULL, "%s returned %s with \"%s\"; expected %s with \"%s\"", \
+              #call, wo_status_name((int)got_), msg_, #want, (needle));                                          \
+    } while (0)
+
+#define OK(call)                                                                                                 \
+    do {                                                                                                         \
+        wo_status got_ = (call);                                                                                 \
+        CHECK(got_ == WO_OK, "%s returned %s: %s", #call, wo_status_name((int)got_), wo_last_error());           \
+    } while (0)
+
+/* Advance `s` through the reference times and compare; returns the number of mismatches. */
+static void reproduce(const char *who, wo_solver *s) {
+    for (int k = 0; k < 5; k++) {
+        double radius = NAN, velocity = NAN;
+        OK(wo_solver_advance(s, REFERENCE[k].t, 0.0));
+        OK(wo_solver_wound_radius(s, &radius));
+        OK(wo_solver_edge_velocity(s, &velocity));
+        CHECK(matches_reference(who, k, radius, velocity), "%s at t = %g", who, REFERENCE[k].t);
+    }
+}
+
+static void lambda_one_case(void) {
+    wo_solver *s = NULL;
+    OK(wo_solver_new(1.0, 1.0, 10.0, 1e-10, &s));
+    reproduce("tolerance 1e-10", s);
+    OK(wo_solver_free(s));
+
+    OK(wo_solver_new_grid(1.0, 1.0, 10.0, 8, 10, 0.05, &s));
+    reproduce("default grid", s);
+    OK(wo_solver_free(s));
+}
+
+static void profiles(void) {
+    wo_solver *s = NULL;
+    size_t n = 0;
+    double radius = NAN, velocity = NAN, time = NAN;
+    OK(wo_solver_new(1.0, 1.0, 10.0, 1e-9, &s));
+    OK(wo_solver_advance(s, 1.0, 0.0));
+    OK(wo_solver_node_count(s, &n));
+    CHECK(n >= 2, "node count %zu", n);
+    double *r = malloc(n * sizeof *r), *u = malloc(n * sizeof *u), *v = malloc(n * sizeof *v);
+    OK(wo_solver_nodes(s, r, n));
+    CHECK(r[0] == 1.0 && r[n - 1] == 10.0, "nodes span [%g, %g], expected [1, 10]", r[0], r[n - 1]);
+    for (size_t i = 1; i < n; i++) CHECK(r[i] > r[i - 1], "nodes ascend at %zu", i);
+    OK(wo_solver_displacement(s, r, u, n));
+    OK(wo_solver_velocity(s, r, v, n));
+    OK(wo_solver_wound_radius(s, &radius));
+    OK(wo_solver_edge_velocity(s, &velocity));
+    OK(wo_solver_time(s, &time));
+    CHECK(time == 1.0, "time %.17g, expected 1", time);
+    /* u(1) is the wound radius minus 1, u_t(1) the edge velocity (1e-12: rounding of the modal sum). */
+    CHECK(fabs(1.0 + u[0] - radius) < 1e-12, "1 + u(1) = %.17g but R = %.17g", 1.0 + u[0], radius);
+    CHECK(fabs(v[0] - velocity) < 1e-12 * fmax(1.0, fabs(velocity)), "u_t(1) = %.17g, dR/dt = %.17g", v[0], velocity);
+    /* The departure from the uniform tension u = r / 6 of the cut is an opening: positive
+       everywhere and largest at the wound edge, decaying into the tissue. */
+    for (size_t i = 1; i < n; i++) {
+        double here = u[i] - r[i] / 6.0, before = u[i - 1] - r[i - 1] / 6.0;
+        CHECK(here > 0.0 && here < before, "u - r/6 = %g at r = %g after %g at r = %g", here, r[i], before, r[i - 1]);
+    }
+    /* In place: the output array may be the radii array. */
+    double first = u[0];
+    OK(wo_solver_displacement(s, r, r, n));
+    CHECK(r[0] == first, "in-place u(1) = %.17g, expected %.17g", r[0], first);
+    free(r), free(u), free(v);
+    OK(wo_solver_free(s));
+}
+
+static void save_and_restore(void) {
+    wo_solver *s = NULL, *twin = NULL;
+    wo_state *at1 = NULL;
+    double r1 = NAN, r10 = NAN, again = NAN, time = NAN;
+    OK(wo_solver_new(1.0, 1.0, 10.0, 1e-9, &s));
+    OK(wo_solver_advance(s, 1.0, 0.25));
+    OK(wo_solver_wound_radius(s, &r1));
+    OK(wo_solver_save_state(s, &at1));
+    OK(wo_solver_advance(s, 10.0, 0.0));
+    OK(wo_solver_wound_radius(s, &r10));
+    OK(wo_solver_restore_state(s, at1));
+    OK(wo_solver_time(s, &time));
+    OK(wo_solver_wound_radius(s, &again));
+    CHECK(time == 1.0 && again == r1, "restored t = %g, R = %.17g; expected 1, %.17g", time, again, r1);
+    OK(wo_solver_advance(s, 10.0, 0.0));
+    OK(wo_solver_wound_radius(s, &again));
+    CHECK(again == r10, "after restore R(10) = %.17g, first time %.17g", again, r10);
+    /* Into another solver of the same problem; the state outlives the solver it came from. */
+    OK(wo_solver_new(1.0, 1.0, 10.0, 1e-9, &twin));
+    OK(wo_solver_free(s));
+    OK(wo_solver_restore_state(twin, at1));
+    OK(wo_solver_wound_radius(twin, &again));
+    CHECK(again == r1, "twin R = %.17g, expected %.17g", again, r1);
+    OK(wo_state_free(at1));
+    OK(wo_solver_free(twin));
+}
+
+static void bad_creation(void) {
+    wo_solver *s = (wo_solver *)&s; /* not NULL: a refused creation must set it to NULL */
+    REFUSED(wo_solver_new(NAN, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = NaN is invalid");
+    CHECK(s == NULL, "solver not set to NULL on failure");
+    REFUSED(wo_solver_new(-1, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = -1 is invalid: it must be finite and >= 0");
+    REFUSED(wo_solver_new(INFINITY, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = inf is invalid");
+    REFUSED(wo_solver_new(1, INFINITY, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = inf is invalid");
+    REFUSED(wo_solver_new(1, NAN, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = NaN is invalid");
+    REFUSED(wo_solver_new(1, 1, 1.0, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 1 is invalid: it must be finite and > 1");
+    REFUSED(wo_solver_new(1, 1, 0.5, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 0.5 is invalid");
+    REFUSED(wo_solver_new(1, 1, -INFINITY, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = -inf is invalid");
+    REFUSED(wo_solver_new(1, 1, 10, 0.0, &s), WO_INVALID_ARGUMENT, "tolerance = 0 is invalid");
+    REFUSED(wo_solver_new(1, 1, 10, -1e-6, &s), WO_INVALID_ARGUMENT, "tolerance = -0.000001 is invalid");
+    REFUSED(wo_solver_new(1, 1, 10, NAN, &s), WO_INVALID_ARGUMENT, "tolerance = NaN is invalid");
+    REFUSED(wo_solver_new(1, 1, 10, 1e-9, NULL), WO_NULL_POINTER, "wo_solver_new: solver is NULL");
+    REFUSED(wo_solver_new_grid(1, 1, 10, 8, 10, 0.05, NULL), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_new_grid(1, 1, 10, 0, 10, 0.05, &s), WO_INVALID_ARGUMENT, "degree = 0 is invalid");
+    REFUSED(wo_solver_new_grid(1, 1, 10, 33, 1, 0.05, &s), WO_INVALID_ARGUMENT, "degree = 33 is invalid: expected 1 <= degree <= 32");
+    REFUSED(wo_solver_new_grid(1, 1, 10, 8, 0, 0.05, &s), WO_INVALID_ARGUMENT, "elements = 0 is invalid");
+    REFUSED(wo_solver_new_grid(1, 1, 10, 8, 501, 0.05, &s), WO_INVALID_ARGUMENT, "elements = 501 is invalid with degree = 8");
+    /* A product that overflows size_t must not wrap around to a small grid. */
+    REFUSED(wo_solver_new_grid(1, 1, 10, 16, SIZE_MAX / 8, 0.05, &s), WO_INVALID_ARGUMENT, "is invalid with degree = 16");
+    REFUSED(wo_solver_new_grid(1, 1, 10, 8, 10, 0.0, &s), WO_INVALID_ARGUMENT, "edge_scale = 0 is invalid");
+    REFUSED(wo_solver_new_grid(1, 1, 10, 8, 10, NAN, &s), WO_INVALID_ARGUMENT, "edge_scale = NaN is invalid");
+    REFUSED(wo_solver_new_grid(1, 1, 10, 8, 10, 1e-320, &s), WO_INVALID_ARGUMENT, "edge_scale = 0.00000");
+    REFUSED(wo_solver_new_grid(-2, 1, 10, 8, 10, 0.05, &s), WO_INVALID_ARGUMENT, "lambda = -2 is invalid");
+    CHECK(s == NULL, "solver not set to NULL on failure");
+}
+
+static void bad_calls(void) {
+    wo_solver *s = NULL, *other = NULL, *coarse = NULL;
+    wo_state *st = NULL, *foreign = NULL, *wrong_grid = NULL;
+    double x = 0.0, r[3] = {1.0, 2.0, 3.0}, out[3];
+    size_t n = 0;
+    OK(wo_solver_new(1.0, 1.0, 10.0, 1e-10, &s));
+
+    /* NULL solver, everywhere one is taken. */
+    REFUSED(wo_solver_advance(NULL, 1, 0), WO_NULL_POINTER, "wo_solver_advance: solver is NULL");
+    REFUSED(wo_solver_time(NULL, &x), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_wound_radius(NULL, &x), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_edge_velocity(NULL, &x), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_node_count(NULL, &n), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_nodes(NULL, out, 3), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_displacement(NULL, r, out, 3), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_velocity(NULL, r, out, 3), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_save_state(NULL, &st), WO_NULL_POINTER, "solver is NULL");
+    REFUSED(wo_solver_restore_state(NULL, st), WO_NULL_POINTER, "solver is NULL");
+    /* NULL outputs and arrays. */
+    REFUSED(wo_solver_time(s, NULL), WO_NULL_POINTER, "time is NULL");
+    REFUSED(wo_solver_wound_radius(s, NULL), WO_NULL_POINTER, "radius is NULL");
+    REFUSED(wo_solver_edge_velocity(s, NULL), WO_NULL_POINTER, "velocity is NULL");
+    REFUSED(wo_solver_node_count(s, NULL), WO_NULL_POINTER, "count is NULL");
+    REFUSED(wo_solver_nodes(s, NULL, 5), WO_NULL_POINTER, "radii (with count = 5) is NULL");
+    REFUSED(wo_solver_displacement(s, NULL, out, 3), WO_NULL_POINTER, "radii (with count = 3) is NULL");
+    REFUSED(wo_solver_displacement(s, r, NULL, 3), WO_NULL_POINTER, "u (with count = 3) is NULL");
+    REFUSED(wo_solver_velocity(s, r, NULL, 3), WO_NULL_POINTER, "v (with count = 3) is NULL");
+    REFUSED(wo_solver_save_state(s, NULL), WO_NULL_POINTER, "state is NULL");
+    REFUSED(wo_solver_restore_state(s, NULL), WO_NULL_POINTER, "state is NULL");
+    OK(wo_solver_displacement(s, NULL, NULL, 0)); /* nothing asked, nothing read */
+
+    /* Values out of range. */
+    OK(wo_solver_advance(s, REFERENCE[0].t, 0.0));
+    REFUSED(wo_solver_advance(s, NAN, 0), WO_INVALID_ARGUMENT, "t_end = NaN is invalid: expected a finite time >= the solver's time 0.01");
+    REFUSED(wo_solver_advance(s, INFINITY, 0), WO_INVALID_ARGUMENT, "t_end = inf is invalid");
+    REFUSED(wo_solver_advance(s, 0.005, 0), WO_INVALID_ARGUMENT, "t_end = 0.005 is invalid: expected a finite time >= the solver's time 0.01");
+    REFUSED(wo_solver_advance(s, 1.0, NAN), WO_INVALID_ARGUMENT, "edge_stress = NaN is invalid: it must be finite");
+    REFUSED(wo_solver_advance(s, 1.0, -INFINITY), WO_INVALID_ARGUMENT, "edge_stress = -inf is invalid");
+    OK(wo_solver_node_count(s, &n));
+    REFUSED(wo_solver_nodes(s, out, 3), WO_INVALID_ARGUMENT, "count = 3 is invalid: the solver has");
+    r[1] = 0.5;
+    REFUSED(wo_solver_displacement(s, r, out, 3), WO_INVALID_ARGUMENT, "radii[1] = 0.5 is outside the tissue: expected 1 <= r <= R_inf = 10");
+    r[1] = 10.5;
+    REFUSED(wo_solver_velocity(s, r, out, 3), WO_INVALID_ARGUMENT, "radii[1] = 10.5 is outside the tissue");
+    r[1] = NAN;
+    REFUSED(wo_solver_velocity(s, r, out, 3), WO_INVALID_ARGUMENT, "radii[1] = NaN is outside the tissue");
+    r[1] = 2.0;
+
+    /* Handles: forged, freed, of the wrong kind, states of another problem. */
+    OK(wo_solver_save_state(s, &st));
+    REFUSED(wo_solver_advance((wo_solver *)(uintptr_t)0x7fff0001u, 1, 0), WO_UNKNOWN_HANDLE, "is unknown (never created by this library, or already freed)");
+    REFUSED(wo_solver_advance((wo_solver *)st, 1, 0), WO_UNKNOWN_HANDLE, "solver 0x");
+    REFUSED(wo_solver_restore_state(s, (wo_state *)s), WO_UNKNOWN_HANDLE, "state 0x");
+    OK(wo_solver_new(2.0, 1.0, 10.0, 1e-10, &other));
+    OK(wo_solver_save_state(other, &foreign));
+    REFUSED(wo_solver_restore_state(s, foreign), WO_INCOMPATIBLE_STATE, "was saved with lambda = 2 but this solver has lambda = 1");
+    OK(wo_solver_new_grid(1.0, 1.0, 10.0, 2, 4, 0.5, &coarse));
+    OK(wo_solver_save_state(coarse, &wrong_grid));
+    REFUSED(wo_solver_restore_state(s, wrong_grid), WO_INCOMPATIBLE_STATE, "was saved on grid");
+    OK(wo_solver_free(other));
+    REFUSED(wo_solver_free(other), WO_UNKNOWN_HANDLE, "wo_solver_free: solver 0x");
+    REFUSED(wo_solver_wound_radius(other, &x), WO_UNKNOWN_HANDLE, "already freed");
+    OK(wo_state_free(foreign));
+    REFUSED(wo_state_free(foreign), WO_UNKNOWN_HANDLE, "wo_state_free: state 0x");
+    REFUSED(wo_solver_restore_state(s, foreign), WO_UNKNOWN_HANDLE, "already freed");
+    OK(wo_solver_free(NULL)); /* as free(NULL) */
+    OK(wo_state_free(NULL));
+    OK(wo_state_free(wrong_grid));
+    OK(wo_solver_free(coarse));
+
+    CHECK(strcmp(wo_status_name(WO_INCOMPATIBLE_STATE), "WO_INCOMPATIBLE_STATE") == 0, "status name");
+    CHECK(strcmp(wo_status_name(99), "unknown status") == 0 && strcmp(wo_status_name(-1), "unknown status") == 0, "unknown status name");
+    OK(wo_solver_time(s, &x));
+    CHECK(strcmp(wo_last_error(), "") == 0, "a success clears the message, got \"%s\"", wo_last_error());
+
+    /* Nothing refused above changed the solver: it goes on to the reference values. */
+    double t0 = NAN;
+    OK(wo_solver_time(s, &t0));
+    CHECK(t0 == REFERENCE[0].t, "time %g after refused calls, expected %g", t0, REFERENCE[0].t);
+    reproduce("after refused calls", s);
+    OK(wo_solver_restore_state(s, st));
+    reproduce("restored after refused calls", s);
+    OK(wo_state_free(st));
+    OK(wo_solver_free(s));
+}
+
+int main(void) {
+    lambda_one_case();
+    profiles();
+    save_and_restore();
+    bad_creation();
+    bad_calls();
+    return check_report("direct_api");
+}

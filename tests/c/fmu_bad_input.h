@@ -1,0 +1,266 @@
+/*
+ * Bad input through the FMI 2.0 functions. Part of fmu_master.c (one translation unit:
+ * it uses that file's F, LOG, CALLBACKS, checks and helpers).
+ */
+#include <stdint.h>
+
+/* CRC-32 (IEEE 802.3, reflected, as zlib), to forge states that pass the checksum. */
+static uint32_t crc32_ieee(const unsigned char *p, size_t n) {
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xFFFFFFFFu;
+}
+
+static void put_u32(unsigned char *p, uint32_t v) {
+    for (int i = 0; i < 4; i++) p[i] = (unsigned char)(v >> (8 * i));
+}
+
+/* Re-seal a modified serialized state: CRC-32 of everything before the last 4 bytes. */
+static void reseal(unsigned char *bytes, size_t size) {
+    put_u32(bytes + size - 4, crc32_ieee(bytes, size - 4));
+}
+
+#define INSTANTIATE_REFUSED(call, needle)                                                                        \
+    do {                                                                                                         \
+        int before_ = LOG.count;                                                                                 \
+        fmi2Component got_ = (call);                                                                             \
+        CHECK(got_ == NULL && LOG.count > before_ && LOG.status == fmi2Error && strstr(LOG.message, (needle)),   \
+              "%s gave %p, logged \"%s\"; expected NULL with \"%s\"", #call, got_, LOG.message, (needle));       \
+        if (got_ != NULL) F.fmi2FreeInstance(got_);                                                              \
+    } while (0)
+
+static void bad_instantiation(void) {
+    const char *wrong = "{00000000-0000-0000-0000-000000000000}";
+    char expected[256];
+    snprintf(expected, sizeof expected, "Expected GUID %s but was %s", F.guid, wrong);
+    INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2CoSimulation, wrong, "", &CALLBACKS, fmi2False, fmi2False), expected);
+    INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2CoSimulation, NULL, "", &CALLBACKS, fmi2False, fmi2False), "but was NULL");
+    INSTANTIATE_REFUSED(F.fmi2Instantiate(NULL, fmi2CoSimulation, F.guid, "", &CALLBACKS, fmi2False, fmi2False), "instanceName is NULL");
+    INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2ModelExchange, F.guid, "", &CALLBACKS, fmi2False, fmi2False),
+                        "fmuType = 0: this FMU supports co-simulation (1) only");
+    INSTANTIATE_REFUSED(F.fmi2Instantiate("x", (fmi2Type)7, F.guid, "", &CALLBACKS, fmi2False, fmi2False), "fmuType = 7");
+    /* Without callbacks, or without a logger, there is no one to tell: NULL, and no crash. */
+    CHECK(F.fmi2Instantiate("x", fmi2CoSimulation, F.guid, "", NULL, fmi2False, fmi2False) == NULL, "NULL functions");
+    const fmi2CallbackFunctions silent = {NULL, NULL, NULL, NULL, NULL};
+    CHECK(F.fmi2Instantiate("x", fmi2CoSimulation, wrong, "", &silent, fmi2False, fmi2False) == NULL, "wrong GUID, no logger");
+    /* A name with conversion specifiers is text, not a format. */
+    fmi2Component c = F.fmi2Instantiate("%s%n%p", fmi2CoSimulation, F.guid, "", &CALLBACKS, fmi2False, fmi2False);
+    CHECK(c != NULL, "instance named %%s%%n%%p");
+    REFUSED(F.fmi2DoStep(c, 0.0, 1.0, fmi2False), "fmi2DoStep is not allowed in state Instantiated");
+    CHECK(strcmp(LOG.instance, "%s%n%p") == 0, "logged instance name \"%s\"", LOG.instance);
+    F.fmi2FreeInstance(c);
+}
+
+/* Every function that takes an instance refuses NULL (there is no logger to tell). */
+static void null_component(void) {
+    fmi2ValueReference vr = 0;
+    fmi2Real r = 0;
+    fmi2Integer i = 0;
+    fmi2Boolean b = 0;
+    fmi2String s = NULL;
+    fmi2Status st = fmi2OK;
+    fmi2FMUstate state = NULL;
+    size_t size = 0;
+    fmi2Byte byte = 0;
+    const fmi2Status e = fmi2Error;
+    int before = LOG.count;
+    CHECK(F.fmi2SetDebugLogging(NULL, fmi2True, 0, NULL) == e, "SetDebugLogging");
+    CHECK(F.fmi2SetupExperiment(NULL, fmi2False, 0, 0, fmi2False, 0) == e, "SetupExperiment");
+    CHECK(F.fmi2EnterInitializationMode(NULL) == e && F.fmi2ExitInitializationMode(NULL) == e, "init");
+    CHECK(F.fmi2Terminate(NULL) == e && F.fmi2Reset(NULL) == e, "Terminate, Reset");
+    CHECK(F.fmi2GetReal(NULL, &vr, 1, &r) == e && F.fmi2SetReal(NULL, &vr, 1, &r) == e, "Get/SetReal");
+    CHECK(F.fmi2GetInteger(NULL, &vr, 1, &i) == e && F.fmi2SetInteger(NULL, &vr, 1, &i) == e, "Get/SetInteger");
+    CHECK(F.fmi2GetBoolean(NULL, &vr, 1, &b) == e && F.fmi2SetBoolean(NULL, &vr, 1, &b) == e, "Get/SetBoolean");
+    CHECK(F.fmi2GetString(NULL, &vr, 1, &s) == e && F.fmi2SetString(NULL, &vr, 1, &s) == e, "Get/SetString");
+    CHECK(F.fmi2GetFMUstate(NULL, &state) == e && F.fmi2SetFMUstate(NULL, state) == e, "Get/SetFMUstate");
+    CHECK(F.fmi2FreeFMUstate(NULL, &state) == e, "FreeFMUstate");
+    CHECK(F.fmi2SerializedFMUstateSize(NULL, state, &size) == e, "SerializedFMUstateSize");
+    CHECK(F.fmi2SerializeFMUstate(NULL, state, &byte, 1) == e, "SerializeFMUstate");
+    CHECK(F.fmi2DeSerializeFMUstate(NULL, &byte, 1, &state) == e, "DeSerializeFMUstate");
+    CHECK(F.fmi2GetDirectionalDerivative(NULL, &vr, 1, &vr, 1, &r, &r) == e, "GetDirectionalDerivative");
+    CHECK(F.fmi2SetRealInputDerivatives(NULL, &vr, 1, &i, &r) == e, "SetRealInputDerivatives");
+    CHECK(F.fmi2GetRealOutputDerivatives(NULL, &vr, 1, &i, &r) == e, "GetRealOutputDerivatives");
+    CHECK(F.fmi2DoStep(NULL, 0, 1, fmi2False) == e && F.fmi2CancelStep(NULL) == e, "DoStep, CancelStep");
+    CHECK(F.fmi2GetStatus(NULL, fmi2DoStepStatus, &st) == e, "GetStatus");
+    CHECK(F.fmi2GetRealStatus(NULL, fmi2LastSuccessfulTime, &r) == e, "GetRealStatus");
+    CHECK(F.fmi2GetIntegerStatus(NULL, fmi2DoStepStatus, &i) == e, "GetIntegerStatus");
+    CHECK(F.fmi2GetBooleanStatus(NULL, fmi2Terminated, &b) == e, "GetBooleanStatus");
+    CHECK(F.fmi2GetStringStatus(NULL, fmi2DoStepStatus, &s) == e, "GetStringStatus");
+    F.fmi2FreeInstance(NULL);
+    CHECK(LOG.count == before, "nothing can be logged without an instance");
+}
+
+static fmi2Status set1(fmi2Component c, fmi2ValueReference vr, double value) {
+    return F.fmi2SetReal(c, &vr, 1, &value);
+}
+
+/* Before initialization: invalid values and calls in the wrong state. */
+static void before_initialization(fmi2Component c) {
+    fmi2ValueReference vr = VR_LAMBDA;
+    fmi2Real one = 1.0, out = 0.0;
+    fmi2Integer i = 0;
+    fmi2Boolean b = 0;
+    fmi2String s = "x";
+    REFUSED(F.fmi2DoStep(c, 0.0, 0.1, fmi2True), "fmi2DoStep is not allowed in state Instantiated");
+    REFUSED(set1(c, VR_LAMBDA, NAN), "lambda = NaN is invalid");
+    REFUSED(set1(c, VR_LAMBDA, -1.0), "lambda = -1 is invalid: it must be finite and >= 0");
+    REFUSED(set1(c, VR_LAMBDA, INFINITY), "lambda = inf is invalid");
+    REFUSED(set1(c, VR_SIGMA, INFINITY), "sigma = inf is invalid: it must be finite");
+    REFUSED(set1(c, VR_SIGMA, NAN), "sigma = NaN is invalid");
+    REFUSED(set1(c, VR_R_INF, 1.0), "R_inf = 1 is invalid: it must be finite and > 1");
+    REFUSED(set1(c, VR_R_INF, 0.5), "R_inf = 0.5 is invalid");
+    REFUSED(set1(c, VR_R_INF, -INFINITY), "R_inf = -inf is invalid");
+    REFUSED(set1(c, VR_EDGE_STRESS, NAN), "edge_stress = NaN is invalid");
+    REFUSED(set1(c, VR_RADIUS, 2.0), "wound_radius (value reference 4) is an output and cannot be set");
+    REFUSED(set1(c, 99, 1.0), "no Real variable has value reference 99");
+    REFUSED(F.fmi2SetReal(c, NULL, 1, &one), "vr is NULL but 1 elements were announced");
+    REFUSED(F.fmi2SetReal(c, &vr, 1, NULL), "value is NULL but 1 elements were announced");
+    REFUSED(F.fmi2GetReal(c, &vr, 1, &out), "fmi2Get* is not allowed in state Instantiated");
+    REFUSED(F.fmi2SetInteger(c, &vr, 1, &i), "no Integer variable has value reference 0");
+    REFUSED(F.fmi2SetBoolean(c, &vr, 1, &b), "no Boolean variable has value reference 0");
+    REFUSED(F.fmi2SetString(c, &vr, 1, &s), "no String variable has value reference 0");
+    REFUSED(F.fmi2SetupExperiment(c, fmi2True, NAN, 0, fmi2False, 0), "tolerance = NaN is invalid");
+    REFUSED(F.fmi2SetupExperiment(c, fmi2True, -1e-6, 0, fmi2False, 0), "tolerance = -0.000001 is invalid");
+    REFUSED(F.fmi2SetupExperiment(c, fmi2False, 0, INFINITY, fmi2False, 0), "startTime = inf is invalid");
+    REFUSED(F.fmi2SetupExperiment(c, fmi2False, 0, 1.0, fmi2True, 0.5),
+            "stopTime = 0.5 is invalid: it must be finite and >= startTime = 1");
+    const fmi2String categories[2] = {"logCalls", "%s%n%p"};
+    REFUSED(F.fmi2SetDebugLogging(c, fmi2True, 2, categories), "unknown log category \"%s%n%p\"");
+    REFUSED(F.fmi2SetDebugLogging(c, fmi2True, 1, NULL), "categories is NULL but 1 elements were announced");
+    REFUSED(F.fmi2ExitInitializationMode(c), "fmi2ExitInitializationMode is not allowed in state Instantiated");
+    /* A refused fmi2SetReal sets none of its values: sigma stays 1 (checked after initialization). */
+    const fmi2ValueReference both[2] = {VR_SIGMA, VR_LAMBDA};
+    const fmi2Real values[2] = {2.0, -1.0};
+    REFUSED(F.fmi2SetReal(c, both, 2, values), "lambda = -1 is invalid");
+}
+
+/* Initialized: fixed parameters, communication points, steps, unsupported functions. */
+static void after_initialization(fmi2Component c) {
+    fmi2ValueReference vr = VR_RADIUS;
+    fmi2Real sigma = 0, r = 0;
+    fmi2Integer i = 0, order = 1;
+    fmi2Status st = fmi2OK;
+    fmi2String s = NULL;
+    REFUSED(F.fmi2EnterInitializationMode(c), "fmi2EnterInitializationMode is not allowed in state StepComplete");
+    OK(F.fmi2GetReal(c, &VR_SIGMA, 1, &sigma));
+    CHECK(sigma == 1.0, "sigma = %g after a refused fmi2SetReal, expected its start value 1", sigma);
+    REFUSED(set1(c, VR_LAMBDA, 2.0), "lambda is a fixed parameter: it can only be set before fmi2ExitInitializationMode");
+    REFUSED(set1(c, VR_R_INF, 20.0), "R_inf is a fixed parameter");
+    REFUSED(F.fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0), "fmi2SetupExperiment is not allowed in state StepComplete");
+    REFUSED(F.fmi2DoStep(c, 0.5, 0.01, fmi2True), "Expected currentCommunicationPoint = 0 but was 0.5");
+    REFUSED(F.fmi2DoStep(c, NAN, 0.01, fmi2True), "Expected currentCommunicationPoint = 0 but was NaN");
+    REFUSED(F.fmi2DoStep(c, 0.0, 0.0, fmi2True), "communicationStepSize = 0 is invalid: it must be finite and > 0");
+    REFUSED(F.fmi2DoStep(c, 0.0, -0.1, fmi2True), "communicationStepSize = -0.1 is invalid");
+    REFUSED(F.fmi2DoStep(c, 0.0, NAN, fmi2True), "communicationStepSize = NaN is invalid");
+    REFUSED(F.fmi2DoStep(c, 0.0, INFINITY, fmi2True), "communicationStepSize = inf is invalid");
+    REFUSED(F.fmi2GetStatus(c, fmi2DoStepStatus, &st), "status kind 0 is not available");
+    REFUSED(F.fmi2GetRealStatus(c, fmi2LastSuccessfulTime, NULL), "value is NULL");
+    REFUSED(F.fmi2GetStringStatus(c, fmi2PendingStatus, &s), "status kind 1 is not available");
+    REFUSED(F.fmi2GetIntegerStatus(c, fmi2DoStepStatus, &i), "status kind 0 is not available");
+    REFUSED(F.fmi2GetDirectionalDerivative(c, &vr, 1, &VR_EDGE_STRESS, 1, &r, &r),
+            "fmi2GetDirectionalDerivative is not supported");
+    REFUSED(F.fmi2SetRealInputDerivatives(c, &VR_EDGE_STRESS, 1, &order, &r), "is not supported");
+    REFUSED(F.fmi2GetRealOutputDerivatives(c, &vr, 1, &order, &r), "is not supported");
+    REFUSED(F.fmi2CancelStep(c), "fmi2CancelStep is not allowed in state StepComplete");
+    REFUSED(F.fmi2GetInteger(c, &vr, 1, &i), "no Integer variable has value reference 4");
+    REFUSED(F.fmi2GetString(c, &vr, 1, &s), "no String variable has value reference 4");
+    REFUSED(F.fmi2GetReal(c, &vr, 1, NULL), "value is NULL but 1 elements were announced");
+}
+
+/* FMU states: NULL, forged, double free; serialized states truncated, corrupted, foreign. */
+static void fmu_states(fmi2Component c) {
+    fmi2FMUstate st = NULL, copy = NULL, back = NULL, forged = (fmi2FMUstate)(uintptr_t)0x999;
+    size_t size = 0;
+    REFUSED(F.fmi2GetFMUstate(c, NULL), "FMUstate is NULL");
+    REFUSED(F.fmi2GetFMUstate(c, &forged), "was not allocated by this instance");
+    OK(F.fmi2GetFMUstate(c, &st));
+    copy = st;
+    REFUSED(F.fmi2SetFMUstate(c, NULL), "FMUstate is NULL");
+    REFUSED(F.fmi2FreeFMUstate(c, NULL), "FMUstate is NULL");
+    OK(F.fmi2FreeFMUstate(c, &st));
+    REFUSED(F.fmi2FreeFMUstate(c, &copy), "is unknown (never allocated here, or already freed)");
+    REFUSED(F.fmi2SetFMUstate(c, copy), "is unknown (never allocated here, or already freed)");
+    REFUSED(F.fmi2SerializedFMUstateSize(c, copy, &size), "is unknown");
+
+    OK(F.fmi2GetFMUstate(c, &st));
+    REFUSED(F.fmi2SerializedFMUstateSize(c, st, NULL), "size is NULL");
+    OK(F.fmi2SerializedFMUstateSize(c, st, &size));
+    unsigned char *bytes = malloc(size), *bad = malloc(size + 8);
+    char expected[128];
+    snprintf(expected, sizeof expected, "buffer of %zu bytes is too small: the state needs %zu", size - 1, size);
+    REFUSED(F.fmi2SerializeFMUstate(c, st, (fmi2Byte *)bytes, size - 1), expected);
+    REFUSED(F.fmi2SerializeFMUstate(c, st, NULL, size), "serializedState is NULL");
+    OK(F.fmi2SerializeFMUstate(c, st, (fmi2Byte *)bytes, size));
+    const fmi2Byte *b = (const fmi2Byte *)bytes;
+
+    REFUSED(F.fmi2DeSerializeFMUstate(c, b, size, NULL), "FMUstate is NULL");
+    REFUSED(F.fmi2DeSerializeFMUstate(c, NULL, size, &back), "serializedState is NULL");
+    REFUSED(F.fmi2DeSerializeFMUstate(c, b, 0, &back), "is 0 bytes, shorter than its header");
+    REFUSED(F.fmi2DeSerializeFMUstate(c, b, 19, &back), "is 19 bytes, shorter than its header");
+    REFUSED(F.fmi2DeSerializeFMUstate(c, b, size / 2, &back), "but its header announces");
+    REFUSED(F.fmi2DeSerializeFMUstate(c, b, size - 1, &back), "but its header announces");
+    memcpy(bad, bytes, size);
+    memset(bad + size, 0, 8);
+    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size + 8, &back), "but its header announces");
+    bad[size / 2] ^= 0x10; /* one bit flipped in the payload */
+    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "is corrupted: checksum");
+    memcpy(bad, bytes, size);
+    bad[0] = 'X';
+    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "does not start with \"WOUNDFMU\"");
+    memcpy(bad, bytes, size);
+    put_u32(bad + 8, 2); /* another format version, with a valid checksum */
+    reseal(bad, size);
+    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "has format version 2; this FMU reads version 1");
+    CHECK(back == NULL, "a refused fmi2DeSerializeFMUstate leaves the state NULL");
+
+    /* A state of another parameter set (lambda = 2). */
+    fmi2Component other = initialized("lambda2", 2.0);
+    fmi2FMUstate theirs = NULL;
+    size_t their_size = 0;
+    OK(F.fmi2GetFMUstate(other, &theirs));
+    OK(F.fmi2SerializedFMUstateSize(other, theirs, &their_size));
+    CHECK(their_size == size, "same layout: %zu and %zu bytes", their_size, size);
+    OK(F.fmi2SerializeFMUstate(other, theirs, (fmi2Byte *)bad, their_size));
+    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, their_size, &back),
+            "serialized FMU state has lambda = 2 but this instance has lambda = 1");
+    OK(F.fmi2FreeFMUstate(other, &theirs));
+    F.fmi2FreeInstance(other);
+
+    /* The genuine bytes round-trip. */
+    double r0, v0, r1, v1;
+    outputs(c, &r0, &v0);
+    OK(F.fmi2DeSerializeFMUstate(c, b, size, &back));
+    OK(F.fmi2SetFMUstate(c, back));
+    outputs(c, &r1, &v1);
+    CHECK(r1 == r0 && v1 == v0, "deserialized state gives R = %.17g, expected %.17g", r1, r0);
+    OK(F.fmi2FreeFMUstate(c, &back));
+    OK(F.fmi2FreeFMUstate(c, &st));
+    free(bytes);
+    free(bad);
+}
+
+static void bad_calls(void) {
+    double t = 0.0;
+    fmi2Component c = instantiate("bad");
+    CHECK(c != NULL, "fmi2Instantiate(bad): %s", LOG.message);
+    if (c == NULL) return;
+    before_initialization(c);
+    OK(F.fmi2SetupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0));
+    OK(F.fmi2EnterInitializationMode(c));
+    OK(F.fmi2ExitInitializationMode(c));
+    after_initialization(c);
+    reproduce("FMU after refused calls", c, &t, 0);
+    fmu_states(c);
+    /* logCalls: every call is logged with its arguments, status fmi2OK. */
+    const fmi2String calls[1] = {"logCalls"};
+    OK(F.fmi2SetDebugLogging(c, fmi2True, 1, calls));
+    fmi2Real last = NAN;
+    OK(F.fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &last));
+    CHECK(last == t, "fmi2LastSuccessfulTime = %g, expected %g", last, t);
+    CHECK(strcmp(LOG.category, "logCalls") == 0 && LOG.status == fmi2OK && strstr(LOG.message, "fmi2GetRealStatus(2)"),
+          "logCalls logged [%s] \"%s\"", LOG.category, LOG.message);
+    F.fmi2FreeInstance(c);
+}
