@@ -1,0 +1,130 @@
+//! The direct C API's boundary from Rust, through the exported `wo_*` functions: the panic
+//! boundary (a solver whose call panicked refuses use until a state is restored), the
+//! thread-local last error, and the handle tables. (tests/c/direct_api.c covers the
+//! numbers and the bad input from C; tests/fuzz_capi.rs random call sequences.)
+
+use std::ffi::CStr;
+use wound_opening::capi::error::{Failure, WoStatus, run};
+use wound_opening::capi::solver::{self, live_handles};
+use wound_opening::capi::solver_c::*;
+use wound_opening::fmi::boundary::caught_panics;
+
+fn last_error() -> String {
+    unsafe { CStr::from_ptr(wo_last_error()) }.to_string_lossy().into_owned()
+}
+
+fn new_solver() -> *mut WoSolver {
+    let mut s = std::ptr::null_mut();
+    assert_eq!(unsafe { wo_solver_new(1.0, 1.0, 10.0, 1e-8, &mut s) }, WoStatus::WoOk, "{}", last_error());
+    s
+}
+
+fn radius(s: *mut WoSolver) -> Result<f64, (WoStatus, String)> {
+    let mut r = f64::NAN;
+    match unsafe { wo_solver_wound_radius(s, &mut r) } {
+        WoStatus::WoOk => Ok(r),
+        e => Err((e, last_error())),
+    }
+}
+
+#[test]
+fn a_panic_inside_a_call_is_an_internal_error_and_the_solver_waits_for_a_restore() {
+    let s = new_solver();
+    let mut saved = std::ptr::null_mut();
+    unsafe {
+        assert_eq!(wo_solver_advance(s, 1.0, 0.0), WoStatus::WoOk);
+        assert_eq!(wo_solver_save_state(s, &mut saved), WoStatus::WoOk);
+    }
+    let r1 = radius(s).unwrap();
+    let panics = caught_panics();
+
+    // A panic while the solver is locked: what a bug in the solver would do.
+    let status = run("wo_test", || solver::with_solver_for_tests(s as usize as u64, || panic!("deliberate test panic")));
+    assert_eq!(status, WoStatus::WoInternalError);
+    let msg = last_error();
+    assert!(msg.starts_with("wo_test: internal error (caught panic: "), "{msg}");
+    assert!(msg.contains("deliberate test panic"), "{msg}");
+    assert!(caught_panics() > panics, "the panic was counted");
+
+    // Its data may be half-updated: every use is refused, saying what to do.
+    let (status, msg) = radius(s).unwrap_err();
+    assert_eq!(status, WoStatus::WoInternalError);
+    assert!(msg.contains("is unusable after an internal error in an earlier call: restore a saved state"), "{msg}");
+    let mut again = std::ptr::null_mut();
+    assert_eq!(unsafe { wo_solver_save_state(s, &mut again) }, WoStatus::WoInternalError);
+    assert_eq!(unsafe { wo_solver_advance(s, 2.0, 0.0) }, WoStatus::WoInternalError);
+
+    // Restoring a state brings it back, exactly where the state was.
+    unsafe {
+        assert_eq!(wo_solver_restore_state(s, saved), WoStatus::WoOk, "{}", last_error());
+        assert_eq!(radius(s), Ok(r1));
+        assert_eq!(wo_solver_advance(s, 2.0, 0.0), WoStatus::WoOk);
+        assert_eq!(wo_state_free(saved), WoStatus::WoOk);
+        assert_eq!(wo_solver_free(s), WoStatus::WoOk);
+    }
+}
+
+#[test]
+fn a_solver_that_panicked_can_still_be_freed() {
+    let s = new_solver();
+    let status = run("wo_test", || solver::with_solver_for_tests(s as usize as u64, || panic!("deliberate test panic")));
+    assert_eq!(status, WoStatus::WoInternalError);
+    assert_eq!(unsafe { wo_solver_free(s) }, WoStatus::WoOk);
+    assert_eq!(radius(s).unwrap_err().0, WoStatus::WoUnknownHandle);
+}
+
+#[test]
+fn the_last_error_belongs_to_the_calling_thread_and_a_success_clears_it() {
+    let status = run("wo_here", || Err(Failure::invalid("something specific")));
+    assert_eq!(status, WoStatus::WoInvalidArgument);
+    assert_eq!(last_error(), "wo_here: something specific");
+    let elsewhere = std::thread::spawn(|| {
+        let before = last_error();
+        let status = run("wo_there", || Err(Failure::null("thing")));
+        (before, status, last_error())
+    })
+    .join()
+    .unwrap();
+    assert_eq!(elsewhere, (String::new(), WoStatus::WoNullPointer, "wo_there: thing is NULL (expected a valid pointer)".into()));
+    assert_eq!(last_error(), "wo_here: something specific", "another thread's error is not ours");
+    assert_eq!(run("wo_fine", || Ok(())), WoStatus::WoOk);
+    assert_eq!(last_error(), "");
+}
+
+#[test]
+fn handles_are_never_reused_and_freed_ones_stay_unknown() {
+    let a = new_solver();
+    unsafe { assert_eq!(wo_solver_free(a), WoStatus::WoOk) };
+    let b = new_solver();
+    assert_ne!(a, b, "a freed handle is not handed out again");
+    assert_eq!(radius(a).unwrap_err().0, WoStatus::WoUnknownHandle);
+    assert!(radius(b).is_ok());
+    let (solvers, _) = live_handles();
+    assert!(solvers >= 1);
+    unsafe { assert_eq!(wo_solver_free(b), WoStatus::WoOk) };
+}
+
+#[test]
+fn status_names_match_the_enum() {
+    let all = [
+        WoStatus::WoOk,
+        WoStatus::WoNullPointer,
+        WoStatus::WoInvalidArgument,
+        WoStatus::WoUnknownHandle,
+        WoStatus::WoIncompatibleState,
+        WoStatus::WoSolverFailed,
+        WoStatus::WoInternalError,
+    ];
+    for (i, s) in all.iter().enumerate() {
+        assert_eq!(*s as i32, i as i32);
+        let name = unsafe { CStr::from_ptr(wo_status_name(i as i32)) }.to_str().unwrap();
+        let rust = format!("{s:?}");
+        // WoInvalidArgument <-> WO_INVALID_ARGUMENT
+        let screaming: String = rust
+            .chars()
+            .enumerate()
+            .flat_map(|(j, c)| if c.is_uppercase() && j > 0 { vec!['_', c] } else { vec![c.to_ascii_uppercase()] })
+            .collect();
+        assert_eq!(name, screaming);
+    }
+}
