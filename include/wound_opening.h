@@ -131,7 +131,7 @@ fmi2Status fmi2SetReal(fmi2Component c,
 fmi2Status fmi2GetInteger(fmi2Component c,
                           const fmi2ValueReference *vr,
                           size_t nvr,
-                          fmi2Integer *_value);
+                          fmi2Integer *value);
 
 fmi2Status fmi2GetBoolean(fmi2Component c,
                           const fmi2ValueReference *vr,
@@ -146,7 +146,7 @@ fmi2Status fmi2GetString(fmi2Component c,
 fmi2Status fmi2SetInteger(fmi2Component c,
                           const fmi2ValueReference *vr,
                           size_t nvr,
-                          const fmi2Integer *_value);
+                          const fmi2Integer *value);
 
 fmi2Status fmi2SetBoolean(fmi2Component c,
                           const fmi2ValueReference *vr,

@@ -74,20 +74,29 @@ fn log_categories_match_the_code() {
 fn variables_match_the_table_one_for_one() {
     let all = elements();
     let svs = find(&all, "fmiModelDescription/ModelVariables/ScalarVariable");
-    let reals = find(&all, "fmiModelDescription/ModelVariables/ScalarVariable/Real");
     assert_eq!(svs.len(), VARIABLES.len(), "number of ScalarVariables");
-    assert_eq!(reals.len(), VARIABLES.len(), "every variable is a Real");
+    // The type element of each ScalarVariable, in document order.
+    let typed: Vec<(&str, &BTreeMap<String, String>)> = all
+        .iter()
+        .filter_map(|(p, a)| p.strip_prefix("fmiModelDescription/ModelVariables/ScalarVariable/").map(|k| (k, a)))
+        .collect();
+    assert_eq!(typed.len(), VARIABLES.len(), "one type element per variable");
     let units: Vec<&str> =
         find(&all, "fmiModelDescription/UnitDefinitions/Unit").iter().map(|a| a["name"].as_str()).collect();
-    for ((sv, real), var) in svs.iter().zip(&reals).zip(&VARIABLES) {
+    for ((sv, (kind, ty)), var) in svs.iter().zip(&typed).zip(&VARIABLES) {
         assert_eq!(sv["name"], var.name);
+        assert_eq!(*kind, var.kind.as_str(), "{}", var.name);
         assert_eq!(sv["valueReference"], var.value_reference.to_string(), "{}", var.name);
         assert_eq!(sv["causality"], var.causality.as_str(), "{}", var.name);
         assert_eq!(sv["variability"], var.variability.as_str(), "{}", var.name);
         assert_eq!(sv["description"], var.description, "{}", var.name);
-        assert_eq!(real.get("start").map(|s| s.parse::<f64>().unwrap()), var.start, "{}", var.name);
-        assert_eq!(real["unit"], var.unit, "{}", var.name);
-        assert!(units.contains(&var.unit), "unit {} of {} is declared", var.unit, var.name);
+        assert_eq!(ty.get("start").map(|s| s.parse::<f64>().unwrap()), var.start, "{}", var.name);
+        assert_eq!(ty.get("unit").map(String::as_str).unwrap_or(""), var.unit, "{}", var.name);
+        if !var.unit.is_empty() {
+            assert!(units.contains(&var.unit), "unit {} of {} is declared", var.unit, var.name);
+        }
+        let range = ty.get("min").zip(ty.get("max")).map(|(a, b)| (a.parse().unwrap(), b.parse().unwrap()));
+        assert_eq!(range, var.range, "{}", var.name);
         assert!(!sv.contains_key("initial"), "{}: initial is left to its default", var.name);
     }
 }

@@ -14,7 +14,7 @@ const OK: Result<Status, String> = Ok(Status::Ok);
 fn no_variables(kind: &str, vr: &[fmi2ValueReference]) -> Result<Status, String> {
     match vr.first() {
         None => OK,
-        Some(v) => Err(format!("no {kind} variable has value reference {v} (this FMU has Real variables only)")),
+        Some(v) => Err(format!("no {kind} variable has value reference {v} (this FMU has Real and Integer variables only)")),
     }
 }
 
@@ -170,15 +170,21 @@ pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueRefer
     }
 }
 
-/// `fmi2{Get,Set}{Integer,Boolean,String}`: this FMU has Real variables only, so any value
+/// `fmi2{Get,Set}{Boolean,String}`: this FMU has Real and Integer variables only, so any value
 /// reference is an error (and an empty list is fine).
 unsafe fn no_such_variables(c: fmi2Component, call: Call, fname: &str, kind: &str, vr: *const fmi2ValueReference, nvr: usize) -> fmi2Status {
     unsafe { with_instance(c, call, || format!("{fname}(nvr={nvr})"), |_| no_variables(kind, slice(vr, nvr, "vr")?)) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *mut fmi2Integer) -> fmi2Status {
-    unsafe { no_such_variables(c, Call::Get, "fmi2GetInteger", "Integer", vr, nvr) }
+pub unsafe extern "C" fn fmi2GetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Integer) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::Get, || format!("fmi2GetInteger(nvr={nvr})"), |i| {
+            let vr = slice(vr, nvr, "vr")?;
+            let out = slice_mut(value, nvr, "value")?;
+            i.get_integer(vr, out).map(|_| Status::Ok)
+        })
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -192,8 +198,14 @@ pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueRef
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *const fmi2Integer) -> fmi2Status {
-    unsafe { no_such_variables(c, Call::Set, "fmi2SetInteger", "Integer", vr, nvr) }
+pub unsafe extern "C" fn fmi2SetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Integer) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::Set, || format!("fmi2SetInteger(nvr={nvr})"), |i| {
+            let vr = slice(vr, nvr, "vr")?;
+            let values = slice(value, nvr, "value")?;
+            i.set_integer(vr, values).map(|_| Status::Ok)
+        })
+    }
 }
 
 #[unsafe(no_mangle)]

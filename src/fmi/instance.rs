@@ -8,7 +8,8 @@
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
 use super::state::{self, Machine, Saved};
-use super::variables::{Causality, LOG_CATEGORIES, Variability, Vr};
+use super::variables::{Causality, Kind, LOG_CATEGORIES, Variability, Vr};
+use super::state::SchemeChoice;
 use crate::solver::{Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
 use std::collections::HashMap;
 
@@ -116,6 +117,8 @@ struct Model {
     /// The `tolerance` parameter, and the tolerance of `fmi2SetupExperiment` (which wins).
     tolerance: f64,
     experiment_tolerance: Option<f64>,
+    /// `method`, `grid_points` and `internal_step`.
+    scheme: SchemeChoice,
     edge_stress: f64,
     start_time: f64,
     stop_time: Option<f64>,
@@ -133,6 +136,11 @@ impl Model {
             settings: Settings::default(),
             tolerance: start(Vr::Tolerance),
             experiment_tolerance: None,
+            scheme: SchemeChoice {
+                method: start(Vr::Method) as i32,
+                grid_points: start(Vr::GridPoints) as i32,
+                internal_step: start(Vr::InternalStep),
+            },
             edge_stress: start(Vr::EdgeStress),
             start_time: 0.0,
             stop_time: None,
@@ -289,45 +297,66 @@ impl Instance {
             let m = &mut self.model;
             let tol = m.experiment_tolerance.unwrap_or(m.tolerance);
             m.settings = Settings::for_tolerance(&m.params, tol).map_err(|e| e.to_string())?;
-            let solver = Solver::new(&m.params, &m.settings).map_err(|e| e.to_string())?;
+            let scheme = m.scheme.scheme(m.settings);
+            let solver = Solver::with_scheme(&m.params, &scheme).map_err(|e| e.to_string())?;
             self.log_debug(&format!(
-                "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns ({:?})",
+                "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns ({:?}, method {})",
                 self.model.params.lambda,
                 self.model.params.sigma,
                 self.model.params.r_inf,
                 solver.unknowns(),
-                self.model.settings.mesh
+                self.model.settings.mesh,
+                self.model.scheme.method
             ));
             self.model.solver = Some(solver);
         }
         Ok(self.model.solver.as_ref().expect("built above"))
     }
 
-    pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
-        let vrs: Vec<Vr> = vrs.iter().map(|&v| real_vr(v)).collect::<Result<_, _>>()?;
+    /// Values of the listed variables, all of type `kind` (Integers are exact in f64).
+    fn get_values(&mut self, kind: Kind, vrs: &[u32]) -> Result<Vec<f64>, Rejected> {
+        let vrs: Vec<Vr> = vrs.iter().map(|&v| typed_vr(kind, v)).collect::<Result<_, _>>()?;
         let p = self.model.edge_stress;
-        let (params, tolerance) = (self.model.params, self.model.tolerance);
         let needs_solver = vrs.iter().any(|v| matches!(v, Vr::WoundRadius | Vr::EdgeVelocity));
-        let solver = if needs_solver { Some(self.ensure_solver()?) } else { None };
-        for (out, vr) in values.iter_mut().zip(vrs) {
-            *out = match vr {
-                Vr::Lambda => params.lambda,
-                Vr::Sigma => params.sigma,
-                Vr::RInf => params.r_inf,
-                Vr::EdgeStress => p,
-                Vr::Tolerance => tolerance,
-                Vr::WoundRadius => solver.expect("built").wound_radius(),
-                Vr::EdgeVelocity => solver.expect("built").edge_velocity(p),
-            };
+        if needs_solver {
+            self.ensure_solver()?;
         }
+        let m = &self.model;
+        Ok(vrs
+            .into_iter()
+            .map(|vr| match vr {
+                Vr::Lambda => m.params.lambda,
+                Vr::Sigma => m.params.sigma,
+                Vr::RInf => m.params.r_inf,
+                Vr::EdgeStress => p,
+                Vr::Tolerance => m.tolerance,
+                Vr::Method => m.scheme.method as f64,
+                Vr::GridPoints => m.scheme.grid_points as f64,
+                Vr::InternalStep => m.scheme.internal_step,
+                Vr::WoundRadius => m.solver.as_ref().expect("built").wound_radius(),
+                Vr::EdgeVelocity => m.solver.as_ref().expect("built").edge_velocity(p),
+            })
+            .collect())
+    }
+
+    pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
+        let got = self.get_values(Kind::Real, vrs)?;
+        values.iter_mut().zip(got).for_each(|(o, v)| *o = v);
         Ok(())
     }
 
-    /// `fmi2SetReal`: all values are checked first; any rejection sets none of them.
-    pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
+    pub fn get_integer(&mut self, vrs: &[u32], values: &mut [i32]) -> Result<(), Rejected> {
+        let got = self.get_values(Kind::Integer, vrs)?;
+        values.iter_mut().zip(got).for_each(|(o, v)| *o = v as i32);
+        Ok(())
+    }
+
+    /// Set the listed variables of type `kind`: all values are checked first; any
+    /// rejection sets none of them.
+    fn set_values(&mut self, kind: Kind, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
         let mut checked = Vec::with_capacity(vrs.len());
         for (&v, &x) in vrs.iter().zip(values) {
-            let vr = real_vr(v)?;
+            let vr = typed_vr(kind, v)?;
             let var = vr.var();
             let fixed_now = var.variability == Variability::Fixed
                 && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
@@ -340,14 +369,7 @@ impl Instance {
                     var.name, self.machine
                 ));
             }
-            let ok = match vr {
-                Vr::Lambda => check_lambda(x),
-                Vr::Sigma => check_sigma(x),
-                Vr::RInf => check_r_inf(x),
-                Vr::Tolerance => Ok(check_tolerance(x)?),
-                _ => check_edge_stress(x),
-            };
-            checked.push((vr, ok.map_err(|e| e.to_string())?));
+            checked.push((vr, check_value(vr, x)?));
         }
         for (vr, x) in checked {
             let m = &mut self.model;
@@ -356,6 +378,9 @@ impl Instance {
                 Vr::Sigma => m.params.sigma = x,
                 Vr::RInf => m.params.r_inf = x,
                 Vr::Tolerance => m.tolerance = x,
+                Vr::Method => m.scheme.method = x as i32,
+                Vr::GridPoints => m.scheme.grid_points = x as i32,
+                Vr::InternalStep => m.scheme.internal_step = x,
                 _ => m.edge_stress = x,
             }
             if vr != Vr::EdgeStress {
@@ -363,6 +388,17 @@ impl Instance {
             }
         }
         Ok(())
+    }
+
+    /// `fmi2SetReal`.
+    pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
+        self.set_values(Kind::Real, vrs, values)
+    }
+
+    /// `fmi2SetInteger`.
+    pub fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Result<(), Rejected> {
+        let values: Vec<f64> = values.iter().map(|&v| v as f64).collect();
+        self.set_values(Kind::Integer, vrs, &values)
     }
 
     /// `fmi2DoStep`: the edge stress set before the call is held over `[t, t + h]`.
@@ -441,6 +477,7 @@ impl Instance {
             settings: m.settings,
             tolerance: m.tolerance,
             experiment_tolerance: m.experiment_tolerance,
+            scheme: m.scheme,
             edge_stress: m.edge_stress,
             start_time: m.start_time,
             time: m.time,
@@ -470,6 +507,9 @@ impl Instance {
         if mine.to_bits() != theirs.to_bits() {
             return Err(format!("serialized FMU state has tolerance = {theirs} but this instance has tolerance = {mine}"));
         }
+        if saved.scheme != self.model.scheme {
+            return Err(format!("serialized FMU state has {:?} but this instance has {:?}", saved.scheme, self.model.scheme));
+        }
         let solver = match &saved.solver {
             None => None,
             Some(st) => {
@@ -487,6 +527,7 @@ impl Instance {
             settings: saved.settings,
             tolerance: saved.tolerance,
             experiment_tolerance: saved.experiment_tolerance,
+            scheme: saved.scheme,
             edge_stress: saved.edge_stress,
             start_time: saved.start_time,
             stop_time: saved.stop_time,
@@ -502,12 +543,37 @@ impl Instance {
     }
 }
 
-fn check_tolerance(v: f64) -> Result<f64, String> {
-    if v.is_finite() && v > 0.0 { Ok(v) } else { Err(format!("tolerance = {v} is invalid: it must be finite and > 0")) }
+/// Validate a value for a settable variable; the message names the variable and value.
+fn check_value(vr: Vr, x: f64) -> Result<f64, Rejected> {
+    let positive = |name: &str| {
+        if x.is_finite() && x > 0.0 { Ok(x) } else { Err(format!("{name} = {x} is invalid: it must be finite and > 0")) }
+    };
+    let in_range = || {
+        let (lo, hi) = vr.var().range.expect("Integer variables declare a range");
+        if (lo as f64..=hi as f64).contains(&x) {
+            Ok(x)
+        } else {
+            Err(format!("{} = {x} is invalid: it must be in {lo} ..= {hi}", vr.var().name))
+        }
+    };
+    match vr {
+        Vr::Lambda => check_lambda(x).map_err(|e| e.to_string()),
+        Vr::Sigma => check_sigma(x).map_err(|e| e.to_string()),
+        Vr::RInf => check_r_inf(x).map_err(|e| e.to_string()),
+        Vr::Tolerance => positive("tolerance"),
+        Vr::InternalStep => positive("internal_step"),
+        Vr::Method | Vr::GridPoints => in_range(),
+        _ => check_edge_stress(x).map_err(|e| e.to_string()),
+    }
 }
 
-fn real_vr(v: u32) -> Result<Vr, Rejected> {
-    Vr::from_u32(v).ok_or_else(|| format!("no Real variable has value reference {v}"))
+/// The variable of a value reference, which must be of type `kind`.
+fn typed_vr(kind: Kind, v: u32) -> Result<Vr, Rejected> {
+    match Vr::from_u32(v) {
+        Some(vr) if vr.var().kind == kind => Ok(vr),
+        Some(vr) => Err(format!("{} (value reference {v}) is {}, not {}", vr.var().name, vr.var().kind.as_str(), kind.as_str())),
+        None => Err(format!("no {} variable has value reference {v}", kind.as_str())),
+    }
 }
 
 fn category_list() -> String {

@@ -11,14 +11,37 @@
 //!
 //! payload: machine state (u8), lambda, sigma, R_inf (f64 LE), mesh degree, elements (u32),
 //!          edge scale, tolerance, edge stress, start time, time (f64),
-//!          has experiment tolerance (u8), experiment tolerance (f64), has stop time (u8), stop time (f64),
+//!          has experiment tolerance (u8), experiment tolerance (f64), method, grid points (u32),
+//!          internal step (f64), has stop time (u8), stop time (f64),
 //!          has solver (u8), [solver time (f64), n (u32), n modal coefficients (f64)]
 //! ```
 //!
 //! Decoding checks every length, the magic, the version, the checksum and every value,
 //! so truncated, corrupted or foreign bytes are rejected with a reason, never read past.
 
-use crate::solver::{MeshSpec, Params, Settings, SolverState};
+use crate::solver::{MeshSpec, Params, Scheme, Settings, SolverState};
+
+/// The FMU's `method`, `grid_points` and `internal_step` parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SchemeChoice {
+    pub method: i32,
+    pub grid_points: i32,
+    pub internal_step: f64,
+}
+
+impl SchemeChoice {
+    /// The solver scheme: 0 modal on `mesh`, 1 TR-BDF2 on `mesh`, 2 the paper's, 3 explicit
+    /// (values were range-checked when set).
+    pub fn scheme(&self, settings: Settings) -> Scheme {
+        let (points, max_step) = (self.grid_points.max(3) as usize, self.internal_step);
+        match self.method {
+            1 => Scheme::TrBdf2 { mesh: settings.mesh, max_step },
+            2 => Scheme::Paper { points, max_step },
+            3 => Scheme::Explicit { points, max_step },
+            _ => Scheme::Modal(settings),
+        }
+    }
+}
 
 const MAGIC: &[u8; 8] = b"WOUNDFMU";
 pub const FORMAT_VERSION: u32 = 1;
@@ -57,6 +80,7 @@ pub struct Saved {
     /// The `tolerance` parameter and the tolerance of `fmi2SetupExperiment`, if defined.
     pub tolerance: f64,
     pub experiment_tolerance: Option<f64>,
+    pub scheme: SchemeChoice,
     pub edge_stress: f64,
     pub start_time: f64,
     pub time: f64,
@@ -94,6 +118,9 @@ pub fn encode(s: &Saved) -> Vec<u8> {
     }
     w.u8(s.experiment_tolerance.is_some() as u8);
     w.f64(s.experiment_tolerance.unwrap_or(0.0));
+    w.u32(s.scheme.method as u32);
+    w.u32(s.scheme.grid_points as u32);
+    w.f64(s.scheme.internal_step);
     w.u8(s.stop_time.is_some() as u8);
     w.f64(s.stop_time.unwrap_or(0.0));
     w.u8(s.solver.is_some() as u8);
@@ -191,6 +218,14 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
             return Err(format!("serialized FMU state has tolerance = {tol}"));
         }
     }
+    let (method, grid_points) = (r.u32()?, r.u32()?);
+    let internal_step = r.finite("internal_step")?;
+    if method > 3 || !(3..=100_000).contains(&grid_points) || internal_step <= 0.0 {
+        return Err(format!(
+            "serialized FMU state has method {method}, grid_points {grid_points}, internal_step {internal_step}"
+        ));
+    }
+    let scheme = SchemeChoice { method: method as i32, grid_points: grid_points as i32, internal_step };
     let has_stop = r.flag("stop time")?;
     let stop = r.finite("stop time")?;
     let solver = if r.flag("solver")? {
@@ -213,6 +248,7 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
         settings,
         tolerance,
         experiment_tolerance,
+        scheme,
         edge_stress,
         start_time,
         time,
@@ -232,6 +268,7 @@ mod tests {
             settings: Settings::default(),
             tolerance: 1e-10,
             experiment_tolerance: Some(1e-6),
+            scheme: SchemeChoice { method: 2, grid_points: 101, internal_step: 1e-3 },
             edge_stress: 0.25,
             start_time: 0.0,
             time: 1.5,

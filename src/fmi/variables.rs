@@ -38,6 +38,22 @@ impl Variability {
     }
 }
 
+/// The FMI type of a variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Real,
+    Integer,
+}
+
+impl Kind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Real => "Real",
+            Self::Integer => "Integer",
+        }
+    }
+}
+
 /// Value references, in the order of the table (index = value reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(u32)]
@@ -49,11 +65,24 @@ pub enum Vr {
     WoundRadius = 4,
     EdgeVelocity = 5,
     Tolerance = 6,
+    Method = 7,
+    GridPoints = 8,
+    InternalStep = 9,
 }
 
 impl Vr {
-    pub const ALL: [Vr; 7] =
-        [Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress, Vr::WoundRadius, Vr::EdgeVelocity, Vr::Tolerance];
+    pub const ALL: [Vr; 10] = [
+        Vr::Lambda,
+        Vr::Sigma,
+        Vr::RInf,
+        Vr::EdgeStress,
+        Vr::WoundRadius,
+        Vr::EdgeVelocity,
+        Vr::Tolerance,
+        Vr::Method,
+        Vr::GridPoints,
+        Vr::InternalStep,
+    ];
 
     pub fn from_u32(vr: u32) -> Option<Self> {
         Self::ALL.get(vr as usize).copied()
@@ -64,82 +93,133 @@ impl Vr {
     }
 }
 
-/// One `ScalarVariable` of type Real.
+/// One `ScalarVariable`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Variable {
     pub name: &'static str,
     pub value_reference: u32,
+    pub kind: Kind,
     pub causality: Causality,
     pub variability: Variability,
     /// `Some` for parameters and inputs (`initial` is then exact or absent).
     pub start: Option<f64>,
+    /// Unit of a Real (empty for an Integer).
     pub unit: &'static str,
+    /// Declared `min` and `max` (Integers only).
+    pub range: Option<(i32, i32)>,
     pub description: &'static str,
 }
 
-pub const VARIABLES: [Variable; 7] = [
+pub const VARIABLES: [Variable; 10] = [
     Variable {
         name: "lambda",
         value_reference: 0,
+        kind: Kind::Real,
         causality: Causality::Parameter,
         variability: Variability::Fixed,
         start: Some(1.0),
         unit: "1",
+        range: None,
         description: "Viscous length over wound radius, 2 sqrt(eta/zeta)/R0 (>= 0)",
     },
     Variable {
         name: "sigma",
         value_reference: 1,
+        kind: Kind::Real,
         causality: Causality::Parameter,
         variability: Variability::Fixed,
         start: Some(1.0),
         unit: "G",
+        range: None,
         description: "Homeostatic tension over shear modulus",
     },
     Variable {
         name: "R_inf",
         value_reference: 2,
+        kind: Kind::Real,
         causality: Causality::Parameter,
         variability: Variability::Fixed,
         start: Some(10.0),
         unit: "R0",
+        range: None,
         description: "Outer radius of the tissue over wound radius (> 1)",
     },
     Variable {
         name: "edge_stress",
         value_reference: 3,
+        kind: Kind::Real,
         causality: Causality::Input,
         variability: Variability::Continuous,
         start: Some(0.0),
         unit: "G",
+        range: None,
         description: "Radial stress applied at the wound edge, held over each step (0 = free edge)",
     },
     Variable {
         name: "wound_radius",
         value_reference: 4,
+        kind: Kind::Real,
         causality: Causality::Output,
         variability: Variability::Continuous,
         start: None,
         unit: "R0",
+        range: None,
         description: "Wound radius R(t) = 1 + u(1, t)",
     },
     Variable {
         name: "edge_velocity",
         value_reference: 5,
+        kind: Kind::Real,
         causality: Causality::Output,
         variability: Variability::Continuous,
         start: None,
         unit: "R0/T",
+        range: None,
         description: "Edge velocity dR/dt under the current edge_stress",
     },
     Variable {
         name: "tolerance",
         value_reference: 6,
+        kind: Kind::Real,
         causality: Causality::Parameter,
         variability: Variability::Fixed,
         start: Some(1e-10),
         unit: "1",
+        range: None,
         description: "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh",
+    },
+    Variable {
+        name: "method",
+        value_reference: 7,
+        kind: Kind::Integer,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        start: Some(0.0),
+        unit: "",
+        range: Some((0, 3)),
+        description: "0: spectral elements, exact in time (mesh from the tolerance); 1: TR-BDF2 on that mesh; 2: the paper's scheme; 3: explicit scheme",
+    },
+    Variable {
+        name: "grid_points",
+        value_reference: 8,
+        kind: Kind::Integer,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        start: Some(101.0),
+        unit: "",
+        range: Some((3, 100000)),
+        description: "Uniform grid points of methods 2 and 3",
+    },
+    Variable {
+        name: "internal_step",
+        value_reference: 9,
+        kind: Kind::Real,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        start: Some(1e-3),
+        unit: "T",
+        range: None,
+        description: "Largest internal time step of methods 1 to 3",
     },
 ];
 
@@ -154,7 +234,10 @@ pub const OUTPUT_DEPENDENCIES: [(Vr, &[(Vr, &str)]); 2] = [
 /// depend on (`R1 = 1 + sigma/6`; the initial velocity depends on everything).
 pub const INITIAL_DEPENDENCIES: [(Vr, &[Vr]); 2] = [
     (Vr::WoundRadius, &[Vr::Sigma]),
-    (Vr::EdgeVelocity, &[Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress, Vr::Tolerance]),
+    (
+        Vr::EdgeVelocity,
+        &[Vr::Lambda, Vr::Sigma, Vr::RInf, Vr::EdgeStress, Vr::Tolerance, Vr::Method, Vr::GridPoints, Vr::InternalStep],
+    ),
 ];
 
 /// Log categories declared in `modelDescription.xml`, with their descriptions.

@@ -119,7 +119,7 @@ static void before_initialization(fmi2Component c) {
     REFUSED(F.fmi2SetReal(c, NULL, 1, &one), "vr is NULL but 1 elements were announced");
     REFUSED(F.fmi2SetReal(c, &vr, 1, NULL), "value is NULL but 1 elements were announced");
     REFUSED(F.fmi2GetReal(c, &vr, 1, &out), "fmi2Get* is not allowed in state Instantiated");
-    REFUSED(F.fmi2SetInteger(c, &vr, 1, &i), "no Integer variable has value reference 0");
+    REFUSED(F.fmi2SetInteger(c, &vr, 1, &i), "lambda (value reference 0) is Real, not Integer");
     REFUSED(F.fmi2SetBoolean(c, &vr, 1, &b), "no Boolean variable has value reference 0");
     REFUSED(F.fmi2SetString(c, &vr, 1, &s), "no String variable has value reference 0");
     REFUSED(F.fmi2SetupExperiment(c, fmi2True, NAN, 0, fmi2False, 0), "tolerance = NaN is invalid");
@@ -165,7 +165,7 @@ static void after_initialization(fmi2Component c) {
     REFUSED(F.fmi2SetRealInputDerivatives(c, &VR_EDGE_STRESS, 1, &order, &r), "is not supported");
     REFUSED(F.fmi2GetRealOutputDerivatives(c, &vr, 1, &order, &r), "is not supported");
     REFUSED(F.fmi2CancelStep(c), "fmi2CancelStep is not allowed in state StepComplete");
-    REFUSED(F.fmi2GetInteger(c, &vr, 1, &i), "no Integer variable has value reference 4");
+    REFUSED(F.fmi2GetInteger(c, &vr, 1, &i), "wound_radius (value reference 4) is Real, not Integer");
     REFUSED(F.fmi2GetString(c, &vr, 1, &s), "no String variable has value reference 4");
     REFUSED(F.fmi2GetReal(c, &vr, 1, NULL), "value is NULL but 1 elements were announced");
 }

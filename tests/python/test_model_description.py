@@ -14,6 +14,9 @@ VARIABLES = {
     "wound_radius": (4, "output", "continuous", None),
     "edge_velocity": (5, "output", "continuous", None),
     "tolerance": (6, "parameter", "fixed", 1e-10),
+    "method": (7, "parameter", "fixed", 0),
+    "grid_points": (8, "parameter", "fixed", 101),
+    "internal_step": (9, "parameter", "fixed", 1e-3),
 }
 
 
@@ -48,7 +51,7 @@ def test_variables(model_description):
     assert set(found) == set(VARIABLES), sorted(found)
     for name, (vr, causality, variability, start) in VARIABLES.items():
         v = found[name]
-        assert v.type == "Real", name
+        assert v.type == ("Integer" if name in ("method", "grid_points") else "Real"), name
         assert (v.valueReference, v.causality, v.variability) == (vr, causality, variability), name
         if start is not None:
             assert v.start is not None and float(v.start) == start, (name, v.start)
