@@ -8,7 +8,7 @@
 //! Status of a run of 200 steps of size dt from the cut (p = 0, R_inf = 10): see
 //! `bench_util::classify`.
 
-#[path = "bench_util.rs"]
+#[path = "common/bench_util.rs"]
 mod bench_util;
 
 use bench_util::*;

@@ -4,7 +4,7 @@
 //! Usage: `cargo run --release --example step_cost -- DIR`; writes DIR/step_cost.csv
 //! (`what,seconds`: CPU seconds per step or per scenario, best of several repeats).
 
-#[path = "bench_util.rs"]
+#[path = "common/bench_util.rs"]
 mod bench_util;
 
 use bench_util::*;

@@ -4,7 +4,7 @@
 //! Usage: `cargo run --release --example work_precision -- DIR`; reads DIR/reference_{lambda}.csv
 //! (t, R exact; written by python/bench) and writes DIR/work_precision.csv.
 
-#[path = "bench_util.rs"]
+#[path = "common/bench_util.rs"]
 mod bench_util;
 
 use bench_util::*;

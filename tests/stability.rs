@@ -2,7 +2,7 @@
 //! its von Neumann theory (src/solver/explicit.rs); and the shipped scheme, bounded and
 //! monotone over the whole map of lambda and step size.
 
-#[path = "../examples/bench_util.rs"]
+#[path = "../examples/common/bench_util.rs"]
 mod bench_util;
 
 use bench_util::{R_INF, Status, classify};
