@@ -211,3 +211,14 @@ fn method_is_an_integer_parameter_checked_by_range_and_type() {
     assert!((paper - default).abs() > 0.02 * amp, "{paper} vs {default}");
     assert_eq!(run(&mut i, Call::Set, |i| i.set_integer(&[method], &[0])), Err(Status::Error), "fixed after init");
 }
+
+#[test]
+fn a_state_saved_before_initialization_round_trips() {
+    let (mut i, _) = instance();
+    run(&mut i, Call::Set, |i| i.set_real(&[Vr::Lambda as u32], &[0.3])).unwrap();
+    let h = run(&mut i, Call::GetFmuState, |i| i.get_fmu_state(None)).unwrap();
+    let bytes = run(&mut i, Call::SerializeFmuState, |i| i.serialize_fmu_state(h)).unwrap();
+    let back = run(&mut i, Call::DeSerializeFmuState, |i| i.deserialize_fmu_state(&bytes, None)).unwrap();
+    run(&mut i, Call::SetFmuState, |i| i.set_fmu_state(back)).unwrap();
+    assert_eq!(i.machine(), Machine::Instantiated);
+}

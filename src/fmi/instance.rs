@@ -129,6 +129,11 @@ struct Model {
 }
 
 impl Model {
+    /// The tolerance in force: the experiment's if defined, else the parameter.
+    fn effective_tolerance(&self) -> f64 {
+        self.experiment_tolerance.unwrap_or(self.tolerance)
+    }
+
     fn new() -> Self {
         let start = |vr: Vr| vr.var().start.unwrap_or(0.0);
         Self {
@@ -295,8 +300,7 @@ impl Instance {
     fn ensure_solver(&mut self) -> Result<&Solver, Rejected> {
         if self.model.solver.is_none() {
             let m = &mut self.model;
-            let tol = m.experiment_tolerance.unwrap_or(m.tolerance);
-            m.settings = Settings::for_tolerance(&m.params, tol).map_err(|e| e.to_string())?;
+            m.settings = Settings::for_tolerance(&m.params, m.effective_tolerance()).map_err(|e| e.to_string())?;
             let scheme = m.scheme.scheme(m.settings);
             let solver = Solver::with_scheme(&m.params, &scheme).map_err(|e| e.to_string())?;
             self.log_debug(&format!(
@@ -471,10 +475,12 @@ impl Instance {
     pub fn serialize_fmu_state(&self, handle: u64) -> Result<Vec<u8>, Rejected> {
         let snap = self.snapshot(handle)?;
         let m = &snap.model;
+        // The mesh the parameters and tolerance give (also before any solver was built).
+        let settings = Settings::for_tolerance(&m.params, m.effective_tolerance()).map_err(|e| e.to_string())?;
         Ok(state::encode(&Saved {
             machine: snap.machine,
             params: m.params,
-            settings: m.settings,
+            settings,
             tolerance: m.tolerance,
             experiment_tolerance: m.experiment_tolerance,
             scheme: m.scheme,
@@ -501,14 +507,21 @@ impl Instance {
                 return Err(format!("serialized FMU state has {name} = {b} but this instance has {name} = {a}"));
             }
         }
-        let effective = |t: f64, e: Option<f64>| e.unwrap_or(t);
-        let mine = effective(self.model.tolerance, self.model.experiment_tolerance);
-        let theirs = effective(saved.tolerance, saved.experiment_tolerance);
+        let mine = self.model.effective_tolerance();
+        let theirs = saved.experiment_tolerance.unwrap_or(saved.tolerance);
         if mine.to_bits() != theirs.to_bits() {
             return Err(format!("serialized FMU state has tolerance = {theirs} but this instance has tolerance = {mine}"));
         }
         if saved.scheme != self.model.scheme {
             return Err(format!("serialized FMU state has {:?} but this instance has {:?}", saved.scheme, self.model.scheme));
+        }
+        // The mesh follows from parameters and tolerance: bytes that claim another are forged.
+        let expected = Settings::for_tolerance(&saved.params, theirs).map_err(|e| e.to_string())?;
+        if saved.settings != expected {
+            return Err(format!(
+                "serialized FMU state has mesh {:?} but its parameters and tolerance give {:?}",
+                saved.settings.mesh, expected.mesh
+            ));
         }
         let solver = match &saved.solver {
             None => None,
