@@ -62,14 +62,27 @@ impl World {
         if self.rng.chance(0.05) { self.rng.next_u64() as u32 } else { self.rng.below(9) as u32 }
     }
 
-    /// A value for `vr`. R_inf (value reference 2) stays at most 1e6: larger values are
-    /// valid, but the mesh for them has hundreds to thousands of unknowns, and the solver
-    /// spends seconds to minutes building its dense modal transform before failing (R_inf
-    /// above about 1e9; reported in the README's "C API" findings). The harness would
-    /// spend its whole budget there.
+    /// A Real value for `vr`, kept out of ranges that are valid but only slow (README,
+    /// "C API" findings), where the harness would spend its whole budget:
+    /// - R_inf (2) at most 1e6: beyond, the mesh has hundreds to thousands of unknowns, and
+    ///   building its dense modal transform takes seconds to minutes (before failing, above
+    ///   about 1e9);
+    /// - internal_step (9) at least 0.01: `fmi2DoStep(h)` of the stepping schemes takes
+    ///   `h / internal_step` internal steps (1e-9 does not return within 20 s).
     fn value_for(&mut self, vr: fmi2ValueReference) -> f64 {
         let x = self.rng.real();
-        if vr == 2 && x.is_finite() && x > 1e6 { 1e6 } else { x }
+        match vr {
+            2 if x.is_finite() && x > 1e6 => 1e6,
+            9 if x > 0.0 && x < 0.01 => 0.01,
+            _ => x,
+        }
+    }
+
+    /// An Integer value for `vr`: method (7) any of the schemes or out of range, grid_points
+    /// (8) at most 200 when valid (more is valid but slow with many internal steps).
+    fn int_for(&mut self, vr: fmi2ValueReference) -> i32 {
+        let x = if self.rng.chance(0.7) { self.rng.pick(&[-1, 0, 1, 2, 3, 4, 2, 3, 101, 100_001]) } else { self.rng.next_u64() as i32 };
+        if vr == 8 && (201..=100_000).contains(&x) { 200 } else { x }
     }
 
     /// A handle: one given out, one freed, NULL, or made up.
@@ -179,7 +192,8 @@ impl World {
         let c = self.component(i);
         let vrs: Vec<u32> = (0..self.rng.below(3)).map(|_| self.value_reference()).collect();
         let n = vrs.len();
-        let (mut ints, mut strs) = (vec![0i32; n], vec![c"x".as_ptr(); n]);
+        let mut ints: Vec<i32> = vrs.iter().map(|&vr| self.int_for(vr)).collect();
+        let mut strs = vec![c"x".as_ptr(); n];
         let (name, s) = match self.rng.below(6) {
             0 => ("fmi2GetInteger", unsafe { fmi2GetInteger(c, vrs.as_ptr(), n, ints.as_mut_ptr()) }),
             1 => ("fmi2SetInteger", unsafe { fmi2SetInteger(c, vrs.as_ptr(), n, ints.as_ptr()) }),
@@ -278,7 +292,14 @@ impl World {
         let s = unsafe { fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now) };
         self.record("fmi2GetRealStatus", s);
         let t = if s == 0 && self.rng.chance(0.85) { now } else { self.rng.real() };
-        let h = if self.rng.chance(0.7) { self.rng.unit() * self.rng.pick(&[1e-6, 0.01, 1.0, 100.0]) } else { self.rng.real() };
+        let mut h = if self.rng.chance(0.7) { self.rng.unit() * self.rng.pick(&[1e-6, 0.01, 1.0, 100.0]) } else { self.rng.real() };
+        // The stepping schemes (method 1..3) take h / internal_step internal steps, with no
+        // bound (README, "C API" findings: 1e5 does not return within 30 s): keep h <= 100
+        // for them. The default modal scheme is exact for any h, so it gets any.
+        let mut method = -1;
+        if unsafe { fmi2GetInteger(c, &7, 1, &mut method) } != 0 || method != 0 {
+            h = h.min(100.0);
+        }
         let s = unsafe { fmi2DoStep(c, t, h, self.rng.below(2) as i32) };
         self.record("fmi2DoStep", s);
         let vrs = [4u32, 5];
