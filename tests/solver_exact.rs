@@ -199,3 +199,42 @@ fn rejects_invalid_steps_and_parameters_without_changing_state() {
         assert!(Solver::new(&params, &Settings::default()).is_err(), "{params:?}");
     }
 }
+
+/// No call may run for minutes or return NaN as a result: a step needing more internal
+/// work than `MAX_STEP_WORK` is refused up front, and an explicit step that blows up is
+/// refused with the state left as it was.
+#[test]
+fn runaway_steps_are_refused_and_change_nothing() {
+    use wound_opening::solver::{Scheme, SolverError};
+    let params = Params { lambda: 1.0, sigma: 1.0, r_inf: 10.0 };
+    let mut paper = Solver::with_scheme(&params, &Scheme::Paper { points: 101, max_step: 1e-9 }).unwrap();
+    assert!(matches!(paper.advance(1.0, 0.0), Err(SolverError::TooManySteps(..))));
+    assert_eq!(paper.time(), 0.0);
+    // lambda = 1 is far above the explicit limit dr / 2 = 0.045 of a 101-point grid.
+    let mut explicit = Solver::with_scheme(&params, &Scheme::Explicit { points: 101, max_step: 1e-3 }).unwrap();
+    let mut diverged = false;
+    for _ in 0..10_000 {
+        let before = explicit.state();
+        match explicit.advance(0.1, 0.0) {
+            Ok(()) => assert!(explicit.wound_radius().is_finite()),
+            Err(SolverError::Diverged) => {
+                assert_eq!(explicit.state(), before, "state restored");
+                diverged = true;
+                break;
+            }
+            Err(e) => panic!("{e}"),
+        }
+    }
+    assert!(diverged, "the explicit scheme should blow up at lambda = 1");
+}
+
+/// R_inf up to 1e6 is accepted (the mesh grows like ln R_inf: 169 unknowns) and relaxes to
+/// the exact final state; beyond, it is refused by name instead of failing slowly.
+#[test]
+fn very_large_domains_work_up_to_the_limit_and_are_refused_beyond() {
+    let mut s = solver(1.0, 1e6, Some(Settings::for_tolerance(&Params { lambda: 1.0, sigma: 1.0, r_inf: 1e6 }, 1e-10).unwrap().mesh));
+    s.advance(1e15, 0.0).unwrap();
+    assert!((s.wound_radius() - exact::final_radius(1.0, 1e6)).abs() < 1e-10 * amplitude(1e6));
+    let err = Solver::new(&Params { lambda: 1.0, sigma: 1.0, r_inf: 1e7 }, &Settings::default()).unwrap_err();
+    assert!(err.to_string().starts_with("R_inf = 10000000 is invalid"), "{err}");
+}

@@ -89,7 +89,10 @@ pub fn classify(lambda: f64, scheme: &Scheme, dt: f64, steps: usize) -> Status {
     let mut last = s.wound_radius();
     let mut status = Status::Bounded;
     for _ in 0..steps {
-        s.advance(dt, 0.0).expect("valid step");
+        // The explicit scheme refuses a step in which it blew up: that is unbounded too.
+        if s.advance(dt, 0.0).is_err() {
+            return Status::Unbounded;
+        }
         let r = s.wound_radius();
         if !r.is_finite() || (r - r1).abs() > 10.0 * amp {
             return Status::Unbounded;

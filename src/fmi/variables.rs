@@ -142,7 +142,7 @@ pub const VARIABLES: [Variable; 10] = [
         start: Some(10.0),
         unit: "R0",
         range: None,
-        description: "Outer radius of the tissue over wound radius (> 1)",
+        description: "Outer radius of the tissue over wound radius (> 1, <= 1e6)",
     },
     Variable {
         name: "edge_stress",

@@ -24,6 +24,20 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     /// Restore a state of length `state().len()` (checked by the facade).
     fn restore(&mut self, state: &[f64]) -> Result<(), SolverError>;
     fn boxed_clone(&self) -> Box<dyn Engine>;
+    /// Work of `advance(h)` in floating-point updates, roughly: internal steps times the
+    /// cost of one (the unknowns for exact integration, which takes one step).
+    fn step_work(&self, _h: f64) -> f64 {
+        self.unknowns() as f64
+    }
+    /// Whether a step can blow up (only the explicit scheme, beyond its limits).
+    fn may_diverge(&self) -> bool {
+        false
+    }
+}
+
+/// Number of equal internal steps of at most `max_step` covering `h`.
+pub(crate) fn step_count(h: f64, max_step: f64) -> f64 {
+    (h / max_step).ceil().max(1.0)
 }
 
 /// Linear interpolation of nodal values on ascending `nodes`, for profile output of the

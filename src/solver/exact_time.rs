@@ -37,7 +37,8 @@ impl Operator {
     }
 
     pub(crate) fn check_mesh(spec: MeshSpec) -> Result<(), SolverError> {
-        if spec.degree == 0 || spec.elements == 0 || spec.degree * spec.elements > 4000 {
+        let size = spec.degree.checked_mul(spec.elements).unwrap_or(usize::MAX);
+        if spec.degree == 0 || spec.elements == 0 || size > 4000 {
             return Err(SolverError::Mesh("need degree >= 1, elements >= 1, degree*elements <= 4000"));
         }
         if !(spec.edge_scale.is_finite() && spec.edge_scale > 0.0) {

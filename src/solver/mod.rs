@@ -65,6 +65,11 @@ pub enum SolverError {
     Mesh(&'static str),
     /// A tolerance that is not finite and positive.
     Tolerance(f64),
+    /// A communication step that would need more internal work than allowed
+    /// (its work, the limit).
+    TooManySteps(f64, f64),
+    /// The explicit scheme blew up in this step (state left as before the step).
+    Diverged,
 }
 
 impl std::fmt::Display for SolverError {
@@ -79,6 +84,14 @@ impl std::fmt::Display for SolverError {
             Self::StateNotFinite => write!(f, "state holds a non-finite value"),
             Self::Mesh(why) => write!(f, "mesh settings invalid: {why}"),
             Self::Tolerance(t) => write!(f, "tolerance = {t} is invalid: it must be finite and > 0"),
+            Self::TooManySteps(work, max) => write!(
+                f,
+                "this step would need {work:.1e} updates of the unknowns (at most {max:.0e} are allowed in one step): take shorter communication steps or a larger internal_step"
+            ),
+            Self::Diverged => write!(
+                f,
+                "the explicit scheme blew up in this step (internal step above its stability limit, or lambda > dr/2); the state is left as before the step"
+            ),
         }
     }
 }
@@ -90,6 +103,9 @@ impl From<ParamError> for SolverError {
         Self::Param(e)
     }
 }
+
+/// Largest work of one communication step, in updates of an unknown (a few seconds of CPU).
+pub const MAX_STEP_WORK: f64 = 1e9;
 
 /// The time integrators, each with its resolution.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -196,12 +212,28 @@ impl Solver {
     }
 
     /// Advance by `h > 0` with the edge stress `p` held constant.
+    ///
+    /// The stepping schemes refuse a step whose work (internal steps times the cost of one)
+    /// exceeds [`MAX_STEP_WORK`] (so that no call runs for minutes), and the explicit scheme
+    /// refuses a step in which it blew up, restoring the state from before it.
     pub fn advance(&mut self, h: f64, p: f64) -> Result<(), SolverError> {
         if !(h.is_finite() && h > 0.0) {
             return Err(SolverError::Step(h));
         }
         check_edge_stress(p)?;
+        let work = self.engine.step_work(h);
+        if work > MAX_STEP_WORK {
+            return Err(SolverError::TooManySteps(work, MAX_STEP_WORK));
+        }
+        let before = self.engine.may_diverge().then(|| self.engine.state());
         self.engine.advance(h, p);
+        if let Some(before) = before {
+            let finite = self.engine.state().iter().all(|x| x.is_finite());
+            if !finite || !self.engine.wound_radius().is_finite() {
+                self.engine.restore(&before)?;
+                return Err(SolverError::Diverged);
+            }
+        }
         self.time += h;
         Ok(())
     }

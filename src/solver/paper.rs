@@ -89,7 +89,7 @@ impl PaperEngine {
 
 impl Engine for PaperEngine {
     fn advance(&mut self, h: f64, p: f64) {
-        let n = (h / self.max_step).ceil().max(1.0);
+        let n = super::engine::step_count(h, self.max_step);
         let dt = h / n;
         for _ in 0..n as usize {
             self.step(dt, p);
@@ -136,5 +136,9 @@ impl Engine for PaperEngine {
 
     fn boxed_clone(&self) -> Box<dyn Engine> {
         Box::new(self.clone())
+    }
+
+    fn step_work(&self, h: f64) -> f64 {
+        super::engine::step_count(h, self.max_step) * self.grid.len() as f64
     }
 }

@@ -31,7 +31,7 @@ impl std::fmt::Display for ParamError {
         match *self {
             Self::Lambda(v) => write!(f, "lambda = {v} is invalid: it must be finite and >= 0"),
             Self::Sigma(v) => write!(f, "sigma = {v} is invalid: it must be finite"),
-            Self::RInf(v) => write!(f, "R_inf = {v} is invalid: it must be finite and > 1"),
+            Self::RInf(v) => write!(f, "R_inf = {v} is invalid: it must be finite, > 1 and <= {R_INF_MAX:e}"),
             Self::EdgeStress(v) => write!(f, "edge_stress = {v} is invalid: it must be finite"),
         }
     }
@@ -49,9 +49,14 @@ pub fn check_sigma(v: f64) -> Result<f64, ParamError> {
     if v.is_finite() { Ok(v) } else { Err(ParamError::Sigma(v)) }
 }
 
-/// `R_inf` must be finite and greater than the wound radius 1.
+/// Largest accepted `R_inf`: the tolerance rule is verified to 1000 and the modal
+/// decomposition stays well conditioned far beyond (tests/solver_exact.rs runs 1e6); above
+/// about 1e9 it is not.
+pub const R_INF_MAX: f64 = 1e6;
+
+/// `R_inf` must be finite, greater than the wound radius 1, and at most [`R_INF_MAX`].
 pub fn check_r_inf(v: f64) -> Result<f64, ParamError> {
-    if v.is_finite() && v > 1.0 { Ok(v) } else { Err(ParamError::RInf(v)) }
+    if v.is_finite() && v > 1.0 && v <= R_INF_MAX { Ok(v) } else { Err(ParamError::RInf(v)) }
 }
 
 /// The edge stress `p` must be finite.

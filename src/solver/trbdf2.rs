@@ -83,7 +83,7 @@ impl TrBdf2Engine {
 
 impl Engine for TrBdf2Engine {
     fn advance(&mut self, h: f64, p: f64) {
-        let n = (h / self.max_step).ceil().max(1.0);
+        let n = super::engine::step_count(h, self.max_step);
         for _ in 0..n as usize {
             self.step(h / n, p);
         }
@@ -122,5 +122,9 @@ impl Engine for TrBdf2Engine {
 
     fn boxed_clone(&self) -> Box<dyn Engine> {
         Box::new(self.clone())
+    }
+
+    fn step_work(&self, h: f64) -> f64 {
+        super::engine::step_count(h, self.max_step) * (self.v.len() * self.v.len()) as f64
     }
 }

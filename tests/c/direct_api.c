@@ -126,7 +126,7 @@ static void bad_creation(void) {
     REFUSED(wo_solver_new(INFINITY, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = inf is invalid");
     REFUSED(wo_solver_new(1, INFINITY, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = inf is invalid");
     REFUSED(wo_solver_new(1, NAN, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = NaN is invalid");
-    REFUSED(wo_solver_new(1, 1, 1.0, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 1 is invalid: it must be finite and > 1");
+    REFUSED(wo_solver_new(1, 1, 1.0, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 1 is invalid: it must be finite, > 1");
     REFUSED(wo_solver_new(1, 1, 0.5, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 0.5 is invalid");
     REFUSED(wo_solver_new(1, 1, -INFINITY, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = -inf is invalid");
     REFUSED(wo_solver_new(1, 1, 10, 0.0, &s), WO_INVALID_ARGUMENT, "tolerance = 0 is invalid");

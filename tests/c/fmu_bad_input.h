@@ -110,7 +110,7 @@ static void before_initialization(fmi2Component c) {
     REFUSED(set1(c, VR_LAMBDA, INFINITY), "lambda = inf is invalid");
     REFUSED(set1(c, VR_SIGMA, INFINITY), "sigma = inf is invalid: it must be finite");
     REFUSED(set1(c, VR_SIGMA, NAN), "sigma = NaN is invalid");
-    REFUSED(set1(c, VR_R_INF, 1.0), "R_inf = 1 is invalid: it must be finite and > 1");
+    REFUSED(set1(c, VR_R_INF, 1.0), "R_inf = 1 is invalid: it must be finite, > 1");
     REFUSED(set1(c, VR_R_INF, 0.5), "R_inf = 0.5 is invalid");
     REFUSED(set1(c, VR_R_INF, -INFINITY), "R_inf = -inf is invalid");
     REFUSED(set1(c, VR_EDGE_STRESS, NAN), "edge_stress = NaN is invalid");
