@@ -40,6 +40,14 @@ pub(crate) fn step_count(h: f64, max_step: f64) -> f64 {
     (h / max_step).ceil().max(1.0)
 }
 
+/// Cover `h` by [`step_count`] equal internal steps, calling `step(dt)` for each.
+pub(crate) fn substeps(h: f64, max_step: f64, mut step: impl FnMut(f64)) {
+    let n = step_count(h, max_step);
+    for _ in 0..n as usize {
+        step(h / n);
+    }
+}
+
 /// Linear interpolation of nodal values on ascending `nodes`, for profile output of the
 /// finite-difference engines.
 pub(crate) fn interpolate(nodes: &[f64], values: &[f64], radii: &[f64]) -> Vec<f64> {

@@ -112,11 +112,7 @@ fn spectral_radius(rows: &[Row]) -> f64 {
 
 impl Engine for ExplicitEngine {
     fn advance(&mut self, h: f64, p: f64) {
-        let n = super::engine::step_count(h, self.max_step);
-        let dt = h / n;
-        for _ in 0..n as usize {
-            self.step(dt, p);
-        }
+        super::engine::substeps(h, self.max_step, |dt| self.step(dt, p));
     }
 
     fn wound_radius(&self) -> f64 {

@@ -89,11 +89,7 @@ impl PaperEngine {
 
 impl Engine for PaperEngine {
     fn advance(&mut self, h: f64, p: f64) {
-        let n = super::engine::step_count(h, self.max_step);
-        let dt = h / n;
-        for _ in 0..n as usize {
-            self.step(dt, p);
-        }
+        super::engine::substeps(h, self.max_step, |dt| self.step(dt, p));
     }
 
     fn wound_radius(&self) -> f64 {

@@ -83,10 +83,7 @@ impl TrBdf2Engine {
 
 impl Engine for TrBdf2Engine {
     fn advance(&mut self, h: f64, p: f64) {
-        let n = super::engine::step_count(h, self.max_step);
-        for _ in 0..n as usize {
-            self.step(h / n, p);
-        }
+        super::engine::substeps(h, self.max_step, |dt| self.step(dt, p));
     }
 
     fn wound_radius(&self) -> f64 {
