@@ -222,3 +222,25 @@ fn a_state_saved_before_initialization_round_trips() {
     run(&mut i, Call::SetFmuState, |i| i.set_fmu_state(back)).unwrap();
     assert_eq!(i.machine(), Machine::Instantiated);
 }
+
+#[test]
+fn a_state_of_another_method_deserializes_into_a_fresh_instance() {
+    let with_paper = |i: &mut Instance| run(i, Call::Set, |i| i.set_integer(&[Vr::Method as u32], &[2])).unwrap();
+    let (mut a, _) = instance();
+    with_paper(&mut a);
+    run(&mut a, Call::EnterInitializationMode, |i| i.enter_initialization_mode()).unwrap();
+    run(&mut a, Call::ExitInitializationMode, |i| i.exit_initialization_mode()).unwrap();
+    run(&mut a, Call::DoStep, |i| i.do_step(0.0, 0.5)).unwrap();
+    let h = run(&mut a, Call::GetFmuState, |i| i.get_fmu_state(None)).unwrap();
+    let bytes = run(&mut a, Call::SerializeFmuState, |i| i.serialize_fmu_state(h)).unwrap();
+    run(&mut a, Call::DoStep, |i| i.do_step(0.5, 0.5)).unwrap();
+    let want = outputs(&mut a);
+    // A fresh instance with the same parameters has no solver yet: it must build the
+    // paper's scheme, not the default one, to take the state.
+    let (mut b, _) = instance();
+    with_paper(&mut b);
+    let back = run(&mut b, Call::DeSerializeFmuState, |i| i.deserialize_fmu_state(&bytes, None)).unwrap();
+    run(&mut b, Call::SetFmuState, |i| i.set_fmu_state(back)).unwrap();
+    run(&mut b, Call::DoStep, |i| i.do_step(0.5, 0.5)).unwrap();
+    assert_eq!(outputs(&mut b), want);
+}

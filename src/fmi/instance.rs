@@ -111,9 +111,6 @@ pub type Rejected = String;
 #[derive(Debug, Clone)]
 struct Model {
     params: Params,
-    /// The mesh of the solver, derived from the parameters and the tolerance when the
-    /// solver is built.
-    settings: Settings,
     /// The `tolerance` parameter, and the tolerance of `fmi2SetupExperiment` (which wins).
     tolerance: f64,
     experiment_tolerance: Option<f64>,
@@ -134,11 +131,21 @@ impl Model {
         self.experiment_tolerance.unwrap_or(self.tolerance)
     }
 
+    /// The mesh the parameters and the tolerance in force give.
+    fn settings(&self) -> Result<Settings, Rejected> {
+        Settings::for_tolerance(&self.params, self.effective_tolerance()).map_err(|e| e.to_string())
+    }
+
+    /// A solver at the cut for these parameters, tolerance and scheme choice.
+    fn build_solver(&self) -> Result<Solver, Rejected> {
+        let scheme = self.scheme.scheme(self.settings()?);
+        Solver::with_scheme(&self.params, &scheme).map_err(|e| e.to_string())
+    }
+
     fn new() -> Self {
         let start = |vr: Vr| vr.var().start.unwrap_or(0.0);
         Self {
             params: Params { lambda: start(Vr::Lambda), sigma: start(Vr::Sigma), r_inf: start(Vr::RInf) },
-            settings: Settings::default(),
             tolerance: start(Vr::Tolerance),
             experiment_tolerance: None,
             scheme: SchemeChoice {
@@ -299,18 +306,16 @@ impl Instance {
 
     fn ensure_solver(&mut self) -> Result<&Solver, Rejected> {
         if self.model.solver.is_none() {
-            let m = &mut self.model;
-            m.settings = Settings::for_tolerance(&m.params, m.effective_tolerance()).map_err(|e| e.to_string())?;
-            let scheme = m.scheme.scheme(m.settings);
-            let solver = Solver::with_scheme(&m.params, &scheme).map_err(|e| e.to_string())?;
+            let m = &self.model;
+            let solver = m.build_solver()?;
             self.log_debug(&format!(
-                "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns ({:?}, method {})",
-                self.model.params.lambda,
-                self.model.params.sigma,
-                self.model.params.r_inf,
+                "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns (tolerance {:e}, {:?})",
+                m.params.lambda,
+                m.params.sigma,
+                m.params.r_inf,
                 solver.unknowns(),
-                self.model.settings.mesh,
-                self.model.scheme.method
+                m.effective_tolerance(),
+                m.scheme
             ));
             self.model.solver = Some(solver);
         }
@@ -475,12 +480,10 @@ impl Instance {
     pub fn serialize_fmu_state(&self, handle: u64) -> Result<Vec<u8>, Rejected> {
         let snap = self.snapshot(handle)?;
         let m = &snap.model;
-        // The mesh the parameters and tolerance give (also before any solver was built).
-        let settings = Settings::for_tolerance(&m.params, m.effective_tolerance()).map_err(|e| e.to_string())?;
         Ok(state::encode(&Saved {
             machine: snap.machine,
             params: m.params,
-            settings,
+            settings: m.settings()?,
             tolerance: m.tolerance,
             experiment_tolerance: m.experiment_tolerance,
             scheme: m.scheme,
@@ -515,29 +518,17 @@ impl Instance {
         if saved.scheme != self.model.scheme {
             return Err(format!("serialized FMU state has {:?} but this instance has {:?}", saved.scheme, self.model.scheme));
         }
-        // The mesh follows from parameters and tolerance: bytes that claim another are forged.
-        let expected = Settings::for_tolerance(&saved.params, theirs).map_err(|e| e.to_string())?;
+        // The mesh follows from parameters and tolerance (checked equal to ours above):
+        // bytes that claim another are forged.
+        let expected = self.model.settings()?;
         if saved.settings != expected {
             return Err(format!(
                 "serialized FMU state has mesh {:?} but its parameters and tolerance give {:?}",
                 saved.settings.mesh, expected.mesh
             ));
         }
-        let solver = match &saved.solver {
-            None => None,
-            Some(st) => {
-                // Same parameters and settings: a clone of our own solver shares its operator.
-                let mut s = match &self.model.solver {
-                    Some(own) => own.clone(),
-                    None => Solver::new(&saved.params, &saved.settings).map_err(|e| e.to_string())?,
-                };
-                s.restore(st).map_err(|e| format!("serialized FMU state: {e}"))?;
-                Some(s)
-            }
-        };
-        let model = Model {
+        let mut model = Model {
             params: saved.params,
-            settings: saved.settings,
             tolerance: saved.tolerance,
             experiment_tolerance: saved.experiment_tolerance,
             scheme: saved.scheme,
@@ -545,8 +536,17 @@ impl Instance {
             start_time: saved.start_time,
             stop_time: saved.stop_time,
             time: saved.time,
-            solver,
+            solver: None,
         };
+        if let Some(st) = &saved.solver {
+            // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.
+            let mut s = match &self.model.solver {
+                Some(own) => own.clone(),
+                None => model.build_solver()?,
+            };
+            s.restore(st).map_err(|e| format!("serialized FMU state: {e}"))?;
+            model.solver = Some(s);
+        }
         let handle = match target {
             Some(h) => self.snapshot(h).map(|_| h)?,
             None => self.new_handle(),
