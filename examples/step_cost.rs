@@ -47,13 +47,7 @@ fn main() {
     // One fmi2DoStep + fmi2GetReal of both outputs through the C ABI.
     let name = CString::new("bench").unwrap();
     let guid = CString::new(GUID).unwrap();
-    let callbacks = fmi2CallbackFunctions {
-        logger: None,
-        allocateMemory: None,
-        freeMemory: None,
-        stepFinished: None,
-        componentEnvironment: std::ptr::null_mut(),
-    };
+    let callbacks = fmi2CallbackFunctions::NONE;
     // SAFETY: valid strings and callbacks; the instance is freed at the end.
     unsafe {
         let c = fmi2Instantiate(name.as_ptr(), FMI2_CO_SIMULATION, guid.as_ptr(), std::ptr::null(), &callbacks, 0, 0);

@@ -35,13 +35,7 @@ fn check(status: fmi2Status, what: &str) {
 }
 
 fn fmu_new(k: usize) -> Fmu {
-    let callbacks = fmi2CallbackFunctions {
-        logger: None,
-        allocateMemory: None,
-        freeMemory: None,
-        stepFinished: None,
-        componentEnvironment: std::ptr::null_mut(),
-    };
+    let callbacks = fmi2CallbackFunctions::NONE;
     let name = std::ffi::CString::new(format!("instance{k}")).unwrap();
     let guid = std::ffi::CString::new(GUID).unwrap();
     unsafe {

@@ -17,13 +17,7 @@ use wound_opening::fmi::types::fmi2CallbackFunctions;
 
 /// Callbacks without a logger: a Rust test cannot define the variadic C logger (the C
 /// programs in tests/c check the logged messages).
-pub const NULL_CALLBACKS: fmi2CallbackFunctions = fmi2CallbackFunctions {
-    logger: None,
-    allocateMemory: None,
-    freeMemory: None,
-    stepFinished: None,
-    componentEnvironment: std::ptr::null_mut(),
-};
+pub const NULL_CALLBACKS: fmi2CallbackFunctions = fmi2CallbackFunctions::NONE;
 
 /// xorshift64* (Vigna, "An experimental exploration of Marsaglia's xorshift generators").
 pub struct Rng(u64);

@@ -42,3 +42,15 @@ pub struct fmi2CallbackFunctions {
     pub stepFinished: fmi2StepFinished,
     pub componentEnvironment: fmi2ComponentEnvironment,
 }
+
+impl fmi2CallbackFunctions {
+    /// Callbacks without a logger or memory functions, for Rust callers (benchmarks,
+    /// tests), which cannot define the variadic C logger.
+    pub const NONE: Self = Self {
+        logger: None,
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: std::ptr::null_mut(),
+    };
+}
