@@ -177,12 +177,12 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c,
                                    fmi2FMUstate *FMUstate);
 
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c,
-                                        const fmi2ValueReference *_vUnknown_ref,
-                                        size_t _nUnknown,
-                                        const fmi2ValueReference *_vKnown_ref,
-                                        size_t _nKnown,
-                                        const fmi2Real *_dvKnown,
-                                        fmi2Real *_dvUnknown);
+                                        const fmi2ValueReference *vUnknown_ref,
+                                        size_t nUnknown,
+                                        const fmi2ValueReference *vKnown_ref,
+                                        size_t nKnown,
+                                        const fmi2Real *dvKnown,
+                                        fmi2Real *dvUnknown);
 
 fmi2Status fmi2SetRealInputDerivatives(fmi2Component c,
                                        const fmi2ValueReference *_vr,

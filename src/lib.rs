@@ -3,5 +3,7 @@
 //! boundary on top of it.
 
 pub mod solver;
+pub mod units;
+pub mod closure;
 pub mod fmi;
 pub mod capi;

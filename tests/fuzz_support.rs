@@ -132,8 +132,10 @@ pub fn reseal_crc(b: &mut [u8]) {
     b[n..].copy_from_slice(&crc.to_le_bytes());
 }
 
-/// Offsets of the mesh degree and element count (u32 LE) in a serialized state (state.rs).
-pub const MESH_FIELDS: std::ops::Range<usize> = 41..49;
+/// Offsets of the mesh degree and element count (u32 LE) in a serialized WoundOpening
+/// state: the envelope (fmi/state.rs, 55 bytes with the model name) then six f64 of
+/// parameters and scales (fmi/wound/codec.rs).
+pub const MESH_FIELDS: std::ops::Range<usize> = 103..111;
 
 #[test]
 fn the_generator_is_deterministic_and_spreads() {

@@ -1,17 +1,33 @@
-//! `modelDescription/modelDescription.xml` is written by hand; the variable table in
-//! `src/fmi/variables.rs` is what the code uses. This test parses the XML and fails on
-//! any disagreement between the two.
+//! Each `modelDescription.xml` (WoundOpening's and PurseString's) is written by hand;
+//! the variable tables in `src/fmi/{wound,purse}/variables.rs` are what the code uses.
+//! This test parses each XML and fails on any disagreement with its table.
 
 use quick_xml::Reader;
 use quick_xml::events::Event;
 use std::collections::BTreeMap;
-use wound_opening::fmi::variables::*;
+use wound_opening::fmi::MODELS;
+use wound_opening::fmi::model::{Causality, Description, LOG_CATEGORIES};
 
-const XML: &str = include_str!("../modelDescription/modelDescription.xml");
+type Elements = Vec<(String, BTreeMap<String, String>)>;
+
+/// Both models' descriptions, each with the XML file read from disk (not the copy
+/// compiled in), so that the test reads what the package step ships.
+fn models() -> Vec<(&'static Description, String)> {
+    let files = ["modelDescription/modelDescription.xml", "modelDescription/PurseString/modelDescription.xml"];
+    MODELS
+        .iter()
+        .zip(files)
+        .map(|((d, _), f)| {
+            let xml = std::fs::read_to_string(format!("{}/{f}", env!("CARGO_MANIFEST_DIR"))).expect("readable XML");
+            assert_eq!(xml, d.xml, "{f} is the file compiled into {}", d.model_identifier);
+            (*d, xml)
+        })
+        .collect()
+}
 
 /// Every element of the document as (path, attributes), in document order.
-fn elements() -> Vec<(String, BTreeMap<String, String>)> {
-    let mut reader = Reader::from_str(XML);
+fn elements(xml: &str) -> Elements {
+    let mut reader = Reader::from_str(xml);
     let mut path: Vec<String> = Vec::new();
     let mut out = Vec::new();
     loop {
@@ -44,88 +60,129 @@ fn elements() -> Vec<(String, BTreeMap<String, String>)> {
     out
 }
 
-fn find<'a>(all: &'a [(String, BTreeMap<String, String>)], path: &str) -> Vec<&'a BTreeMap<String, String>> {
+fn find<'a>(all: &'a Elements, path: &str) -> Vec<&'a BTreeMap<String, String>> {
     all.iter().filter(|(p, _)| p == path).map(|(_, a)| a).collect()
 }
 
 #[test]
 fn identity_and_capabilities_match_the_code() {
-    let all = elements();
-    let root = find(&all, "fmiModelDescription")[0];
-    assert_eq!(root["fmiVersion"], "2.0");
-    assert_eq!(root["guid"], GUID);
-    let cs = find(&all, "fmiModelDescription/CoSimulation")[0];
-    assert_eq!(cs["modelIdentifier"], MODEL_IDENTIFIER);
-    for (flag, value) in CAPABILITIES {
-        assert_eq!(cs.get(flag).map(String::as_str), Some(value), "CoSimulation/@{flag}");
+    for (d, xml) in models() {
+        let all = elements(&xml);
+        let root = find(&all, "fmiModelDescription")[0];
+        assert_eq!(root["fmiVersion"], "2.0");
+        assert_eq!(root["guid"], d.guid);
+        assert_eq!(root["modelName"], d.model_identifier);
+        let cs = find(&all, "fmiModelDescription/CoSimulation")[0];
+        assert_eq!(cs["modelIdentifier"], d.model_identifier);
+        for (flag, value) in d.capabilities {
+            assert_eq!(cs.get(*flag).map(String::as_str), Some(*value), "{}: CoSimulation/@{flag}", d.model_identifier);
+        }
+        assert!(find(&all, "fmiModelDescription/ModelExchange").is_empty(), "co-simulation only");
     }
-    assert!(find(&all, "fmiModelDescription/ModelExchange").is_empty(), "co-simulation only");
+    let guids: Vec<&str> = MODELS.iter().map(|(d, _)| d.guid).collect();
+    assert_ne!(guids[0], guids[1], "the shared object tells the models apart by GUID");
 }
 
 #[test]
 fn log_categories_match_the_code() {
-    let all = elements();
-    let cats = find(&all, "fmiModelDescription/LogCategories/Category");
-    let xml: Vec<(&str, &str)> = cats.iter().map(|a| (a["name"].as_str(), a["description"].as_str())).collect();
-    assert_eq!(xml, LOG_CATEGORIES.to_vec());
+    for (_, xml) in models() {
+        let all = elements(&xml);
+        let cats = find(&all, "fmiModelDescription/LogCategories/Category");
+        let xml: Vec<(&str, &str)> = cats.iter().map(|a| (a["name"].as_str(), a["description"].as_str())).collect();
+        assert_eq!(xml, LOG_CATEGORIES.to_vec());
+    }
 }
 
 #[test]
 fn variables_match_the_table_one_for_one() {
-    let all = elements();
-    let svs = find(&all, "fmiModelDescription/ModelVariables/ScalarVariable");
-    assert_eq!(svs.len(), VARIABLES.len(), "number of ScalarVariables");
-    // The type element of each ScalarVariable, in document order.
-    let typed: Vec<(&str, &BTreeMap<String, String>)> = all
-        .iter()
-        .filter_map(|(p, a)| p.strip_prefix("fmiModelDescription/ModelVariables/ScalarVariable/").map(|k| (k, a)))
-        .collect();
-    assert_eq!(typed.len(), VARIABLES.len(), "one type element per variable");
-    let units: Vec<&str> =
-        find(&all, "fmiModelDescription/UnitDefinitions/Unit").iter().map(|a| a["name"].as_str()).collect();
-    for ((sv, (kind, ty)), var) in svs.iter().zip(&typed).zip(&VARIABLES) {
-        assert_eq!(sv["name"], var.name);
-        assert_eq!(*kind, var.kind.as_str(), "{}", var.name);
-        assert_eq!(sv["valueReference"], var.value_reference.to_string(), "{}", var.name);
-        assert_eq!(sv["causality"], var.causality.as_str(), "{}", var.name);
-        assert_eq!(sv["variability"], var.variability.as_str(), "{}", var.name);
-        assert_eq!(sv["description"], var.description, "{}", var.name);
-        assert_eq!(ty.get("start").map(|s| s.parse::<f64>().unwrap()), var.start, "{}", var.name);
-        assert_eq!(ty.get("unit").map(String::as_str).unwrap_or(""), var.unit, "{}", var.name);
-        if !var.unit.is_empty() {
-            assert!(units.contains(&var.unit), "unit {} of {} is declared", var.unit, var.name);
+    for (d, xml) in models() {
+        let all = elements(&xml);
+        let svs = find(&all, "fmiModelDescription/ModelVariables/ScalarVariable");
+        assert_eq!(svs.len(), d.variables.len(), "number of ScalarVariables");
+        // The type element of each ScalarVariable, in document order.
+        let typed: Vec<(&str, &BTreeMap<String, String>)> = all
+            .iter()
+            .filter_map(|(p, a)| p.strip_prefix("fmiModelDescription/ModelVariables/ScalarVariable/").map(|k| (k, a)))
+            .collect();
+        assert_eq!(typed.len(), d.variables.len(), "one type element per variable");
+        let units: Vec<&str> =
+            find(&all, "fmiModelDescription/UnitDefinitions/Unit").iter().map(|a| a["name"].as_str()).collect();
+        for (i, ((sv, (kind, ty)), var)) in svs.iter().zip(&typed).zip(d.variables).enumerate() {
+            assert_eq!(var.value_reference as usize, i, "{}: value references are table indices", var.name);
+            assert_eq!(sv["name"], var.name);
+            assert_eq!(*kind, var.kind.as_str(), "{}", var.name);
+            assert_eq!(sv["valueReference"], var.value_reference.to_string(), "{}", var.name);
+            assert_eq!(sv["causality"], var.causality.as_str(), "{}", var.name);
+            assert_eq!(sv["variability"], var.variability.as_str(), "{}", var.name);
+            assert_eq!(sv["description"], var.description, "{}", var.name);
+            assert_eq!(ty.get("start").map(|s| s.parse::<f64>().unwrap()), var.start, "{}", var.name);
+            assert_eq!(ty.get("unit").map(String::as_str).unwrap_or(""), var.unit, "{}", var.name);
+            if !var.unit.is_empty() {
+                assert!(units.contains(&var.unit), "unit {} of {} is declared", var.unit, var.name);
+            }
+            let range = ty.get("min").zip(ty.get("max")).map(|(a, b)| (a.parse().unwrap(), b.parse().unwrap()));
+            assert_eq!(range, var.range, "{}", var.name);
+            assert!(!sv.contains_key("initial"), "{}: initial is left to its default", var.name);
         }
-        let range = ty.get("min").zip(ty.get("max")).map(|(a, b)| (a.parse().unwrap(), b.parse().unwrap()));
-        assert_eq!(range, var.range, "{}", var.name);
-        assert!(!sv.contains_key("initial"), "{}: initial is left to its default", var.name);
     }
 }
 
-/// 1-based index of a variable in `ModelVariables`.
-fn index(vr: Vr) -> String {
-    (vr as usize + 1).to_string()
+/// The physical units are declared with SI base units, so that masters can convert.
+#[test]
+fn units_are_defined_in_si_base_units() {
+    let want = [
+        ("Pa", &[("kg", "1"), ("m", "-1"), ("s", "-2")][..]),
+        ("s", &[("s", "1")]),
+        ("um", &[("m", "1"), ("factor", "1e-6")]),
+        ("um/s", &[("m", "1"), ("s", "-1"), ("factor", "1e-6")]),
+        ("pN", &[("kg", "1"), ("m", "1"), ("s", "-2"), ("factor", "1e-12")]),
+    ];
+    for (d, xml) in models() {
+        let all = elements(&xml);
+        let units: Vec<&BTreeMap<String, String>> = find(&all, "fmiModelDescription/UnitDefinitions/Unit");
+        let bases = find(&all, "fmiModelDescription/UnitDefinitions/Unit/BaseUnit");
+        // Base units follow their unit in document order; "1" has none.
+        let mut b = bases.iter();
+        for u in units {
+            let name = u["name"].as_str();
+            if name == "1" {
+                continue;
+            }
+            let (_, attrs) = want.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("{}: unexpected unit {name}", d.model_identifier));
+            let got = b.next().expect("a BaseUnit per unit");
+            let got: Vec<(&str, &str)> = got.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
+            let mut want: Vec<(&str, &str)> = attrs.to_vec();
+            want.sort();
+            assert_eq!(got, want, "{}: unit {name}", d.model_identifier);
+        }
+    }
 }
 
 #[test]
 fn model_structure_matches_the_declared_dependencies() {
-    let all = elements();
-    let outputs = find(&all, "fmiModelDescription/ModelStructure/Outputs/Unknown");
-    assert_eq!(outputs.len(), OUTPUT_DEPENDENCIES.len());
-    for (xml, (vr, deps)) in outputs.iter().zip(OUTPUT_DEPENDENCIES) {
-        assert_eq!(xml["index"], index(vr));
-        let want: Vec<String> = deps.iter().map(|(d, _)| index(*d)).collect();
-        assert_eq!(xml["dependencies"], want.join(" "), "{}", vr.var().name);
-        let kinds: Vec<&str> = deps.iter().map(|(_, k)| *k).collect();
-        assert_eq!(xml.get("dependenciesKind").map(String::as_str).unwrap_or(""), kinds.join(" "));
+    for (d, xml) in models() {
+        let all = elements(&xml);
+        // 1-based index of a variable in `ModelVariables`.
+        let index = |vr: u32| (vr + 1).to_string();
+        let name = |vr: u32| d.variables[vr as usize].name;
+        let outputs = find(&all, "fmiModelDescription/ModelStructure/Outputs/Unknown");
+        assert_eq!(outputs.len(), d.outputs.len());
+        for (xml, (vr, deps)) in outputs.iter().zip(d.outputs) {
+            assert_eq!(xml["index"], index(*vr));
+            let want: Vec<String> = deps.iter().map(|(v, _)| index(*v)).collect();
+            assert_eq!(xml["dependencies"], want.join(" "), "{}", name(*vr));
+            let kinds: Vec<&str> = deps.iter().map(|(_, k)| *k).collect();
+            assert_eq!(xml.get("dependenciesKind").map(String::as_str).unwrap_or(""), kinds.join(" "));
+        }
+        let initial = find(&all, "fmiModelDescription/ModelStructure/InitialUnknowns/Unknown");
+        assert_eq!(initial.len(), d.initial_unknowns.len());
+        for (xml, (vr, deps)) in initial.iter().zip(d.initial_unknowns) {
+            assert_eq!(xml["index"], index(*vr));
+            let want: Vec<String> = deps.iter().map(|v| index(*v)).collect();
+            assert_eq!(xml["dependencies"], want.join(" "), "{}", name(*vr));
+        }
+        // Every output is listed, and nothing else.
+        let outs: Vec<_> = d.variables.iter().filter(|v| v.causality == Causality::Output).collect();
+        assert_eq!(outs.len(), outputs.len());
     }
-    let initial = find(&all, "fmiModelDescription/ModelStructure/InitialUnknowns/Unknown");
-    assert_eq!(initial.len(), INITIAL_DEPENDENCIES.len());
-    for (xml, (vr, deps)) in initial.iter().zip(INITIAL_DEPENDENCIES) {
-        assert_eq!(xml["index"], index(vr));
-        let want: Vec<String> = deps.iter().map(|d| index(*d)).collect();
-        assert_eq!(xml["dependencies"], want.join(" "), "{}", vr.var().name);
-    }
-    // Every output is listed, and nothing else.
-    let outs: Vec<_> = VARIABLES.iter().filter(|v| v.causality == Causality::Output).collect();
-    assert_eq!(outs.len(), outputs.len());
 }

@@ -6,7 +6,7 @@
 use super::boundary::{CallbackLogger, guard, slice, slice_mut, status_code, text, with_instance};
 use super::instance::{Call, Instance, Status};
 use super::types::*;
-use super::variables::GUID;
+use super::MODELS;
 use std::ffi::{c_char, CString};
 
 const OK: Result<Status, String> = Ok(Status::Ok);
@@ -60,11 +60,12 @@ pub unsafe extern "C" fn fmi2Instantiate(
             return fail(format!("fmuType = {fmuType}: this FMU supports co-simulation (1) only"));
         }
         let guid = unsafe { text(fmuGUID) };
-        if guid.as_deref() != Some(GUID) {
-            return fail(format!("Expected GUID {GUID} but was {}", guid.as_deref().unwrap_or("NULL")));
-        }
+        let Some(fresh) = guid.as_deref().and_then(super::model_for_guid) else {
+            let known: Vec<String> = MODELS.iter().map(|(d, _)| format!("{} ({})", d.guid, d.model_identifier)).collect();
+            return fail(format!("Expected GUID {} but was {}", known.join(" or "), guid.as_deref().unwrap_or("NULL")));
+        };
         let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
-        Some(Box::new(Instance::new(&name, Box::new(sink), loggingOn != FMI2_FALSE)))
+        Some(Box::new(Instance::of_model(fresh, &name, Box::new(sink), loggingOn != FMI2_FALSE)))
     });
     match made {
         Ok(Some(b)) => Box::into_raw(b) as fmi2Component,
@@ -294,14 +295,24 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(c: fmi2Component, serializedSta
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     c: fmi2Component,
-    _vUnknown_ref: *const fmi2ValueReference,
-    _nUnknown: usize,
-    _vKnown_ref: *const fmi2ValueReference,
-    _nKnown: usize,
-    _dvKnown: *const fmi2Real,
-    _dvUnknown: *mut fmi2Real,
+    vUnknown_ref: *const fmi2ValueReference,
+    nUnknown: usize,
+    vKnown_ref: *const fmi2ValueReference,
+    nKnown: usize,
+    dvKnown: *const fmi2Real,
+    dvUnknown: *mut fmi2Real,
 ) -> fmi2Status {
-    unsafe { with_instance(c, Call::GetDirectionalDerivative, || "fmi2GetDirectionalDerivative".into(), |_| not_supported("fmi2GetDirectionalDerivative")) }
+    unsafe {
+        with_instance(c, Call::GetDirectionalDerivative, || format!("fmi2GetDirectionalDerivative(nUnknown={nUnknown}, nKnown={nKnown})"), |i| {
+            let unknowns = slice(vUnknown_ref, nUnknown, "vUnknown_ref")?;
+            let knowns = slice(vKnown_ref, nKnown, "vKnown_ref")?;
+            let seed = slice(dvKnown, nKnown, "dvKnown")?;
+            let out = slice_mut(dvUnknown, nUnknown, "dvUnknown")?;
+            let got = i.directional_derivative(unknowns, knowns, seed)?;
+            out.copy_from_slice(&got);
+            OK
+        })
+    }
 }
 
 #[unsafe(no_mangle)]

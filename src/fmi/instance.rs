@@ -7,10 +7,10 @@
 //! [`Status::Error`], and changes nothing: every check runs before any mutation, so the
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
-use super::state::{self, Machine, Saved};
-use super::variables::{Causality, Kind, LOG_CATEGORIES, Variability, Vr};
-use super::state::SchemeChoice;
-use crate::solver::{Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
+pub use super::model::Rejected;
+use super::model::{Causality, Description, FmuModel, Kind, Variability};
+use super::state::{self, Machine};
+use super::variables::LOG_CATEGORIES;
 use std::collections::HashMap;
 
 /// `fmi2Status`.
@@ -104,69 +104,26 @@ impl Call {
     }
 }
 
-/// A rejected call: the reason, for the logger.
-pub type Rejected = String;
-
-/// The instance's model data: what an FMU state saves (with the machine state).
-#[derive(Debug, Clone)]
-struct Model {
-    params: Params,
-    /// The `tolerance` parameter, and the tolerance of `fmi2SetupExperiment` (which wins).
-    tolerance: f64,
-    experiment_tolerance: Option<f64>,
-    /// `method`, `grid_points` and `internal_step`.
-    scheme: SchemeChoice,
-    edge_stress: f64,
-    start_time: f64,
-    stop_time: Option<f64>,
+/// The master's clock of one instance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Clock {
+    pub start: f64,
+    pub stop: Option<f64>,
     /// Master time of the last communication point.
-    time: f64,
-    /// Built when first needed after the parameters are final; dropped when they change.
-    solver: Option<Solver>,
-}
-
-impl Model {
-    /// The tolerance in force: the experiment's if defined, else the parameter.
-    fn effective_tolerance(&self) -> f64 {
-        self.experiment_tolerance.unwrap_or(self.tolerance)
-    }
-
-    /// The mesh the parameters and the tolerance in force give.
-    fn settings(&self) -> Result<Settings, Rejected> {
-        Settings::for_tolerance(&self.params, self.effective_tolerance()).map_err(|e| e.to_string())
-    }
-
-    /// A solver at the cut for these parameters, tolerance and scheme choice.
-    fn build_solver(&self) -> Result<Solver, Rejected> {
-        let scheme = self.scheme.scheme(self.settings()?);
-        Solver::with_scheme(&self.params, &scheme).map_err(|e| e.to_string())
-    }
-
-    fn new() -> Self {
-        let start = |vr: Vr| vr.var().start.unwrap_or(0.0);
-        Self {
-            params: Params { lambda: start(Vr::Lambda), sigma: start(Vr::Sigma), r_inf: start(Vr::RInf) },
-            tolerance: start(Vr::Tolerance),
-            experiment_tolerance: None,
-            scheme: SchemeChoice {
-                method: start(Vr::Method) as i32,
-                grid_points: start(Vr::GridPoints) as i32,
-                internal_step: start(Vr::InternalStep),
-            },
-            edge_stress: start(Vr::EdgeStress),
-            start_time: 0.0,
-            stop_time: None,
-            time: 0.0,
-            solver: None,
-        }
-    }
+    pub time: f64,
 }
 
 /// A saved FMU state, as held in the instance's table of states.
-#[derive(Debug, Clone)]
 struct Snapshot {
     machine: Machine,
-    model: Model,
+    clock: Clock,
+    model: Box<dyn FmuModel>,
+}
+
+impl Clone for Snapshot {
+    fn clone(&self) -> Self {
+        Self { machine: self.machine, clock: self.clock, model: self.model.boxed_clone() }
+    }
 }
 
 /// An FMU instance.
@@ -176,22 +133,34 @@ pub struct Instance {
     /// Debug categories switched on (index into `LOG_CATEGORIES`); errors always log.
     categories: [bool; LOG_CATEGORIES.len()],
     machine: Machine,
-    model: Model,
+    clock: Clock,
+    model: Box<dyn FmuModel>,
+    /// A fresh model, for `fmi2Reset`.
+    fresh: fn() -> Box<dyn FmuModel>,
     /// FMU states handed to the master, by handle (never 0).
     states: HashMap<u64, Snapshot>,
     next_handle: u64,
 }
 
 const LOG_CALLS: usize = 2;
+const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
 
 impl Instance {
+    /// An instance of the wound-opening model.
     pub fn new(name: &str, logger: Box<dyn Logger>, logging_on: bool) -> Self {
+        Self::of_model(super::wound::WoundModel::fresh, name, logger, logging_on)
+    }
+
+    /// An instance of the model that `fresh` makes.
+    pub fn of_model(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Box<dyn Logger>, logging_on: bool) -> Self {
         Self {
             name: name.to_owned(),
             logger,
             categories: [true, true, logging_on],
             machine: Machine::Instantiated,
-            model: Model::new(),
+            clock: FRESH_CLOCK,
+            model: fresh(),
+            fresh,
             states: HashMap::new(),
             next_handle: 1,
         }
@@ -203,6 +172,10 @@ impl Instance {
 
     pub fn machine(&self) -> Machine {
         self.machine
+    }
+
+    pub fn description(&self) -> &'static Description {
+        self.model.description()
     }
 
     /// After an internal failure (a caught panic): the model data may be half-updated,
@@ -273,11 +246,8 @@ impl Instance {
         if let Some(tol) = tolerance.filter(|&t| !(t.is_finite() && t > 0.0)) {
             return Err(format!("tolerance = {tol} is invalid: it must be finite and > 0"));
         }
-        self.model.start_time = start;
-        self.model.time = start;
-        self.model.stop_time = stop;
-        self.model.experiment_tolerance = tolerance;
-        self.model.solver = None;
+        self.clock = Clock { start, stop, time: start };
+        self.model.set_experiment_tolerance(tolerance);
         Ok(())
     }
 
@@ -287,7 +257,7 @@ impl Instance {
     }
 
     pub fn exit_initialization_mode(&mut self) -> Result<(), Rejected> {
-        self.ensure_solver()?;
+        self.prepare()?;
         self.machine = Machine::StepComplete;
         Ok(())
     }
@@ -300,52 +270,29 @@ impl Instance {
     /// `fmi2Reset`: back to the state after instantiation (saved FMU states are kept).
     pub fn reset(&mut self) -> Result<(), Rejected> {
         self.machine = Machine::Instantiated;
-        self.model = Model::new();
+        self.clock = FRESH_CLOCK;
+        self.model = (self.fresh)();
         Ok(())
     }
 
-    fn ensure_solver(&mut self) -> Result<&Solver, Rejected> {
-        if self.model.solver.is_none() {
-            let m = &self.model;
-            let solver = m.build_solver()?;
-            self.log_debug(&format!(
-                "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns (tolerance {:e}, {:?})",
-                m.params.lambda,
-                m.params.sigma,
-                m.params.r_inf,
-                solver.unknowns(),
-                m.effective_tolerance(),
-                m.scheme
-            ));
-            self.model.solver = Some(solver);
+    fn prepare(&mut self) -> Result<(), Rejected> {
+        if let Some(text) = self.model.prepare()? {
+            self.log_debug(&text);
         }
-        Ok(self.model.solver.as_ref().expect("built above"))
+        Ok(())
     }
 
     /// Values of the listed variables, all of type `kind` (Integers are exact in f64).
     fn get_values(&mut self, kind: Kind, vrs: &[u32]) -> Result<Vec<f64>, Rejected> {
-        let vrs: Vec<Vr> = vrs.iter().map(|&v| typed_vr(kind, v)).collect::<Result<_, _>>()?;
-        let p = self.model.edge_stress;
-        let needs_solver = vrs.iter().any(|v| matches!(v, Vr::WoundRadius | Vr::EdgeVelocity));
-        if needs_solver {
-            self.ensure_solver()?;
+        let d = self.description();
+        let mut needs_model = false;
+        for &v in vrs {
+            needs_model |= d.typed(kind, v)?.causality == Causality::Output;
         }
-        let m = &self.model;
-        Ok(vrs
-            .into_iter()
-            .map(|vr| match vr {
-                Vr::Lambda => m.params.lambda,
-                Vr::Sigma => m.params.sigma,
-                Vr::RInf => m.params.r_inf,
-                Vr::EdgeStress => p,
-                Vr::Tolerance => m.tolerance,
-                Vr::Method => m.scheme.method as f64,
-                Vr::GridPoints => m.scheme.grid_points as f64,
-                Vr::InternalStep => m.scheme.internal_step,
-                Vr::WoundRadius => m.solver.as_ref().expect("built").wound_radius(),
-                Vr::EdgeVelocity => m.solver.as_ref().expect("built").edge_velocity(p),
-            })
-            .collect())
+        if needs_model {
+            self.prepare()?;
+        }
+        Ok(vrs.iter().map(|&v| self.model.get(v, self.clock.time)).collect())
     }
 
     pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
@@ -363,10 +310,10 @@ impl Instance {
     /// Set the listed variables of type `kind`: all values are checked first; any
     /// rejection sets none of them.
     fn set_values(&mut self, kind: Kind, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
+        let d = self.description();
         let mut checked = Vec::with_capacity(vrs.len());
         for (&v, &x) in vrs.iter().zip(values) {
-            let vr = typed_vr(kind, v)?;
-            let var = vr.var();
+            let var = d.typed(kind, v)?;
             let fixed_now = var.variability == Variability::Fixed
                 && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
             if var.causality == Causality::Output {
@@ -378,24 +325,9 @@ impl Instance {
                     var.name, self.machine
                 ));
             }
-            checked.push((vr, check_value(vr, x)?));
+            checked.push((v, self.model.check(v, x)?));
         }
-        for (vr, x) in checked {
-            let m = &mut self.model;
-            match vr {
-                Vr::Lambda => m.params.lambda = x,
-                Vr::Sigma => m.params.sigma = x,
-                Vr::RInf => m.params.r_inf = x,
-                Vr::Tolerance => m.tolerance = x,
-                Vr::Method => m.scheme.method = x as i32,
-                Vr::GridPoints => m.scheme.grid_points = x as i32,
-                Vr::InternalStep => m.scheme.internal_step = x,
-                _ => m.edge_stress = x,
-            }
-            if vr != Vr::EdgeStress {
-                m.solver = None;
-            }
-        }
+        checked.into_iter().for_each(|(v, x)| self.model.set(v, x));
         Ok(())
     }
 
@@ -410,39 +342,65 @@ impl Instance {
         self.set_values(Kind::Integer, vrs, &values)
     }
 
-    /// `fmi2DoStep`: the edge stress set before the call is held over `[t, t + h]`.
+    /// `fmi2GetDirectionalDerivative`: `dvUnknown = J dvKnown` with `J[i][j] =
+    /// d unknown_i / d known_j`, for outputs (unknowns) with respect to inputs (knowns),
+    /// at the current communication point.
+    pub fn directional_derivative(&mut self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> Result<Vec<f64>, Rejected> {
+        let d = self.description();
+        let role = |v: u32, want: Causality, what: &str| -> Result<(), Rejected> {
+            let var = d.typed(Kind::Real, v)?;
+            if var.causality == want {
+                Ok(())
+            } else {
+                let role = var.causality.as_str();
+                let article = if role.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+                Err(format!("{} (value reference {v}) is {article} {role} but a {what} must be a Real {}", var.name, want.as_str()))
+            }
+        };
+        unknowns.iter().try_for_each(|&v| role(v, Causality::Output, "vUnknown_ref entry"))?;
+        knowns.iter().try_for_each(|&v| role(v, Causality::Input, "vKnown_ref entry"))?;
+        if let Some(x) = seed.iter().find(|x| !x.is_finite()) {
+            return Err(format!("dvKnown = {x} is invalid: it must be finite"));
+        }
+        self.prepare()?;
+        let t = self.clock.time;
+        Ok(unknowns
+            .iter()
+            .map(|&u| knowns.iter().zip(seed).map(|(&k, s)| self.model.partial(u, k, t) * s).sum())
+            .collect())
+    }
+
+    /// `fmi2DoStep`: the inputs set before the call are held over `[t, t + h]`.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<(), Rejected> {
-        let now = self.model.time;
+        let now = self.clock.time;
         if !t.is_finite() || (t - now).abs() > 1e-12 * now.abs().max(1.0) {
             return Err(format!("Expected currentCommunicationPoint = {now} but was {t}"));
         }
         if !(h.is_finite() && h > 0.0) {
             return Err(format!("communicationStepSize = {h} is invalid: it must be finite and > 0"));
         }
-        if let Some(stop) = self.model.stop_time.filter(|&s| now + h > s + 1e-12 * s.abs().max(1.0)) {
+        if let Some(stop) = self.clock.stop.filter(|&s| now + h > s + 1e-12 * s.abs().max(1.0)) {
             return Err(format!("a step of {h} from {now} would pass stopTime = {stop}"));
         }
-        let p = self.model.edge_stress;
-        self.ensure_solver()?;
-        let solver = self.model.solver.as_mut().expect("built above");
-        solver.advance(h, p).map_err(|e| e.to_string())?;
-        self.model.time = now + h;
+        self.prepare()?;
+        self.model.step(now, h)?;
+        self.clock.time = now + h;
         Ok(())
     }
 
     /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`.
     pub fn last_successful_time(&self) -> f64 {
-        self.model.time
+        self.clock.time
     }
 
     /// `fmi2GetBooleanStatus(fmi2Terminated)`: true once the stop time is reached.
     pub fn wants_to_terminate(&self) -> bool {
-        self.model.stop_time.is_some_and(|s| self.model.time >= s - 1e-12 * s.abs().max(1.0))
+        self.clock.stop.is_some_and(|s| self.clock.time >= s - 1e-12 * s.abs().max(1.0))
     }
 
     /// `fmi2GetFMUstate`: save into `handle` if given (it must be ours), else a new one.
     pub fn get_fmu_state(&mut self, handle: Option<u64>) -> Result<u64, Rejected> {
-        let snap = Snapshot { machine: self.machine, model: self.model.clone() };
+        let snap = Snapshot { machine: self.machine, clock: self.clock, model: self.model.boxed_clone() };
         let h = match handle {
             Some(h) if self.states.contains_key(&h) => h,
             Some(h) => return Err(format!("FMU state {h:#x} was not allocated by this instance")),
@@ -467,6 +425,7 @@ impl Instance {
     pub fn set_fmu_state(&mut self, handle: u64) -> Result<(), Rejected> {
         let snap = self.snapshot(handle)?.clone();
         self.machine = snap.machine;
+        self.clock = snap.clock;
         self.model = snap.model;
         Ok(())
     }
@@ -479,113 +438,22 @@ impl Instance {
 
     pub fn serialize_fmu_state(&self, handle: u64) -> Result<Vec<u8>, Rejected> {
         let snap = self.snapshot(handle)?;
-        let m = &snap.model;
-        Ok(state::encode(&Saved {
-            machine: snap.machine,
-            params: m.params,
-            settings: m.settings()?,
-            tolerance: m.tolerance,
-            experiment_tolerance: m.experiment_tolerance,
-            scheme: m.scheme,
-            edge_stress: m.edge_stress,
-            start_time: m.start_time,
-            time: m.time,
-            stop_time: m.stop_time,
-            solver: m.solver.as_ref().map(Solver::state),
-        }))
+        let model = snap.model.encode()?;
+        Ok(state::encode(self.description().model_identifier, snap.machine, &snap.clock, &model))
     }
 
-    /// `fmi2DeSerializeFMUstate`: the bytes must come from an instance with the same
-    /// parameters (a state is a point of one trajectory, not a parameter set).
-    /// Into `target` if given (it must be ours), else into a new state.
+    /// `fmi2DeSerializeFMUstate`: the bytes must come from an instance of the same model
+    /// with the same parameters (a state is a point of one trajectory, not a parameter
+    /// set). Into `target` if given (it must be ours), else into a new state.
     pub fn deserialize_fmu_state(&mut self, bytes: &[u8], target: Option<u64>) -> Result<u64, Rejected> {
-        let saved = state::decode(bytes)?;
-        let (mine, theirs) = (self.model.params, saved.params);
-        for (name, a, b) in [
-            ("lambda", mine.lambda, theirs.lambda),
-            ("sigma", mine.sigma, theirs.sigma),
-            ("R_inf", mine.r_inf, theirs.r_inf),
-        ] {
-            if a.to_bits() != b.to_bits() {
-                return Err(format!("serialized FMU state has {name} = {b} but this instance has {name} = {a}"));
-            }
-        }
-        let mine = self.model.effective_tolerance();
-        let theirs = saved.experiment_tolerance.unwrap_or(saved.tolerance);
-        if mine.to_bits() != theirs.to_bits() {
-            return Err(format!("serialized FMU state has tolerance = {theirs} but this instance has tolerance = {mine}"));
-        }
-        if saved.scheme != self.model.scheme {
-            return Err(format!("serialized FMU state has {:?} but this instance has {:?}", saved.scheme, self.model.scheme));
-        }
-        // The mesh follows from parameters and tolerance (checked equal to ours above):
-        // bytes that claim another are forged.
-        let expected = self.model.settings()?;
-        if saved.settings != expected {
-            return Err(format!(
-                "serialized FMU state has mesh {:?} but its parameters and tolerance give {:?}",
-                saved.settings.mesh, expected.mesh
-            ));
-        }
-        let mut model = Model {
-            params: saved.params,
-            tolerance: saved.tolerance,
-            experiment_tolerance: saved.experiment_tolerance,
-            scheme: saved.scheme,
-            edge_stress: saved.edge_stress,
-            start_time: saved.start_time,
-            stop_time: saved.stop_time,
-            time: saved.time,
-            solver: None,
-        };
-        if let Some(st) = &saved.solver {
-            // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.
-            let mut s = match &self.model.solver {
-                Some(own) => own.clone(),
-                None => model.build_solver()?,
-            };
-            s.restore(st).map_err(|e| format!("serialized FMU state: {e}"))?;
-            model.solver = Some(s);
-        }
+        let (machine, clock, payload) = state::decode(self.description().model_identifier, bytes)?;
+        let model = self.model.decode(payload)?;
         let handle = match target {
             Some(h) => self.snapshot(h).map(|_| h)?,
             None => self.new_handle(),
         };
-        self.states.insert(handle, Snapshot { machine: saved.machine, model });
+        self.states.insert(handle, Snapshot { machine, clock, model });
         Ok(handle)
-    }
-}
-
-/// Validate a value for a settable variable; the message names the variable and value.
-fn check_value(vr: Vr, x: f64) -> Result<f64, Rejected> {
-    let positive = |name: &str| {
-        if x.is_finite() && x > 0.0 { Ok(x) } else { Err(format!("{name} = {x} is invalid: it must be finite and > 0")) }
-    };
-    let in_range = || {
-        let (lo, hi) = vr.var().range.expect("Integer variables declare a range");
-        if (lo as f64..=hi as f64).contains(&x) {
-            Ok(x)
-        } else {
-            Err(format!("{} = {x} is invalid: it must be in {lo} ..= {hi}", vr.var().name))
-        }
-    };
-    match vr {
-        Vr::Lambda => check_lambda(x).map_err(|e| e.to_string()),
-        Vr::Sigma => check_sigma(x).map_err(|e| e.to_string()),
-        Vr::RInf => check_r_inf(x).map_err(|e| e.to_string()),
-        Vr::Tolerance => positive("tolerance"),
-        Vr::InternalStep => positive("internal_step"),
-        Vr::Method | Vr::GridPoints => in_range(),
-        _ => check_edge_stress(x).map_err(|e| e.to_string()),
-    }
-}
-
-/// The variable of a value reference, which must be of type `kind`.
-fn typed_vr(kind: Kind, v: u32) -> Result<Vr, Rejected> {
-    match Vr::from_u32(v) {
-        Some(vr) if vr.var().kind == kind => Ok(vr),
-        Some(vr) => Err(format!("{} (value reference {v}) is {}, not {}", vr.var().name, vr.var().kind.as_str(), kind.as_str())),
-        None => Err(format!("no {} variable has value reference {v}", kind.as_str())),
     }
 }
 

@@ -1,11 +1,29 @@
-//! The FMI 2.0 co-simulation boundary: the variable table ([`variables`]), a safe
-//! instance with its state machine ([`instance`]) and FMU states ([`state`]), and the
-//! only `unsafe` code of the crate: the C types, the panic boundary and the exported
-//! functions.
+//! The FMI 2.0 co-simulation boundary, shared by every model of the library: the
+//! model interface ([`model`]), a safe instance with its state machine ([`instance`])
+//! and FMU states ([`state`]), and the only `unsafe` code of the crate: the C types, the
+//! panic boundary and the exported functions.
+//!
+//! One shared object serves both FMUs: `fmi2Instantiate` picks the model by the GUID the
+//! master passes (each `.fmu` carries a copy named after its `modelIdentifier`).
 
 pub mod boundary;
 pub mod ffi;
 pub mod instance;
+pub mod model;
+pub mod purse;
 pub mod state;
 pub mod types;
-pub mod variables;
+pub mod wound;
+
+pub use wound::variables;
+
+use model::{Description, FmuModel};
+
+/// The models of this library: description and a constructor of a fresh model.
+pub static MODELS: [(&Description, fn() -> Box<dyn FmuModel>); 2] =
+    [(&wound::variables::DESCRIPTION, wound::WoundModel::fresh), (&purse::variables::DESCRIPTION, purse::PurseModel::fresh)];
+
+/// The model whose `modelDescription.xml` has this GUID.
+pub fn model_for_guid(guid: &str) -> Option<fn() -> Box<dyn FmuModel>> {
+    MODELS.iter().find(|(d, _)| d.guid == guid).map(|(_, fresh)| *fresh)
+}

@@ -1,52 +1,29 @@
-//! FMU states: what `fmi2GetFMUstate` saves, and its byte format for
-//! `fmi2SerializeFMUstate` / `fmi2DeSerializeFMUstate`.
+//! The byte format of serialized FMU states (`fmi2SerializeFMUstate` /
+//! `fmi2DeSerializeFMUstate`): an envelope that the glue writes for every model, around
+//! the model's own bytes ([`super::model::FmuModel::encode`]).
 //!
 //! ```text
 //! offset  size  field
 //! 0       8     magic "WOUNDFMU"
-//! 8       4     format version (u32 LE) = 1
+//! 8       4     format version (u32 LE) = 2
 //! 12      4     payload length in bytes (u32 LE)
 //! 16      n     payload (below)
 //! 16+n    4     CRC-32 of bytes 0 .. 16+n (u32 LE)
 //!
-//! payload: machine state (u8), lambda, sigma, R_inf (f64 LE), mesh degree, elements (u32),
-//!          edge scale, tolerance, edge stress, start time, time (f64),
-//!          has experiment tolerance (u8), experiment tolerance (f64), method, grid points (u32),
-//!          internal step (f64), has stop time (u8), stop time (f64),
-//!          has solver (u8), [solver time (f64), n (u32), n modal coefficients (f64)]
+//! payload: model identifier length (u8), model identifier (UTF-8), machine state (u8),
+//!          start time, time (f64 LE), has stop time (u8), stop time (f64),
+//!          the model's bytes (the rest)
 //! ```
 //!
-//! Decoding checks every length, the magic, the version, the checksum and every value,
-//! so truncated, corrupted or foreign bytes are rejected with a reason, never read past.
+//! Decoding checks every length, the magic, the version, the checksum, the model and
+//! every value, so truncated, corrupted or foreign bytes are rejected with a reason,
+//! never read past. The model checks its own bytes the same way, with [`Reader`].
 
-use crate::solver::{MeshSpec, Params, Scheme, Settings, SolverState};
-
-/// The FMU's `method`, `grid_points` and `internal_step` parameters.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SchemeChoice {
-    pub method: i32,
-    pub grid_points: i32,
-    pub internal_step: f64,
-}
-
-impl SchemeChoice {
-    /// The solver scheme: 0 modal on `mesh`, 1 TR-BDF2 on `mesh`, 2 the paper's, 3 explicit
-    /// (values were range-checked when set).
-    pub fn scheme(&self, settings: Settings) -> Scheme {
-        let (points, max_step) = (self.grid_points.max(3) as usize, self.internal_step);
-        match self.method {
-            1 => Scheme::TrBdf2 { mesh: settings.mesh, max_step },
-            2 => Scheme::Paper { points, max_step },
-            3 => Scheme::Explicit { points, max_step },
-            _ => Scheme::Modal(settings),
-        }
-    }
-}
+use super::instance::Clock;
 
 const MAGIC: &[u8; 8] = b"WOUNDFMU";
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 const HEADER: usize = 16;
-const MAX_COEFFS: usize = 1 << 20;
 
 /// The FMI state machine's states (FMI 2.0 co-simulation, synchronous).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -71,64 +48,35 @@ impl Machine {
     }
 }
 
-/// Everything of an instance that an FMU state saves, in plain values.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Saved {
-    pub machine: Machine,
-    pub params: Params,
-    pub settings: Settings,
-    /// The `tolerance` parameter and the tolerance of `fmi2SetupExperiment`, if defined.
-    pub tolerance: f64,
-    pub experiment_tolerance: Option<f64>,
-    pub scheme: SchemeChoice,
-    pub edge_stress: f64,
-    pub start_time: f64,
-    pub time: f64,
-    pub stop_time: Option<f64>,
-    pub solver: Option<SolverState>,
-}
-
-struct Writer(Vec<u8>);
+/// Little-endian writer of a serialized state.
+pub struct Writer(pub Vec<u8>);
 
 impl Writer {
-    fn u8(&mut self, v: u8) {
+    pub fn u8(&mut self, v: u8) {
         self.0.push(v);
     }
-    fn u32(&mut self, v: u32) {
+    pub fn u32(&mut self, v: u32) {
         self.0.extend_from_slice(&v.to_le_bytes());
     }
-    fn f64(&mut self, v: f64) {
+    pub fn f64(&mut self, v: f64) {
         self.0.extend_from_slice(&v.to_le_bytes());
     }
 }
 
-pub fn encode(s: &Saved) -> Vec<u8> {
-    let mut w = Writer(Vec::with_capacity(128 + 8 * s.solver.as_ref().map_or(0, |x| x.coeffs.len())));
+/// The envelope around a model's bytes.
+pub fn encode(model_identifier: &str, machine: Machine, clock: &Clock, model: &[u8]) -> Vec<u8> {
+    let mut w = Writer(Vec::with_capacity(64 + model.len()));
     w.0.extend_from_slice(MAGIC);
     w.u32(FORMAT_VERSION);
     w.u32(0); // payload length, patched below
-    w.u8(s.machine.code());
-    for v in [s.params.lambda, s.params.sigma, s.params.r_inf] {
-        w.f64(v);
-    }
-    w.u32(s.settings.mesh.degree as u32);
-    w.u32(s.settings.mesh.elements as u32);
-    for v in [s.settings.mesh.edge_scale, s.tolerance, s.edge_stress, s.start_time, s.time] {
-        w.f64(v);
-    }
-    w.u8(s.experiment_tolerance.is_some() as u8);
-    w.f64(s.experiment_tolerance.unwrap_or(0.0));
-    w.u32(s.scheme.method as u32);
-    w.u32(s.scheme.grid_points as u32);
-    w.f64(s.scheme.internal_step);
-    w.u8(s.stop_time.is_some() as u8);
-    w.f64(s.stop_time.unwrap_or(0.0));
-    w.u8(s.solver.is_some() as u8);
-    if let Some(st) = &s.solver {
-        w.f64(st.time);
-        w.u32(st.coeffs.len() as u32);
-        st.coeffs.iter().for_each(|&c| w.f64(c));
-    }
+    w.u8(model_identifier.len() as u8);
+    w.0.extend_from_slice(model_identifier.as_bytes());
+    w.u8(machine.code());
+    w.f64(clock.start);
+    w.f64(clock.time);
+    w.u8(clock.stop.is_some() as u8);
+    w.f64(clock.stop.unwrap_or(0.0));
+    w.0.extend_from_slice(model);
     let payload = (w.0.len() - HEADER) as u32;
     w.0[12..16].copy_from_slice(&payload.to_le_bytes());
     let crc = crc32fast::hash(&w.0);
@@ -136,33 +84,42 @@ pub fn encode(s: &Saved) -> Vec<u8> {
     w.0
 }
 
-struct Reader<'a> {
+/// Little-endian reader of a serialized state that never reads past the end.
+pub struct Reader<'a> {
     bytes: &'a [u8],
     at: usize,
 }
 
-impl Reader<'_> {
-    fn take(&mut self, n: usize) -> Result<&[u8], String> {
+impl<'a> Reader<'a> {
+    pub fn new(bytes: &'a [u8]) -> Self {
+        Self { bytes, at: 0 }
+    }
+    /// Whether every byte was read.
+    pub fn finish(&self) -> Result<(), String> {
+        let left = self.bytes.len() - self.at;
+        if left == 0 { Ok(()) } else { Err(format!("serialized FMU state has {left} unread bytes")) }
+    }
+    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
         let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
         let end = end.ok_or_else(|| format!("serialized FMU state is truncated at byte {}", self.at))?;
         let out = &self.bytes[self.at..end];
         self.at = end;
         Ok(out)
     }
-    fn u8(&mut self) -> Result<u8, String> {
+    pub fn u8(&mut self) -> Result<u8, String> {
         Ok(self.take(1)?[0])
     }
-    fn u32(&mut self) -> Result<u32, String> {
+    pub fn u32(&mut self) -> Result<u32, String> {
         Ok(u32::from_le_bytes(self.take(4)?.try_into().expect("4 bytes")))
     }
-    fn f64(&mut self) -> Result<f64, String> {
+    pub fn f64(&mut self) -> Result<f64, String> {
         Ok(f64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")))
     }
-    fn finite(&mut self, what: &str) -> Result<f64, String> {
+    pub fn finite(&mut self, what: &str) -> Result<f64, String> {
         let v = self.f64()?;
         if v.is_finite() { Ok(v) } else { Err(format!("serialized FMU state has {what} = {v}")) }
     }
-    fn flag(&mut self, what: &str) -> Result<bool, String> {
+    pub fn flag(&mut self, what: &str) -> Result<bool, String> {
         match self.u8()? {
             0 => Ok(false),
             1 => Ok(true),
@@ -171,14 +128,16 @@ impl Reader<'_> {
     }
 }
 
-pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
+/// Open the envelope: the machine state, the clock and the model's bytes, checked to come
+/// from the model `model_identifier`.
+pub fn decode<'a>(model_identifier: &str, bytes: &'a [u8]) -> Result<(Machine, Clock, &'a [u8]), String> {
     if bytes.len() < HEADER + 4 {
         return Err(format!("serialized FMU state is {} bytes, shorter than its header", bytes.len()));
     }
     if &bytes[..8] != MAGIC {
         return Err("serialized FMU state does not start with \"WOUNDFMU\": not a WoundOpening state".into());
     }
-    let mut r = Reader { bytes, at: 8 };
+    let mut r = Reader { bytes: &bytes[..bytes.len().saturating_sub(4)], at: 8 };
     let version = r.u32()?;
     if version != FORMAT_VERSION {
         return Err(format!(
@@ -198,115 +157,67 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
     if stored != actual {
         return Err(format!("serialized FMU state is corrupted: checksum {actual:08x}, expected {stored:08x}"));
     }
+    let n = r.u8()? as usize;
+    let theirs = String::from_utf8_lossy(r.take(n)?).into_owned();
+    if theirs != model_identifier {
+        return Err(format!("serialized FMU state is of model {theirs:?} but this instance is {model_identifier:?}"));
+    }
     let code = r.u8()?;
     let machine = Machine::from_code(code).ok_or_else(|| format!("serialized FMU state has machine state {code}"))?;
-    let params = Params { lambda: r.f64()?, sigma: r.f64()?, r_inf: r.f64()? };
-    params.validate().map_err(|e| format!("serialized FMU state: {e}"))?;
-    let degree = r.u32()? as usize;
-    let elements = r.u32()? as usize;
-    let edge_scale = r.finite("edge scale")?;
-    let settings = Settings { mesh: MeshSpec { degree, elements, edge_scale } };
-    let tolerance = r.finite("tolerance")?;
-    let edge_stress = r.finite("edge_stress")?;
-    let start_time = r.finite("start time")?;
+    let start = r.finite("start time")?;
     let time = r.finite("time")?;
-    let has_experiment_tolerance = r.flag("experiment tolerance")?;
-    let experiment_tolerance = r.finite("experiment tolerance")?;
-    let experiment_tolerance = has_experiment_tolerance.then_some(experiment_tolerance);
-    for tol in std::iter::once(tolerance).chain(experiment_tolerance) {
-        if tol <= 0.0 {
-            return Err(format!("serialized FMU state has tolerance = {tol}"));
-        }
-    }
-    let (method, grid_points) = (r.u32()?, r.u32()?);
-    let internal_step = r.finite("internal_step")?;
-    if method > 3 || !(3..=100_000).contains(&grid_points) || internal_step <= 0.0 {
-        return Err(format!(
-            "serialized FMU state has method {method}, grid_points {grid_points}, internal_step {internal_step}"
-        ));
-    }
-    let scheme = SchemeChoice { method: method as i32, grid_points: grid_points as i32, internal_step };
     let has_stop = r.flag("stop time")?;
     let stop = r.finite("stop time")?;
-    let solver = if r.flag("solver")? {
-        let st = r.finite("solver time")?;
-        let n = r.u32()? as usize;
-        if n > MAX_COEFFS {
-            return Err(format!("serialized FMU state has {n} modal coefficients (at most {MAX_COEFFS})"));
-        }
-        let coeffs = (0..n).map(|_| r.finite("a modal coefficient")).collect::<Result<_, _>>()?;
-        Some(SolverState { time: st, coeffs })
-    } else {
-        None
-    };
-    if r.at != HEADER + payload {
-        return Err(format!("serialized FMU state has {} unread payload bytes", HEADER + payload - r.at));
+    let stop = has_stop.then_some(stop);
+    if time < start || stop.is_some_and(|s| s < start) {
+        return Err(format!("serialized FMU state has start time {start}, time {time}, stop time {stop:?}"));
     }
-    Ok(Saved {
-        machine,
-        params,
-        settings,
-        tolerance,
-        experiment_tolerance,
-        scheme,
-        edge_stress,
-        start_time,
-        time,
-        stop_time: has_stop.then_some(stop),
-        solver,
-    })
+    Ok((machine, Clock { start, stop, time }, &r.bytes[r.at..]))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn sample() -> Saved {
-        Saved {
-            machine: Machine::StepComplete,
-            params: Params { lambda: 0.1, sigma: 1.0, r_inf: 10.0 },
-            settings: Settings::default(),
-            tolerance: 1e-10,
-            experiment_tolerance: Some(1e-6),
-            scheme: SchemeChoice { method: 2, grid_points: 101, internal_step: 1e-3 },
-            edge_stress: 0.25,
-            start_time: 0.0,
-            time: 1.5,
-            stop_time: Some(10.0),
-            solver: Some(SolverState { time: 1.5, coeffs: vec![0.5, -1.25, 3.0] }),
-        }
+    const CLOCK: Clock = Clock { start: 0.0, stop: Some(10.0), time: 1.5 };
+    const MODEL: &[u8] = &[1, 2, 3, 4, 5];
+
+    fn sample() -> Vec<u8> {
+        encode("WoundOpening", Machine::StepComplete, &CLOCK, MODEL)
     }
 
     #[test]
     fn round_trips() {
-        let s = sample();
-        assert_eq!(decode(&encode(&s)).unwrap(), s);
-        let none = Saved { solver: None, stop_time: None, ..sample() };
-        assert_eq!(decode(&encode(&none)).unwrap(), none);
+        assert_eq!(decode("WoundOpening", &sample()).unwrap(), (Machine::StepComplete, CLOCK, MODEL));
+        let open = Clock { stop: None, ..CLOCK };
+        let bytes = encode("PurseString", Machine::Terminated, &open, &[]);
+        assert_eq!(decode("PurseString", &bytes).unwrap(), (Machine::Terminated, open, &[][..]));
     }
 
     #[test]
     fn rejects_every_truncation_and_every_single_bit_flip() {
-        let bytes = encode(&sample());
+        let bytes = sample();
         for n in 0..bytes.len() {
-            assert!(decode(&bytes[..n]).is_err(), "truncated to {n}");
+            assert!(decode("WoundOpening", &bytes[..n]).is_err(), "truncated to {n}");
         }
         for i in 0..bytes.len() {
             for bit in 0..8 {
                 let mut b = bytes.clone();
                 b[i] ^= 1 << bit;
-                assert!(decode(&b).is_err(), "bit {bit} of byte {i}");
+                assert!(decode("WoundOpening", &b).is_err(), "bit {bit} of byte {i}");
             }
         }
     }
 
     #[test]
-    fn names_a_foreign_version() {
-        let mut bytes = encode(&sample());
-        bytes[8] = 2;
+    fn names_a_foreign_version_and_a_foreign_model() {
+        let mut bytes = sample();
+        bytes[8] = 1;
         let n = bytes.len() - 4;
         let crc = crc32fast::hash(&bytes[..n]);
         bytes[n..].copy_from_slice(&crc.to_le_bytes());
-        assert!(decode(&bytes).unwrap_err().contains("format version 2"));
+        assert!(decode("WoundOpening", &bytes).unwrap_err().contains("format version 1"));
+        let err = decode("PurseString", &sample()).unwrap_err();
+        assert!(err.contains("of model \"WoundOpening\" but this instance is \"PurseString\""), "{err}");
     }
 }

@@ -2,7 +2,8 @@
 //! the code uses) and an SVG plot of the wound radius computed by the solver itself.
 
 use plotters::prelude::*;
-use wound_opening::fmi::variables::VARIABLES;
+use wound_opening::fmi::model::Variable;
+use wound_opening::fmi::{purse, variables::VARIABLES};
 use wound_opening::solver::{Params, Settings, Solver, exact};
 
 type BoxError = Box<dyn std::error::Error>;
@@ -56,8 +57,9 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
-pub fn index_html() -> Result<String, BoxError> {
-    let rows: String = VARIABLES
+/// One table row per variable.
+fn variable_rows(variables: &[Variable]) -> String {
+    variables
         .iter()
         .map(|v| {
             let start = v.start.map_or("".into(), |s| s.to_string());
@@ -71,11 +73,20 @@ pub fn index_html() -> Result<String, BoxError> {
                 escape(v.description)
             )
         })
-        .collect();
+        .collect()
+}
+
+const STYLE: &str = "body{font-family:sans-serif;max-width:60em;margin:2em auto}td,th{padding:.2em .6em;border-bottom:1px solid #ccc}pre{background:#f4f4f4;padding:.6em}";
+const TABLE_HEAD: &str =
+    "<tr><th>name</th><th>value reference</th><th>causality</th><th>start</th><th>unit</th><th>description</th></tr>";
+
+/// `documentation/index.html` of WoundOpening.fmu.
+pub fn index_html() -> Result<String, BoxError> {
+    let rows = variable_rows(&VARIABLES);
     Ok(format!(
         r#"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>WoundOpening FMU</title>
-<style>body{{font-family:sans-serif;max-width:60em;margin:2em auto}}td,th{{padding:.2em .6em;border-bottom:1px solid #ccc}}pre{{background:#f4f4f4;padding:.6em}}</style>
+<style>{STYLE}</style>
 </head><body>
 <h1>WoundOpening</h1>
 <p>Opening of a circular wound in a thin, incompressible Kelvin-Voigt tissue (shear modulus G,
@@ -90,8 +101,13 @@ sigma_rr(1, t) = edge_stress,  sigma_rr(R_inf, t) = sigma,  u(r, 0) = sigma r / 
 wound_radius = 1 + u(1, t),  edge_velocity = u_t(1, t)</pre>
 <p>Solved by spectral elements in r (Galerkin form, edge stresses as natural boundary terms) and
 exactly in time, mode by mode, with edge_stress held constant over each communication step.</p>
+<h2>Physical units</h2>
+<p>The parameters R0 [um], T [s] and G [Pa] (all 1 by default, which keeps every value
+dimensionless) scale the master's time (t / T), the edge_stress input (/ G) and the outputs
+(wound_radius x R0, edge_velocity x R0 / T). From material constants: lambda = 2 sqrt(eta / zeta) / R0,
+sigma = tension / G, T = zeta R0<sup>2</sup> / (4 G); the viscous relaxation time is eta / G = lambda<sup>2</sup> T.</p>
 <h2>Variables</h2>
-<table><tr><th>name</th><th>value reference</th><th>causality</th><th>start</th><th>unit</th><th>description</th></tr>
+<table>{TABLE_HEAD}
 {rows}</table>
 <h2>Wound radius (computed by this FMU's solver)</h2>
 {svg}
@@ -99,4 +115,28 @@ exactly in time, mode by mode, with edge_stress held constant over each communic
 "#,
         svg = plot_svg()?
     ))
+}
+
+/// `documentation/index.html` of PurseString.fmu.
+pub fn purse_html() -> String {
+    let rows = variable_rows(&purse::variables::VARIABLES);
+    format!(
+        r#"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>PurseString FMU</title>
+<style>{STYLE}</style>
+</head><body>
+<h1>PurseString</h1>
+<p>An actin purse-string closing a wound, to couple with WoundOpening.fmu (its wound_radius
+output to this input, this edge_stress output to its input). FMI 2.0 co-simulation.</p>
+<pre>T_c(t) = 0                                              t &lt;= t_delay
+T_c(t) = T_max (1 - exp(-(t - t_delay) / t_assembly))   t &gt;  t_delay
+edge_stress = T_c / (thickness * wound_radius)           [pN / um^2 = Pa]</pre>
+<p>Time is the master's, in seconds since the cut. A wound_radius &lt;= 0 (a closed wound, which
+the linear tissue model does not describe) is refused with an error.</p>
+<h2>Variables</h2>
+<table>{TABLE_HEAD}
+{rows}</table>
+</body></html>
+"#
+    )
 }

@@ -13,6 +13,12 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     fn wound_radius(&self) -> f64;
     /// Edge velocity `u_t(1, t)` with edge stress `p` applied now.
     fn edge_velocity(&self, p: f64) -> f64;
+    /// `d u_t(1, t) / d p`: the edge velocity is affine in the edge stress applied now,
+    /// so its difference over a unit change of `p` is the slope (engines with a closed
+    /// form override this).
+    fn edge_velocity_slope(&self) -> f64 {
+        self.edge_velocity(1.0) - self.edge_velocity(0.0)
+    }
     /// `u(r)` at each radius (inside `[1, R_inf]`).
     fn displacement(&self, radii: &[f64]) -> Vec<f64>;
     /// `u_t(r)` at each radius, with edge stress `p`.

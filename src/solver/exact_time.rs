@@ -129,6 +129,14 @@ impl Engine for ModalEngine {
         self.modal_rates(p).dot(&self.op.edge_row)
     }
 
+    /// ```text
+    /// d/dp sum_k X[0, k] ((sigma - p) X[0, k] - c_k) / nu_k = -sum_k X[0, k]^2 / nu_k
+    /// ```
+    /// (independent of the state: a negative constant of the operator).
+    fn edge_velocity_slope(&self) -> f64 {
+        -self.op.edge_row.iter().zip(self.op.modes.nu.iter()).map(|(x, nu)| x * x / nu).sum::<f64>()
+    }
+
     fn displacement(&self, radii: &[f64]) -> Vec<f64> {
         let v = self.profile(&self.coeffs, radii);
         radii.iter().zip(v).map(|(r, v)| self.sigma * r.clamp(1.0, self.op.r_inf) / 6.0 + v).collect()

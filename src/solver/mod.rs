@@ -248,6 +248,13 @@ impl Solver {
         self.engine.edge_velocity(p)
     }
 
+    /// `d edge_velocity(p) / d p`, the direct response of the edge velocity to the edge
+    /// stress applied now (zero for the paper's and the explicit scheme, whose velocity
+    /// is a difference of stored states).
+    pub fn edge_velocity_slope(&self) -> f64 {
+        self.engine.edge_velocity_slope()
+    }
+
     /// Displacement `u(r)` at each requested radius (clamped into `[1, R_inf]`).
     pub fn displacement(&self, radii: &[f64]) -> Vec<f64> {
         self.engine.displacement(radii)

@@ -35,7 +35,10 @@ static void reseal(unsigned char *bytes, size_t size) {
 static void bad_instantiation(void) {
     const char *wrong = "{00000000-0000-0000-0000-000000000000}";
     char expected[256];
-    snprintf(expected, sizeof expected, "Expected GUID %s but was %s", F.guid, wrong);
+    /* The shared object serves two models; the message names both GUIDs, this FMU's first. */
+    snprintf(expected, sizeof expected, "Expected GUID %s (WoundOpening) or ", F.guid);
+    INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2CoSimulation, wrong, "", &CALLBACKS, fmi2False, fmi2False), expected);
+    snprintf(expected, sizeof expected, "(PurseString) but was %s", wrong);
     INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2CoSimulation, wrong, "", &CALLBACKS, fmi2False, fmi2False), expected);
     INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2CoSimulation, NULL, "", &CALLBACKS, fmi2False, fmi2False), "but was NULL");
     INSTANTIATE_REFUSED(F.fmi2Instantiate(NULL, fmi2CoSimulation, F.guid, "", &CALLBACKS, fmi2False, fmi2False), "instanceName is NULL");
@@ -137,6 +140,24 @@ static void before_initialization(fmi2Component c) {
     REFUSED(F.fmi2SetReal(c, both, 2, values), "lambda = -1 is invalid");
 }
 
+/* d(wound_radius, edge_velocity)/d edge_stress: 0 and the slope of the (affine) velocity,
+ * compared with a difference quotient of two fmi2GetReal calls; the input is restored. */
+static void directional_derivative(fmi2Component c) {
+    const fmi2ValueReference outs[2] = {VR_RADIUS, VR_VELOCITY};
+    fmi2Real seed = 2.0, dv[2] = {-1, -1}, p0 = 0, v0 = 0, v1 = 0, p1 = 0;
+    OK(F.fmi2GetDirectionalDerivative(c, outs, 2, &VR_EDGE_STRESS, 1, &seed, dv));
+    OK(F.fmi2GetReal(c, &VR_EDGE_STRESS, 1, &p0));
+    OK(F.fmi2GetReal(c, &VR_VELOCITY, 1, &v0));
+    p1 = p0 + 0.5;
+    OK(F.fmi2SetReal(c, &VR_EDGE_STRESS, 1, &p1));
+    OK(F.fmi2GetReal(c, &VR_VELOCITY, 1, &v1));
+    OK(F.fmi2SetReal(c, &VR_EDGE_STRESS, 1, &p0));
+    double fd = 2.0 * (v1 - v0) / 0.5; /* times the seed */
+    CHECK(dv[0] == 0.0, "d wound_radius/d edge_stress = %g, expected 0", dv[0]);
+    CHECK(dv[1] < 0.0 && fabs(dv[1] - fd) <= 1e-9 * fabs(fd), "d edge_velocity/d edge_stress x 2 = %.17g, difference quotient %.17g",
+          dv[1], fd);
+}
+
 /* Initialized: fixed parameters, communication points, steps, unsupported functions. */
 static void after_initialization(fmi2Component c) {
     fmi2ValueReference vr = VR_RADIUS;
@@ -160,8 +181,12 @@ static void after_initialization(fmi2Component c) {
     REFUSED(F.fmi2GetRealStatus(c, fmi2LastSuccessfulTime, NULL), "value is NULL");
     REFUSED(F.fmi2GetStringStatus(c, fmi2PendingStatus, &s), "status kind 1 is not available");
     REFUSED(F.fmi2GetIntegerStatus(c, fmi2DoStepStatus, &i), "status kind 0 is not available");
-    REFUSED(F.fmi2GetDirectionalDerivative(c, &vr, 1, &VR_EDGE_STRESS, 1, &r, &r),
-            "fmi2GetDirectionalDerivative is not supported");
+    REFUSED(F.fmi2GetDirectionalDerivative(c, &vr, 1, &VR_LAMBDA, 1, &r, &r),
+            "lambda (value reference 0) is a parameter but a vKnown_ref entry must be a Real input");
+    REFUSED(F.fmi2GetDirectionalDerivative(c, &VR_EDGE_STRESS, 1, &VR_EDGE_STRESS, 1, &r, &r),
+            "edge_stress (value reference 3) is an input but a vUnknown_ref entry must be a Real output");
+    REFUSED(F.fmi2GetDirectionalDerivative(c, &vr, 1, &VR_EDGE_STRESS, 1, NULL, &r), "dvKnown is NULL but 1 elements");
+    directional_derivative(c);
     REFUSED(F.fmi2SetRealInputDerivatives(c, &VR_EDGE_STRESS, 1, &order, &r), "is not supported");
     REFUSED(F.fmi2GetRealOutputDerivatives(c, &vr, 1, &order, &r), "is not supported");
     REFUSED(F.fmi2CancelStep(c), "fmi2CancelStep is not allowed in state StepComplete");
@@ -211,9 +236,9 @@ static void fmu_states(fmi2Component c) {
     bad[0] = 'X';
     REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "does not start with \"WOUNDFMU\"");
     memcpy(bad, bytes, size);
-    put_u32(bad + 8, 2); /* another format version, with a valid checksum */
+    put_u32(bad + 8, 1); /* another (the previous) format version, with a valid checksum */
     reseal(bad, size);
-    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "has format version 2; this FMU reads version 1");
+    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "has format version 1; this FMU reads version 2");
     CHECK(back == NULL, "a refused fmi2DeSerializeFMUstate leaves the state NULL");
 
     /* A state of another parameter set (lambda = 2). */

@@ -24,18 +24,28 @@ for _p in (ROOT / "python", HERE):
 
 import fmu_harness  # noqa: E402  (needs the sys.path entries above)
 
-FMU_PATH = ROOT / "target" / "fmu" / "WoundOpening.fmu"
+FMU_DIR = ROOT / "target" / "fmu"
+
+
+def _built(name: str) -> str:
+    path = FMU_DIR / f"{name}.fmu"
+    if not path.is_file():
+        pytest.fail(
+            f"FMU not found: {path}\n"
+            f"Build it first, from {ROOT}: cargo run --release -- fmu",
+            pytrace=False,
+        )
+    return str(path)
 
 
 @pytest.fixture(scope="session")
 def fmu_path() -> str:
-    if not FMU_PATH.is_file():
-        pytest.fail(
-            f"FMU not found: {FMU_PATH}\n"
-            f"Build it first, from {ROOT}: cargo run --release -- fmu",
-            pytrace=False,
-        )
-    return str(FMU_PATH)
+    return _built("WoundOpening")
+
+
+@pytest.fixture(scope="session")
+def purse_path() -> str:
+    return _built("PurseString")
 
 
 @pytest.fixture(scope="session")

@@ -1,72 +1,122 @@
-"""The FMU archive and its modelDescription.xml: fmpy's validation and the declared interface."""
+"""The FMU archives and their modelDescription.xml: fmpy's validation and the declared
+interface, for both FMUs (WoundOpening and the PurseString closure model)."""
 
 import zipfile
 
-from fmpy import platform, sharedLibraryExtension
+import pytest
+from fmpy import platform, read_model_description, sharedLibraryExtension
 from fmpy.validation import validate_fmu
 
-# name: (valueReference, causality, variability, start)
-VARIABLES = {
-    "lambda": (0, "parameter", "fixed", 1.0),
-    "sigma": (1, "parameter", "fixed", 1.0),
-    "R_inf": (2, "parameter", "fixed", 10.0),
-    "edge_stress": (3, "input", "continuous", 0.0),
-    "wound_radius": (4, "output", "continuous", None),
-    "edge_velocity": (5, "output", "continuous", None),
-    "tolerance": (6, "parameter", "fixed", 1e-10),
-    "method": (7, "parameter", "fixed", 0),
-    "grid_points": (8, "parameter", "fixed", 101),
-    "internal_step": (9, "parameter", "fixed", 1e-3),
+# name: (valueReference, causality, variability, start, unit)
+WOUND = {
+    "lambda": (0, "parameter", "fixed", 1.0, "1"),
+    "sigma": (1, "parameter", "fixed", 1.0, "1"),
+    "R_inf": (2, "parameter", "fixed", 10.0, "1"),
+    "edge_stress": (3, "input", "continuous", 0.0, "Pa"),
+    "wound_radius": (4, "output", "continuous", None, "um"),
+    "edge_velocity": (5, "output", "continuous", None, "um/s"),
+    "tolerance": (6, "parameter", "fixed", 1e-10, "1"),
+    "method": (7, "parameter", "fixed", 0, None),
+    "grid_points": (8, "parameter", "fixed", 101, None),
+    "internal_step": (9, "parameter", "fixed", 1e-3, "s"),
+    "R0": (10, "parameter", "fixed", 1.0, "um"),
+    "T": (11, "parameter", "fixed", 1.0, "s"),
+    "G": (12, "parameter", "fixed", 1.0, "Pa"),
+}
+
+PURSE = {
+    "T_max": (0, "parameter", "fixed", 6500.0, "pN"),
+    "t_assembly": (1, "parameter", "fixed", 30.0, "s"),
+    "t_delay": (2, "parameter", "fixed", 20.0, "s"),
+    "thickness": (3, "parameter", "fixed", 5.0, "um"),
+    "wound_radius": (4, "input", "continuous", 10.0, "um"),
+    "edge_stress": (5, "output", "continuous", None, "Pa"),
+    "line_tension": (6, "output", "continuous", None, "pN"),
+}
+
+# SI exponents (kg, m, s) and factor of each unit used.
+SI = {
+    "Pa": ((1, -1, -2), 1.0),
+    "s": ((0, 0, 1), 1.0),
+    "um": ((0, 1, 0), 1e-6),
+    "um/s": ((0, 1, -1), 1e-6),
+    "pN": ((1, 1, -2), 1e-12),
+}
+
+# name: (variables, {output: inputs it depends on directly})
+MODELS = {
+    "WoundOpening": (WOUND, {"wound_radius": [], "edge_velocity": ["edge_stress"]}),
+    "PurseString": (PURSE, {"edge_stress": ["wound_radius"], "line_tension": []}),
 }
 
 
-def test_validate_fmu_reports_no_problems(fmu_path):
-    problems = validate_fmu(fmu_path)
+@pytest.fixture(params=sorted(MODELS))
+def fmu(request, fmu_path, purse_path):
+    name = request.param
+    return name, {"WoundOpening": fmu_path, "PurseString": purse_path}[name]
+
+
+def test_validate_fmu_reports_no_problems(fmu):
+    _, path = fmu
+    problems = validate_fmu(path)
     assert problems == [], "\n".join(problems)
 
 
-def test_archive_layout(fmu_path):
-    with zipfile.ZipFile(fmu_path) as zf:
+def test_archive_layout(fmu):
+    name, path = fmu
+    with zipfile.ZipFile(path) as zf:
         names = zf.namelist()
     assert "modelDescription.xml" in names
-    assert f"binaries/{platform}/WoundOpening{sharedLibraryExtension}" in names, names
+    assert "documentation/index.html" in names
+    assert f"binaries/{platform}/{name}{sharedLibraryExtension}" in names, names
 
 
-def test_co_simulation_interface(model_description):
-    md = model_description
+def test_co_simulation_interface(fmu):
+    name, path = fmu
+    md = read_model_description(path)
     assert md.fmiVersion == "2.0"
     assert md.modelExchange is None
     cs = md.coSimulation
-    assert cs is not None and cs.modelIdentifier == "WoundOpening"
+    assert cs is not None and cs.modelIdentifier == name
     assert cs.canHandleVariableCommunicationStepSize
     assert cs.canGetAndSetFMUstate
     assert cs.canSerializeFMUstate
+    assert cs.providesDirectionalDerivative
     assert not cs.canBeInstantiatedOnlyOncePerProcess  # the tests run several instances
     categories = {c.name for c in md.logCategories}
     assert {"logStatusError", "logStatusWarning", "logCalls"} <= categories, categories
 
 
-def test_variables(model_description):
-    found = {v.name: v for v in model_description.modelVariables}
-    assert set(found) == set(VARIABLES), sorted(found)
-    for name, (vr, causality, variability, start) in VARIABLES.items():
-        v = found[name]
-        assert v.type == ("Integer" if name in ("method", "grid_points") else "Real"), name
-        assert (v.valueReference, v.causality, v.variability) == (vr, causality, variability), name
+def test_variables_and_units(fmu):
+    name, path = fmu
+    md = read_model_description(path)
+    table, _ = MODELS[name]
+    found = {v.name: v for v in md.modelVariables}
+    assert set(found) == set(table), sorted(found)
+    units = {u.name: u for u in md.unitDefinitions}
+    for var, (vr, causality, variability, start, unit) in table.items():
+        v = found[var]
+        assert v.type == ("Integer" if var in ("method", "grid_points") else "Real"), var
+        assert (v.valueReference, v.causality, v.variability) == (vr, causality, variability), var
         if start is not None:
-            assert v.start is not None and float(v.start) == start, (name, v.start)
+            assert v.start is not None and float(v.start) == start, (var, v.start)
+        assert v.unit == unit, (var, v.unit)
+        if unit in SI:
+            base = units[unit].baseUnit
+            (kg, m, s), factor = SI[unit]
+            assert (base.kg, base.m, base.s, float(base.factor)) == (kg, m, s, factor), (var, unit)
 
 
-def test_output_dependencies(model_description):
-    """edge_velocity is direct feedthrough of edge_stress; wound_radius is not.
-
-    fmpy gives dependencies=None when the attribute is absent (then everything is assumed
-    to be a dependency, which is legal but loses the information); check it when declared.
-    """
-    outputs = {u.variable.name: u for u in model_description.outputs}
-    assert set(outputs) == {"wound_radius", "edge_velocity"}
-    deps = {n: u.dependencies for n, u in outputs.items()}
-    if deps["edge_velocity"] is not None:
-        assert "edge_stress" in [d.name for d in deps["edge_velocity"]], deps
-    if deps["wound_radius"] is not None:
-        assert "edge_stress" not in [d.name for d in deps["wound_radius"]], deps
+def test_output_dependencies(fmu):
+    """Direct feedthrough as declared: WoundOpening's edge_velocity on edge_stress (and
+    not its radius, so a loop with PurseString has no algebraic loop); PurseString's
+    edge_stress on wound_radius."""
+    name, path = fmu
+    md = read_model_description(path)
+    _, want = MODELS[name]
+    outputs = {u.variable.name: u for u in md.outputs}
+    assert set(outputs) == set(want)
+    for out, inputs in want.items():
+        deps = outputs[out].dependencies
+        assert deps is not None, f"{out}: dependencies are declared"
+        assert [d.name for d in deps] == inputs, (out, deps)

@@ -1,0 +1,174 @@
+//! What the shared FMI glue knows of a model: its description (identity, variables,
+//! dependencies, capabilities, the XML) and the [`FmuModel`] trait. The glue
+//! ([`super::instance`], [`super::ffi`]) runs the state machine, the clock, logging and
+//! FMU states for any model; a model sees plain values only.
+
+/// Log categories of every model's `modelDescription.xml`, with their descriptions.
+pub const LOG_CATEGORIES: [(&str, &str); 3] = [
+    ("logStatusError", "Errors: rejected calls and values, with the reason"),
+    ("logStatusWarning", "Warnings"),
+    ("logCalls", "Every FMI call with its arguments, and solver set-up details"),
+];
+
+/// Flags of `<CoSimulation>`: what the shared glue provides, the same for every model.
+pub const CAPABILITIES: [(&str, &str); 8] = [
+    ("canHandleVariableCommunicationStepSize", "true"),
+    ("canGetAndSetFMUstate", "true"),
+    ("canSerializeFMUstate", "true"),
+    ("providesDirectionalDerivative", "true"),
+    ("canInterpolateInputs", "false"),
+    ("maxOutputDerivativeOrder", "0"),
+    ("canRunAsynchronuously", "false"),
+    ("canNotUseMemoryManagementFunctions", "true"),
+];
+
+/// A refused call or value: the reason, for the logger.
+pub type Rejected = String;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Causality {
+    Parameter,
+    Input,
+    Output,
+}
+
+impl Causality {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Parameter => "parameter",
+            Self::Input => "input",
+            Self::Output => "output",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variability {
+    Fixed,
+    Continuous,
+}
+
+impl Variability {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Fixed => "fixed",
+            Self::Continuous => "continuous",
+        }
+    }
+}
+
+/// The FMI type of a variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Real,
+    Integer,
+}
+
+impl Kind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Real => "Real",
+            Self::Integer => "Integer",
+        }
+    }
+}
+
+/// One `ScalarVariable`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Variable {
+    pub name: &'static str,
+    pub value_reference: u32,
+    pub kind: Kind,
+    pub causality: Causality,
+    pub variability: Variability,
+    /// `Some` for parameters and inputs (`initial` is then exact or absent).
+    pub start: Option<f64>,
+    /// Unit of a Real (empty for an Integer).
+    pub unit: &'static str,
+    /// Declared `min` and `max` (Integers only).
+    pub range: Option<(i32, i32)>,
+    pub description: &'static str,
+}
+
+impl Variable {
+    /// A fixed Real parameter.
+    pub const fn parameter(name: &'static str, vr: u32, start: f64, unit: &'static str, description: &'static str) -> Self {
+        let (kind, causality, variability, range) = (Kind::Real, Causality::Parameter, Variability::Fixed, None);
+        Self { name, value_reference: vr, kind, causality, variability, start: Some(start), unit, range, description }
+    }
+
+    /// A fixed Integer parameter in `min ..= max`.
+    pub const fn integer(name: &'static str, vr: u32, start: i32, range: (i32, i32), description: &'static str) -> Self {
+        let (kind, causality, variability, unit) = (Kind::Integer, Causality::Parameter, Variability::Fixed, "");
+        let start = Some(start as f64);
+        Self { name, value_reference: vr, kind, causality, variability, start, unit, range: Some(range), description }
+    }
+
+    /// A continuous Real output.
+    pub const fn output(name: &'static str, vr: u32, unit: &'static str, description: &'static str) -> Self {
+        let (kind, causality, variability, range) = (Kind::Real, Causality::Output, Variability::Continuous, None);
+        Self { name, value_reference: vr, kind, causality, variability, start: None, unit, range, description }
+    }
+
+    /// A continuous Real input.
+    pub const fn input(name: &'static str, vr: u32, start: f64, unit: &'static str, description: &'static str) -> Self {
+        let (kind, causality, variability, range) = (Kind::Real, Causality::Input, Variability::Continuous, None);
+        Self { name, value_reference: vr, kind, causality, variability, start: Some(start), unit, range, description }
+    }
+}
+
+/// Everything `modelDescription.xml` says that the code relies on; the XML itself is
+/// compiled in and `tests/model_description.rs` checks one against the other.
+#[derive(Debug)]
+pub struct Description {
+    pub model_identifier: &'static str,
+    pub guid: &'static str,
+    pub xml: &'static str,
+    /// Indexed by value reference.
+    pub variables: &'static [Variable],
+    /// `ModelStructure/Outputs`: each output's value reference with the inputs it depends
+    /// on directly and the `dependenciesKind` of each.
+    pub outputs: &'static [(u32, &'static [(u32, &'static str)])],
+    /// `ModelStructure/InitialUnknowns`: value references of the unknown and its knowns.
+    pub initial_unknowns: &'static [(u32, &'static [u32])],
+    /// Flags of `<CoSimulation>`.
+    pub capabilities: &'static [(&'static str, &'static str)],
+}
+
+impl Description {
+    /// The variable of a value reference, which must be of type `kind`.
+    pub fn typed(&self, kind: Kind, vr: u32) -> Result<&'static Variable, Rejected> {
+        match self.variables.get(vr as usize) {
+            Some(v) if v.kind == kind => Ok(v),
+            Some(v) => Err(format!("{} (value reference {vr}) is {}, not {}", v.name, v.kind.as_str(), kind.as_str())),
+            None => Err(format!("no {} variable has value reference {vr}", kind.as_str())),
+        }
+    }
+}
+
+/// A model behind the FMI glue. Value references arrive checked against the
+/// description (existing, of the right type; outputs never set; fixed parameters only
+/// before initialization ends). Times are the master's.
+pub trait FmuModel: Send {
+    fn description(&self) -> &'static Description;
+    fn boxed_clone(&self) -> Box<dyn FmuModel>;
+    /// Validate `x` for variable `vr` (a parameter or input); return the value to store.
+    fn check(&self, vr: u32, x: f64) -> Result<f64, Rejected>;
+    /// Store a checked value.
+    fn set(&mut self, vr: u32, x: f64);
+    /// The tolerance of `fmi2SetupExperiment`, if defined.
+    fn set_experiment_tolerance(&mut self, tolerance: Option<f64>);
+    /// Build what outputs and steps need, if not yet built; `Some(text)` to log when
+    /// something was built.
+    fn prepare(&mut self) -> Result<Option<String>, Rejected>;
+    /// Value of `vr` at master time `time` (after [`FmuModel::prepare`] for outputs).
+    fn get(&self, vr: u32, time: f64) -> f64;
+    /// Advance from `time` by `h > 0` (after `prepare`).
+    fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected>;
+    /// `d output / d input` at master time `time` (after `prepare`).
+    fn partial(&self, output: u32, input: u32, time: f64) -> f64;
+    /// The model's part of a serialized FMU state.
+    fn encode(&self) -> Result<Vec<u8>, Rejected>;
+    /// A model from `encode`d bytes, which must fit this instance's parameters.
+    fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected>;
+}

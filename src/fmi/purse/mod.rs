@@ -1,0 +1,122 @@
+//! The purse-string closure model ([`crate::closure`]) behind the FMI glue: no state
+//! but the clock and the input, so a step only moves time.
+
+pub mod variables;
+
+use super::model::{Description, FmuModel, Rejected};
+use super::state::{Reader, Writer};
+use crate::closure::{PurseString, check_nonnegative, check_radius};
+use variables::{DESCRIPTION, Vr};
+
+#[derive(Debug, Clone)]
+pub struct PurseModel {
+    purse: PurseString,
+    /// The input, micrometres.
+    wound_radius: f64,
+}
+
+impl PurseModel {
+    /// A model with the start values of the variable table.
+    pub fn fresh() -> Box<dyn FmuModel> {
+        let start = |vr: Vr| vr.var().start.unwrap_or(0.0);
+        Box::new(Self {
+            purse: PurseString {
+                max_tension: start(Vr::MaxTension),
+                assembly_time: start(Vr::AssemblyTime),
+                delay: start(Vr::Delay),
+                thickness: start(Vr::Thickness),
+            },
+            wound_radius: start(Vr::WoundRadius),
+        })
+    }
+
+    fn parameters(&self) -> [f64; 4] {
+        let p = &self.purse;
+        [p.max_tension, p.assembly_time, p.delay, p.thickness]
+    }
+}
+
+impl FmuModel for PurseModel {
+    fn description(&self) -> &'static Description {
+        &DESCRIPTION
+    }
+
+    fn boxed_clone(&self) -> Box<dyn FmuModel> {
+        Box::new(self.clone())
+    }
+
+    fn check(&self, vr: u32, x: f64) -> Result<f64, Rejected> {
+        match Vr::from_u32(vr) {
+            Some(Vr::WoundRadius) => check_radius(x),
+            Some(v @ (Vr::MaxTension | Vr::AssemblyTime | Vr::Delay)) => check_nonnegative(v.var().name, x, false),
+            Some(Vr::Thickness) => check_nonnegative("thickness", x, true),
+            _ => Err(format!("value reference {vr} is not a parameter or input")),
+        }
+    }
+
+    fn set(&mut self, vr: u32, x: f64) {
+        let p = &mut self.purse;
+        match Vr::from_u32(vr) {
+            Some(Vr::MaxTension) => p.max_tension = x,
+            Some(Vr::AssemblyTime) => p.assembly_time = x,
+            Some(Vr::Delay) => p.delay = x,
+            Some(Vr::Thickness) => p.thickness = x,
+            Some(Vr::WoundRadius) => self.wound_radius = x,
+            _ => {}
+        }
+    }
+
+    /// Closed form in time: nothing to resolve, so no tolerance to honour.
+    fn set_experiment_tolerance(&mut self, _tolerance: Option<f64>) {}
+
+    fn prepare(&mut self) -> Result<Option<String>, Rejected> {
+        Ok(None)
+    }
+
+    fn get(&self, vr: u32, time: f64) -> f64 {
+        let p = &self.purse;
+        match Vr::from_u32(vr) {
+            Some(Vr::MaxTension) => p.max_tension,
+            Some(Vr::AssemblyTime) => p.assembly_time,
+            Some(Vr::Delay) => p.delay,
+            Some(Vr::Thickness) => p.thickness,
+            Some(Vr::WoundRadius) => self.wound_radius,
+            Some(Vr::EdgeStress) => p.edge_stress(time, self.wound_radius),
+            Some(Vr::LineTension) => p.tension(time),
+            None => f64::NAN,
+        }
+    }
+
+    fn step(&mut self, _time: f64, _h: f64) -> Result<(), Rejected> {
+        Ok(())
+    }
+
+    fn partial(&self, output: u32, input: u32, time: f64) -> f64 {
+        match (Vr::from_u32(output), Vr::from_u32(input)) {
+            (Some(Vr::EdgeStress), Some(Vr::WoundRadius)) => self.purse.edge_stress_slope(time, self.wound_radius),
+            _ => 0.0,
+        }
+    }
+
+    /// `T_max, t_assembly, t_delay, thickness, wound_radius` (f64 LE).
+    fn encode(&self) -> Result<Vec<u8>, Rejected> {
+        let mut w = Writer(Vec::with_capacity(40));
+        self.parameters().into_iter().chain([self.wound_radius]).for_each(|v| w.f64(v));
+        Ok(w.0)
+    }
+
+    fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected> {
+        let mut r = Reader::new(bytes);
+        let theirs = [r.f64()?, r.f64()?, r.f64()?, r.f64()?];
+        let radius = r.f64()?;
+        r.finish()?;
+        for ((vr, a), b) in Vr::ALL.iter().zip(self.parameters()).zip(theirs) {
+            if a.to_bits() != b.to_bits() {
+                let name = vr.var().name;
+                return Err(format!("serialized FMU state has {name} = {b} but this instance has {name} = {a}"));
+            }
+        }
+        let wound_radius = check_radius(radius).map_err(|e| format!("serialized FMU state: {e}"))?;
+        Ok(Box::new(Self { purse: self.purse, wound_radius }))
+    }
+}

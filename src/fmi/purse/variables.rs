@@ -1,0 +1,64 @@
+//! The purse-string FMU's variables: the one table that
+//! `modelDescription/PurseString/modelDescription.xml` must match (checked by
+//! `tests/model_description.rs`).
+
+pub use crate::fmi::model::{CAPABILITIES, Description, Variable};
+
+/// `modelIdentifier` of the FMU (and the name of its shared object).
+pub const MODEL_IDENTIFIER: &str = "PurseString";
+/// `guid` of its `modelDescription.xml`.
+pub const GUID: &str = "{3f9b2d71-6c4a-4e8f-b5d0-91a7e2c4f6b3}";
+
+/// Value references (index = value reference).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Vr {
+    MaxTension = 0,
+    AssemblyTime = 1,
+    Delay = 2,
+    Thickness = 3,
+    WoundRadius = 4,
+    EdgeStress = 5,
+    LineTension = 6,
+}
+
+impl Vr {
+    pub const ALL: [Vr; 7] =
+        [Vr::MaxTension, Vr::AssemblyTime, Vr::Delay, Vr::Thickness, Vr::WoundRadius, Vr::EdgeStress, Vr::LineTension];
+
+    pub fn from_u32(vr: u32) -> Option<Self> {
+        Self::ALL.get(vr as usize).copied()
+    }
+
+    pub fn var(self) -> &'static Variable {
+        &VARIABLES[self as usize]
+    }
+}
+
+pub const VARIABLES: [Variable; 7] = [
+    Variable::parameter("T_max", 0, 6500.0, "pN", "Saturated line tension of the actin cable (>= 0)"),
+    Variable::parameter("t_assembly", 1, 30.0, "s", "Assembly time constant t_a of the line tension (>= 0; 0 = a step)"),
+    Variable::parameter("t_delay", 2, 20.0, "s", "Delay after the cut (master time 0) before assembly starts (>= 0)"),
+    Variable::parameter("thickness", 3, 5.0, "um", "Thickness h of the cell sheet (> 0)"),
+    Variable::input("wound_radius", 4, 10.0, "um", "Wound radius R received from the tissue model (> 0)"),
+    Variable::output("edge_stress", 5, "Pa", "Edge stress p = T_c / (h R) pulling the wound edge inwards"),
+    Variable::output("line_tension", 6, "pN", "Line tension T_c(t) = T_max (1 - exp(-(t - t_delay) / t_assembly)) after the delay"),
+];
+
+/// The table in the form the shared glue reads.
+pub static DESCRIPTION: Description = Description {
+    model_identifier: MODEL_IDENTIFIER,
+    guid: GUID,
+    xml: include_str!("../../../modelDescription/PurseString/modelDescription.xml"),
+    variables: &VARIABLES,
+    // p = T_c / (h R) is nonlinear in R (`dependent`); T_c depends on time only.
+    outputs: &[(Vr::EdgeStress as u32, &[(Vr::WoundRadius as u32, "dependent")]), (Vr::LineTension as u32, &[])],
+    initial_unknowns: &[
+        (
+            Vr::EdgeStress as u32,
+            &[Vr::MaxTension as u32, Vr::AssemblyTime as u32, Vr::Delay as u32, Vr::Thickness as u32, Vr::WoundRadius as u32],
+        ),
+        (Vr::LineTension as u32, &[Vr::MaxTension as u32, Vr::AssemblyTime as u32, Vr::Delay as u32]),
+    ],
+    capabilities: &CAPABILITIES,
+};

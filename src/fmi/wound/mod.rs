@@ -1,0 +1,273 @@
+//! The wound-opening model behind the FMI glue: parameters, the solver, and the physical
+//! units of the master ([`crate::units`]).
+//!
+//! ```text
+//! master            solver
+//! t [s]             t / T
+//! edge_stress [Pa]  p = edge_stress / G
+//! wound_radius      R0 R            [um]
+//! edge_velocity     (R0 / T) dR/dt  [um/s]
+//! d edge_velocity / d edge_stress = (R0 / T) / G * d(dR/dt)/dp
+//! ```
+
+mod codec;
+pub mod variables;
+
+pub use codec::SchemeChoice;
+
+use super::model::{Description, FmuModel, Rejected};
+use crate::solver::{Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
+use crate::units::{Scales, check_scale};
+use variables::{DESCRIPTION, Vr};
+
+/// The instance's model data: what an FMU state saves (with the machine state and clock).
+#[derive(Debug, Clone)]
+pub struct WoundModel {
+    params: Params,
+    scales: Scales,
+    /// The `tolerance` parameter, and the tolerance of `fmi2SetupExperiment` (which wins).
+    tolerance: f64,
+    experiment_tolerance: Option<f64>,
+    /// `method`, `grid_points` and `internal_step`.
+    scheme: SchemeChoice,
+    /// Edge stress in pascals (the master's unit).
+    edge_stress: f64,
+    /// Built when first needed after the parameters are final; dropped when they change.
+    solver: Option<Solver>,
+}
+
+impl WoundModel {
+    /// A model with the start values of the variable table.
+    pub fn fresh() -> Box<dyn FmuModel> {
+        let start = |vr: Vr| vr.var().start.unwrap_or(0.0);
+        Box::new(Self {
+            params: Params { lambda: start(Vr::Lambda), sigma: start(Vr::Sigma), r_inf: start(Vr::RInf) },
+            scales: Scales { length: start(Vr::LengthScale), time: start(Vr::TimeScale), stress: start(Vr::StressScale) },
+            tolerance: start(Vr::Tolerance),
+            experiment_tolerance: None,
+            scheme: SchemeChoice {
+                method: start(Vr::Method) as i32,
+                grid_points: start(Vr::GridPoints) as i32,
+                internal_step: start(Vr::InternalStep),
+            },
+            edge_stress: start(Vr::EdgeStress),
+            solver: None,
+        })
+    }
+
+    /// The tolerance in force: the experiment's if defined, else the parameter.
+    fn effective_tolerance(&self) -> f64 {
+        self.experiment_tolerance.unwrap_or(self.tolerance)
+    }
+
+    /// The mesh the parameters and the tolerance in force give.
+    fn settings(&self) -> Result<Settings, Rejected> {
+        Settings::for_tolerance(&self.params, self.effective_tolerance()).map_err(|e| e.to_string())
+    }
+
+    /// A solver at the cut for these parameters, tolerance and scheme choice (the
+    /// internal step is in master time, the solver's in units of `T`).
+    fn build_solver(&self) -> Result<Solver, Rejected> {
+        let choice = SchemeChoice { internal_step: self.scheme.internal_step / self.scales.time, ..self.scheme };
+        let scheme = choice.scheme(self.settings()?);
+        Solver::with_scheme(&self.params, &scheme).map_err(|e| e.to_string())
+    }
+
+    fn solver(&self) -> &Solver {
+        self.solver.as_ref().expect("prepare() builds the solver before outputs, steps and derivatives")
+    }
+
+    /// Dimensionless edge stress.
+    fn p(&self) -> f64 {
+        self.edge_stress / self.scales.stress
+    }
+}
+
+impl FmuModel for WoundModel {
+    fn description(&self) -> &'static Description {
+        &DESCRIPTION
+    }
+
+    fn boxed_clone(&self) -> Box<dyn FmuModel> {
+        Box::new(self.clone())
+    }
+
+    fn check(&self, vr: u32, x: f64) -> Result<f64, Rejected> {
+        let Some(vr) = Vr::from_u32(vr) else { return Err(format!("no variable has value reference {vr}")) };
+        let positive = |name: &str| {
+            if x.is_finite() && x > 0.0 { Ok(x) } else { Err(format!("{name} = {x} is invalid: it must be finite and > 0")) }
+        };
+        let in_range = || {
+            let (lo, hi) = vr.var().range.expect("Integer variables declare a range");
+            if (lo as f64..=hi as f64).contains(&x) {
+                Ok(x)
+            } else {
+                Err(format!("{} = {x} is invalid: it must be in {lo} ..= {hi}", vr.var().name))
+            }
+        };
+        let scale = |name| check_scale(name, x).map_err(|e| e.to_string());
+        match vr {
+            Vr::Lambda => check_lambda(x).map_err(|e| e.to_string()),
+            Vr::Sigma => check_sigma(x).map_err(|e| e.to_string()),
+            Vr::RInf => check_r_inf(x).map_err(|e| e.to_string()),
+            Vr::Tolerance => positive("tolerance"),
+            Vr::InternalStep => positive("internal_step"),
+            Vr::Method | Vr::GridPoints => in_range(),
+            Vr::LengthScale => scale("R0"),
+            Vr::TimeScale => scale("T"),
+            Vr::StressScale => scale("G"),
+            Vr::EdgeStress => check_edge_stress(x / self.scales.stress).map(|_| x).map_err(|e| e.to_string()),
+            Vr::WoundRadius | Vr::EdgeVelocity => Err(format!("{} is an output", vr.var().name)),
+        }
+    }
+
+    fn set(&mut self, vr: u32, x: f64) {
+        let Some(vr) = Vr::from_u32(vr) else { return };
+        match vr {
+            Vr::Lambda => self.params.lambda = x,
+            Vr::Sigma => self.params.sigma = x,
+            Vr::RInf => self.params.r_inf = x,
+            Vr::Tolerance => self.tolerance = x,
+            Vr::Method => self.scheme.method = x as i32,
+            Vr::GridPoints => self.scheme.grid_points = x as i32,
+            Vr::InternalStep => self.scheme.internal_step = x,
+            Vr::LengthScale => self.scales.length = x,
+            Vr::TimeScale => self.scales.time = x,
+            Vr::StressScale => self.scales.stress = x,
+            Vr::EdgeStress => self.edge_stress = x,
+            Vr::WoundRadius | Vr::EdgeVelocity => {}
+        }
+        // Everything but the input changes the solver (scales: the internal step).
+        if vr != Vr::EdgeStress {
+            self.solver = None;
+        }
+    }
+
+    fn set_experiment_tolerance(&mut self, tolerance: Option<f64>) {
+        self.experiment_tolerance = tolerance;
+        self.solver = None;
+    }
+
+    fn prepare(&mut self) -> Result<Option<String>, Rejected> {
+        if self.solver.is_some() {
+            return Ok(None);
+        }
+        let solver = self.build_solver()?;
+        let text = format!(
+            "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns (tolerance {:e}, {:?}, {:?})",
+            self.params.lambda,
+            self.params.sigma,
+            self.params.r_inf,
+            solver.unknowns(),
+            self.effective_tolerance(),
+            self.scheme,
+            self.scales
+        );
+        self.solver = Some(solver);
+        Ok(Some(text))
+    }
+
+    fn get(&self, vr: u32, _time: f64) -> f64 {
+        let Some(vr) = Vr::from_u32(vr) else { return f64::NAN };
+        match vr {
+            Vr::Lambda => self.params.lambda,
+            Vr::Sigma => self.params.sigma,
+            Vr::RInf => self.params.r_inf,
+            Vr::EdgeStress => self.edge_stress,
+            Vr::Tolerance => self.tolerance,
+            Vr::Method => self.scheme.method as f64,
+            Vr::GridPoints => self.scheme.grid_points as f64,
+            Vr::InternalStep => self.scheme.internal_step,
+            Vr::LengthScale => self.scales.length,
+            Vr::TimeScale => self.scales.time,
+            Vr::StressScale => self.scales.stress,
+            Vr::WoundRadius => self.scales.length * self.solver().wound_radius(),
+            Vr::EdgeVelocity => self.scales.velocity() * self.solver().edge_velocity(self.p()),
+        }
+    }
+
+    fn step(&mut self, _time: f64, h: f64) -> Result<(), Rejected> {
+        let (h, p) = (h / self.scales.time, self.p());
+        let solver = self.solver.as_mut().expect("prepare() builds the solver before a step");
+        solver.advance(h, p).map_err(|e| e.to_string())
+    }
+
+    fn partial(&self, output: u32, input: u32, _time: f64) -> f64 {
+        match (Vr::from_u32(output), Vr::from_u32(input)) {
+            (Some(Vr::EdgeVelocity), Some(Vr::EdgeStress)) => {
+                self.scales.velocity() / self.scales.stress * self.solver().edge_velocity_slope()
+            }
+            _ => 0.0,
+        }
+    }
+
+    fn encode(&self) -> Result<Vec<u8>, Rejected> {
+        Ok(codec::encode(&codec::Saved {
+            params: self.params,
+            scales: self.scales,
+            settings: self.settings()?,
+            tolerance: self.tolerance,
+            experiment_tolerance: self.experiment_tolerance,
+            scheme: self.scheme,
+            edge_stress: self.edge_stress,
+            solver: self.solver.as_ref().map(Solver::state),
+        }))
+    }
+
+    /// The bytes must come from an instance with the same parameters, scales, tolerance
+    /// and scheme (a state is a point of one trajectory, not a parameter set).
+    fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected> {
+        let saved = codec::decode(bytes)?;
+        let (mine, theirs) = (self.params, saved.params);
+        let (a, b) = (self.scales, saved.scales);
+        for (name, x, y) in [
+            ("lambda", mine.lambda, theirs.lambda),
+            ("sigma", mine.sigma, theirs.sigma),
+            ("R_inf", mine.r_inf, theirs.r_inf),
+            ("R0", a.length, b.length),
+            ("T", a.time, b.time),
+            ("G", a.stress, b.stress),
+        ] {
+            if x.to_bits() != y.to_bits() {
+                return Err(format!("serialized FMU state has {name} = {y} but this instance has {name} = {x}"));
+            }
+        }
+        let mine = self.effective_tolerance();
+        let theirs = saved.experiment_tolerance.unwrap_or(saved.tolerance);
+        if mine.to_bits() != theirs.to_bits() {
+            return Err(format!("serialized FMU state has tolerance = {theirs} but this instance has tolerance = {mine}"));
+        }
+        if saved.scheme != self.scheme {
+            return Err(format!("serialized FMU state has {:?} but this instance has {:?}", saved.scheme, self.scheme));
+        }
+        // The mesh follows from parameters and tolerance (checked equal to ours above):
+        // bytes that claim another are forged.
+        let expected = self.settings()?;
+        if saved.settings != expected {
+            return Err(format!(
+                "serialized FMU state has mesh {:?} but its parameters and tolerance give {:?}",
+                saved.settings.mesh, expected.mesh
+            ));
+        }
+        check_edge_stress(saved.edge_stress / saved.scales.stress).map_err(|e| format!("serialized FMU state: {e}"))?;
+        let mut model = Self {
+            params: saved.params,
+            scales: saved.scales,
+            tolerance: saved.tolerance,
+            experiment_tolerance: saved.experiment_tolerance,
+            scheme: saved.scheme,
+            edge_stress: saved.edge_stress,
+            solver: None,
+        };
+        if let Some(st) = &saved.solver {
+            // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.
+            let mut s = match &self.solver {
+                Some(own) => own.clone(),
+                None => model.build_solver()?,
+            };
+            s.restore(st).map_err(|e| format!("serialized FMU state: {e}"))?;
+            model.solver = Some(s);
+        }
+        Ok(Box::new(model))
+    }
+}

@@ -1,0 +1,116 @@
+//! The wound FMU's variables: the one table that `modelDescription.xml` must match
+//! (checked by `tests/model_description.rs`).
+
+pub use crate::fmi::model::{CAPABILITIES, Causality, Description, Kind, LOG_CATEGORIES, Variability, Variable};
+
+/// `modelIdentifier` of the FMU (and the name of its shared object).
+pub const MODEL_IDENTIFIER: &str = "WoundOpening";
+/// `guid` of `modelDescription.xml`; `fmi2Instantiate` rejects any other.
+pub const GUID: &str = "{8c4e1f0a-3b7d-4e52-9a61-2f0d5c7b9e14}";
+
+/// Value references, in the order of the table (index = value reference).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Vr {
+    Lambda = 0,
+    Sigma = 1,
+    RInf = 2,
+    EdgeStress = 3,
+    WoundRadius = 4,
+    EdgeVelocity = 5,
+    Tolerance = 6,
+    Method = 7,
+    GridPoints = 8,
+    InternalStep = 9,
+    LengthScale = 10,
+    TimeScale = 11,
+    StressScale = 12,
+}
+
+impl Vr {
+    pub const ALL: [Vr; 13] = [
+        Vr::Lambda,
+        Vr::Sigma,
+        Vr::RInf,
+        Vr::EdgeStress,
+        Vr::WoundRadius,
+        Vr::EdgeVelocity,
+        Vr::Tolerance,
+        Vr::Method,
+        Vr::GridPoints,
+        Vr::InternalStep,
+        Vr::LengthScale,
+        Vr::TimeScale,
+        Vr::StressScale,
+    ];
+
+    pub fn from_u32(vr: u32) -> Option<Self> {
+        Self::ALL.get(vr as usize).copied()
+    }
+
+    pub fn var(self) -> &'static Variable {
+        &VARIABLES[self as usize]
+    }
+}
+
+pub const VARIABLES: [Variable; 13] = [
+    Variable::parameter("lambda", 0, 1.0, "1", "Viscous length over wound radius, 2 sqrt(eta/zeta)/R0 (>= 0)"),
+    Variable::parameter("sigma", 1, 1.0, "1", "Homeostatic tension over shear modulus"),
+    Variable::parameter("R_inf", 2, 10.0, "1", "Outer radius of the tissue over wound radius (> 1, <= 1e6)"),
+    Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress applied at the wound edge, held over each step (0 = free edge); in units of G"),
+    Variable::output("wound_radius", 4, "um", "Wound radius R0 (1 + u(1, t))"),
+    Variable::output("edge_velocity", 5, "um/s", "Edge velocity dR/dt under the current edge_stress, in units of R0/T"),
+    Variable::parameter("tolerance", 6, 1e-10, "1", "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh"),
+    Variable::integer("method", 7, 0, (0, 3), "0: spectral elements, exact in time (mesh from the tolerance); 1: TR-BDF2 on that mesh; 2: the paper's scheme; 3: explicit scheme"),
+    Variable::integer("grid_points", 8, 101, (3, 100000), "Uniform grid points of methods 2 and 3"),
+    Variable::parameter("internal_step", 9, 1e-3, "s", "Largest internal time step of methods 1 to 3, in units of T"),
+    Variable::parameter("R0", 10, 1.0, "um", "Length scale: the wound radius (1e-12 ..= 1e12; 1 keeps lengths dimensionless)"),
+    Variable::parameter("T", 11, 1.0, "s", "Time scale T = zeta R0^2 / (4 G) (1e-12 ..= 1e12; 1 keeps time dimensionless)"),
+    Variable::parameter("G", 12, 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
+];
+
+/// The table in the form the shared glue reads.
+pub static DESCRIPTION: Description = Description {
+    model_identifier: MODEL_IDENTIFIER,
+    guid: GUID,
+    xml: include_str!("../../../modelDescription/modelDescription.xml"),
+    variables: &VARIABLES,
+    // The edge velocity is linear in the edge stress with a factor set by fixed
+    // parameters (`fixed`); the radius has no direct dependence on it.
+    outputs: &[(Vr::WoundRadius as u32, &[]), (Vr::EdgeVelocity as u32, &[(Vr::EdgeStress as u32, "fixed")])],
+    // R1 = R0 (1 + sigma / 6); the initial velocity depends on everything but the outputs.
+    initial_unknowns: &[
+        (Vr::WoundRadius as u32, &[Vr::Sigma as u32, Vr::LengthScale as u32]),
+        (
+            Vr::EdgeVelocity as u32,
+            &[
+                Vr::Lambda as u32,
+                Vr::Sigma as u32,
+                Vr::RInf as u32,
+                Vr::EdgeStress as u32,
+                Vr::Tolerance as u32,
+                Vr::Method as u32,
+                Vr::GridPoints as u32,
+                Vr::InternalStep as u32,
+                Vr::LengthScale as u32,
+                Vr::TimeScale as u32,
+                Vr::StressScale as u32,
+            ],
+        ),
+    ],
+    capabilities: &CAPABILITIES,
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn value_references_are_table_indices() {
+        for (i, v) in VARIABLES.iter().enumerate() {
+            assert_eq!(v.value_reference as usize, i, "{}", v.name);
+            assert_eq!(Vr::from_u32(i as u32).map(|vr| vr.var().name), Some(v.name));
+        }
+        assert_eq!(Vr::from_u32(VARIABLES.len() as u32), None);
+    }
+}
