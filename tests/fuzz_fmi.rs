@@ -18,7 +18,7 @@ use std::ffi::{CString, c_char};
 use wound_opening::fmi::boundary::caught_panics;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::variables::GUID;
+use wound_opening::fmi::MODELS;
 
 /// One live instance and the FMU-state handles it gave out (and freed).
 struct Live {
@@ -59,7 +59,7 @@ impl World {
     }
 
     fn value_reference(&mut self) -> fmi2ValueReference {
-        if self.rng.chance(0.05) { self.rng.next_u64() as u32 } else { self.rng.below(9) as u32 }
+        if self.rng.chance(0.05) { self.rng.next_u64() as u32 } else { self.rng.below(14) as u32 }
     }
 
     /// A Real value for `vr`, kept out of ranges that are valid but only slow (README,
@@ -140,7 +140,8 @@ impl World {
             return;
         }
         let name = if self.rng.chance(0.05) { std::ptr::null() } else { self.names[self.rng.below(self.names.len())].as_ptr() };
-        let guid = CString::new(GUID).unwrap();
+        // Either model of the shared object (WoundOpening or PurseString).
+        let guid = CString::new(MODELS[self.rng.below(MODELS.len())].0.guid).unwrap();
         let wrong = c"{00000000-0000-0000-0000-000000000000}";
         let guid_ptr = match self.rng.below(10) {
             0 => std::ptr::null(),
@@ -329,9 +330,21 @@ impl World {
         let c = self.component(i);
         let (vr, order, mut x) = ([3u32], [1i32], [0.5f64]);
         let (name, s) = match self.rng.below(4) {
-            0 => ("fmi2GetDirectionalDerivative", unsafe {
-                fmi2GetDirectionalDerivative(c, vr.as_ptr(), 1, vr.as_ptr(), 1, x.as_ptr(), x.as_mut_ptr())
-            }),
+            0 => {
+                // Random unknowns and knowns (any role, or out of range), random seeds.
+                let (nu, nk) = (self.rng.below(4), self.rng.below(4));
+                let unknowns: Vec<u32> = (0..nu).map(|_| self.value_reference()).collect();
+                let knowns: Vec<u32> = (0..nk).map(|_| self.value_reference()).collect();
+                let seed: Vec<f64> = (0..nk).map(|_| self.rng.real()).collect();
+                let mut out = vec![0.0; nu];
+                let s = unsafe {
+                    fmi2GetDirectionalDerivative(c, unknowns.as_ptr(), nu, knowns.as_ptr(), nk, seed.as_ptr(), out.as_mut_ptr())
+                };
+                if s == 0 {
+                    assert!(out.iter().all(|v| v.is_finite()), "a derivative accepted with OK is finite: {out:?}");
+                }
+                ("fmi2GetDirectionalDerivative", s)
+            }
             1 => ("fmi2SetRealInputDerivatives", unsafe { fmi2SetRealInputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_ptr()) }),
             2 => ("fmi2GetRealOutputDerivatives", unsafe {
                 fmi2GetRealOutputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_mut_ptr())

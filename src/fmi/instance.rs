@@ -364,10 +364,14 @@ impl Instance {
         }
         self.prepare()?;
         let t = self.clock.time;
-        Ok(unknowns
+        let got: Vec<f64> = unknowns
             .iter()
             .map(|&u| knowns.iter().zip(seed).map(|(&k, s)| self.model.partial(u, k, t) * s).sum())
-            .collect())
+            .collect();
+        match got.iter().position(|x| !x.is_finite()) {
+            Some(i) => Err(format!("the derivative of {} overflows for this dvKnown", d.variables[unknowns[i] as usize].name)),
+            None => Ok(got),
+        }
     }
 
     /// `fmi2DoStep`: the inputs set before the call are held over `[t, t + h]`.

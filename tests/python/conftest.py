@@ -80,6 +80,33 @@ def make_slave(unzipdir, model_description):
         slave.close()
 
 
+@pytest.fixture(scope="session")
+def purse_unzipdir(purse_path):
+    from fmpy import extract
+
+    directory = extract(purse_path)
+    yield str(directory)
+    shutil.rmtree(directory, ignore_errors=True)
+
+
+@pytest.fixture
+def make_purse(purse_unzipdir, purse_path):
+    """Factory for harness Slaves of the PurseString FMU (freed after the test)."""
+    from fmpy import read_model_description
+
+    md = read_model_description(purse_path)
+    made = []
+
+    def make(**kwargs):
+        slave = fmu_harness.Slave(purse_unzipdir, md, instance_name="purse", **kwargs)
+        made.append(slave)
+        return slave
+
+    yield make
+    for slave in reversed(made):
+        slave.close()
+
+
 def pytest_terminal_summary(terminalreporter):
     if not fmu_harness.MEASURED:
         return
