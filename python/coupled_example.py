@@ -1,0 +1,109 @@
+"""The README's worked example: a wound of radius R0 = 10 um opens after the cut and an
+actin purse-string then closes it, WoundOpening.fmu and PurseString.fmu coupled by the
+fmpy loop of python/coupling/loop.py.
+
+Tissue: G = 100 Pa, eta = 1000 Pa s (relaxation time eta / G = 10 s), zeta = 40 Pa s / um^2,
+tension 100 Pa, outer radius 100 um  ->  lambda = 1, sigma = 1, R_inf = 10, T = 10 s.
+Purse-string: T_max = 6.5 nN, delay 20 s, assembly time 30 s, sheet thickness 5 um.
+
+Writes to OUT:
+    coupled_closure.csv       t [s], wound_radius [um], edge_velocity [um/s],
+                              edge_stress [Pa], line_tension [pN], free-opening radius [um]
+    coupled_closure.png       radius with and without the purse-string; tension and stress
+    coupled_convergence.csv   communication step, max |R(h) - R(h/2)| [um], observed order
+
+    python python/coupled_example.py --out out
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE, couple, from_material, observed_order  # noqa: E402
+
+STEP, STOP = 0.5, 300.0
+STEPS = (4.0, 2.0, 1.0, 0.5, 0.25, 0.125)
+
+
+def equilibrium_radius() -> float:
+    """Stable root of rho^2 - R_final rho + c A = 0 (tests/python/test_coupling.py), in um."""
+    w, pe = WOUND_EXAMPLE, PURSE_EXAMPLE
+    k = w["R_inf"] ** 2 / (w["R_inf"] ** 2 - 1)
+    r1, rf = 1 + w["sigma"] / 6, 1 + 2 * w["sigma"] / 3 * k
+    c = pe["T_max"] / (pe["thickness"] * w["R0"] * w["sigma"] * w["G"])
+    return w["R0"] * (rf + math.sqrt(rf * rf - 4 * c * (rf - r1))) / 2
+
+
+def plot(run, free, path: Path) -> None:
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(7.5, 6.5), sharex=True, height_ratios=[3, 2])
+    ax.plot(run.time, run.wound_radius, "C0", lw=2, label="with purse-string (coupled FMUs)")
+    ax.plot(free.time, free.wound_radius, "C7--", lw=1.5, label="free opening (edge_stress = 0)")
+    ax.axhline(equilibrium_radius(), color="C3", lw=0.8, ls=":", label="equilibrium with T_c = T_max")
+    ax.axhline(WOUND_EXAMPLE["R0"], color="k", lw=0.6)
+    ax.set_ylabel("wound radius [um]")
+    ax.legend(loc="upper right", fontsize=9)
+    ax.set_title("Wound R0 = 10 um, tau = eta/G = 10 s (lambda = 1): opening, then purse-string closure", fontsize=10)
+    bx.plot(run.time, run.line_tension / 1000.0, "C2", lw=2, label="line tension T_c [nN]")
+    bx.set_ylabel("T_c [nN]")
+    bx.set_xlabel("time since the cut [s]")
+    cx = bx.twinx()
+    cx.plot(run.time, run.edge_stress, "C1", lw=1.5, label="edge stress p = T_c/(h R) [Pa]")
+    cx.set_ylabel("p [Pa]")
+    lines = bx.get_lines() + cx.get_lines()
+    bx.legend(lines, [line.get_label() for line in lines], loc="center right", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--fmu-dir", default="target/fmu", help="folder with WoundOpening.fmu and PurseString.fmu")
+    ap.add_argument("--out", default="out")
+    args = ap.parse_args()
+    wound = str(Path(args.fmu_dir) / "WoundOpening.fmu")
+    purse = str(Path(args.fmu_dir) / "PurseString.fmu")
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+
+    derived = from_material(G=100.0, eta=1000.0, zeta=40.0, R0=10.0, tension=100.0)
+    print("parameters from the material: " + ", ".join(f"{k} = {v:g}" for k, v in derived.items()))
+    run = couple(wound, purse, step=STEP, stop=STOP)
+    free = couple(wound, None, step=STEP, stop=STOP, edge_stress=0.0)
+    with open(out / "coupled_closure.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["time_s", "wound_radius_um", "edge_velocity_um_per_s", "edge_stress_Pa", "line_tension_pN",
+                    "free_wound_radius_um"])
+        for row in zip(run.time, run.wound_radius, run.edge_velocity, run.edge_stress, run.line_tension,
+                       free.wound_radius):
+            w.writerow([f"{x:.17g}" for x in row])
+    plot(run, free, out / "coupled_closure.png")
+    i = int(np.argmax(run.wound_radius))
+    print(f"communication step {STEP} s: R(0) = {run.wound_radius[0]:.4f} um, max {run.wound_radius[i]:.4f} um "
+          f"at t = {run.time[i]:g} s, R({STOP:g} s) = {run.wound_radius[-1]:.4f} um "
+          f"(free opening: {free.wound_radius[-1]:.4f} um; equilibrium with T_max: {equilibrium_radius():.4f} um)")
+
+    _, diffs, orders = observed_order(wound, purse, STEPS, stop=STOP)
+    with open(out / "coupled_convergence.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["step_s", "max_abs_R_h_minus_R_half_um", "observed_order"])
+        for k, (h, d) in enumerate(zip(STEPS, diffs)):
+            order = orders[k - 1] if k > 0 else float("nan")
+            w.writerow([h, f"{d:.6g}", f"{order:.4f}"])
+            print(f"step {h:6.3f} s: max |R(h) - R(h/2)| = {d:.3e} um" + (f", observed order {order:.3f}" if k else ""))
+    print(f"wrote {out / 'coupled_closure.csv'}, {out / 'coupled_closure.png'}, {out / 'coupled_convergence.csv'}")
+
+
+if __name__ == "__main__":
+    main()
