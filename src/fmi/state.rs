@@ -128,6 +128,17 @@ impl<'a> Reader<'a> {
     }
 }
 
+/// A model's state belongs to one parameter set: each `(name, this instance's value, the
+/// state's value)` must agree to the bit.
+pub fn same_parameters(pairs: &[(&str, f64, f64)]) -> Result<(), String> {
+    match pairs.iter().find(|(_, mine, theirs)| mine.to_bits() != theirs.to_bits()) {
+        Some((name, mine, theirs)) => {
+            Err(format!("serialized FMU state has {name} = {theirs} but this instance has {name} = {mine}"))
+        }
+        None => Ok(()),
+    }
+}
+
 /// Open the envelope: the machine state, the clock and the model's bytes, checked to come
 /// from the model `model_identifier`.
 pub fn decode<'a>(model_identifier: &str, bytes: &'a [u8]) -> Result<(Machine, Clock, &'a [u8]), String> {

@@ -55,23 +55,21 @@ def model_description(fmu_path):
     return read_model_description(fmu_path)
 
 
-@pytest.fixture(scope="session")
-def unzipdir(fmu_path):
+def _extracted(path):
     """The FMU extracted once per session; every FMU2Slave of the session loads it."""
     from fmpy import extract
 
-    directory = extract(fmu_path)
+    directory = extract(path)
     yield str(directory)
     shutil.rmtree(directory, ignore_errors=True)
 
 
-@pytest.fixture
-def make_slave(unzipdir, model_description):
+def _slaves(unzipdir, model_description, **defaults):
     """Factory for harness Slaves; every Slave made by a test is freed after it."""
     made = []
 
     def make(**kwargs):
-        slave = fmu_harness.Slave(unzipdir, model_description, **kwargs)
+        slave = fmu_harness.Slave(unzipdir, model_description, **{**defaults, **kwargs})
         made.append(slave)
         return slave
 
@@ -81,30 +79,26 @@ def make_slave(unzipdir, model_description):
 
 
 @pytest.fixture(scope="session")
-def purse_unzipdir(purse_path):
-    from fmpy import extract
+def unzipdir(fmu_path):
+    yield from _extracted(fmu_path)
 
-    directory = extract(purse_path)
-    yield str(directory)
-    shutil.rmtree(directory, ignore_errors=True)
+
+@pytest.fixture
+def make_slave(unzipdir, model_description):
+    yield from _slaves(unzipdir, model_description)
+
+
+@pytest.fixture(scope="session")
+def purse_unzipdir(purse_path):
+    yield from _extracted(purse_path)
 
 
 @pytest.fixture
 def make_purse(purse_unzipdir, purse_path):
-    """Factory for harness Slaves of the PurseString FMU (freed after the test)."""
+    """Harness Slaves of the PurseString FMU."""
     from fmpy import read_model_description
 
-    md = read_model_description(purse_path)
-    made = []
-
-    def make(**kwargs):
-        slave = fmu_harness.Slave(purse_unzipdir, md, instance_name="purse", **kwargs)
-        made.append(slave)
-        return slave
-
-    yield make
-    for slave in reversed(made):
-        slave.close()
+    yield from _slaves(purse_unzipdir, read_model_description(purse_path), instance_name="purse")
 
 
 def pytest_terminal_summary(terminalreporter):

@@ -4,7 +4,7 @@
 pub mod variables;
 
 use super::model::{Description, FmuModel, Rejected};
-use super::state::{Reader, Writer};
+use super::state::{Reader, Writer, same_parameters};
 use crate::closure::{PurseString, check_nonnegative, check_radius};
 use variables::{DESCRIPTION, Vr};
 
@@ -110,12 +110,9 @@ impl FmuModel for PurseModel {
         let theirs = [r.f64()?, r.f64()?, r.f64()?, r.f64()?];
         let radius = r.f64()?;
         r.finish()?;
-        for ((vr, a), b) in Vr::ALL.iter().zip(self.parameters()).zip(theirs) {
-            if a.to_bits() != b.to_bits() {
-                let name = vr.var().name;
-                return Err(format!("serialized FMU state has {name} = {b} but this instance has {name} = {a}"));
-            }
-        }
+        let pairs: Vec<(&str, f64, f64)> =
+            Vr::ALL.iter().zip(self.parameters()).zip(theirs).map(|((vr, a), b)| (vr.var().name, a, b)).collect();
+        same_parameters(&pairs)?;
         let wound_radius = check_radius(radius).map_err(|e| format!("serialized FMU state: {e}"))?;
         Ok(Box::new(Self { purse: self.purse, wound_radius }))
     }

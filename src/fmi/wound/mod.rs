@@ -16,6 +16,7 @@ pub mod variables;
 pub use codec::SchemeChoice;
 
 use super::model::{Description, FmuModel, Rejected};
+use super::state::same_parameters;
 use crate::solver::{Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
 use crate::units::{Scales, check_scale};
 use variables::{DESCRIPTION, Vr};
@@ -220,23 +221,15 @@ impl FmuModel for WoundModel {
         let saved = codec::decode(bytes)?;
         let (mine, theirs) = (self.params, saved.params);
         let (a, b) = (self.scales, saved.scales);
-        for (name, x, y) in [
+        same_parameters(&[
             ("lambda", mine.lambda, theirs.lambda),
             ("sigma", mine.sigma, theirs.sigma),
             ("R_inf", mine.r_inf, theirs.r_inf),
             ("R0", a.length, b.length),
             ("T", a.time, b.time),
             ("G", a.stress, b.stress),
-        ] {
-            if x.to_bits() != y.to_bits() {
-                return Err(format!("serialized FMU state has {name} = {y} but this instance has {name} = {x}"));
-            }
-        }
-        let mine = self.effective_tolerance();
-        let theirs = saved.experiment_tolerance.unwrap_or(saved.tolerance);
-        if mine.to_bits() != theirs.to_bits() {
-            return Err(format!("serialized FMU state has tolerance = {theirs} but this instance has tolerance = {mine}"));
-        }
+            ("tolerance", self.effective_tolerance(), saved.experiment_tolerance.unwrap_or(saved.tolerance)),
+        ])?;
         if saved.scheme != self.scheme {
             return Err(format!("serialized FMU state has {:?} but this instance has {:?}", saved.scheme, self.scheme));
         }
