@@ -19,6 +19,7 @@ is the case with an exact answer (docs/model.md, superposition).
 
 from __future__ import annotations
 
+import shutil
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -57,6 +58,7 @@ class Unit:
         self.fmu = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
                              modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
         self.fmu.instantiate()
+        self.initialized = False
 
     def set(self, **values: float) -> None:
         self.fmu.setReal([self.vr[n] for n in values], [float(x) for x in values.values()])
@@ -69,11 +71,14 @@ class Unit:
         self.set(**params)
         self.fmu.enterInitializationMode()
         self.fmu.exitInitializationMode()
+        self.initialized = True
 
     def close(self) -> None:
-        self.fmu.terminate()
+        """Terminate (if initialized), free, and remove the extracted files; a failure of
+        initialization is not hidden by a refused fmi2Terminate."""
+        if self.initialized:
+            self.fmu.terminate()
         self.fmu.freeInstance()
-        import shutil
         shutil.rmtree(self.dir, ignore_errors=True)
 
 

@@ -8,9 +8,8 @@
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
 pub use super::model::Rejected;
-use super::model::{Causality, Description, FmuModel, Kind, Variability};
+use super::model::{Causality, Description, FmuModel, Kind, LOG_CATEGORIES, Variability};
 use super::state::{self, Machine};
-use super::variables::LOG_CATEGORIES;
 use std::collections::HashMap;
 
 /// `fmi2Status`.

@@ -23,6 +23,7 @@ from ctypes import byref
 from dataclasses import dataclass
 
 import numpy as np
+import pytest
 from fmpy import calloc, free
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (
@@ -312,3 +313,26 @@ class Slave:
 
     def log_text(self) -> str:
         return "\n".join(str(m) for m in self.log) or "(nothing logged)"
+
+
+# --------------------------------------------------------------------------- expected errors
+
+
+def expect_error(slave, call, *args):
+    """call(*args) must fail with fmi2Error and log at least one new error message;
+    returns the new messages."""
+    n = len(slave.log)
+    with pytest.raises(FMICallException) as info:
+        call(*args)
+    assert info.value.status == fmi2Error, info.value
+    new = slave.log[n:]
+    assert any(m.status >= fmi2Error for m in new), (
+        f"{info.value.function} failed without logging an error; log:\n{slave.log_text()}"
+    )
+    return new
+
+
+def assert_logged(messages, pattern, slave):
+    assert any(pattern.search(m.message) for m in messages), (
+        f"no logged message matches {pattern.pattern!r}; log:\n{slave.log_text()}"
+    )

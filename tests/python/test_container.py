@@ -78,6 +78,7 @@ def plain_loop(wound_path, purse_path, step, stop, wound_params=WOUND_PARAMS,
         exchange()
         for unit in (wound, purse):
             unit.fmu.exitInitializationMode()
+            unit.initialized = True
         sample(0)
         for i in range(n):
             t = i * step

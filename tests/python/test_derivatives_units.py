@@ -7,8 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from fmu_harness import PARAMS, names_value
-from test_errors import assert_logged, expect_error
+from fmu_harness import PARAMS, assert_logged, expect_error, names_value
 
 PHYSICAL = {"R0": 10.0, "T": 10.0, "G": 100.0}
 

@@ -12,10 +12,11 @@ import math
 import re
 
 import pytest
-from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import fmi2Error, fmi2Terminated
 
 from fmu_harness import (
+    assert_logged,
+    expect_error,
     PARAMS,
     InstantiateFailed,
     check_free_opening,
@@ -37,26 +38,6 @@ INVALID_PARAMETERS = [
     ("sigma", -INF),
     ("sigma", NAN),
 ]
-
-
-def expect_error(slave, call, *args):
-    """call(*args) must fail with fmi2Error and log at least one new error message;
-    returns the new messages."""
-    n = len(slave.log)
-    with pytest.raises(FMICallException) as info:
-        call(*args)
-    assert info.value.status == fmi2Error, info.value
-    new = slave.log[n:]
-    assert any(m.status >= fmi2Error for m in new), (
-        f"{info.value.function} failed without logging an error; log:\n{slave.log_text()}"
-    )
-    return new
-
-
-def assert_logged(messages, pattern, slave):
-    assert any(pattern.search(m.message) for m in messages), (
-        f"no logged message matches {pattern.pattern!r}; log:\n{slave.log_text()}"
-    )
 
 
 def continues_correctly(slave, lam, label, t_end=2.0, p=0.0):
