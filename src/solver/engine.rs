@@ -19,6 +19,12 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     fn edge_velocity_slope(&self) -> f64 {
         self.edge_velocity(1.0) - self.edge_velocity(0.0)
     }
+    /// Whether the edge velocity with `p` applied now is finite in the continuous model
+    /// (false only where a jump of the edge stress meets an infinite response: the modal
+    /// engine at `lambda = 0`).
+    fn feedthrough_defined(&self, _p: f64) -> bool {
+        true
+    }
     /// `u(r)` at each radius (inside `[1, R_inf]`).
     fn displacement(&self, radii: &[f64]) -> Vec<f64>;
     /// `u_t(r)` at each radius, with edge stress `p`.
@@ -34,6 +40,10 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     /// cost of one (the unknowns for exact integration, which takes one step).
     fn step_work(&self, _h: f64) -> f64 {
         self.unknowns() as f64
+    }
+    /// Refuse a step that the scheme cannot take stably (only the explicit scheme).
+    fn check_step(&self, _h: f64) -> Result<(), SolverError> {
+        Ok(())
     }
     /// Whether a step can blow up (only the explicit scheme, beyond its limits).
     fn may_diverge(&self) -> bool {

@@ -1,7 +1,7 @@
 //! Closed-form results of the continuous model (docs/model.md, section 3), used by the
 //! tests and the documentation. Nothing here is discretised.
 
-use puruspe::{In, Kn};
+use super::bessel::{ive, kve};
 
 /// Coefficient `k = R_inf^2 / (R_inf^2 - 1)` of the finite-annulus corrections.
 fn annulus_factor(r_inf: f64) -> f64 {
@@ -36,36 +36,57 @@ pub fn no_friction_radius(sigma: f64, r_inf: f64, t_tau: f64) -> f64 {
     1.0 + sigma / 6.0 * k * (1.0 - decay / (r_inf * r_inf)) + sigma / 2.0 * k * (1.0 - decay)
 }
 
-/// Edge velocity `u_t(1, 0+)` just after the cut, for `lambda > 0`.
+/// Instantaneous velocity response `w(r) = d u_t(r) / d p` to the edge stress: the
+/// change of the velocity field when the edge stress applied now changes by one unit.
 ///
-/// `D2 u = 0` at `t = 0+`, so `w = u_t(r, 0+)` solves `lambda^2 D2 w = w` with
-/// `lambda^2 D w(1) = p - sigma` and `D w(R_inf) = 0`:
+/// Two states that differ only in the edge stress applied now have the same `u`, so their
+/// velocity difference `w` solves (the PDE `D2 u + lambda^2 D2 u_t = u_t` and the edge
+/// condition `D u + lambda^2 D u_t = p`, differenced):
 ///
 /// ```text
+/// lambda^2 D2 w = w,      lambda^2 D w(1) = 1,      D w(R_inf) = 0
 /// w = A I1(r / lambda) + B K1(r / lambda)
-/// D I1(r/lambda) =  2 (2 I0 / lambda - I1 / r),   D K1(r/lambda) = -2 (2 K0 / lambda + K1 / r)
+/// D I1(r x) =  2 (2 x I0(r x) - I1(r x) / r),   D K1(r x) = -2 (2 x K0(r x) + K1(r x) / r),   x = 1 / lambda
+/// w(r) = (d_K(R) I1(r x) - d_I(R) K1(r x)) / (lambda^2 (d_I(1) d_K(R) - d_K(1) d_I(R)))
 /// ```
 ///
-/// When `(R_inf - 1) / lambda > 40` the `I` terms are below `exp(-80)` relative and the
-/// semi-infinite form is used:
-/// `w(1) = (sigma - p) K1 / (2 lambda^2 [K1 + (2 / lambda) K0])`, Bessel functions at `1/lambda`.
-/// Valid for `lambda >= 0.002` (the Bessel functions of `1/lambda` underflow below).
-pub fn initial_edge_velocity(lambda: f64, sigma: f64, r_inf: f64, p: f64) -> f64 {
+/// With exponentially scaled functions ([`super::bessel`]) the common factor
+/// `exp(x (1 - R_inf))` is taken out of numerator and determinant, leaving only factors
+/// `exp(-x (...)) <= 1`: nothing overflows, from `lambda = 1e-9` to `1e9`. It is negative
+/// (pulling the edge in reduces its velocity) and falls like `-1 / (4 lambda)` as
+/// `lambda -> 0`: the response of the edge is infinite at `lambda = 0`.
+/// At the cut (uniform tension, which is at rest under `p = sigma`) the velocity field is
+/// `(p - sigma) w(r)`: the initial velocity of model.md section 3.
+pub fn velocity_response(lambda: f64, r_inf: f64, r: f64) -> f64 {
     let x = 1.0 / lambda;
-    let (k0, k1) = (Kn(0, x), Kn(1, x));
-    if (r_inf - 1.0) / lambda > 40.0 {
-        return (sigma - p) * k1 / (2.0 * lambda * lambda * (k1 + 2.0 * x * k0));
-    }
-    let (i0, i1) = (In(0, x), In(1, x));
-    let xr = r_inf / lambda;
-    let (i0r, i1r, k0r, k1r) = (In(0, xr), In(1, xr), Kn(0, xr), Kn(1, xr));
-    let d_i1 = 2.0 * (2.0 * x * i0 - i1);
-    let d_k1 = -2.0 * (2.0 * x * k0 + k1);
-    let d_ir = 2.0 * (2.0 * x * i0r - i1r / r_inf);
-    let d_kr = -2.0 * (2.0 * x * k0r + k1r / r_inf);
-    let rhs = (p - sigma) / (lambda * lambda);
-    let det = d_i1 * d_kr - d_k1 * d_ir;
-    (rhs * d_kr * i1 - rhs * d_ir * k1) / det
+    let at = |n: u32, y: f64| (ive(n, y), kve(n, y));
+    let ((i0a, i1a), (k0a, k1a)) = ((ive(0, x), ive(1, x)), (kve(0, x), kve(1, x)));
+    let xb = x * r_inf;
+    let ((i0b, k0b), (i1b, k1b)) = (at(0, xb), at(1, xb));
+    // Scaled stress operators: d_I ~ exp(+y), d_K ~ exp(-y).
+    let d_ia = 2.0 * (2.0 * x * i0a - i1a);
+    let d_ka = -2.0 * (2.0 * x * k0a + k1a);
+    let d_ib = 2.0 * (2.0 * x * i0b - i1b / r_inf);
+    let d_kb = -2.0 * (2.0 * x * k0b + k1b / r_inf);
+    // det e^{x - x R}  =  d_ia d_kb e^{2x(1 - R)} - d_ka d_ib
+    let det = d_ia * d_kb * (2.0 * x * (1.0 - r_inf)).exp() - d_ka * d_ib;
+    let xr = x * r;
+    // num e^{x - x R} = d_kb I1~(xr) e^{x (r + 1 - 2R)} - d_ib K1~(xr) e^{x (1 - r)}
+    let num = d_kb * ive(1, xr) * (x * (r + 1.0 - 2.0 * r_inf)).exp() - d_ib * kve(1, xr) * (x * (1.0 - r)).exp();
+    num / (det * lambda * lambda)
+}
+
+/// `d u_t(1) / d p`, the response of the edge velocity to the edge stress applied now
+/// ([`velocity_response`] at `r = 1`), for `lambda > 0`.
+pub fn edge_velocity_slope(lambda: f64, r_inf: f64) -> f64 {
+    velocity_response(lambda, r_inf, 1.0)
+}
+
+/// Edge velocity `u_t(1, 0+)` just after the cut, for `lambda > 0`:
+/// `(p - sigma) w(1)` (see [`velocity_response`]). For `R_inf -> infinity` it is
+/// `(sigma - p) K1 / (2 lambda^2 [K1 + (2 / lambda) K0])`, Bessel functions at `1/lambda`.
+pub fn initial_edge_velocity(lambda: f64, sigma: f64, r_inf: f64, p: f64) -> f64 {
+    (p - sigma) * edge_velocity_slope(lambda, r_inf)
 }
 
 #[cfg(test)]
@@ -91,11 +112,33 @@ mod tests {
     }
 
     #[test]
-    fn finite_and_semi_infinite_initial_velocities_agree_when_the_outer_edge_is_far() {
-        // (R_inf - 1) / lambda = 39 uses the finite form, 41 the semi-infinite one.
-        let lambda = 0.25;
-        let near = initial_edge_velocity(lambda, 1.0, 1.0 + 39.0 * lambda, 0.0);
-        let far = initial_edge_velocity(lambda, 1.0, 1.0 + 41.0 * lambda, 0.0);
-        assert!((near - far).abs() < 1e-14 * far.abs(), "{near} {far}");
+    fn far_outer_edge_gives_the_semi_infinite_form() {
+        use puruspe::Kn;
+        for lambda in [0.05, 0.25, 1.0] {
+            let x = 1.0 / lambda;
+            let (k0, k1) = (Kn(0, x), Kn(1, x));
+            let semi = -k1 / (2.0 * lambda * lambda * (k1 + 2.0 * x * k0));
+            let far = edge_velocity_slope(lambda, 1.0 + 60.0 * lambda);
+            assert!((far - semi).abs() < 1e-14 * semi.abs(), "{lambda}: {far} {semi}");
+        }
+    }
+
+    /// `w = a r + b / r` (D2 w = 0) as lambda -> infinity: `D w = 6 a - 2 b / r^2`,
+    /// so `6 a - 2 b = 1 / lambda^2`, `6 a - 2 b / R^2 = 0`, `w(1) = a + b`.
+    #[test]
+    fn large_lambda_tends_to_the_no_friction_response() {
+        let (lambda, r_inf) = (1e4, 3.0);
+        let b = 1.0 / (2.0 * lambda * lambda * (1.0 / (r_inf * r_inf) - 1.0));
+        let a = b / (3.0 * r_inf * r_inf);
+        let got = edge_velocity_slope(lambda, r_inf);
+        assert!((got - (a + b)).abs() < 1e-6 * got.abs(), "{got:e} vs {:e}", a + b);
+    }
+
+    #[test]
+    fn small_lambda_tends_to_minus_one_over_four_lambda() {
+        for lambda in [1e-4, 1e-6, 1e-9] {
+            let got = edge_velocity_slope(lambda, 10.0) * 4.0 * lambda;
+            assert!((got + 1.0).abs() < 2.0 * lambda, "{lambda}: {got}");
+        }
     }
 }

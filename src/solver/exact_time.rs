@@ -3,24 +3,29 @@
 //! The operator of one `(lambda, R_inf, mesh)` is built once ([`super::galerkin`],
 //! [`super::modal`]); each step then costs one exponential-weighted update per mode.
 
+use super::basis;
 use super::engine::Engine;
-use super::galerkin;
-use super::mesh::{Mesh, MeshSpec};
-use super::modal::Modes;
+use super::exact;
+use super::mesh::MeshSpec;
+use super::modal::Basis;
 use super::quadrature::LagrangeBasis;
 use super::{SolverError, check_lambda, check_r_inf};
 use nalgebra::DVector;
 use std::sync::Arc;
 
-/// The discretised operator of one `(lambda, R_inf, mesh)`: immutable, shared between
-/// a solver and its saved states.
+/// The discretised operator of one `(lambda, R_inf, mesh)`: the shared lambda-independent
+/// [`Basis`] with this lambda's relaxation times. Immutable, shared between a solver and
+/// its saved states.
 #[derive(Debug)]
 pub(crate) struct Operator {
+    lambda: f64,
     r_inf: f64,
-    mesh: Mesh,
-    modes: Modes,
-    /// Row of the mode shapes at the wound edge, `X[0, :]`.
-    edge_row: DVector<f64>,
+    basis: Arc<Basis>,
+    /// `nu_k = mu_k + lambda^2`.
+    nu: DVector<f64>,
+    /// Exact `d u_t(1) / d p` of the continuous model ([`exact::edge_velocity_slope`]);
+    /// `-inf` at `lambda = 0`.
+    slope: f64,
 }
 
 impl Operator {
@@ -28,12 +33,10 @@ impl Operator {
         check_lambda(lambda)?;
         check_r_inf(r_inf)?;
         Self::check_mesh(spec)?;
-        let mesh = Mesh::new(spec, r_inf);
-        let m = galerkin::assemble(&mesh);
-        let mass = 4.0 * &m.mass + lambda * lambda * &m.stiffness;
-        let modes = Modes::new(&m.stiffness, &mass).map_err(SolverError::Modal)?;
-        let edge_row = modes.shapes.row(0).transpose();
-        Ok(Self { r_inf, mesh, modes, edge_row })
+        let basis = basis::basis(spec, r_inf).map_err(SolverError::Modal)?;
+        let nu = basis.relaxation_times(lambda);
+        let slope = if lambda > 0.0 { exact::edge_velocity_slope(lambda, r_inf) } else { f64::NEG_INFINITY };
+        Ok(Self { lambda, r_inf, basis, nu, slope })
     }
 
     pub(crate) fn check_mesh(spec: MeshSpec) -> Result<(), SolverError> {
@@ -49,7 +52,7 @@ impl Operator {
 
     /// Number of unknowns (nodes = modes).
     pub(crate) fn len(&self) -> usize {
-        self.modes.len()
+        self.basis.len()
     }
 
     /// Modal target of the departure `v = u - sigma r / 6` from the uniform tension:
@@ -63,17 +66,32 @@ impl Operator {
     /// Working with `v` (zero at the cut) keeps `R(0) = 1 + sigma / 6` exact and makes
     /// `p = sigma` a state of rest to the last bit.
     fn target(&self, sigma: f64, p: f64) -> DVector<f64> {
-        (sigma - p) * &self.edge_row
+        (sigma - p) * &self.basis.edge_row
     }
 }
 
 /// Modal state of `v = u - sigma r / 6` on a shared [`Operator`].
+///
+/// The velocity is split at the edge stress `p_ref` under which the state last evolved
+/// (`sigma` at the cut, where the uniform tension is at rest under `p = sigma`):
+///
+/// ```text
+/// u_t(r; p) = u_t,mesh(r; p_ref) + (p - p_ref) w(r)
+/// ```
+///
+/// The first term is the mesh's velocity of a state that evolved smoothly; the second is
+/// the instantaneous response to a change of the edge stress, a boundary layer of width
+/// lambda that no lambda-independent mesh resolves for small lambda, taken from its closed
+/// form ([`exact::velocity_response`]). At `lambda = 0` that response is infinite: see
+/// [`Engine::feedthrough_defined`].
 #[derive(Debug, Clone)]
 pub(crate) struct ModalEngine {
     op: Arc<Operator>,
     sigma: f64,
     /// Modal coordinates of `v`.
     coeffs: DVector<f64>,
+    /// The edge stress of the last step (`sigma` at the cut).
+    p_ref: f64,
     /// `(h, exp(-h / nu))` of the last step size, reused while `h` repeats.
     decay: Option<(f64, DVector<f64>)>,
 }
@@ -81,18 +99,18 @@ pub(crate) struct ModalEngine {
 impl ModalEngine {
     pub(crate) fn new(op: Arc<Operator>, sigma: f64) -> Self {
         let coeffs = DVector::zeros(op.len());
-        Self { op, sigma, coeffs, decay: None }
+        Self { op, sigma, coeffs, p_ref: sigma, decay: None }
     }
 
-    /// Modal rates `c_k' = (g_k - c_k) / nu_k`.
+    /// Modal rates `c_k' = (g_k - c_k) / nu_k` under the edge stress `p`.
     fn modal_rates(&self, p: f64) -> DVector<f64> {
         let target = self.op.target(self.sigma, p);
-        (target - &self.coeffs).component_div(&self.op.modes.nu)
+        (target - &self.coeffs).component_div(&self.op.nu)
     }
 
     fn profile(&self, coeffs: &DVector<f64>, radii: &[f64]) -> Vec<f64> {
-        let mesh = &self.op.mesh;
-        let nodal = &self.op.modes.shapes * coeffs;
+        let mesh = &self.op.basis.mesh;
+        let nodal = &self.op.basis.shapes * coeffs;
         let basis = LagrangeBasis::new(&mesh.reference_nodes);
         radii
             .iter()
@@ -103,12 +121,17 @@ impl ModalEngine {
             })
             .collect()
     }
+
+    /// `(p - p_ref) * response`, exactly 0 when `p = p_ref` (also at `lambda = 0`).
+    fn jump(&self, p: f64, response: f64) -> f64 {
+        if p == self.p_ref { 0.0 } else { (p - self.p_ref) * response }
+    }
 }
 
 impl Engine for ModalEngine {
     /// Exact for any `h`: `c_k <- g_k + exp(-h / nu_k) (c_k - g_k)`.
     fn advance(&mut self, h: f64, p: f64) {
-        let nu = &self.op.modes.nu;
+        let nu = &self.op.nu;
         let decay = match &self.decay {
             Some((h0, d)) if *h0 == h => d,
             _ => &self.decay.insert((h, nu.map(|v| (-h / v).exp()))).1,
@@ -117,24 +140,31 @@ impl Engine for ModalEngine {
         for k in 0..self.coeffs.len() {
             self.coeffs[k] = target[k] + decay[k] * (self.coeffs[k] - target[k]);
         }
+        self.p_ref = p;
     }
 
     /// `R = 1 + sigma / 6 + v(1, t)`.
     fn wound_radius(&self) -> f64 {
-        1.0 + self.sigma / 6.0 + self.op.edge_row.dot(&self.coeffs)
+        1.0 + self.sigma / 6.0 + self.op.basis.edge_row.dot(&self.coeffs)
     }
 
-    /// `sum_k X[0, k] (g_k - c_k) / nu_k`.
+    /// `sum_k X[0, k] (g_k(p_ref) - c_k) / nu_k + (p - p_ref) w(1)`.
     fn edge_velocity(&self, p: f64) -> f64 {
-        self.modal_rates(p).dot(&self.op.edge_row)
+        if !self.op.slope.is_finite() {
+            // lambda = 0: with p != p_ref the exact value is infinite (the caller checks
+            // feedthrough_defined() and says so); this is then the mesh's own answer.
+            return self.modal_rates(p).dot(&self.op.basis.edge_row);
+        }
+        self.modal_rates(self.p_ref).dot(&self.op.basis.edge_row) + self.jump(p, self.op.slope)
     }
 
-    /// ```text
-    /// d/dp sum_k X[0, k] ((sigma - p) X[0, k] - c_k) / nu_k = -sum_k X[0, k]^2 / nu_k
-    /// ```
-    /// (independent of the state: a negative constant of the operator).
+    /// The exact `w(1)` (`-inf` at `lambda = 0`).
     fn edge_velocity_slope(&self) -> f64 {
-        -self.op.edge_row.iter().zip(self.op.modes.nu.iter()).map(|(x, nu)| x * x / nu).sum::<f64>()
+        self.op.slope
+    }
+
+    fn feedthrough_defined(&self, p: f64) -> bool {
+        self.op.slope.is_finite() || p == self.p_ref
     }
 
     fn displacement(&self, radii: &[f64]) -> Vec<f64> {
@@ -143,19 +173,28 @@ impl Engine for ModalEngine {
     }
 
     fn velocity(&self, p: f64, radii: &[f64]) -> Vec<f64> {
-        self.profile(&self.modal_rates(p), radii)
+        let (lambda, r_inf) = (self.op.lambda, self.op.r_inf);
+        if lambda == 0.0 || p == self.p_ref {
+            return self.profile(&self.modal_rates(p), radii);
+        }
+        let mesh = self.profile(&self.modal_rates(self.p_ref), radii);
+        let response = |r: f64| exact::velocity_response(lambda, r_inf, r.clamp(1.0, r_inf));
+        radii.iter().zip(mesh).map(|(&r, v)| v + self.jump(p, response(r))).collect()
     }
 
     fn unknowns(&self) -> usize {
         self.op.len()
     }
 
+    /// The modal coordinates, then `p_ref`.
     fn state(&self) -> Vec<f64> {
-        self.coeffs.iter().copied().collect()
+        self.coeffs.iter().copied().chain([self.p_ref]).collect()
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), SolverError> {
-        self.coeffs.copy_from_slice(state);
+        let n = self.coeffs.len();
+        self.coeffs.copy_from_slice(&state[..n]);
+        self.p_ref = state[n];
         Ok(())
     }
 

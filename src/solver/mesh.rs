@@ -28,7 +28,7 @@ pub struct MeshSpec {
 }
 
 /// Element breaks and global node positions of a [`MeshSpec`] on `[1, r_inf]`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Mesh {
     pub(crate) breaks: Vec<f64>,
     /// Reference GLL nodes of one element, on `[-1, 1]`.

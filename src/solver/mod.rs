@@ -8,12 +8,15 @@
 //! Galerkin system stepped by TR-BDF2 ([`trbdf2`]), the paper's own scheme ([`paper`]) and
 //! an explicit scheme ([`explicit`]) on the paper's finite-difference grid ([`fd`]).
 
+pub mod basis;
+mod bessel;
 mod engine;
 pub mod exact;
 mod exact_time;
 mod explicit;
 mod fd;
 mod galerkin;
+mod jacobi;
 mod mesh;
 mod modal;
 mod paper;
@@ -26,10 +29,11 @@ pub use mesh::{Mesh, MeshSpec};
 pub use modal::ModalError;
 pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE};
 pub use params::{
-    ParamError, Params, check_edge_stress, check_lambda, check_r_inf, check_sigma,
+    EDGE_STRESS_MAX, LAMBDA_MAX, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, check_edge_stress, check_lambda,
+    check_r_inf, check_sigma,
 };
 
-pub use explicit::stability_limits as explicit_stability_limits;
+pub use explicit::{stability_limits as explicit_stability_limits, unchecked_trajectory as explicit_unchecked_trajectory};
 
 use engine::Engine;
 use exact_time::{ModalEngine, Operator};
@@ -70,6 +74,8 @@ pub enum SolverError {
     TooManySteps(f64, f64),
     /// The explicit scheme blew up in this step (state left as before the step).
     Diverged,
+    /// A step of the explicit scheme beyond its von Neumann limits, refused before it is taken.
+    Unstable { lambda: f64, lambda_max: f64, dt: f64, dt_max: f64 },
 }
 
 impl std::fmt::Display for SolverError {
@@ -88,6 +94,13 @@ impl std::fmt::Display for SolverError {
                 f,
                 "this step would need {work:.1e} updates of the unknowns (at most {max:.0e} are allowed in one step): take shorter communication steps or a larger internal_step"
             ),
+            Self::Unstable { lambda, lambda_max, dt, dt_max } => {
+                if lambda >= lambda_max {
+                    write!(f, "the explicit scheme is unstable for lambda = {lambda} >= {lambda_max:.4e} (about dr/2 on this grid), whatever the step: use method 0")
+                } else {
+                    write!(f, "the explicit scheme's internal step {dt:.4e} breaks its stability limit dt < {dt_max:.4e} (2/kappa_max - 2 lambda^2): lower internal_step or take shorter communication steps")
+                }
+            }
             Self::Diverged => write!(
                 f,
                 "the explicit scheme blew up in this step (internal step above its stability limit, or lambda > dr/2); the state is left as before the step"
@@ -221,6 +234,7 @@ impl Solver {
             return Err(SolverError::Step(h));
         }
         check_edge_stress(p)?;
+        self.engine.check_step(h)?;
         let work = self.engine.step_work(h);
         if work > MAX_STEP_WORK {
             return Err(SolverError::TooManySteps(work, MAX_STEP_WORK));
@@ -249,10 +263,18 @@ impl Solver {
     }
 
     /// `d edge_velocity(p) / d p`, the direct response of the edge velocity to the edge
-    /// stress applied now (zero for the paper's and the explicit scheme, whose velocity
-    /// is a difference of stored states).
+    /// stress applied now: the exact closed form for the modal scheme (`-inf` at
+    /// `lambda = 0`), the mesh's for TR-BDF2, zero for the paper's and the explicit scheme,
+    /// whose velocity is a difference of stored states.
     pub fn edge_velocity_slope(&self) -> f64 {
         self.engine.edge_velocity_slope()
+    }
+
+    /// Whether [`Solver::edge_velocity`] with `p` applied now is finite in the model: false
+    /// at `lambda = 0` when `p` differs from the edge stress of the last step (`sigma` at the
+    /// cut), where the exact edge velocity is infinite and the value returned is the mesh's.
+    pub fn edge_velocity_defined(&self, p: f64) -> bool {
+        self.engine.feedthrough_defined(p)
     }
 
     /// Displacement `u(r)` at each requested radius (clamped into `[1, R_inf]`).

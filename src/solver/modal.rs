@@ -1,4 +1,4 @@
-//! Exact-in-time integration of the semi-discrete system by its modes.
+//! The modal basis of the semi-discrete system, shared by every `lambda`.
 //!
 //! With stiffness `A` (SPD) and mass `B = 4 M + lambda^2 A` (SPD), the semi-discrete
 //! system `B u_t = -A u + F` is diagonalised by the generalised eigenproblem
@@ -7,12 +7,21 @@
 //! B x_k = nu_k A x_k,     X^T A X = I,     X^T B X = diag(nu),     nu_k = 1 / (decay rate)
 //! ```
 //!
-//! computed as `A = L L^T` (Cholesky), `L^-1 B L^-T = Q diag(nu) Q^T` (symmetric
-//! eigenproblem), `X = L^-T Q`. The pencil is taken this way round (`nu` = relaxation
-//! times, not rates) because a symmetric eigensolver has absolute accuracy
-//! `eps max(nu)`: the slow modes, which carry the late-time solution, then get full
-//! relative accuracy, and the fast ones (which decay within a few sub-microsecond
-//! relaxation times) only lose accuracy that no output can see. Every `nu_k > 0`.
+//! With `A = L L^T` (Cholesky),
+//!
+//! ```text
+//! L^-1 B L^-T = 4 L^-1 M L^-T + lambda^2 I = Q diag(mu) Q^T + lambda^2 I
+//! ```
+//!
+//! so the mode shapes `X = L^-T Q` do not depend on lambda, and
+//! `nu_k(lambda) = mu_k + lambda^2`: one decomposition per mesh and outer radius serves
+//! every lambda (and is cached process-wide, [`super::basis`]). `mu_k` are the relaxation
+//! times at `lambda = 0`, all `> 0`.
+//!
+//! `mu` spans up to 17 decades (~1e-5 at the wound edge, ~R_inf^2 far out). The symmetric
+//! eigenproblem is solved by the Jacobi method with a relative stopping rule
+//! ([`super::jacobi`]), which keeps the small `mu_k` (the fast modes that shape the opening
+//! at early times) to relative accuracy; a QR-based eigensolver loses them at large `R_inf`.
 //!
 //! In modal coordinates `u = X c`, `c = X^T A u`, each mode relaxes independently to
 //! `g = X^T F` (no division, no equilibrium solve):
@@ -24,15 +33,21 @@
 //! which is exact for any step `h > 0` with `F` (the edge stress `p`) constant over the
 //! step: unconditionally stable, monotone, and free of any time-discretisation error.
 
+use super::galerkin::{self, Functions};
+use super::jacobi;
+use super::mesh::Mesh;
 use nalgebra::{DMatrix, DVector};
 
-/// The modal decomposition of one discretised problem (fixed `lambda`, mesh, `R_inf`).
-#[derive(Debug, Clone)]
-pub(crate) struct Modes {
-    /// Relaxation times `nu_k > 0` (in T).
-    pub(crate) nu: DVector<f64>,
-    /// Mode shapes `X` (columns), nodal values.
+/// The lambda-independent modal decomposition of one mesh on `[1, R_inf]`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Basis {
+    pub(crate) mesh: Mesh,
+    /// Relaxation times at `lambda = 0`, `mu_k > 0` (in T), ascending.
+    pub(crate) mu: DVector<f64>,
+    /// Mode shapes (columns), nodal values (`X^T A X = I` in the basis they were computed in).
     pub(crate) shapes: DMatrix<f64>,
+    /// Row of the mode shapes at the wound edge, `X[0, :]`.
+    pub(crate) edge_row: DVector<f64>,
 }
 
 /// Why a modal decomposition could not be built.
@@ -40,6 +55,8 @@ pub(crate) struct Modes {
 pub enum ModalError {
     /// The stiffness matrix was not numerically positive definite.
     StiffnessNotPositive,
+    /// The eigensolver did not converge or met a non-finite value.
+    NoConvergence,
     /// A relaxation time came out non-positive or non-finite (index, value).
     BadRelaxationTime(usize, f64),
 }
@@ -48,28 +65,45 @@ impl std::fmt::Display for ModalError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::StiffnessNotPositive => write!(f, "stiffness matrix is not positive definite"),
+            Self::NoConvergence => write!(f, "the eigensolver did not converge"),
             Self::BadRelaxationTime(k, v) => write!(f, "relaxation time {k} is {v}"),
         }
     }
 }
 
-impl Modes {
-    pub(crate) fn new(stiffness: &DMatrix<f64>, mass: &DMatrix<f64>) -> Result<Self, ModalError> {
-        let chol = stiffness.clone().cholesky().ok_or(ModalError::StiffnessNotPositive)?;
+impl Basis {
+    /// Largest outer radius at which the constant-first basis is used (see
+    /// [`Functions::ConstantFirst`]; both are accurate between 1.5 and 5).
+    pub(crate) const CONSTANT_FIRST_UP_TO: f64 = 3.0;
+
+    pub(crate) fn new(mesh: Mesh) -> Result<Self, ModalError> {
+        let r_inf = *mesh.nodes.last().expect("a mesh has nodes");
+        let functions = if r_inf <= Self::CONSTANT_FIRST_UP_TO { Functions::ConstantFirst } else { Functions::Nodal };
+        let m = galerkin::assemble(&mesh, functions);
+        let chol = m.stiffness.cholesky().ok_or(ModalError::StiffnessNotPositive)?;
         let l = chol.l();
-        // C = L^-1 B L^-T, through Y = L^-1 B and C = L^-1 Y^T (B symmetric).
-        let y = l.solve_lower_triangular(mass).ok_or(ModalError::StiffnessNotPositive)?;
-        let mut c = l.solve_lower_triangular(&y.transpose()).ok_or(ModalError::StiffnessNotPositive)?;
-        c = 0.5 * (&c + c.transpose());
-        let eig = c.symmetric_eigen();
-        let shapes = l.tr_solve_lower_triangular(&eig.eigenvectors).ok_or(ModalError::StiffnessNotPositive)?;
-        if let Some((k, &v)) = eig.eigenvalues.iter().enumerate().find(|(_, v)| !(**v > 0.0 && v.is_finite())) {
+        // C = L^-1 (4 M) L^-T, through Y = L^-1 (4 M) and C = L^-1 Y^T (M symmetric).
+        let y = l.solve_lower_triangular(&(4.0 * &m.mass)).ok_or(ModalError::StiffnessNotPositive)?;
+        let c = l.solve_lower_triangular(&y.transpose()).ok_or(ModalError::StiffnessNotPositive)?;
+        let (mu, q) = jacobi::symmetric_eigen(&c).ok_or(ModalError::NoConvergence)?;
+        if let Some((k, &v)) = mu.iter().enumerate().find(|(_, v)| !(**v > 0.0 && v.is_finite())) {
             return Err(ModalError::BadRelaxationTime(k, v));
         }
-        Ok(Self { nu: eig.eigenvalues, shapes })
+        let coefficients = l.tr_solve_lower_triangular(&q).ok_or(ModalError::StiffnessNotPositive)?;
+        // Nodal shapes; the edge row is the same in both bases (only the first function
+        // is nonzero at r = 1), so the load (sigma - p) e_first keeps its modal form.
+        let shapes = galerkin::to_nodal(functions, coefficients);
+        let edge_row = shapes.row(0).transpose();
+        Ok(Self { mesh, mu, shapes, edge_row })
     }
 
     pub(crate) fn len(&self) -> usize {
-        self.nu.len()
+        self.mu.len()
+    }
+
+    /// Relaxation times `nu_k = mu_k + lambda^2`.
+    pub(crate) fn relaxation_times(&self, lambda: f64) -> DVector<f64> {
+        let l2 = lambda * lambda;
+        self.mu.map(|m| m + l2)
     }
 }

@@ -27,7 +27,7 @@ use super::{MeshSpec, Params, Settings, SolverError};
 /// `(tolerance, largest element width dxi)` pairs, tolerance decreasing.
 const MAX_DXI: [(f64, f64); 10] = [
     (1e-2, 3.2),
-    (1e-3, 2.7),
+    (1e-3, 2.5),
     (1e-4, 2.2),
     (1e-5, 1.75),
     (1e-6, 1.5),

@@ -31,7 +31,7 @@ pub(crate) struct TrBdf2Operator {
 
 impl TrBdf2Operator {
     pub(crate) fn new(mesh: Mesh, lambda: f64) -> Result<Self, SolverError> {
-        let m = galerkin::assemble(&mesh);
+        let m = galerkin::assemble(&mesh, galerkin::Functions::Nodal);
         let mass = 4.0 * &m.mass + lambda * lambda * &m.stiffness;
         let mass_chol = mass.clone().cholesky().ok_or(SolverError::Mesh("mass matrix is not positive definite"))?;
         Ok(Self { mesh, stiffness: m.stiffness, mass, mass_chol })

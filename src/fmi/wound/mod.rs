@@ -17,7 +17,7 @@ pub use codec::SchemeChoice;
 
 use super::model::{Description, FmuModel, Rejected};
 use super::state::same_parameters;
-use crate::solver::{Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
+use crate::solver::{EDGE_STRESS_MAX, Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
 use crate::units::{Scales, check_scale};
 use variables::{DESCRIPTION, Vr};
 
@@ -117,7 +117,11 @@ impl FmuModel for WoundModel {
             Vr::LengthScale => scale("R0"),
             Vr::TimeScale => scale("T"),
             Vr::StressScale => scale("G"),
-            Vr::EdgeStress => check_edge_stress(x / self.scales.stress).map(|_| x).map_err(|e| e.to_string()),
+            Vr::EdgeStress => check_edge_stress(x / self.scales.stress).map(|_| x).map_err(|_| {
+                let g = self.scales.stress;
+                let bound = EDGE_STRESS_MAX * g;
+                format!("edge_stress = {x} Pa is outside the accepted range [-{bound:e}, {bound:e}] Pa ({EDGE_STRESS_MAX:e} G, G = {g} Pa)")
+            }),
             Vr::WoundRadius | Vr::EdgeVelocity => Err(format!("{} is an output", vr.var().name)),
         }
     }
