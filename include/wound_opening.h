@@ -73,6 +73,9 @@ typedef enum {
     // An internal error (a caught panic). The solver involved refuses further use until a
     // saved state is restored into it, or it is freed.
     WO_INTERNAL_ERROR = 6,
+    // The value asked for is infinite in the model: the velocity at lambda = 0 at the cut,
+    // before the first advance (it decays like t^(-1/2) afterwards). Nothing is written.
+    WO_UNDEFINED = 7,
 } wo_status;
 
 // A solver, as seen from C: an opaque handle (never an address), created by

@@ -25,7 +25,7 @@ struct World {
     solvers: Vec<*mut WoSolver>,
     states: Vec<*mut WoState>,
     freed: Vec<usize>,
-    stats: BTreeMap<&'static str, [u64; 7]>,
+    stats: BTreeMap<&'static str, [u64; 8]>,
 }
 
 impl World {
@@ -226,7 +226,7 @@ fn random_direct_api_call_sequences_are_refused_cleanly_or_succeed() {
     }
     assert_eq!(live_handles(), (0, 0), "everything freed leaves the handle tables empty");
     println!("direct API call sequences: seed {}, {iterations} iterations", budget.seed);
-    let names = ["ok", "null", "invalid", "unknown handle", "incompatible", "solver failed", "internal"];
+    let names = ["ok", "null", "invalid", "unknown handle", "incompatible", "solver failed", "internal", "undefined"];
     for (call, counts) in &world.stats {
         let text: Vec<String> = names.iter().zip(counts).filter(|(_, c)| **c > 0).map(|(n, c)| format!("{n} {c}")).collect();
         println!("  {call:26} {}", text.join(", "));

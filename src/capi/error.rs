@@ -28,6 +28,9 @@ pub enum WoStatus {
     /// An internal error (a caught panic). The solver involved refuses further use until a
     /// saved state is restored into it, or it is freed.
     WoInternalError = 6,
+    /// The value asked for is infinite in the model: the velocity at lambda = 0 at the cut,
+    /// before the first advance (it decays like t^(-1/2) afterwards). Nothing is written.
+    WoUndefined = 7,
 }
 
 /// A refused call: its status and the reason.

@@ -167,8 +167,26 @@ pub fn wound_radius(solver: u64) -> Result<f64, Failure> {
     with_solver(solver, false, |s| Ok(s.solver.wound_radius()))
 }
 
+/// Refuse a velocity that is infinite in the model (lambda = 0 at the cut, where the edge
+/// stress applied differs from the uniform tension's).
+fn check_velocity_defined(s: &Live) -> Result<(), Failure> {
+    if s.solver.edge_velocity_defined(s.edge_stress) {
+        return Ok(());
+    }
+    Err(Failure::new(
+        WoStatus::WoUndefined,
+        format!(
+            "the velocity is infinite at lambda = 0 at the cut (edge stress {} against the tension {}): it decays like t^(-1/2); advance first",
+            s.edge_stress, s.params.sigma
+        ),
+    ))
+}
+
 pub fn edge_velocity(solver: u64) -> Result<f64, Failure> {
-    with_solver(solver, false, |s| Ok(s.solver.edge_velocity(s.edge_stress)))
+    with_solver(solver, false, |s| {
+        check_velocity_defined(s)?;
+        Ok(s.solver.edge_velocity(s.edge_stress))
+    })
 }
 
 pub fn node_count(solver: u64) -> Result<usize, Failure> {
@@ -214,6 +232,7 @@ pub fn displacement(solver: u64, radii: &[f64], out: &mut [f64]) -> Result<(), F
 pub fn velocity(solver: u64, radii: &[f64], out: &mut [f64]) -> Result<(), Failure> {
     with_solver(solver, false, |s| {
         check_radii(radii, s.params.r_inf)?;
+        check_velocity_defined(s)?;
         out.copy_from_slice(&s.solver.velocity(s.edge_stress, radii));
         Ok(())
     })
