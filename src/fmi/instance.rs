@@ -363,10 +363,14 @@ impl Instance {
         }
         self.prepare()?;
         let t = self.clock.time;
-        let got: Vec<f64> = unknowns
-            .iter()
-            .map(|&u| knowns.iter().zip(seed).map(|(&k, s)| self.model.partial(u, k, t) * s).sum())
-            .collect();
+        let mut got = Vec::with_capacity(unknowns.len());
+        for &u in unknowns {
+            let mut sum = 0.0;
+            for (&k, s) in knowns.iter().zip(seed) {
+                sum += self.model.partial(u, k, t)? * s;
+            }
+            got.push(sum);
+        }
         match got.iter().position(|x| !x.is_finite()) {
             Some(i) => Err(format!("the derivative of {} overflows for this dvKnown", d.variables[unknowns[i] as usize].name)),
             None => Ok(got),

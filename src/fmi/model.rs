@@ -165,8 +165,9 @@ pub trait FmuModel: Send {
     fn get(&self, vr: u32, time: f64) -> f64;
     /// Advance from `time` by `h > 0` (after `prepare`).
     fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected>;
-    /// `d output / d input` at master time `time` (after `prepare`).
-    fn partial(&self, output: u32, input: u32, time: f64) -> f64;
+    /// `d output / d input` at master time `time` (after `prepare`); `Err` with the reason
+    /// where the exact derivative is infinite or undefined.
+    fn partial(&self, output: u32, input: u32, time: f64) -> Result<f64, Rejected>;
     /// The model's part of a serialized FMU state.
     fn encode(&self) -> Result<Vec<u8>, Rejected>;
     /// A model from `encode`d bytes, which must fit this instance's parameters.

@@ -45,15 +45,18 @@ R1 = wound_exact.initial_radius(SIGMA)
 R_FINAL = wound_exact.final_radius(SIGMA, R_INF)
 AMPLITUDE = R_FINAL - R1  # the opening R_final - R1 (about 0.507)
 
-# The requirement: |wound_radius - R_exact| <= 1e-6 (R_final - R1) at every t >= 0.01.
-RADIUS_TOL = 1e-6
+# The FMU's promise at its default tolerance (1e-10), which these tests run at:
+# |wound_radius - R_exact| <= 1e-10 (R_final - R1) at every t >= 0.01. Asserted at the
+# promised level (measured worst 1.1e-11): a 10x regression fails.
+RADIUS_TOL = 1e-10
 T_MIN = 0.01
 
-# Velocity: relative 1e-6 where the edge moves, and below the mean opening speed over a
-# 100 T horizon, AMPLITUDE / 100 (~5e-3), absolute 1e-6 of that speed: a velocity error at
-# that level, integrated over the horizon, is 1e-6 of the amplitude, i.e. the same
-# requirement as for the radius.
-VELOCITY_TOL = 1e-6
+# Velocity, stated in the README at the default tolerance: relative 1e-7 where the edge
+# moves, and below the mean opening speed over a 100 T horizon, AMPLITUDE / 100 (~5e-3),
+# absolute 1e-7 of that speed, at t >= 0.01 after the cut or a change of edge stress
+# (measured worst 2.8e-8: lambda = 0, 0.01 after a jump of the edge stress, where the
+# velocity is again singular like t^(-1/2); 3e-10 elsewhere at lambda = 0).
+VELOCITY_TOL = 1e-7
 VELOCITY_FLOOR = AMPLITUDE / 100.0
 
 def PARAMS(lam):
@@ -76,15 +79,22 @@ def exact(lam, t, p=0.0, sigma=SIGMA, r_inf=R_INF):
 
 def initial_velocity(lam, p=0.0, sigma=SIGMA, r_inf=R_INF):
     """dR/dt at t = 0+ for lambda > 0 (docs/model.md section 3, finite R_inf):
-    w = A I1(r/lambda) + B K1(r/lambda) with lambda^2 D w(1) = p - sigma, D w(R_inf) = 0."""
+    w = A I1(r/lambda) + B K1(r/lambda) with lambda^2 D w(1) = p - sigma, D w(R_inf) = 0.
+
+    Written with SciPy's exponentially scaled functions, I1(kr) = ive(1, kr) e^(kr) and
+    K1(kr) = kve(1, kr) e^(-kr), and the constants absorbing e^(k R_inf) and e^(-k), so that
+    nothing overflows for small lambda (k = 1/lambda up to ~1e5)."""
     import scipy.special as sp
 
     k = 1.0 / lam
-    d_i = lambda r: 2 * (2 * k * sp.i0(k * r) - sp.i1(k * r) / r)  # noqa: E731
-    d_k = lambda r: -2 * (2 * k * sp.k0(k * r) + sp.k1(k * r) / r)  # noqa: E731
+    # The I part carries e^(k (r - R_inf)) <= 1, the K part e^(-k (r - 1)) <= 1.
+    grow = lambda r: np.exp(k * (r - r_inf))  # noqa: E731
+    decay = lambda r: np.exp(-k * (r - 1.0))  # noqa: E731
+    d_i = lambda r: 2 * (2 * k * sp.ive(0, k * r) - sp.ive(1, k * r) / r) * grow(r)  # noqa: E731
+    d_k = lambda r: -2 * (2 * k * sp.kve(0, k * r) + sp.kve(1, k * r) / r) * decay(r)  # noqa: E731
     m = np.array([[lam**2 * d_i(1.0), lam**2 * d_k(1.0)], [d_i(r_inf), d_k(r_inf)]])
     a, b = np.linalg.solve(m, [p - sigma, 0.0])
-    return a * sp.i1(k) + b * sp.k1(k)
+    return a * sp.ive(1, k) * grow(1.0) + b * sp.kve(1, k)
 
 
 def radius_error(r, r_exact):

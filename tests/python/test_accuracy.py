@@ -1,9 +1,9 @@
 """Accuracy of the FMU against the exact (Laplace-domain) solution, driven by fmpy.
 
-The requirement: |wound_radius - R_exact| / (R_final - R1) <= 1e-6 at every communication
-point t >= 0.01 (for t -> 0+ at lambda = 0 the edge velocity is unbounded, ~ t^(-1/2),
-and the requirement starts at t = 0.01).  The reference itself is accurate to ~1e-14
-(test_reference.py), so the whole 1e-6 budget is the FMU's.  Velocity: see
+The promise at the default tolerance: |wound_radius - R_exact| / (R_final - R1) <= 1e-10 at
+every communication point t >= 0.01 (for t -> 0+ at lambda = 0 the edge velocity is
+unbounded, ~ t^(-1/2), and the promise starts at t = 0.01).  The reference itself is
+accurate to ~1e-14 (test_reference.py), so the whole budget is the FMU's.  Velocity: see
 fmu_harness.VELOCITY_TOL / VELOCITY_FLOOR.
 
 The measured maxima are printed at the end of the pytest run.
@@ -126,11 +126,12 @@ def test_simulate_fmu_edge_stress_step(fmu_path, lam):
 @pytest.mark.parametrize("lam", [0.1, 1.0, 10.0])
 @pytest.mark.parametrize("p", [0.0, 0.3])
 def test_initial_velocity(make_slave, lam, p):
-    """Right after initialization the output edge_velocity is u_t(1, 0+), closed form in
-    Bessel functions for lambda > 0 (at lambda = 0 it is infinite and not checked).  The
-    t >= 0.01 requirement does not cover t = 0; 1e-6 relative is asked here as well, and
-    the formula is also checked against the Laplace reference at t = 1e-9 (where the
-    velocity has moved by < 1e-7 relative from its t = 0+ value)."""
+    """Right after initialization the output edge_velocity is u_t(1, 0+) = (p - sigma) w(1),
+    the closed form in Bessel functions for lambda > 0, which the FMU evaluates itself
+    (measured within 1.1e-15 of SciPy's; asserted at 1e-12; at 90e9375 it was the mesh's,
+    2.4e-12 off at lambda = 1). At lambda = 0 it is infinite: see test_errors. The formula
+    is also checked against the Laplace reference at t = 1e-9 (where the velocity has moved
+    by < 1e-7 relative from its t = 0+ value)."""
     s = make_slave()
     s.initialize({**PARAMS(lam), "edge_stress": p})
     r0, v0 = s.outputs()
@@ -139,5 +140,5 @@ def test_initial_velocity(make_slave, lam, p):
     assert v_ref[0] == pytest.approx(expected, rel=1e-7)
     err = abs(v0 / expected - 1)
     record(f"initial velocity lambda={lam:g}", err)
-    assert err <= 1e-6, (v0, expected)
+    assert err <= 1e-12, (v0, expected)
     assert abs(r0 - R1) <= 1e-12

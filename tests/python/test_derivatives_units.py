@@ -1,13 +1,17 @@
-"""fmi2GetDirectionalDerivative of both FMUs against difference quotients of their own
-outputs, WoundOpening's physical units against its dimensionless behaviour, and the
-PurseString FMU's refusals and FMU states."""
+"""fmi2GetDirectionalDerivative of both FMUs: WoundOpening's against the closed form of the
+instantaneous velocity response (docs/model.md section 3, evaluated with SciPy's Bessel
+functions in fmu_harness.initial_velocity, independently of the Rust code) and refused at
+lambda = 0 where it is infinite; consistency with difference quotients of the outputs;
+WoundOpening's physical units against its dimensionless behaviour; the PurseString FMU's
+refusals and FMU states."""
 
 import math
+import re
 
 import numpy as np
 import pytest
 
-from fmu_harness import PARAMS, assert_logged, expect_error, names_value
+from fmu_harness import PARAMS, R_INF, assert_logged, expect_error, initial_velocity, names_value, record
 
 PHYSICAL = {"R0": 10.0, "T": 10.0, "G": 100.0}
 
@@ -21,7 +25,40 @@ def wound_at(make_slave, lam, t_end, p, scales=None):
     return s
 
 
-@pytest.mark.parametrize("lam", [0.0, 0.1, 1.0, 10.0])
+def exact_slope(lam, r_inf=R_INF):
+    """d u_t(1) / d p = w(1): the initial velocity for p - sigma = 1."""
+    return initial_velocity(lam, p=1.0, sigma=0.0, r_inf=r_inf)
+
+
+@pytest.mark.parametrize("lam", [0.01, 0.1, 1.0, 10.0, 1e3])
+@pytest.mark.parametrize("scales", [None, PHYSICAL], ids=["dimensionless", "physical"])
+def test_wound_derivative_is_the_closed_form(make_slave, lam, scales):
+    """d edge_velocity / d edge_stress = (R0/T)/G w(1) with w the exact response. Measured
+    within 1.2e-15 relative of SciPy's evaluation; asserted at 1e-12. At 90e9375 the FMU
+    returned its mesh's value instead: 17.8 against an exact 25.0 at lambda = 0.01,
+    tolerance 1e-3."""
+    k = scales or {"R0": 1.0, "T": 1.0, "G": 1.0}
+    s = make_slave()
+    s.fmu.setupExperiment(tolerance=1e-3, startTime=0.0)
+    s.set({**PARAMS(lam), **(scales or {})})
+    s.fmu.enterInitializationMode()
+    s.exit_initialization()
+    (d_v,) = s.fmu.getDirectionalDerivative([s.vr["edge_velocity"]], [s.vr["edge_stress"]], [1.0])
+    want = k["R0"] / k["T"] / k["G"] * exact_slope(lam)
+    record(f"directional derivative vs closed form, lambda={lam:g} (relative)", abs(d_v / want - 1))
+    assert d_v == pytest.approx(want, rel=1e-12), (d_v, want)
+
+
+@pytest.mark.parametrize("scales", [None, PHYSICAL], ids=["dimensionless", "physical"])
+def test_wound_derivative_is_refused_at_lambda_zero(make_slave, scales):
+    """The exact derivative is infinite at lambda = 0: refused with the reason, where
+    90e9375 returned a mesh artefact (22.5 to 264 depending on the tolerance)."""
+    s = wound_at(make_slave, 0.0, 0.5, 0.2, scales)
+    messages = expect_error(s, s.fmu.getDirectionalDerivative, [s.vr["edge_velocity"]], [s.vr["edge_stress"]], [1.0])
+    assert_logged(messages, re.compile(r"infinite at lambda = 0"), s)
+
+
+@pytest.mark.parametrize("lam", [0.1, 1.0, 10.0])
 @pytest.mark.parametrize("scales", [None, PHYSICAL], ids=["dimensionless", "physical"])
 def test_wound_derivatives_match_difference_quotients(make_slave, lam, scales):
     """d wound_radius / d edge_stress = 0; d edge_velocity / d edge_stress is the slope of

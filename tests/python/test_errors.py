@@ -4,7 +4,7 @@ Each must return fmi2Error (fmpy raises fmpy.fmi1.FMICallException with .status 
 any status above fmi2Warning), log a message through the logger callback (errors are
 logged whatever loggingOn says; all instances here have loggingOn=False), and leave the
 instance as it was: the tests go on with the same instance in the same process and check
-its outputs against the exact solution (the 1e-6 requirement).  Reaching those checks is
+its outputs against the exact solution (the promise of the default tolerance, 1e-10).  Reaching those checks is
 also the proof that the process did not crash.
 """
 

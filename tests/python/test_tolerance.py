@@ -56,12 +56,13 @@ def test_tolerance_parameter_is_used_when_the_master_defines_none(make_slave):
 
 
 @pytest.mark.parametrize("r_inf", R_INFS)
-def test_default_settings_meet_1e9(make_slave, r_inf):
-    """Issue requirement: defaults within 1e-9 for lambda in {0, 0.1, 1, 10, 100}."""
+def test_default_tolerance_is_met(make_slave, r_inf):
+    """The default tolerance 1e-10, asserted at that level, for lambda in {0, 0.1, 1, 10, 100}
+    (measured worst 1.5e-11)."""
     worst = 0.0
     for lam in [0.0, 0.1, 1.0, 10.0, 100.0]:
         err = run(make_slave(), lam, r_inf)
-        assert err <= 1e-9, f"lambda {lam}: {err:.2e}"
+        assert err <= 1e-10, f"lambda {lam}: {err:.2e}"
         worst = max(worst, err)
     record(f"default settings R_inf={r_inf:g}: worst error", worst)
 

@@ -91,11 +91,11 @@ impl FmuModel for PurseModel {
         Ok(())
     }
 
-    fn partial(&self, output: u32, input: u32, time: f64) -> f64 {
-        match (Vr::from_u32(output), Vr::from_u32(input)) {
+    fn partial(&self, output: u32, input: u32, time: f64) -> Result<f64, Rejected> {
+        Ok(match (Vr::from_u32(output), Vr::from_u32(input)) {
             (Some(Vr::EdgeStress), Some(Vr::WoundRadius)) => self.purse.edge_stress_slope(time, self.wound_radius),
             _ => 0.0,
-        }
+        })
     }
 
     /// `T_max, t_assembly, t_delay, thickness, wound_radius` (f64 LE).

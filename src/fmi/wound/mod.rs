@@ -197,12 +197,19 @@ impl FmuModel for WoundModel {
         solver.advance(h, p).map_err(|e| e.to_string())
     }
 
-    fn partial(&self, output: u32, input: u32, _time: f64) -> f64 {
+    /// `d edge_velocity / d edge_stress = (R0 / T) / G * w(1)`, the exact closed form of the
+    /// instantaneous response ([`crate::solver::exact::velocity_response`]); infinite at
+    /// `lambda = 0`, and refused there with the reason.
+    fn partial(&self, output: u32, input: u32, _time: f64) -> Result<f64, Rejected> {
         match (Vr::from_u32(output), Vr::from_u32(input)) {
             (Some(Vr::EdgeVelocity), Some(Vr::EdgeStress)) => {
-                self.scales.velocity() / self.scales.stress * self.solver().edge_velocity_slope()
+                let slope = self.solver().edge_velocity_slope();
+                if slope.is_infinite() {
+                    return Err("d edge_velocity / d edge_stress is infinite at lambda = 0 (the edge of a frictional tissue without viscosity responds to a change of edge stress with an unbounded velocity; it is -1/(4 lambda) R0/(T G) for small lambda > 0)".into());
+                }
+                Ok(self.scales.velocity() / self.scales.stress * slope)
             }
-            _ => 0.0,
+            _ => Ok(0.0),
         }
     }
 
