@@ -7,7 +7,7 @@ use std::time::Instant;
 use wound_opening::solver::{Params, Settings, Solver};
 
 const LAMBDAS: [f64; 9] = [0.0, 1e-3, 1e-2, 0.1, 1.0, 10.0, 1e3, 1e4, 1e6];
-const RADII: [f64; 10] = [1.001, 1.01, 1.1, 2.0, 10.0, 1e3, 1e4, 1e5, 1e6, 3.0];
+const RADII: [f64; 14] = [50.0, 100.0, 150.0, 200.0, 1.001, 1.01, 1.1, 2.0, 10.0, 1e3, 1e4, 1e5, 1e6, 3.0];
 
 fn main() {
     let tol: f64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(1e-10);

@@ -311,3 +311,18 @@ fn very_large_domains_work_up_to_the_limit_and_are_refused_beyond() {
     let err = Solver::new(&Params { lambda: 1.0, sigma: 1.0, r_inf: 1e7 }, &Settings::default()).unwrap_err();
     assert!(err.to_string().starts_with("R_inf = 10000000 is outside the accepted range [1.001, 1e6]"), "{err}");
 }
+
+/// The process-wide basis cache returns exactly what a fresh build gives, on both
+/// eigensolver paths (QR at R_inf = 10, Jacobi at 1e4), so a cache hit cannot change an
+/// answer; and solvers of different lambda at one R_inf share it (item 8 of the issue
+/// "Every promise holds").
+#[test]
+fn a_cached_basis_is_bit_identical_to_a_fresh_one() {
+    use wound_opening::solver::basis;
+    for r_inf in [10.0, 1e4] {
+        let params = Params { lambda: 0.3, sigma: 1.0, r_inf };
+        let spec = Settings::for_tolerance(&params, 1e-10).unwrap().mesh;
+        let _warm = Solver::new(&params, &Settings { mesh: spec }).unwrap();
+        assert!(basis::fresh_basis_equals_cached(spec, r_inf), "R_inf {r_inf}");
+    }
+}
