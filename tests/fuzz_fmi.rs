@@ -15,7 +15,7 @@ mod fuzz_support;
 use fuzz_support::{Budget, NULL_CALLBACKS, Rng, mutated};
 use std::collections::BTreeMap;
 use std::ffi::{CString, c_char};
-use wound_opening::fmi::boundary::caught_panics;
+use wound_opening::boundary::caught_panics;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
 use wound_opening::fmi::MODELS;

@@ -3,7 +3,8 @@
 //! boundary, state machine, logging) or, without an instance, by [`guard`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use super::boundary::{CallbackLogger, guard, slice, slice_mut, status_code, text, with_instance};
+use super::boundary::{CallbackLogger, slice, slice_mut, status_code, text, with_instance};
+use crate::boundary::guard;
 use super::instance::{Call, Instance, Status};
 use super::types::*;
 use super::MODELS;
