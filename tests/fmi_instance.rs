@@ -2,24 +2,23 @@
 //! that name what was wrong, FMU states. (The C boundary itself is driven by fmpy in
 //! tests/python.)
 
-use std::cell::RefCell;
-use std::rc::Rc;
+use std::sync::{Arc, Mutex};
 use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
 use wound_opening::fmi::state::Machine;
 use wound_opening::fmi::variables::Vr;
 
 #[derive(Clone, Default)]
-struct Collect(Rc<RefCell<Vec<(Status, String, String)>>>);
+struct Collect(Arc<Mutex<Vec<(Status, String, String)>>>);
 
 impl Logger for Collect {
     fn log(&self, status: Status, category: &str, message: &str) {
-        self.0.borrow_mut().push((status, category.into(), message.into()));
+        self.0.lock().unwrap().push((status, category.into(), message.into()));
     }
 }
 
 impl Collect {
     fn last_error(&self) -> String {
-        let log = self.0.borrow();
+        let log = self.0.lock().unwrap();
         let (status, cat, msg) = log.last().expect("a message was logged").clone();
         assert_eq!((status, cat.as_str()), (Status::Error, "logStatusError"));
         msg
@@ -28,7 +27,7 @@ impl Collect {
 
 fn instance() -> (Instance, Collect) {
     let log = Collect::default();
-    (Instance::new("test", Box::new(log.clone()), false), log)
+    (Instance::new("test", Arc::new(log.clone()), false), log)
 }
 
 fn run<T>(i: &mut Instance, call: Call, body: impl FnOnce(&mut Instance) -> Result<T, String>) -> Result<T, Status> {
@@ -178,7 +177,7 @@ fn debug_logging_switches_categories_and_rejects_unknown_ones() {
     let (mut i, log) = instance();
     i.set_debug_logging(true, &["logCalls".into()]).unwrap();
     run(&mut i, Call::SetupExperiment, |i| i.setup_experiment(None, 0.0, None)).unwrap();
-    assert!(log.0.borrow().iter().any(|(_, c, m)| c == "logCalls" && m.contains("SetupExperiment")));
+    assert!(log.0.lock().unwrap().iter().any(|(_, c, m)| c == "logCalls" && m.contains("SetupExperiment")));
     let err = i.set_debug_logging(true, &["logNothing".into()]).unwrap_err();
     assert!(err.contains("logNothing") && err.contains("logCalls"), "{err}");
 }

@@ -11,6 +11,7 @@ pub use super::model::Rejected;
 use super::model::{Causality, Description, FmuModel, Kind, LOG_CATEGORIES, Variability};
 use super::state::{self, Machine};
 use std::collections::HashMap;
+use std::sync::Arc;
 
 /// `fmi2Status`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -22,14 +23,17 @@ pub enum Status {
     Fatal = 4,
 }
 
-/// Where log messages go (the importer's callback, or a test's collector).
-pub trait Logger {
+/// Where log messages go (the importer's callback, or a test's collector). Shared by the
+/// instance and the table of live instances (which logs a call refused because another
+/// holds the instance), and so usable from any thread.
+pub trait Logger: Send + Sync {
     fn log(&self, status: Status, category: &str, message: &str);
 }
 
 /// The FMI calls, for the state-machine check and the call log.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Call {
+    SetDebugLogging,
     SetupExperiment,
     EnterInitializationMode,
     ExitInitializationMode,
@@ -58,7 +62,7 @@ impl Call {
             // After an internal failure only recovery and inspection remain.
             return matches!(
                 self,
-                Call::Reset | Call::Get | Call::GetFmuState | Call::SetFmuState | Call::FreeFmuState
+                Call::SetDebugLogging | Call::Reset | Call::Get | Call::GetFmuState | Call::SetFmuState | Call::FreeFmuState
                     | Call::SerializeFmuState | Call::DeSerializeFmuState
             );
         }
@@ -66,7 +70,8 @@ impl Call {
             Call::SetupExperiment | Call::EnterInitializationMode => m == Instantiated,
             Call::ExitInitializationMode => m == InitializationMode,
             Call::Terminate | Call::DoStep => m == StepComplete,
-            Call::Reset
+            Call::SetDebugLogging
+            | Call::Reset
             | Call::GetFmuState
             | Call::SetFmuState
             | Call::FreeFmuState
@@ -81,6 +86,7 @@ impl Call {
 
     pub fn fmi_name(self) -> &'static str {
         match self {
+            Call::SetDebugLogging => "fmi2SetDebugLogging",
             Call::SetupExperiment => "fmi2SetupExperiment",
             Call::EnterInitializationMode => "fmi2EnterInitializationMode",
             Call::ExitInitializationMode => "fmi2ExitInitializationMode",
@@ -128,7 +134,7 @@ impl Clone for Snapshot {
 /// An FMU instance.
 pub struct Instance {
     name: String,
-    logger: Box<dyn Logger>,
+    logger: Arc<dyn Logger>,
     /// Debug categories switched on (index into `LOG_CATEGORIES`); errors always log.
     categories: [bool; LOG_CATEGORIES.len()],
     machine: Machine,
@@ -146,12 +152,12 @@ const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
 
 impl Instance {
     /// An instance of the wound-opening model.
-    pub fn new(name: &str, logger: Box<dyn Logger>, logging_on: bool) -> Self {
+    pub fn new(name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
         Self::of_model(super::wound::WoundModel::fresh, name, logger, logging_on)
     }
 
     /// An instance of the model that `fresh` makes.
-    pub fn of_model(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Box<dyn Logger>, logging_on: bool) -> Self {
+    pub fn of_model(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
         Self {
             name: name.to_owned(),
             logger,
@@ -167,6 +173,11 @@ impl Instance {
 
     pub fn name(&self) -> &str {
         &self.name
+    }
+
+    /// The logger, to log for this instance while it is busy (see `fmi::frame`).
+    pub fn logger(&self) -> Arc<dyn Logger> {
+        Arc::clone(&self.logger)
     }
 
     pub fn machine(&self) -> Machine {
