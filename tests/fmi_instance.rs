@@ -243,3 +243,34 @@ fn a_state_of_another_method_deserializes_into_a_fresh_instance() {
     run(&mut b, Call::DoStep, |i| i.do_step(0.5, 0.5)).unwrap();
     assert_eq!(outputs(&mut b), want);
 }
+
+/// Guards against one instance taking another's FMU state (handles were per-instance
+/// counters, so B's first state had the number of A's): refused, with the way to move a
+/// state between instances in the message, and nothing changed.
+#[test]
+fn a_state_of_another_instance_is_refused_with_the_way_to_move_it() {
+    let (mut a, _) = initialized(1.0);
+    let (mut b, log) = initialized(1.0);
+    let theirs = run(&mut a, Call::GetFmuState, |i| i.get_fmu_state(None)).unwrap();
+    let ours = run(&mut b, Call::GetFmuState, |i| i.get_fmu_state(None)).unwrap();
+    assert_ne!(theirs, ours, "handles are unique in the process");
+    run(&mut b, Call::DoStep, |i| i.do_step(0.0, 1.0)).unwrap();
+    let bytes = run(&mut b, Call::SerializeFmuState, |i| i.serialize_fmu_state(ours)).unwrap();
+    let refusals: [Result<(), Status>; 5] = [
+        run(&mut b, Call::SetFmuState, |i| i.set_fmu_state(theirs)),
+        run(&mut b, Call::FreeFmuState, |i| i.free_fmu_state(theirs)),
+        run(&mut b, Call::GetFmuState, |i| i.get_fmu_state(Some(theirs)).map(drop)),
+        run(&mut b, Call::SerializeFmuState, |i| i.serialize_fmu_state(theirs).map(drop)),
+        run(&mut b, Call::DeSerializeFmuState, |i| i.deserialize_fmu_state(&bytes, Some(theirs)).map(drop)),
+    ];
+    for r in refusals {
+        assert_eq!(r, Err(Status::Error));
+        let msg = log.last_error();
+        assert!(msg.contains(&format!("FMU state {theirs:#x} is unknown to this instance")), "{msg}");
+        assert!(msg.contains("move it with fmi2SerializeFMUstate and fmi2DeSerializeFMUstate"), "{msg}");
+    }
+    assert_eq!(b.last_successful_time(), 1.0, "B's time is untouched");
+    run(&mut b, Call::SetFmuState, |i| i.set_fmu_state(ours)).unwrap();
+    assert_eq!(b.last_successful_time(), 0.0, "B's own state is still B's");
+    run(&mut a, Call::SetFmuState, |i| i.set_fmu_state(theirs)).unwrap();
+}

@@ -10,6 +10,7 @@
 pub use super::model::Rejected;
 use super::model::{Causality, Description, FmuModel, Kind, LOG_CATEGORIES, Variability};
 use super::state::{self, Machine};
+use crate::boundary::registry::fresh_handle;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -142,9 +143,10 @@ pub struct Instance {
     model: Box<dyn FmuModel>,
     /// A fresh model, for `fmi2Reset`.
     fresh: fn() -> Box<dyn FmuModel>,
-    /// FMU states handed to the master, by handle (never 0).
+    /// FMU states handed to the master, by handle. Handles come from the process-wide
+    /// counter ([`fresh_handle`]), never reused, so a handle of another instance (of either
+    /// model), of a freed instance, or a made-up one is never in this table.
     states: HashMap<u64, Snapshot>,
-    next_handle: u64,
 }
 
 const LOG_CALLS: usize = 2;
@@ -167,7 +169,6 @@ impl Instance {
             model: fresh(),
             fresh,
             states: HashMap::new(),
-            next_handle: 1,
         }
     }
 
@@ -416,24 +417,24 @@ impl Instance {
     pub fn get_fmu_state(&mut self, handle: Option<u64>) -> Result<u64, Rejected> {
         let snap = Snapshot { machine: self.machine, clock: self.clock, model: self.model.boxed_clone() };
         let h = match handle {
-            Some(h) if self.states.contains_key(&h) => h,
-            Some(h) => return Err(format!("FMU state {h:#x} was not allocated by this instance")),
-            None => self.new_handle(),
+            Some(h) => self.snapshot(h).map(|_| h)?,
+            None => fresh_handle(),
         };
         self.states.insert(h, snap);
         Ok(h)
     }
 
-    fn new_handle(&mut self) -> u64 {
-        let h = self.next_handle;
-        self.next_handle += 1;
-        h
-    }
-
+    /// A state of this instance. Any other handle is refused with the reason: FMI 2.0
+    /// (section 2.1.8) gives an FMU state to the instance that made it; the way to move a
+    /// state to another instance is to serialize and deserialize it.
     fn snapshot(&self, handle: u64) -> Result<&Snapshot, Rejected> {
-        self.states
-            .get(&handle)
-            .ok_or_else(|| format!("FMU state {handle:#x} is unknown (never allocated here, or already freed)"))
+        self.states.get(&handle).ok_or_else(|| {
+            format!(
+                "FMU state {handle:#x} is unknown to this instance (never allocated by it, or already freed); \
+                 a state of another instance cannot be used here: move it with fmi2SerializeFMUstate and \
+                 fmi2DeSerializeFMUstate"
+            )
+        })
     }
 
     pub fn set_fmu_state(&mut self, handle: u64) -> Result<(), Rejected> {
@@ -460,12 +461,12 @@ impl Instance {
     /// with the same parameters (a state is a point of one trajectory, not a parameter
     /// set). Into `target` if given (it must be ours), else into a new state.
     pub fn deserialize_fmu_state(&mut self, bytes: &[u8], target: Option<u64>) -> Result<u64, Rejected> {
+        if let Some(h) = target {
+            self.snapshot(h)?;
+        }
         let (machine, clock, payload) = state::decode(self.description().model_identifier, bytes)?;
         let model = self.model.decode(payload)?;
-        let handle = match target {
-            Some(h) => self.snapshot(h).map(|_| h)?,
-            None => self.new_handle(),
-        };
+        let handle = target.unwrap_or_else(fresh_handle);
         self.states.insert(handle, Snapshot { machine, clock, model });
         Ok(handle)
     }

@@ -200,14 +200,14 @@ static void fmu_states(fmi2Component c) {
     fmi2FMUstate st = NULL, copy = NULL, back = NULL, forged = (fmi2FMUstate)(uintptr_t)0x999;
     size_t size = 0;
     REFUSED(F.fmi2GetFMUstate(c, NULL), "FMUstate is NULL");
-    REFUSED(F.fmi2GetFMUstate(c, &forged), "was not allocated by this instance");
+    REFUSED(F.fmi2GetFMUstate(c, &forged), "is unknown to this instance");
     OK(F.fmi2GetFMUstate(c, &st));
     copy = st;
     REFUSED(F.fmi2SetFMUstate(c, NULL), "FMUstate is NULL");
     REFUSED(F.fmi2FreeFMUstate(c, NULL), "FMUstate is NULL");
     OK(F.fmi2FreeFMUstate(c, &st));
-    REFUSED(F.fmi2FreeFMUstate(c, &copy), "is unknown (never allocated here, or already freed)");
-    REFUSED(F.fmi2SetFMUstate(c, copy), "is unknown (never allocated here, or already freed)");
+    REFUSED(F.fmi2FreeFMUstate(c, &copy), "is unknown to this instance (never allocated by it, or already freed)");
+    REFUSED(F.fmi2SetFMUstate(c, copy), "is unknown to this instance (never allocated by it, or already freed)");
     REFUSED(F.fmi2SerializedFMUstateSize(c, copy, &size), "is unknown");
 
     OK(F.fmi2GetFMUstate(c, &st));
