@@ -274,3 +274,16 @@ fn a_state_of_another_instance_is_refused_with_the_way_to_move_it() {
     assert_eq!(b.last_successful_time(), 0.0, "B's own state is still B's");
     run(&mut a, Call::SetFmuState, |i| i.set_fmu_state(theirs)).unwrap();
 }
+
+/// Guards against the communication-point tolerance hiding a wrong point: off by twice the
+/// tolerance (2e-6 h) it is refused, naming the instance's time and the master's point.
+#[test]
+fn a_point_off_by_more_than_the_tolerance_is_refused_with_both_values() {
+    let (mut i, log) = initialized(1.0);
+    run(&mut i, Call::DoStep, |i| i.do_step(0.0, 0.1)).unwrap();
+    let off = 0.1 + 2e-6 * 0.1;
+    assert_eq!(run(&mut i, Call::DoStep, |i| i.do_step(off, 0.1)), Err(Status::Error));
+    let msg = log.last_error();
+    assert!(msg.starts_with(&format!("fmi2DoStep: Expected currentCommunicationPoint = 0.1 but was {off}")), "{msg}");
+    assert_eq!(i.last_successful_time(), 0.1);
+}

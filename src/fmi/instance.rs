@@ -113,10 +113,35 @@ impl Call {
 /// The master's clock of one instance.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Clock {
+    /// `startTime` of `fmi2SetupExperiment`: the cut, time 0 of every model.
     pub start: f64,
     pub stop: Option<f64>,
     /// Master time of the last communication point.
     pub time: f64,
+}
+
+impl Clock {
+    /// The time a model sees: since `startTime`, so that every model puts the cut at the
+    /// same instant whatever the master's time origin.
+    pub fn since_start(&self) -> f64 {
+        self.time - self.start
+    }
+}
+
+/// How far apart the master's time and the instance's may be and still be the same
+/// instant, for a step `h` at time `t`:
+///
+/// ```text
+/// |currentCommunicationPoint - time| <= 1e-6 h + 4 eps |t|        (eps = f64::EPSILON)
+/// ```
+///
+/// 4 eps |t| is a few roundings of a time near t, whatever the step (a master that sums
+/// its steps, or computes t_n = n h, differs from t + h by that much); 1e-6 h lets a master
+/// whose clock is coarser than that still through, while a point a millionth of a step
+/// away from the instance's time is refused. The same slack bounds how far a step may end
+/// past `stopTime`.
+pub fn time_slack(h: f64, t: f64) -> f64 {
+    1e-6 * h + 4.0 * f64::EPSILON * t.abs()
 }
 
 /// A saved FMU state, as held in the instance's table of states.
@@ -303,7 +328,8 @@ impl Instance {
         if needs_model {
             self.prepare()?;
         }
-        Ok(vrs.iter().map(|&v| self.model.get(v, self.clock.time)).collect())
+        let t = self.clock.since_start();
+        Ok(vrs.iter().map(|&v| self.model.get(v, t)).collect())
     }
 
     pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
@@ -374,7 +400,7 @@ impl Instance {
             return Err(format!("dvKnown = {x} is invalid: it must be finite"));
         }
         self.prepare()?;
-        let t = self.clock.time;
+        let t = self.clock.since_start();
         let got: Vec<f64> = unknowns
             .iter()
             .map(|&u| knowns.iter().zip(seed).map(|(&k, s)| self.model.partial(u, k, t) * s).sum())
@@ -386,20 +412,35 @@ impl Instance {
     }
 
     /// `fmi2DoStep`: the inputs set before the call are held over `[t, t + h]`.
+    ///
+    /// The master's clock is the truth (as in the Reference-FMUs): its
+    /// `currentCommunicationPoint` t is accepted when it is the instance's time within
+    /// [`time_slack`], and the time after the step is `t + h`, whatever the instance had.
+    /// A master computing its points as `t_n = n h` thus never drifts away from the
+    /// instance, as it did from a clock that summed the step sizes. The step may end past
+    /// `stopTime` by the same slack and no more.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<(), Rejected> {
-        let now = self.clock.time;
-        if !t.is_finite() || (t - now).abs() > 1e-12 * now.abs().max(1.0) {
-            return Err(format!("Expected currentCommunicationPoint = {now} but was {t}"));
-        }
         if !(h.is_finite() && h > 0.0) {
             return Err(format!("communicationStepSize = {h} is invalid: it must be finite and > 0"));
         }
-        if let Some(stop) = self.clock.stop.filter(|&s| now + h > s + 1e-12 * s.abs().max(1.0)) {
-            return Err(format!("a step of {h} from {now} would pass stopTime = {stop}"));
+        let now = self.clock.time;
+        let slack = time_slack(h, now);
+        if !(t.is_finite() && (t - now).abs() <= slack) {
+            return Err(format!(
+                "Expected currentCommunicationPoint = {now} but was {t} (accepted within {slack:e}: \
+                 1e-6 communicationStepSize + 4 eps |time|)"
+            ));
+        }
+        let end = t + h;
+        if !end.is_finite() {
+            return Err(format!("a step of {h} from {t} ends at {end}: communicationStepSize is too large"));
+        }
+        if let Some(stop) = self.clock.stop.filter(|&s| end > s + time_slack(h, s)) {
+            return Err(format!("a step of {h} from {t} would end at {end}, past stopTime = {stop}"));
         }
         self.prepare()?;
-        self.model.step(now, h)?;
-        self.clock.time = now + h;
+        self.model.step(t - self.clock.start, h)?;
+        self.clock.time = end;
         Ok(())
     }
 
@@ -408,9 +449,10 @@ impl Instance {
         self.clock.time
     }
 
-    /// `fmi2GetBooleanStatus(fmi2Terminated)`: true once the stop time is reached.
+    /// `fmi2GetBooleanStatus(fmi2Terminated)`: true once the stop time is reached (to the
+    /// rounding of a time near it, [`time_slack`] of a zero step).
     pub fn wants_to_terminate(&self) -> bool {
-        self.clock.stop.is_some_and(|s| self.clock.time >= s - 1e-12 * s.abs().max(1.0))
+        self.clock.stop.is_some_and(|s| self.clock.time >= s - time_slack(0.0, s))
     }
 
     /// `fmi2GetFMUstate`: save into `handle` if given (it must be ours), else a new one.

@@ -148,7 +148,8 @@ impl Description {
 
 /// A model behind the FMI glue. Value references arrive checked against the
 /// description (existing, of the right type; outputs never set; fixed parameters only
-/// before initialization ends). Times are the master's.
+/// before initialization ends). Times are since the master's `startTime` (the cut), in
+/// the master's unit: every model of the FMU counts from the same instant.
 pub trait FmuModel: Send {
     fn description(&self) -> &'static Description;
     fn boxed_clone(&self) -> Box<dyn FmuModel>;
@@ -161,11 +162,11 @@ pub trait FmuModel: Send {
     /// Build what outputs and steps need, if not yet built; `Some(text)` to log when
     /// something was built.
     fn prepare(&mut self) -> Result<Option<String>, Rejected>;
-    /// Value of `vr` at master time `time` (after [`FmuModel::prepare`] for outputs).
+    /// Value of `vr` at time `time` since the cut (after [`FmuModel::prepare`] for outputs).
     fn get(&self, vr: u32, time: f64) -> f64;
     /// Advance from `time` by `h > 0` (after `prepare`).
     fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected>;
-    /// `d output / d input` at master time `time` (after `prepare`).
+    /// `d output / d input` at time `time` since the cut (after `prepare`).
     fn partial(&self, output: u32, input: u32, time: f64) -> f64;
     /// The model's part of a serialized FMU state.
     fn encode(&self) -> Result<Vec<u8>, Rejected>;
