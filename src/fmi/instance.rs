@@ -7,108 +7,15 @@
 //! [`Status::Error`], and changes nothing: every check runs before any mutation, so the
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
+pub use super::call::Call;
+pub use super::log::{Logger, Status};
 pub use super::model::Rejected;
-use super::model::{Causality, Description, FmuModel, Kind, LOG_CATEGORIES, Variability};
+use super::log::Log;
+use super::model::{Causality, Description, FmuModel, Kind, Variability};
 use super::state::{self, Machine};
 use crate::boundary::registry::fresh_handle;
 use std::collections::HashMap;
 use std::sync::Arc;
-
-/// `fmi2Status`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Status {
-    Ok = 0,
-    Warning = 1,
-    Discard = 2,
-    Error = 3,
-    Fatal = 4,
-}
-
-/// Where log messages go (the importer's callback, or a test's collector). Shared by the
-/// instance and the table of live instances (which logs a call refused because another
-/// holds the instance), and so usable from any thread.
-pub trait Logger: Send + Sync {
-    fn log(&self, status: Status, category: &str, message: &str);
-}
-
-/// The FMI calls, for the state-machine check and the call log.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Call {
-    SetDebugLogging,
-    SetupExperiment,
-    EnterInitializationMode,
-    ExitInitializationMode,
-    Terminate,
-    Reset,
-    Get,
-    Set,
-    GetFmuState,
-    SetFmuState,
-    FreeFmuState,
-    SerializeFmuState,
-    DeSerializeFmuState,
-    DoStep,
-    CancelStep,
-    GetStatus,
-    GetDirectionalDerivative,
-    SetRealInputDerivatives,
-    GetRealOutputDerivatives,
-}
-
-impl Call {
-    /// States in which FMI 2.0 (section 4.2.4) allows the call.
-    fn allowed(self, m: Machine) -> bool {
-        use Machine::*;
-        if m == Error {
-            // After an internal failure only recovery and inspection remain.
-            return matches!(
-                self,
-                Call::SetDebugLogging | Call::Reset | Call::Get | Call::GetFmuState | Call::SetFmuState | Call::FreeFmuState
-                    | Call::SerializeFmuState | Call::DeSerializeFmuState
-            );
-        }
-        match self {
-            Call::SetupExperiment | Call::EnterInitializationMode => m == Instantiated,
-            Call::ExitInitializationMode => m == InitializationMode,
-            Call::Terminate | Call::DoStep => m == StepComplete,
-            Call::SetDebugLogging
-            | Call::Reset
-            | Call::GetFmuState
-            | Call::SetFmuState
-            | Call::FreeFmuState
-            | Call::SerializeFmuState
-            | Call::DeSerializeFmuState => true,
-            Call::Get | Call::GetDirectionalDerivative => m != Instantiated,
-            Call::Set | Call::SetRealInputDerivatives => m != Terminated,
-            Call::GetStatus | Call::GetRealOutputDerivatives => matches!(m, StepComplete | Terminated),
-            Call::CancelStep => false,
-        }
-    }
-
-    pub fn fmi_name(self) -> &'static str {
-        match self {
-            Call::SetDebugLogging => "fmi2SetDebugLogging",
-            Call::SetupExperiment => "fmi2SetupExperiment",
-            Call::EnterInitializationMode => "fmi2EnterInitializationMode",
-            Call::ExitInitializationMode => "fmi2ExitInitializationMode",
-            Call::Terminate => "fmi2Terminate",
-            Call::Reset => "fmi2Reset",
-            Call::Get => "fmi2Get*",
-            Call::Set => "fmi2Set*",
-            Call::GetFmuState => "fmi2GetFMUstate",
-            Call::SetFmuState => "fmi2SetFMUstate",
-            Call::FreeFmuState => "fmi2FreeFMUstate",
-            Call::SerializeFmuState => "fmi2SerializeFMUstate",
-            Call::DeSerializeFmuState => "fmi2DeSerializeFMUstate",
-            Call::DoStep => "fmi2DoStep",
-            Call::CancelStep => "fmi2CancelStep",
-            Call::GetStatus => "fmi2Get*Status",
-            Call::GetDirectionalDerivative => "fmi2GetDirectionalDerivative",
-            Call::SetRealInputDerivatives => "fmi2SetRealInputDerivatives",
-            Call::GetRealOutputDerivatives => "fmi2GetRealOutputDerivatives",
-        }
-    }
-}
 
 /// The master's clock of one instance.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -160,9 +67,7 @@ impl Clone for Snapshot {
 /// An FMU instance.
 pub struct Instance {
     name: String,
-    logger: Arc<dyn Logger>,
-    /// Debug categories switched on (index into `LOG_CATEGORIES`); errors always log.
-    categories: [bool; LOG_CATEGORIES.len()],
+    log: Log,
     machine: Machine,
     clock: Clock,
     model: Box<dyn FmuModel>,
@@ -174,7 +79,6 @@ pub struct Instance {
     states: HashMap<u64, Snapshot>,
 }
 
-const LOG_CALLS: usize = 2;
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
 
 impl Instance {
@@ -187,8 +91,7 @@ impl Instance {
     pub fn of_model(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
         Self {
             name: name.to_owned(),
-            logger,
-            categories: [true, true, logging_on],
+            log: Log::new(logger, logging_on),
             machine: Machine::Instantiated,
             clock: FRESH_CLOCK,
             model: fresh(),
@@ -203,7 +106,7 @@ impl Instance {
 
     /// The logger, to log for this instance while it is busy (see `fmi::frame`).
     pub fn logger(&self) -> Arc<dyn Logger> {
-        Arc::clone(&self.logger)
+        self.log.logger()
     }
 
     pub fn machine(&self) -> Machine {
@@ -223,17 +126,7 @@ impl Instance {
 
     /// Log under an error category (always on).
     pub fn log_error(&self, message: &str) {
-        self.logger.log(Status::Error, "logStatusError", message);
-    }
-
-    fn log_calls_on(&self) -> bool {
-        self.categories[LOG_CALLS]
-    }
-
-    fn log_debug(&self, message: &str) {
-        if self.log_calls_on() {
-            self.logger.log(Status::Ok, "logCalls", message);
-        }
+        self.log.error(message);
     }
 
     /// Frame one FMI call: log it, check the state machine, run `body`, log a rejection.
@@ -243,9 +136,8 @@ impl Instance {
         describe: impl FnOnce() -> String,
         body: impl FnOnce(&mut Self) -> Result<T, Rejected>,
     ) -> Result<T, Status> {
-        if self.log_calls_on() {
-            let text = describe();
-            self.log_debug(&text);
+        if self.log.calls_on() {
+            self.log.call(&describe());
         }
         if !call.allowed(self.machine) {
             self.log_error(&format!("{} is not allowed in state {:?}", call.fmi_name(), self.machine));
@@ -259,17 +151,7 @@ impl Instance {
 
     /// `fmi2SetDebugLogging`: switch the listed categories (all when empty).
     pub fn set_debug_logging(&mut self, on: bool, names: &[String]) -> Result<(), Rejected> {
-        let mut idx = Vec::with_capacity(names.len());
-        for n in names {
-            let i = LOG_CATEGORIES.iter().position(|(c, _)| c == n);
-            idx.push(i.ok_or_else(|| format!("unknown log category \"{n}\"; declared: {}", category_list()))?);
-        }
-        if idx.is_empty() {
-            idx = (0..LOG_CATEGORIES.len()).collect();
-        }
-        idx.into_iter().for_each(|i| self.categories[i] = on);
-        self.categories[0] = true;
-        Ok(())
+        self.log.switch(on, names)
     }
 
     pub fn setup_experiment(&mut self, tolerance: Option<f64>, start: f64, stop: Option<f64>) -> Result<(), Rejected> {
@@ -313,7 +195,7 @@ impl Instance {
 
     fn prepare(&mut self) -> Result<(), Rejected> {
         if let Some(text) = self.model.prepare()? {
-            self.log_debug(&text);
+            self.log.call(&text);
         }
         Ok(())
     }
@@ -512,8 +394,4 @@ impl Instance {
         self.states.insert(handle, Snapshot { machine, clock, model });
         Ok(handle)
     }
-}
-
-fn category_list() -> String {
-    LOG_CATEGORIES.iter().map(|(c, _)| *c).collect::<Vec<_>>().join(", ")
 }
