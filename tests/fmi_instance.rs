@@ -31,7 +31,7 @@ fn instance() -> (Instance, Collect) {
 }
 
 fn run<T>(i: &mut Instance, call: Call, body: impl FnOnce(&mut Instance) -> Result<T, String>) -> Result<T, Status> {
-    i.call(call, || format!("{call:?}"), body)
+    i.call(call, || format!("{call:?}"), body).map(|(value, _)| value)
 }
 
 fn initialized(lambda: f64) -> (Instance, Collect) {

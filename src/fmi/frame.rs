@@ -93,7 +93,8 @@ pub fn with_instance(
             }
         };
         match guard(|| inst.call(call, describe, body)) {
-            Ok(Ok(s) | Err(s)) => s,
+            Ok(Ok((s, warning))) => s.max(warning),
+            Ok(Err(s)) => s,
             Err(panic) => {
                 inst.fail(&format!("{}: internal error (caught panic: {panic})", call.fmi_name()));
                 Status::Error

@@ -130,12 +130,15 @@ impl Instance {
     }
 
     /// Frame one FMI call: log it, check the state machine, run `body`, log a rejection.
+    /// After a success, the model's warning about the call, if any, is logged and makes
+    /// the status [`Status::Warning`] (returned with the body's value; the caller keeps
+    /// the worse of it and its own).
     pub fn call<T>(
         &mut self,
         call: Call,
         describe: impl FnOnce() -> String,
         body: impl FnOnce(&mut Self) -> Result<T, Rejected>,
-    ) -> Result<T, Status> {
+    ) -> Result<(T, Status), Status> {
         if self.log.calls_on() {
             self.log.call(&describe());
         }
@@ -143,10 +146,17 @@ impl Instance {
             self.log_error(&format!("{} is not allowed in state {:?}", call.fmi_name(), self.machine));
             return Err(Status::Error);
         }
-        body(self).map_err(|why| {
+        let value = body(self).map_err(|why| {
             self.log_error(&format!("{}: {why}", call.fmi_name()));
             Status::Error
-        })
+        })?;
+        match self.model.take_warning() {
+            Some(warning) => {
+                self.log.warning(&format!("{}: {warning}", call.fmi_name()));
+                Ok((value, Status::Warning))
+            }
+            None => Ok((value, Status::Ok)),
+        }
     }
 
     /// `fmi2SetDebugLogging`: switch the listed categories (all when empty).

@@ -22,6 +22,7 @@ pub trait Logger: Send + Sync {
 }
 
 const ERROR: usize = 0;
+const WARNING: usize = 1;
 const CALLS: usize = 2;
 
 /// An instance's logger and its categories switched on (`logStatusError` always).
@@ -43,6 +44,13 @@ impl Log {
     /// Log under `logStatusError` (always on).
     pub fn error(&self, message: &str) {
         self.logger.log(Status::Error, LOG_CATEGORIES[ERROR].0, message);
+    }
+
+    /// Log under `logStatusWarning`, if on.
+    pub fn warning(&self, message: &str) {
+        if self.on[WARNING] {
+            self.logger.log(Status::Warning, LOG_CATEGORIES[WARNING].0, message);
+        }
     }
 
     pub fn calls_on(&self) -> bool {

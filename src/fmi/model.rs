@@ -172,4 +172,11 @@ pub trait FmuModel: Send {
     fn encode(&self) -> Result<Vec<u8>, Rejected>;
     /// A model from `encode`d bytes, which must fit this instance's parameters.
     fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected>;
+    /// A warning about the call that just succeeded, if the model has one (taken: asked
+    /// once per call). The glue logs it under `logStatusWarning` and the call returns
+    /// `fmi2Warning`: the result is usable, but the master should know (FMI 2.0.2,
+    /// section 2.1.3). The default has none.
+    fn take_warning(&mut self) -> Option<String> {
+        None
+    }
 }
