@@ -1,6 +1,7 @@
 //! The glue's warning channel ([`FmuModel::take_warning`]), with a test-only model that
-//! warns after every second step: the call returns `fmi2Warning` and the warning is
-//! logged under `logStatusWarning`; a call without a warning is OK.
+//! warns after every second step (and after every call from the fifth step on): the call
+//! returns `fmi2Warning` and the warning is logged under `logStatusWarning`; a worse status
+//! of the call wins; a call without a warning is OK.
 
 #[path = "fmi_support.rs"]
 mod fmi_support;
@@ -23,7 +24,8 @@ static DESCRIPTION: Description = Description {
     capabilities: &[],
 };
 
-/// Counts its steps; after every second step it has a warning.
+/// Counts its steps; after every second step it has a warning, and from the fifth step on
+/// after every call.
 #[derive(Clone, Default)]
 struct Warner {
     steps: u32,
@@ -71,7 +73,7 @@ impl FmuModel for Warner {
         Ok(self.boxed_clone())
     }
     fn take_warning(&mut self) -> Option<String> {
-        self.warning.take()
+        if self.steps >= 5 { Some("five steps or more".into()) } else { self.warning.take() }
     }
 }
 
@@ -121,9 +123,27 @@ fn the_exported_do_step_returns_fmi2_warning() {
         assert_eq!(fmi2DoStep(c, 1.0, 1.0, 0), WARNING);
         assert_eq!(fmi2DoStep(c, 2.0, 1.0, 0), OK);
         assert_eq!(fmi2DoStep(c, 3.0, 1.0, 0), WARNING);
-        assert_eq!(fmi2DoStep(c, 4.0, 1.0, 0), OK);
         fmi2FreeInstance(c);
     }
     let warnings = log.0.lock().unwrap().iter().filter(|(s, _, _)| *s == Status::Warning).count();
     assert_eq!(warnings, 2);
+}
+
+/// Guards against a warning hiding a worse status: a discarded call (a status kind not
+/// provided) stays `fmi2Discard` when the model also has a warning; an OK call becomes
+/// `fmi2Warning`.
+#[test]
+fn a_worse_status_of_the_call_wins_over_a_warning() {
+    let log = Arc::new(Collect::default());
+    let c = frame::register(warner(&log));
+    let (mut st, mut t) = (0, 0.0);
+    unsafe {
+        for k in 0..5 {
+            assert!(fmi2DoStep(c, k as f64, 1.0, 0) <= WARNING);
+        }
+        assert_eq!(fmi2GetStatus(c, 0, &mut st), DISCARD, "fmi2DoStepStatus is not provided");
+        assert_eq!(fmi2GetRealStatus(c, 2, &mut t), WARNING);
+        assert_eq!(t, 5.0);
+        fmi2FreeInstance(c);
+    }
 }

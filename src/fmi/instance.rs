@@ -129,6 +129,13 @@ impl Instance {
         self.log.error(message);
     }
 
+    /// A call this FMU cannot answer but that leaves it usable: log why (category
+    /// `logStatusDiscard`) and return [`Status::Discard`] for the call to return.
+    pub fn discard(&self, message: &str) -> Status {
+        self.log.discard(message);
+        Status::Discard
+    }
+
     /// Frame one FMI call: log it, check the state machine, run `body`, log a rejection.
     /// After a success, the model's warning about the call, if any, is logged and makes
     /// the status [`Status::Warning`] (returned with the body's value; the caller keeps

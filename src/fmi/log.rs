@@ -23,7 +23,8 @@ pub trait Logger: Send + Sync {
 
 const ERROR: usize = 0;
 const WARNING: usize = 1;
-const CALLS: usize = 2;
+const DISCARD: usize = 2;
+const CALLS: usize = 3;
 
 /// An instance's logger and its categories switched on (`logStatusError` always).
 pub struct Log {
@@ -32,7 +33,7 @@ pub struct Log {
 }
 
 impl Log {
-    /// Errors and warnings on; `logCalls` as `fmi2Instantiate`'s `loggingOn` says.
+    /// Errors, warnings and discards on; `logCalls` as `fmi2Instantiate`'s `loggingOn` says.
     pub fn new(logger: Arc<dyn Logger>, logging_on: bool) -> Self {
         Self { logger, on: std::array::from_fn(|i| i != CALLS || logging_on) }
     }
@@ -50,6 +51,13 @@ impl Log {
     pub fn warning(&self, message: &str) {
         if self.on[WARNING] {
             self.logger.log(Status::Warning, LOG_CATEGORIES[WARNING].0, message);
+        }
+    }
+
+    /// Log under `logStatusDiscard`, if on.
+    pub fn discard(&self, message: &str) {
+        if self.on[DISCARD] {
+            self.logger.log(Status::Discard, LOG_CATEGORIES[DISCARD].0, message);
         }
     }
 

@@ -4,9 +4,10 @@
 //! FMU states for any model; a model sees plain values only.
 
 /// Log categories of every model's `modelDescription.xml`, with their descriptions.
-pub const LOG_CATEGORIES: [(&str, &str); 3] = [
+pub const LOG_CATEGORIES: [(&str, &str); 4] = [
     ("logStatusError", "Errors: rejected calls and values, with the reason"),
     ("logStatusWarning", "Warnings"),
+    ("logStatusDiscard", "Discarded calls: status information this FMU does not provide"),
     ("logCalls", "Every FMI call with its arguments, and solver set-up details"),
 ];
 

@@ -23,16 +23,23 @@ static fmi2ValueReference VR_LAMBDA, VR_SIGMA, VR_R_INF, VR_EDGE_STRESS, VR_RADI
         CHECK(got_ == fmi2OK, "%s returned %d; last log: %s", #call, (int)got_, LOG.message);                    \
     } while (0)
 
-/* A refused call: fmi2Error, and a logged error (logStatusError) containing `needle`. */
-#define REFUSED(call, needle)                                                                                    \
+/* `call` returns `want` and logs, under category `cat` with status `want`, a message
+ * containing `needle`. */
+#define LOGGED(call, want, cat, needle)                                                                     \
     do {                                                                                                         \
         int before_ = LOG.count;                                                                                 \
         fmi2Status got_ = (call);                                                                                \
-        CHECK(got_ == fmi2Error && LOG.count > before_ && LOG.status == fmi2Error &&                             \
-                  strcmp(LOG.category, "logStatusError") == 0 && strstr(LOG.message, (needle)) != NULL,          \
-              "%s returned %d, logged [%s, %d] \"%s\"; expected fmi2Error with \"%s\"", #call, (int)got_,        \
-              LOG.category, (int)LOG.status, LOG.message, (needle));                                             \
+        CHECK(got_ == (want) && LOG.count > before_ && LOG.status == (want) &&                                   \
+                  strcmp(LOG.category, (cat)) == 0 && strstr(LOG.message, (needle)) != NULL,                \
+              "%s returned %d, logged [%s, %d] \"%s\"; expected %d with [%s] \"%s\"", #call, (int)got_,          \
+              LOG.category, (int)LOG.status, LOG.message, (int)(want), (cat), (needle));                    \
     } while (0)
+
+/* A refused call: fmi2Error, and a logged error (logStatusError) containing `needle`. */
+#define REFUSED(call, needle) LOGGED(call, fmi2Error, "logStatusError", needle)
+
+/* A discarded call: fmi2Discard, and a message under logStatusDiscard containing `needle`. */
+#define DISCARDED(call, needle) LOGGED(call, fmi2Discard, "logStatusDiscard", needle)
 
 static const fmi2CallbackFunctions CALLBACKS = {record_logger, NULL, NULL, NULL, &LOG};
 
