@@ -102,6 +102,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName,
                               fmi2Boolean _visible,
                               fmi2Boolean loggingOn);
 
+// Frees the instance once no call uses it; an unknown or already freed `c` is ignored.
 void fmi2FreeInstance(fmi2Component c);
 
 fmi2Status fmi2SetDebugLogging(fmi2Component c,

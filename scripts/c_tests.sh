@@ -7,6 +7,8 @@
 #   fmi2_signatures  every exported FMI function has the standard's type (compile time)
 #   direct_api       the wo_* API, linked: lambda = 1 against the exact solution, bad input
 #   fmu_master       a minimal FMI 2.0 master, dlopen of the FMU's .so: same, through FMI
+#   fmu_misuse       a master that misbehaves: freed, NULL and forged instances, double
+#                    free, another instance's FMU states
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -33,6 +35,7 @@ lib="$PWD/target/release"
 "$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/fmi2_signatures.c -L"$lib" -lwound_opening -Wl,-rpath,"$lib" -o "$out/fmi2_signatures"
 "$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/direct_api.c -L"$lib" -lwound_opening -lm -Wl,-rpath,"$lib" -o "$out/direct_api"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_master.c -ldl -lm -o "$out/fmu_master"
+"$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_misuse.c -ldl -lm -o "$out/fmu_misuse"
 
 memcheck=(valgrind -q --error-exitcode=1 --leak-check=full --show-leak-kinds=all --errors-for-leak-kinds=all
           --suppressions=tests/c/valgrind.supp)
@@ -47,4 +50,5 @@ run() {
 run "$out/fmi2_signatures"
 run "$out/direct_api"
 run "$out/fmu_master" "$out/fmu"
+run "$out/fmu_misuse" "$out/fmu"
 exit "$failed"

@@ -18,42 +18,84 @@
 //! which is the wound component's `edge_stress` input. Units: `T_c` in piconewtons,
 //! `h` and `R` in micrometres, so `p` is in pN / um^2 = pascals. Plain safe Rust: the FMU
 //! boundary for it lives in `fmi::purse`.
+//!
+//! The domain ([`MAX_TENSION`], [`THICKNESS`], [`RADIUS`]; the times only finite and
+//! >= 0) keeps every output and derivative finite, far from overflow:
+//!
+//! ```text
+//! 0 <= T_c <= T_max <= 1e9 pN
+//! 0 <= p = T_c / (h R)        <= 1e9 / (1e-6 * 1e-6) = 1e21 Pa
+//! 0 <= -dp/dR = T_c / (h R^2) <= 1e27 Pa/um
+//! ```
+//!
+//! (A thickness or radius of 5e-324 gave p = inf.) 1e9 pN is a millinewton, 1e-6 um a
+//! femtometre, 1e9 um a kilometre: far beyond any cell sheet, so no real case is refused.
 
 /// Parameters of the purse-string.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PurseString {
-    /// Saturated line tension `T_max` [pN], >= 0.
+    /// Saturated line tension `T_max` [pN], in [`MAX_TENSION`].
     pub max_tension: f64,
     /// Assembly time constant `t_a` [s], >= 0.
     pub assembly_time: f64,
     /// Delay `t_d` before assembly starts [s], >= 0 (time since the cut).
     pub delay: f64,
-    /// Sheet thickness `h` [um], > 0.
+    /// Sheet thickness `h` [um], in [`THICKNESS`].
     pub thickness: f64,
 }
 
-/// Check a parameter that must be finite and `>= 0` (or `> 0` when `strict`).
-pub fn check_nonnegative(name: &str, value: f64, strict: bool) -> Result<f64, String> {
-    let ok = value.is_finite() && if strict { value > 0.0 } else { value >= 0.0 };
-    if ok { Ok(value) } else { Err(format!("{name} = {value} is invalid: it must be finite and {}", if strict { "> 0" } else { ">= 0" })) }
+/// The closed interval of values a quantity may take, with its unit (for messages).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bounds {
+    pub min: f64,
+    pub max: f64,
+    pub unit: &'static str,
 }
 
-/// Check a wound radius input: the stress `T_c / (h R)` needs `R > 0`. A radius at or
-/// below zero means the wound has closed, which this linear model does not describe.
-pub fn check_radius(radius: f64) -> Result<f64, String> {
-    if radius.is_finite() && radius > 0.0 {
-        Ok(radius)
-    } else {
-        Err(format!("wound_radius = {radius} is invalid: it must be finite and > 0 (the purse-string stress T_c/(h R) needs an open wound)"))
+/// Saturated line tension `T_max`.
+pub const MAX_TENSION: Bounds = Bounds { min: 0.0, max: 1e9, unit: "pN" };
+/// Sheet thickness `h`.
+pub const THICKNESS: Bounds = Bounds { min: 1e-6, max: 1e6, unit: "um" };
+/// Wound radius `R` (the input).
+pub const RADIUS: Bounds = Bounds { min: 1e-6, max: 1e9, unit: "um" };
+
+/// A bound as the descriptions write it: 0, 1e-6, 1e9.
+fn bound_text(x: f64) -> String {
+    if x == 0.0 { "0".into() } else { format!("{x:e}") }
+}
+
+impl Bounds {
+    /// `value`, if within the bounds; else the reason, naming the value and the range.
+    pub fn check(&self, name: &str, value: f64) -> Result<f64, String> {
+        if (self.min..=self.max).contains(&value) {
+            Ok(value)
+        } else {
+            let (lo, hi) = (bound_text(self.min), bound_text(self.max));
+            Err(format!("{name} = {value} is invalid: it must be in [{lo}, {hi}] {}", self.unit))
+        }
     }
+}
+
+/// Check a time parameter (`t_assembly`, `t_delay`): finite and `>= 0`. Any such value
+/// keeps `T_c` within `[0, T_max]`.
+pub fn check_time(name: &str, value: f64) -> Result<f64, String> {
+    if value.is_finite() && value >= 0.0 { Ok(value) } else { Err(format!("{name} = {value} is invalid: it must be finite and >= 0")) }
+}
+
+/// Check a wound radius input against [`RADIUS`]. A radius at or below zero means the
+/// wound has closed, which this linear model does not describe.
+pub fn check_radius(radius: f64) -> Result<f64, String> {
+    RADIUS.check("wound_radius", radius).map_err(|e| {
+        if radius <= 0.0 { format!("{e} (the purse-string stress T_c/(h R) needs an open wound)") } else { e }
+    })
 }
 
 impl PurseString {
     pub fn validate(&self) -> Result<(), String> {
-        check_nonnegative("T_max", self.max_tension, false)?;
-        check_nonnegative("t_assembly", self.assembly_time, false)?;
-        check_nonnegative("t_delay", self.delay, false)?;
-        check_nonnegative("thickness", self.thickness, true)?;
+        MAX_TENSION.check("T_max", self.max_tension)?;
+        check_time("t_assembly", self.assembly_time)?;
+        check_time("t_delay", self.delay)?;
+        THICKNESS.check("thickness", self.thickness)?;
         Ok(())
     }
 
@@ -112,5 +154,9 @@ mod tests {
         assert!(PurseString { thickness: 0.0, ..P }.validate().unwrap_err().contains("thickness = 0"));
         assert!(PurseString { max_tension: f64::NAN, ..P }.validate().unwrap_err().contains("T_max = NaN"));
         assert!(check_radius(-0.5).unwrap_err().contains("wound_radius = -0.5"));
+        let tiny = PurseString { thickness: 1e-7, ..P }.validate().unwrap_err();
+        assert_eq!(tiny, "thickness = 0.0000001 is invalid: it must be in [1e-6, 1e6] um");
+        assert!(check_radius(2e9).unwrap_err().ends_with("it must be in [1e-6, 1e9] um"));
+        assert!(MAX_TENSION.check("T_max", 1.5e9).unwrap_err().ends_with("it must be in [0, 1e9] pN"));
     }
 }

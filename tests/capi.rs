@@ -7,7 +7,7 @@ use std::ffi::CStr;
 use wound_opening::capi::error::{Failure, WoStatus, run};
 use wound_opening::capi::solver::{self, live_handles};
 use wound_opening::capi::solver_c::*;
-use wound_opening::fmi::boundary::caught_panics;
+use wound_opening::boundary::caught_panics;
 
 fn last_error() -> String {
     unsafe { CStr::from_ptr(wo_last_error()) }.to_string_lossy().into_owned()

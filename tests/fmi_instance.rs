@@ -2,24 +2,23 @@
 //! that name what was wrong, FMU states. (The C boundary itself is driven by fmpy in
 //! tests/python.)
 
-use std::cell::RefCell;
-use std::rc::Rc;
+use std::sync::{Arc, Mutex};
 use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
 use wound_opening::fmi::state::Machine;
 use wound_opening::fmi::variables::Vr;
 
 #[derive(Clone, Default)]
-struct Collect(Rc<RefCell<Vec<(Status, String, String)>>>);
+struct Collect(Arc<Mutex<Vec<(Status, String, String)>>>);
 
 impl Logger for Collect {
     fn log(&self, status: Status, category: &str, message: &str) {
-        self.0.borrow_mut().push((status, category.into(), message.into()));
+        self.0.lock().unwrap().push((status, category.into(), message.into()));
     }
 }
 
 impl Collect {
     fn last_error(&self) -> String {
-        let log = self.0.borrow();
+        let log = self.0.lock().unwrap();
         let (status, cat, msg) = log.last().expect("a message was logged").clone();
         assert_eq!((status, cat.as_str()), (Status::Error, "logStatusError"));
         msg
@@ -28,11 +27,11 @@ impl Collect {
 
 fn instance() -> (Instance, Collect) {
     let log = Collect::default();
-    (Instance::new("test", Box::new(log.clone()), false), log)
+    (Instance::new("test", Arc::new(log.clone()), false), log)
 }
 
 fn run<T>(i: &mut Instance, call: Call, body: impl FnOnce(&mut Instance) -> Result<T, String>) -> Result<T, Status> {
-    i.call(call, || format!("{call:?}"), body)
+    i.call(call, || format!("{call:?}"), body).map(|(value, _)| value)
 }
 
 fn initialized(lambda: f64) -> (Instance, Collect) {
@@ -178,7 +177,7 @@ fn debug_logging_switches_categories_and_rejects_unknown_ones() {
     let (mut i, log) = instance();
     i.set_debug_logging(true, &["logCalls".into()]).unwrap();
     run(&mut i, Call::SetupExperiment, |i| i.setup_experiment(None, 0.0, None)).unwrap();
-    assert!(log.0.borrow().iter().any(|(_, c, m)| c == "logCalls" && m.contains("SetupExperiment")));
+    assert!(log.0.lock().unwrap().iter().any(|(_, c, m)| c == "logCalls" && m.contains("SetupExperiment")));
     let err = i.set_debug_logging(true, &["logNothing".into()]).unwrap_err();
     assert!(err.contains("logNothing") && err.contains("logCalls"), "{err}");
 }
@@ -243,4 +242,48 @@ fn a_state_of_another_method_deserializes_into_a_fresh_instance() {
     run(&mut b, Call::SetFmuState, |i| i.set_fmu_state(back)).unwrap();
     run(&mut b, Call::DoStep, |i| i.do_step(0.5, 0.5)).unwrap();
     assert_eq!(outputs(&mut b), want);
+}
+
+/// Guards against one instance taking another's FMU state (handles were per-instance
+/// counters, so B's first state had the number of A's): refused, with the way to move a
+/// state between instances in the message, and nothing changed.
+#[test]
+fn a_state_of_another_instance_is_refused_with_the_way_to_move_it() {
+    let (mut a, _) = initialized(1.0);
+    let (mut b, log) = initialized(1.0);
+    let theirs = run(&mut a, Call::GetFmuState, |i| i.get_fmu_state(None)).unwrap();
+    let ours = run(&mut b, Call::GetFmuState, |i| i.get_fmu_state(None)).unwrap();
+    assert_ne!(theirs, ours, "handles are unique in the process");
+    run(&mut b, Call::DoStep, |i| i.do_step(0.0, 1.0)).unwrap();
+    let bytes = run(&mut b, Call::SerializeFmuState, |i| i.serialize_fmu_state(ours)).unwrap();
+    let refusals: [Result<(), Status>; 5] = [
+        run(&mut b, Call::SetFmuState, |i| i.set_fmu_state(theirs)),
+        run(&mut b, Call::FreeFmuState, |i| i.free_fmu_state(theirs)),
+        run(&mut b, Call::GetFmuState, |i| i.get_fmu_state(Some(theirs)).map(drop)),
+        run(&mut b, Call::SerializeFmuState, |i| i.serialize_fmu_state(theirs).map(drop)),
+        run(&mut b, Call::DeSerializeFmuState, |i| i.deserialize_fmu_state(&bytes, Some(theirs)).map(drop)),
+    ];
+    for r in refusals {
+        assert_eq!(r, Err(Status::Error));
+        let msg = log.last_error();
+        assert!(msg.contains(&format!("FMU state {theirs:#x} is unknown to this instance")), "{msg}");
+        assert!(msg.contains("move it with fmi2SerializeFMUstate and fmi2DeSerializeFMUstate"), "{msg}");
+    }
+    assert_eq!(b.last_successful_time(), 1.0, "B's time is untouched");
+    run(&mut b, Call::SetFmuState, |i| i.set_fmu_state(ours)).unwrap();
+    assert_eq!(b.last_successful_time(), 0.0, "B's own state is still B's");
+    run(&mut a, Call::SetFmuState, |i| i.set_fmu_state(theirs)).unwrap();
+}
+
+/// Guards against the communication-point tolerance hiding a wrong point: off by twice the
+/// tolerance (2e-6 h) it is refused, naming the instance's time and the master's point.
+#[test]
+fn a_point_off_by_more_than_the_tolerance_is_refused_with_both_values() {
+    let (mut i, log) = initialized(1.0);
+    run(&mut i, Call::DoStep, |i| i.do_step(0.0, 0.1)).unwrap();
+    let off = 0.1 + 2e-6 * 0.1;
+    assert_eq!(run(&mut i, Call::DoStep, |i| i.do_step(off, 0.1)), Err(Status::Error));
+    let msg = log.last_error();
+    assert!(msg.starts_with(&format!("fmi2DoStep: Expected currentCommunicationPoint = 0.1 but was {off}")), "{msg}");
+    assert_eq!(i.last_successful_time(), 0.1);
 }

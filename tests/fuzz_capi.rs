@@ -18,7 +18,7 @@ use std::ffi::CStr;
 use wound_opening::capi::error::WoStatus;
 use wound_opening::capi::solver::live_handles;
 use wound_opening::capi::solver_c::*;
-use wound_opening::fmi::boundary::caught_panics;
+use wound_opening::boundary::caught_panics;
 
 struct World {
     rng: Rng,

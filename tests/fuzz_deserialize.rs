@@ -13,7 +13,7 @@ mod fuzz_support;
 use fuzz_support::{Budget, NULL_CALLBACKS, MESH_FIELDS, Rng, mutated, reseal_crc};
 use std::collections::BTreeMap;
 use std::ffi::CString;
-use wound_opening::fmi::boundary::caught_panics;
+use wound_opening::boundary::caught_panics;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
 use wound_opening::fmi::variables::GUID;

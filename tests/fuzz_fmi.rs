@@ -1,7 +1,7 @@
 //! Fuzzing the FMI 2.0 boundary through the exported `extern "C"` functions: random call
 //! sequences on a few live instances, with random arguments (NULL pointers, special
 //! doubles, unknown value references, forged and freed FMU-state handles, wrong
-//! communication points), and random or mutated bytes into `fmi2DeSerializeFMUstate`
+//! communication points, freed instances), and random or mutated bytes into `fmi2DeSerializeFMUstate`
 //! (truncated, bit-flipped, and mutated then re-sealed with a valid checksum so that the
 //! decoder's checks of every field are reached). Time-bounded: see tests/fuzz_support.rs.
 //!
@@ -15,7 +15,7 @@ mod fuzz_support;
 use fuzz_support::{Budget, NULL_CALLBACKS, Rng, mutated};
 use std::collections::BTreeMap;
 use std::ffi::{CString, c_char};
-use wound_opening::fmi::boundary::caught_panics;
+use wound_opening::boundary::caught_panics;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
 use wound_opening::fmi::MODELS;
@@ -30,6 +30,8 @@ struct Live {
 struct World {
     rng: Rng,
     live: Vec<Live>,
+    /// Instances freed so far (their handles must stay refused, and a free again ignored).
+    gone: Vec<fmi2Component>,
     /// Serialized states seen so far, from any instance (material for mutation).
     blobs: Vec<Vec<u8>>,
     /// Per call: how often each status came back.
@@ -41,7 +43,7 @@ struct World {
 impl World {
     fn new(seed: u64) -> Self {
         let names = ["fuzz", "", "%s%n%p", "logCalls", "\u{e9}t\u{e9}"].iter().map(|s| CString::new(*s).unwrap()).collect();
-        Self { rng: Rng::new(seed), live: Vec::new(), blobs: Vec::new(), stats: BTreeMap::new(), callbacks: NULL_CALLBACKS, names }
+        Self { rng: Rng::new(seed), live: Vec::new(), gone: Vec::new(), blobs: Vec::new(), stats: BTreeMap::new(), callbacks: NULL_CALLBACKS, names }
     }
 
     fn record(&mut self, call: &'static str, status: fmi2Status) {
@@ -103,6 +105,13 @@ impl World {
             1 if self.live.len() > 3 && self.rng.chance(0.3) => {
                 let l = self.live.swap_remove(self.rng.below(self.live.len()));
                 unsafe { fmi2FreeInstance(l.c) };
+                if self.gone.len() < 16 {
+                    self.gone.push(l.c);
+                }
+            }
+            1 if !self.gone.is_empty() => {
+                let c = self.gone[self.rng.below(self.gone.len())];
+                unsafe { fmi2FreeInstance(c) };
             }
             2 => self.debug_logging(),
             3 => {
@@ -277,6 +286,12 @@ impl World {
     }
 
     fn do_step(&mut self) {
+        if !self.gone.is_empty() && self.rng.chance(0.05) {
+            let c = self.gone[self.rng.below(self.gone.len())];
+            let mut now = 0.0;
+            assert_eq!(unsafe { fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now) }, 3, "a freed instance");
+            return self.do_step_on_component(c);
+        }
         let i = self.target();
         self.do_step_on(i);
     }

@@ -186,3 +186,35 @@ fn model_structure_matches_the_declared_dependencies() {
         assert_eq!(outs.len(), outputs.len());
     }
 }
+
+/// Guards against a `DefaultExperiment` without a tolerance: a master that runs the
+/// defaults then picks its own. WoundOpening declares the start value of its `tolerance`
+/// parameter (what it uses when fmi2SetupExperiment defines none); PurseString, which
+/// has no solver, declares 1e-10 as well.
+#[test]
+fn default_experiment_declares_the_default_tolerance() {
+    for (d, xml) in models() {
+        let all = elements(&xml);
+        let exp = find(&all, "fmiModelDescription/DefaultExperiment")[0];
+        let tol: f64 = exp.get("tolerance").unwrap_or_else(|| panic!("{}: no tolerance", d.model_identifier)).parse().unwrap();
+        let want = d.variables.iter().find(|v| v.name == "tolerance").map_or(1e-10, |v| v.start.unwrap());
+        assert_eq!(tol, want, "{}: DefaultExperiment/@tolerance", d.model_identifier);
+    }
+}
+
+/// Guards against descriptions that contradict the declared unit: edge_stress,
+/// edge_velocity and internal_step were described "in units of G, R0/T, T" while declared
+/// in Pa, um/s and s (what the master actually exchanges since the physical scales).
+#[test]
+fn descriptions_state_the_declared_unit() {
+    for (d, _) in models() {
+        for v in d.variables {
+            assert!(!v.description.contains("in units of"), "{}: {}", v.name, v.description);
+        }
+    }
+    let wound = MODELS[0].0;
+    for name in ["edge_stress", "edge_velocity", "internal_step"] {
+        let v = wound.variables.iter().find(|v| v.name == name).unwrap();
+        assert!(v.description.contains(&format!("[{}]", v.unit)), "{name} ({}): {}", v.unit, v.description);
+    }
+}

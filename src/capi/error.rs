@@ -1,7 +1,8 @@
 //! Status codes of the direct C API, the calling thread's last error message, and the
 //! frame every exported `wo_*` function runs in: panic boundary, status, message.
 
-use crate::fmi::boundary::guard;
+use crate::boundary::guard;
+use crate::boundary::registry::Unknown;
 use crate::solver::SolverError;
 use std::cell::RefCell;
 use std::ffi::{CString, c_char};
@@ -52,6 +53,12 @@ impl Failure {
     /// A required pointer argument was NULL.
     pub fn null(what: &str) -> Self {
         Self::new(WoStatus::WoNullPointer, format!("{what} is NULL (expected a valid pointer)"))
+    }
+}
+
+impl From<Unknown> for Failure {
+    fn from(e: Unknown) -> Self {
+        Self::new(WoStatus::WoUnknownHandle, e.to_string())
     }
 }
 

@@ -12,11 +12,10 @@
 //!
 //! Every function returns a [`WoStatus`](error::WoStatus) and sets the calling thread's
 //! last error message (empty on success). Solvers and states are handles looked up in a
-//! table ([`registry`]), so a NULL, stale or freed handle is an error, never a crash. The
-//! safe part is [`solver`]; the `extern "C"` shims are in [`solver_c`]; both run behind the
-//! panic boundary of `fmi::boundary`.
+//! table ([`crate::boundary::registry`]), so a NULL, stale or freed handle is an error,
+//! never a crash. The safe part is [`solver`]; the `extern "C"` shims are in [`solver_c`];
+//! both run behind the panic boundary of [`crate::boundary`], as the FMI functions do.
 
 pub mod error;
-pub mod registry;
 pub mod solver;
 pub mod solver_c;

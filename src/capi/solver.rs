@@ -17,7 +17,7 @@
 //! any number of times, until freed.
 
 use super::error::{Failure, WoStatus};
-use super::registry::Table;
+use crate::boundary::registry::Table;
 use crate::solver::{Mesh, MeshSpec, Params, Settings, Solver, SolverState, check_edge_stress};
 use std::sync::{Mutex, MutexGuard};
 
@@ -115,7 +115,7 @@ pub fn new_on_grid(params: Params, mesh: MeshSpec) -> Result<u64, Failure> {
 }
 
 pub fn free(solver: u64) -> Result<(), Failure> {
-    SOLVERS.remove(solver).map(drop)
+    SOLVERS.remove(solver).map(drop).map_err(Failure::from)
 }
 
 /// Run `f` on a solver. A solver whose earlier call panicked is refused unless
@@ -276,7 +276,7 @@ pub fn restore_state(solver: u64, state: u64) -> Result<(), Failure> {
 }
 
 pub fn free_state(state: u64) -> Result<(), Failure> {
-    STATES.remove(state).map(drop)
+    STATES.remove(state).map(drop).map_err(Failure::from)
 }
 
 /// Run `f` on the solver's data while holding its lock (for tests of the panic

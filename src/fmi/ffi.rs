@@ -1,13 +1,16 @@
 //! The exported FMI 2.0 functions: thin `extern "C"` shims that convert pointers and hand
-//! over to the safe [`Instance`]. Each is framed by [`with_instance`] (null check, panic
-//! boundary, state machine, logging) or, without an instance, by [`guard`].
+//! over to the safe [`Instance`]. Each is framed by [`with_instance`] (lookup of the
+//! instance handle, its lock, panic boundary, state machine, logging) or, without an
+//! instance, by [`guard`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use super::boundary::{CallbackLogger, guard, slice, slice_mut, status_code, text, with_instance};
+use super::frame::{CallbackLogger, register, slice, slice_mut, text, unregister, with_instance};
+use crate::boundary::guard;
 use super::instance::{Call, Instance, Status};
 use super::types::*;
 use super::MODELS;
 use std::ffi::{c_char, CString};
+use std::sync::Arc;
 
 const OK: Result<Status, String> = Ok(Status::Ok);
 
@@ -65,19 +68,15 @@ pub unsafe extern "C" fn fmi2Instantiate(
             return fail(format!("Expected GUID {} but was {}", known.join(" or "), guid.as_deref().unwrap_or("NULL")));
         };
         let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
-        Some(Box::new(Instance::of_model(fresh, &name, Box::new(sink), loggingOn != FMI2_FALSE)))
+        Some(register(Instance::of_model(fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))
     });
-    match made {
-        Ok(Some(b)) => Box::into_raw(b) as fmi2Component,
-        _ => std::ptr::null_mut(),
-    }
+    made.ok().flatten().unwrap_or(std::ptr::null_mut())
 }
 
+/// Frees the instance once no call uses it; an unknown or already freed `c` is ignored.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
-    if !c.is_null() {
-        let _ = guard(|| drop(unsafe { Box::from_raw(c as *mut Instance) }));
-    }
+    if guard(|| unregister(c)).is_err() {}
 }
 
 #[unsafe(no_mangle)]
@@ -87,20 +86,12 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     nCategories: usize,
     categories: *const fmi2String,
 ) -> fmi2Status {
-    let Some(inst) = (unsafe { (c as *mut Instance).as_mut() }) else {
-        return status_code(Status::Error);
-    };
-    let result = guard(|| {
-        let names = unsafe { slice(categories, nCategories, "categories") }?;
-        let names: Vec<String> = names.iter().map(|&p| unsafe { text(p) }.unwrap_or_default()).collect();
-        inst.set_debug_logging(loggingOn != FMI2_FALSE, &names)
-    });
-    match result {
-        Ok(Ok(())) => status_code(Status::Ok),
-        Ok(Err(why)) | Err(why) => {
-            unsafe { &*(c as *const Instance) }.log_error(&format!("fmi2SetDebugLogging: {why}"));
-            status_code(Status::Error)
-        }
+    unsafe {
+        with_instance(c, Call::SetDebugLogging, || format!("fmi2SetDebugLogging(loggingOn={loggingOn}, nCategories={nCategories})"), |i| {
+            let names = slice(categories, nCategories, "categories")?;
+            let names: Vec<String> = names.iter().map(|&p| text(p).unwrap_or_default()).collect();
+            i.set_debug_logging(loggingOn != FMI2_FALSE, &names).map(|_| Status::Ok)
+        })
     }
 }
 
@@ -115,38 +106,36 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 ) -> fmi2Status {
     let tol = (toleranceDefined != FMI2_FALSE).then_some(tolerance);
     let stop = (stopTimeDefined != FMI2_FALSE).then_some(stopTime);
-    unsafe {
-        with_instance(c, Call::SetupExperiment, || format!("fmi2SetupExperiment(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"), |i| {
-            i.setup_experiment(tol, startTime, stop).map(|_| Status::Ok)
-        })
-    }
+    with_instance(c, Call::SetupExperiment, || format!("fmi2SetupExperiment(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"), |i| {
+        i.setup_experiment(tol, startTime, stop).map(|_| Status::Ok)
+    })
 }
 
 /// A call without arguments that only moves the state machine: `fmi2EnterInitializationMode`,
 /// `fmi2ExitInitializationMode`, `fmi2Terminate`, `fmi2Reset`. (Written out below, one
 /// function each rather than by a macro, so that cbindgen sees every exported function.)
-unsafe fn transition(c: fmi2Component, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi2Status {
-    unsafe { with_instance(c, call, || call.fmi_name().to_string(), |i| method(i).map(|_| Status::Ok)) }
+fn transition(c: fmi2Component, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi2Status {
+    with_instance(c, call, || call.fmi_name().to_string(), |i| method(i).map(|_| Status::Ok))
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
-    unsafe { transition(c, Call::EnterInitializationMode, Instance::enter_initialization_mode) }
+    transition(c, Call::EnterInitializationMode, Instance::enter_initialization_mode)
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
-    unsafe { transition(c, Call::ExitInitializationMode, Instance::exit_initialization_mode) }
+    transition(c, Call::ExitInitializationMode, Instance::exit_initialization_mode)
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
-    unsafe { transition(c, Call::Terminate, Instance::terminate) }
+    transition(c, Call::Terminate, Instance::terminate)
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
-    unsafe { transition(c, Call::Reset, Instance::reset) }
+    transition(c, Call::Reset, Instance::reset)
 }
 
 #[unsafe(no_mangle)]
@@ -173,6 +162,9 @@ pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueRefer
 
 /// `fmi2{Get,Set}{Boolean,String}`: this FMU has Real and Integer variables only, so any value
 /// reference is an error (and an empty list is fine).
+///
+/// # Safety
+/// `vr` is NULL or points to `nvr` value references.
 unsafe fn no_such_variables(c: fmi2Component, call: Call, fname: &str, kind: &str, vr: *const fmi2ValueReference, nvr: usize) -> fmi2Status {
     unsafe { with_instance(c, call, || format!("{fname}(nvr={nvr})"), |_| no_variables(kind, slice(vr, nvr, "vr")?)) }
 }
@@ -232,11 +224,9 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FM
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
-    unsafe {
-        with_instance(c, Call::SetFmuState, || "fmi2SetFMUstate".into(), |i| {
-            i.set_fmu_state(handle(FMUstate).ok_or("FMUstate is NULL")?).map(|_| Status::Ok)
-        })
-    }
+    with_instance(c, Call::SetFmuState, || "fmi2SetFMUstate".into(), |i| {
+        i.set_fmu_state(handle(FMUstate).ok_or("FMUstate is NULL")?).map(|_| Status::Ok)
+    })
 }
 
 #[unsafe(no_mangle)]
@@ -317,35 +307,46 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: fmi2Component, _vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer, _value: *const fmi2Real) -> fmi2Status {
-    unsafe { with_instance(c, Call::SetRealInputDerivatives, || "fmi2SetRealInputDerivatives".into(), |_| not_supported("fmi2SetRealInputDerivatives (canInterpolateInputs)")) }
+    with_instance(c, Call::SetRealInputDerivatives, || "fmi2SetRealInputDerivatives".into(), |_| not_supported("fmi2SetRealInputDerivatives (canInterpolateInputs)"))
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(c: fmi2Component, _vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer, _value: *mut fmi2Real) -> fmi2Status {
-    unsafe { with_instance(c, Call::GetRealOutputDerivatives, || "fmi2GetRealOutputDerivatives".into(), |_| not_supported("fmi2GetRealOutputDerivatives (maxOutputDerivativeOrder = 0)")) }
+    with_instance(c, Call::GetRealOutputDerivatives, || "fmi2GetRealOutputDerivatives".into(), |_| not_supported("fmi2GetRealOutputDerivatives (maxOutputDerivativeOrder = 0)"))
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2DoStep(c: fmi2Component, currentCommunicationPoint: fmi2Real, communicationStepSize: fmi2Real, _noSetFMUStatePriorToCurrentPoint: fmi2Boolean) -> fmi2Status {
-    unsafe {
-        with_instance(c, Call::DoStep, || format!("fmi2DoStep(currentCommunicationPoint={currentCommunicationPoint}, communicationStepSize={communicationStepSize})"), |i| {
-            i.do_step(currentCommunicationPoint, communicationStepSize).map(|_| Status::Ok)
-        })
-    }
+    with_instance(c, Call::DoStep, || format!("fmi2DoStep(currentCommunicationPoint={currentCommunicationPoint}, communicationStepSize={communicationStepSize})"), |i| {
+        i.do_step(currentCommunicationPoint, communicationStepSize).map(|_| Status::Ok)
+    })
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
-    unsafe { with_instance(c, Call::CancelStep, || "fmi2CancelStep".into(), |_| not_supported("fmi2CancelStep")) }
+    with_instance(c, Call::CancelStep, || "fmi2CancelStep".into(), |_| not_supported("fmi2CancelStep"))
 }
 
-fn status_kind_unavailable(kind: fmi2StatusKind) -> Result<Status, String> {
-    Err(format!("status kind {kind} is not available (fmi2DoStep is synchronous)"))
+/// `fmi2Get*Status` asked for a kind this FMU does not provide: `fmi2Discard`, with the
+/// reason logged. FMI 2.0.2, section 2.1.3: "For co-simulation: fmi2Discard is returned
+/// also if the slave is not able to return the required status information"; section 4.2.3
+/// (fmi2GetXXXStatus): "If a status is required which cannot be retrieved by the slave it
+/// returns fmi2Discard". The Reference-FMUs (src/fmi2Functions.c, `getStatus`) do the same.
+/// A value that is no `fmi2StatusKind` at all is an invalid argument: `fmi2Error`.
+fn status_not_provided(i: &Instance, function: &str, kind: fmi2StatusKind) -> Result<Status, String> {
+    const KINDS: [&str; 4] = ["fmi2DoStepStatus", "fmi2PendingStatus", "fmi2LastSuccessfulTime", "fmi2Terminated"];
+    let name = usize::try_from(kind).ok().and_then(|k| KINDS.get(k));
+    let name = name.ok_or_else(|| format!("status kind {kind} is not an fmi2StatusKind (0 to 3)"))?;
+    Ok(i.discard(&format!(
+        "{function}: {name} is not provided by this FMU (it provides fmi2LastSuccessfulTime through \
+         fmi2GetRealStatus and fmi2Terminated through fmi2GetBooleanStatus; its fmi2DoStep is \
+         synchronous, never pending)"
+    )))
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Status) -> fmi2Status {
-    unsafe { with_instance(c, Call::GetStatus, || format!("fmi2GetStatus({s})"), |_| status_kind_unavailable(s)) }
+    with_instance(c, Call::GetStatus, || format!("fmi2GetStatus({s})"), |i| status_not_provided(i, "fmi2GetStatus", s))
 }
 
 #[unsafe(no_mangle)]
@@ -353,7 +354,7 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, 
     unsafe {
         with_instance(c, Call::GetStatus, || format!("fmi2GetRealStatus({s})"), |i| {
             if s != FMI2_LAST_SUCCESSFUL_TIME {
-                return status_kind_unavailable(s);
+                return status_not_provided(i, "fmi2GetRealStatus", s);
             }
             *value.as_mut().ok_or("value is NULL")? = i.last_successful_time();
             OK
@@ -363,7 +364,7 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, 
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Integer) -> fmi2Status {
-    unsafe { with_instance(c, Call::GetStatus, || format!("fmi2GetIntegerStatus({s})"), |_| status_kind_unavailable(s)) }
+    with_instance(c, Call::GetStatus, || format!("fmi2GetIntegerStatus({s})"), |i| status_not_provided(i, "fmi2GetIntegerStatus", s))
 }
 
 #[unsafe(no_mangle)]
@@ -371,7 +372,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKin
     unsafe {
         with_instance(c, Call::GetStatus, || format!("fmi2GetBooleanStatus({s})"), |i| {
             if s != FMI2_TERMINATED {
-                return status_kind_unavailable(s);
+                return status_not_provided(i, "fmi2GetBooleanStatus", s);
             }
             *value.as_mut().ok_or("value is NULL")? = if i.wants_to_terminate() { FMI2_TRUE } else { FMI2_FALSE };
             OK
@@ -381,5 +382,5 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKin
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2String) -> fmi2Status {
-    unsafe { with_instance(c, Call::GetStatus, || format!("fmi2GetStringStatus({s})"), |_| status_kind_unavailable(s)) }
+    with_instance(c, Call::GetStatus, || format!("fmi2GetStringStatus({s})"), |i| status_not_provided(i, "fmi2GetStringStatus", s))
 }

@@ -7,110 +7,16 @@
 //! [`Status::Error`], and changes nothing: every check runs before any mutation, so the
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
+pub use super::call::Call;
+pub use super::log::{Logger, Status};
 pub use super::model::Rejected;
-use super::model::{Causality, Description, FmuModel, Kind, LOG_CATEGORIES, Variability};
+use super::log::Log;
+use super::model::{Causality, Description, FmuModel, Kind, Variability};
+pub use super::state::{Clock, time_slack};
 use super::state::{self, Machine};
+use crate::boundary::registry::fresh_handle;
 use std::collections::HashMap;
-
-/// `fmi2Status`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Status {
-    Ok = 0,
-    Warning = 1,
-    Discard = 2,
-    Error = 3,
-    Fatal = 4,
-}
-
-/// Where log messages go (the importer's callback, or a test's collector).
-pub trait Logger {
-    fn log(&self, status: Status, category: &str, message: &str);
-}
-
-/// The FMI calls, for the state-machine check and the call log.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Call {
-    SetupExperiment,
-    EnterInitializationMode,
-    ExitInitializationMode,
-    Terminate,
-    Reset,
-    Get,
-    Set,
-    GetFmuState,
-    SetFmuState,
-    FreeFmuState,
-    SerializeFmuState,
-    DeSerializeFmuState,
-    DoStep,
-    CancelStep,
-    GetStatus,
-    GetDirectionalDerivative,
-    SetRealInputDerivatives,
-    GetRealOutputDerivatives,
-}
-
-impl Call {
-    /// States in which FMI 2.0 (section 4.2.4) allows the call.
-    fn allowed(self, m: Machine) -> bool {
-        use Machine::*;
-        if m == Error {
-            // After an internal failure only recovery and inspection remain.
-            return matches!(
-                self,
-                Call::Reset | Call::Get | Call::GetFmuState | Call::SetFmuState | Call::FreeFmuState
-                    | Call::SerializeFmuState | Call::DeSerializeFmuState
-            );
-        }
-        match self {
-            Call::SetupExperiment | Call::EnterInitializationMode => m == Instantiated,
-            Call::ExitInitializationMode => m == InitializationMode,
-            Call::Terminate | Call::DoStep => m == StepComplete,
-            Call::Reset
-            | Call::GetFmuState
-            | Call::SetFmuState
-            | Call::FreeFmuState
-            | Call::SerializeFmuState
-            | Call::DeSerializeFmuState => true,
-            Call::Get | Call::GetDirectionalDerivative => m != Instantiated,
-            Call::Set | Call::SetRealInputDerivatives => m != Terminated,
-            Call::GetStatus | Call::GetRealOutputDerivatives => matches!(m, StepComplete | Terminated),
-            Call::CancelStep => false,
-        }
-    }
-
-    pub fn fmi_name(self) -> &'static str {
-        match self {
-            Call::SetupExperiment => "fmi2SetupExperiment",
-            Call::EnterInitializationMode => "fmi2EnterInitializationMode",
-            Call::ExitInitializationMode => "fmi2ExitInitializationMode",
-            Call::Terminate => "fmi2Terminate",
-            Call::Reset => "fmi2Reset",
-            Call::Get => "fmi2Get*",
-            Call::Set => "fmi2Set*",
-            Call::GetFmuState => "fmi2GetFMUstate",
-            Call::SetFmuState => "fmi2SetFMUstate",
-            Call::FreeFmuState => "fmi2FreeFMUstate",
-            Call::SerializeFmuState => "fmi2SerializeFMUstate",
-            Call::DeSerializeFmuState => "fmi2DeSerializeFMUstate",
-            Call::DoStep => "fmi2DoStep",
-            Call::CancelStep => "fmi2CancelStep",
-            Call::GetStatus => "fmi2Get*Status",
-            Call::GetDirectionalDerivative => "fmi2GetDirectionalDerivative",
-            Call::SetRealInputDerivatives => "fmi2SetRealInputDerivatives",
-            Call::GetRealOutputDerivatives => "fmi2GetRealOutputDerivatives",
-        }
-    }
-}
-
-/// The master's clock of one instance.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Clock {
-    pub start: f64,
-    pub stop: Option<f64>,
-    /// Master time of the last communication point.
-    pub time: f64,
-}
+use std::sync::Arc;
 
 /// A saved FMU state, as held in the instance's table of states.
 struct Snapshot {
@@ -128,45 +34,46 @@ impl Clone for Snapshot {
 /// An FMU instance.
 pub struct Instance {
     name: String,
-    logger: Box<dyn Logger>,
-    /// Debug categories switched on (index into `LOG_CATEGORIES`); errors always log.
-    categories: [bool; LOG_CATEGORIES.len()],
+    log: Log,
     machine: Machine,
     clock: Clock,
     model: Box<dyn FmuModel>,
     /// A fresh model, for `fmi2Reset`.
     fresh: fn() -> Box<dyn FmuModel>,
-    /// FMU states handed to the master, by handle (never 0).
+    /// FMU states handed to the master, by handle. Handles come from the process-wide
+    /// counter ([`fresh_handle`]), never reused, so a handle of another instance (of either
+    /// model), of a freed instance, or a made-up one is never in this table.
     states: HashMap<u64, Snapshot>,
-    next_handle: u64,
 }
 
-const LOG_CALLS: usize = 2;
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
 
 impl Instance {
     /// An instance of the wound-opening model.
-    pub fn new(name: &str, logger: Box<dyn Logger>, logging_on: bool) -> Self {
+    pub fn new(name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
         Self::of_model(super::wound::WoundModel::fresh, name, logger, logging_on)
     }
 
     /// An instance of the model that `fresh` makes.
-    pub fn of_model(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Box<dyn Logger>, logging_on: bool) -> Self {
+    pub fn of_model(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
         Self {
             name: name.to_owned(),
-            logger,
-            categories: [true, true, logging_on],
+            log: Log::new(logger, logging_on),
             machine: Machine::Instantiated,
             clock: FRESH_CLOCK,
             model: fresh(),
             fresh,
             states: HashMap::new(),
-            next_handle: 1,
         }
     }
 
     pub fn name(&self) -> &str {
         &self.name
+    }
+
+    /// The logger, to log for this instance while it is busy (see `fmi::frame`).
+    pub fn logger(&self) -> Arc<dyn Logger> {
+        self.log.logger()
     }
 
     pub fn machine(&self) -> Machine {
@@ -186,53 +93,49 @@ impl Instance {
 
     /// Log under an error category (always on).
     pub fn log_error(&self, message: &str) {
-        self.logger.log(Status::Error, "logStatusError", message);
+        self.log.error(message);
     }
 
-    fn log_calls_on(&self) -> bool {
-        self.categories[LOG_CALLS]
-    }
-
-    fn log_debug(&self, message: &str) {
-        if self.log_calls_on() {
-            self.logger.log(Status::Ok, "logCalls", message);
-        }
+    /// A call this FMU cannot answer but that leaves it usable: log why (category
+    /// `logStatusDiscard`) and return [`Status::Discard`] for the call to return.
+    pub fn discard(&self, message: &str) -> Status {
+        self.log.discard(message);
+        Status::Discard
     }
 
     /// Frame one FMI call: log it, check the state machine, run `body`, log a rejection.
+    /// After a success, the model's warning about the call, if any, is logged and makes
+    /// the status [`Status::Warning`] (returned with the body's value; the caller keeps
+    /// the worse of it and its own).
     pub fn call<T>(
         &mut self,
         call: Call,
         describe: impl FnOnce() -> String,
         body: impl FnOnce(&mut Self) -> Result<T, Rejected>,
-    ) -> Result<T, Status> {
-        if self.log_calls_on() {
-            let text = describe();
-            self.log_debug(&text);
+    ) -> Result<(T, Status), Status> {
+        if self.log.calls_on() {
+            self.log.call(&describe());
         }
         if !call.allowed(self.machine) {
             self.log_error(&format!("{} is not allowed in state {:?}", call.fmi_name(), self.machine));
             return Err(Status::Error);
         }
-        body(self).map_err(|why| {
+        let value = body(self).map_err(|why| {
             self.log_error(&format!("{}: {why}", call.fmi_name()));
             Status::Error
-        })
+        })?;
+        match self.model.take_warning() {
+            Some(warning) => {
+                self.log.warning(&format!("{}: {warning}", call.fmi_name()));
+                Ok((value, Status::Warning))
+            }
+            None => Ok((value, Status::Ok)),
+        }
     }
 
     /// `fmi2SetDebugLogging`: switch the listed categories (all when empty).
     pub fn set_debug_logging(&mut self, on: bool, names: &[String]) -> Result<(), Rejected> {
-        let mut idx = Vec::with_capacity(names.len());
-        for n in names {
-            let i = LOG_CATEGORIES.iter().position(|(c, _)| c == n);
-            idx.push(i.ok_or_else(|| format!("unknown log category \"{n}\"; declared: {}", category_list()))?);
-        }
-        if idx.is_empty() {
-            idx = (0..LOG_CATEGORIES.len()).collect();
-        }
-        idx.into_iter().for_each(|i| self.categories[i] = on);
-        self.categories[0] = true;
-        Ok(())
+        self.log.switch(on, names)
     }
 
     pub fn setup_experiment(&mut self, tolerance: Option<f64>, start: f64, stop: Option<f64>) -> Result<(), Rejected> {
@@ -276,7 +179,7 @@ impl Instance {
 
     fn prepare(&mut self) -> Result<(), Rejected> {
         if let Some(text) = self.model.prepare()? {
-            self.log_debug(&text);
+            self.log.call(&text);
         }
         Ok(())
     }
@@ -291,7 +194,8 @@ impl Instance {
         if needs_model {
             self.prepare()?;
         }
-        Ok(vrs.iter().map(|&v| self.model.get(v, self.clock.time)).collect())
+        let t = self.clock.since_start();
+        Ok(vrs.iter().map(|&v| self.model.get(v, t)).collect())
     }
 
     pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
@@ -362,7 +266,7 @@ impl Instance {
             return Err(format!("dvKnown = {x} is invalid: it must be finite"));
         }
         self.prepare()?;
-        let t = self.clock.time;
+        let t = self.clock.since_start();
         let mut got = Vec::with_capacity(unknowns.len());
         for &u in unknowns {
             let mut sum = 0.0;
@@ -378,20 +282,35 @@ impl Instance {
     }
 
     /// `fmi2DoStep`: the inputs set before the call are held over `[t, t + h]`.
+    ///
+    /// The master's clock is the truth (as in the Reference-FMUs): its
+    /// `currentCommunicationPoint` t is accepted when it is the instance's time within
+    /// [`time_slack`], and the time after the step is `t + h`, whatever the instance had.
+    /// A master computing its points as `t_n = n h` thus never drifts away from the
+    /// instance, as it did from a clock that summed the step sizes. The step may end past
+    /// `stopTime` by the same slack and no more.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<(), Rejected> {
-        let now = self.clock.time;
-        if !t.is_finite() || (t - now).abs() > 1e-12 * now.abs().max(1.0) {
-            return Err(format!("Expected currentCommunicationPoint = {now} but was {t}"));
-        }
         if !(h.is_finite() && h > 0.0) {
             return Err(format!("communicationStepSize = {h} is invalid: it must be finite and > 0"));
         }
-        if let Some(stop) = self.clock.stop.filter(|&s| now + h > s + 1e-12 * s.abs().max(1.0)) {
-            return Err(format!("a step of {h} from {now} would pass stopTime = {stop}"));
+        let now = self.clock.time;
+        let slack = time_slack(h, now);
+        if !(t.is_finite() && (t - now).abs() <= slack) {
+            return Err(format!(
+                "Expected currentCommunicationPoint = {now} but was {t} (accepted within {slack:e}: \
+                 1e-6 communicationStepSize + 4 eps |time|)"
+            ));
+        }
+        let end = t + h;
+        if !end.is_finite() {
+            return Err(format!("a step of {h} from {t} ends at {end}: communicationStepSize is too large"));
+        }
+        if let Some(stop) = self.clock.stop.filter(|&s| end > s + time_slack(h, s)) {
+            return Err(format!("a step of {h} from {t} would end at {end}, past stopTime = {stop}"));
         }
         self.prepare()?;
-        self.model.step(now, h)?;
-        self.clock.time = now + h;
+        self.model.step(t - self.clock.start, h)?;
+        self.clock.time = end;
         Ok(())
     }
 
@@ -400,33 +319,34 @@ impl Instance {
         self.clock.time
     }
 
-    /// `fmi2GetBooleanStatus(fmi2Terminated)`: true once the stop time is reached.
+    /// `fmi2GetBooleanStatus(fmi2Terminated)`: true once the stop time is reached (to the
+    /// rounding of a time near it, [`time_slack`] of a zero step).
     pub fn wants_to_terminate(&self) -> bool {
-        self.clock.stop.is_some_and(|s| self.clock.time >= s - 1e-12 * s.abs().max(1.0))
+        self.clock.stop.is_some_and(|s| self.clock.time >= s - time_slack(0.0, s))
     }
 
     /// `fmi2GetFMUstate`: save into `handle` if given (it must be ours), else a new one.
     pub fn get_fmu_state(&mut self, handle: Option<u64>) -> Result<u64, Rejected> {
         let snap = Snapshot { machine: self.machine, clock: self.clock, model: self.model.boxed_clone() };
         let h = match handle {
-            Some(h) if self.states.contains_key(&h) => h,
-            Some(h) => return Err(format!("FMU state {h:#x} was not allocated by this instance")),
-            None => self.new_handle(),
+            Some(h) => self.snapshot(h).map(|_| h)?,
+            None => fresh_handle(),
         };
         self.states.insert(h, snap);
         Ok(h)
     }
 
-    fn new_handle(&mut self) -> u64 {
-        let h = self.next_handle;
-        self.next_handle += 1;
-        h
-    }
-
+    /// A state of this instance. Any other handle is refused with the reason: FMI 2.0
+    /// (section 2.1.8) gives an FMU state to the instance that made it; the way to move a
+    /// state to another instance is to serialize and deserialize it.
     fn snapshot(&self, handle: u64) -> Result<&Snapshot, Rejected> {
-        self.states
-            .get(&handle)
-            .ok_or_else(|| format!("FMU state {handle:#x} is unknown (never allocated here, or already freed)"))
+        self.states.get(&handle).ok_or_else(|| {
+            format!(
+                "FMU state {handle:#x} is unknown to this instance (never allocated by it, or already freed); \
+                 a state of another instance cannot be used here: move it with fmi2SerializeFMUstate and \
+                 fmi2DeSerializeFMUstate"
+            )
+        })
     }
 
     pub fn set_fmu_state(&mut self, handle: u64) -> Result<(), Rejected> {
@@ -453,17 +373,13 @@ impl Instance {
     /// with the same parameters (a state is a point of one trajectory, not a parameter
     /// set). Into `target` if given (it must be ours), else into a new state.
     pub fn deserialize_fmu_state(&mut self, bytes: &[u8], target: Option<u64>) -> Result<u64, Rejected> {
+        if let Some(h) = target {
+            self.snapshot(h)?;
+        }
         let (machine, clock, payload) = state::decode(self.description().model_identifier, bytes)?;
         let model = self.model.decode(payload)?;
-        let handle = match target {
-            Some(h) => self.snapshot(h).map(|_| h)?,
-            None => self.new_handle(),
-        };
+        let handle = target.unwrap_or_else(fresh_handle);
         self.states.insert(handle, Snapshot { machine, clock, model });
         Ok(handle)
     }
-}
-
-fn category_list() -> String {
-    LOG_CATEGORIES.iter().map(|(c, _)| *c).collect::<Vec<_>>().join(", ")
 }

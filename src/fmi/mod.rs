@@ -1,14 +1,18 @@
-//! The FMI 2.0 co-simulation boundary, shared by every model of the library: the
-//! model interface ([`model`]), a safe instance with its state machine ([`instance`])
-//! and FMU states ([`state`]), and the only `unsafe` code of the crate: the C types, the
-//! panic boundary and the exported functions.
+//! The FMI 2.0 co-simulation boundary, shared by every model of the library: the model
+//! interface ([`model`]), a safe instance with its state machine ([`instance`], [`call`]),
+//! logging ([`log`]) and FMU states ([`state`]), and the `unsafe` code of the FMI side:
+//! the C types ([`types`]), the frame of every call (the table of live instances and their
+//! locks, [`frame`]) and the exported functions ([`ffi`]). (The direct C API,
+//! [`crate::capi`], is the other `unsafe` part; both share [`crate::boundary`].)
 //!
 //! One shared object serves both FMUs: `fmi2Instantiate` picks the model by the GUID the
 //! master passes (each `.fmu` carries a copy named after its `modelIdentifier`).
 
-pub mod boundary;
+pub mod call;
 pub mod ffi;
+pub mod frame;
 pub mod instance;
+pub mod log;
 pub mod model;
 pub mod purse;
 pub mod state;

@@ -4,9 +4,10 @@
 //! FMU states for any model; a model sees plain values only.
 
 /// Log categories of every model's `modelDescription.xml`, with their descriptions.
-pub const LOG_CATEGORIES: [(&str, &str); 3] = [
+pub const LOG_CATEGORIES: [(&str, &str); 4] = [
     ("logStatusError", "Errors: rejected calls and values, with the reason"),
     ("logStatusWarning", "Warnings"),
+    ("logStatusDiscard", "Discarded calls: status information this FMU does not provide"),
     ("logCalls", "Every FMI call with its arguments, and solver set-up details"),
 ];
 
@@ -148,7 +149,8 @@ impl Description {
 
 /// A model behind the FMI glue. Value references arrive checked against the
 /// description (existing, of the right type; outputs never set; fixed parameters only
-/// before initialization ends). Times are the master's.
+/// before initialization ends). Times are since the master's `startTime` (the cut), in
+/// the master's unit: every model of the FMU counts from the same instant.
 pub trait FmuModel: Send {
     fn description(&self) -> &'static Description;
     fn boxed_clone(&self) -> Box<dyn FmuModel>;
@@ -161,15 +163,22 @@ pub trait FmuModel: Send {
     /// Build what outputs and steps need, if not yet built; `Some(text)` to log when
     /// something was built.
     fn prepare(&mut self) -> Result<Option<String>, Rejected>;
-    /// Value of `vr` at master time `time` (after [`FmuModel::prepare`] for outputs).
+    /// Value of `vr` at time `time` since the cut (after [`FmuModel::prepare`] for outputs).
     fn get(&self, vr: u32, time: f64) -> f64;
     /// Advance from `time` by `h > 0` (after `prepare`).
     fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected>;
-    /// `d output / d input` at master time `time` (after `prepare`); `Err` with the reason
-    /// where the exact derivative is infinite or undefined.
+    /// `d output / d input` at time `time` since the cut (after `prepare`); `Err` with the
+    /// reason where the exact derivative is infinite or undefined.
     fn partial(&self, output: u32, input: u32, time: f64) -> Result<f64, Rejected>;
     /// The model's part of a serialized FMU state.
     fn encode(&self) -> Result<Vec<u8>, Rejected>;
     /// A model from `encode`d bytes, which must fit this instance's parameters.
     fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected>;
+    /// A warning about the call that just succeeded, if the model has one (taken: asked
+    /// once per call). The glue logs it under `logStatusWarning` and the call returns
+    /// `fmi2Warning`: the result is usable, but the master should know (FMI 2.0.2,
+    /// section 2.1.3). The default has none.
+    fn take_warning(&mut self) -> Option<String> {
+        None
+    }
 }

@@ -1,6 +1,7 @@
-//! The byte format of serialized FMU states (`fmi2SerializeFMUstate` /
-//! `fmi2DeSerializeFMUstate`): an envelope that the glue writes for every model, around
-//! the model's own bytes ([`super::model::FmuModel::encode`]).
+//! What an FMU state holds besides the model (the state machine's state, [`Machine`], and
+//! the master's clock, [`Clock`]), and the byte format of serialized FMU states
+//! (`fmi2SerializeFMUstate` / `fmi2DeSerializeFMUstate`): an envelope that the glue writes
+//! for every model, around the model's own bytes ([`super::model::FmuModel::encode`]).
 //!
 //! ```text
 //! offset  size  field
@@ -18,8 +19,6 @@
 //! Decoding checks every length, the magic, the version, the checksum, the model and
 //! every value, so truncated, corrupted or foreign bytes are rejected with a reason,
 //! never read past. The model checks its own bytes the same way, with [`Reader`].
-
-use super::instance::Clock;
 
 const MAGIC: &[u8; 8] = b"WOUNDFMU";
 pub const FORMAT_VERSION: u32 = 2;
@@ -46,6 +45,40 @@ impl Machine {
             .get(c as usize)
             .copied()
     }
+}
+
+/// The master's clock of one instance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Clock {
+    /// `startTime` of `fmi2SetupExperiment`: the cut, time 0 of every model.
+    pub start: f64,
+    pub stop: Option<f64>,
+    /// Master time of the last communication point.
+    pub time: f64,
+}
+
+impl Clock {
+    /// The time a model sees: since `startTime`, so that every model puts the cut at the
+    /// same instant whatever the master's time origin.
+    pub fn since_start(&self) -> f64 {
+        self.time - self.start
+    }
+}
+
+/// How far apart the master's time and the instance's may be and still be the same
+/// instant, for a step `h` at time `t`:
+///
+/// ```text
+/// |currentCommunicationPoint - time| <= 1e-6 h + 4 eps |t|        (eps = f64::EPSILON)
+/// ```
+///
+/// 4 eps |t| is a few roundings of a time near t, whatever the step (a master that sums
+/// its steps, or computes t_n = n h, differs from t + h by that much); 1e-6 h lets a master
+/// whose clock is coarser than that still through, while a point a millionth of a step
+/// away from the instance's time is refused. The same slack bounds how far a step may end
+/// past `stopTime`.
+pub fn time_slack(h: f64, t: f64) -> f64 {
+    1e-6 * h + 4.0 * f64::EPSILON * t.abs()
 }
 
 /// Little-endian writer of a serialized state.

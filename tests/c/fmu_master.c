@@ -13,59 +13,9 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
-#include "fmu_loader.h"
+#include "fmu_common.h"
 
-#include "check.h"
 #include "reference.h"
-
-static struct fmu F;
-static struct log_record LOG;
-static fmi2ValueReference VR_LAMBDA, VR_SIGMA, VR_R_INF, VR_EDGE_STRESS, VR_RADIUS, VR_VELOCITY;
-
-#define OK(call)                                                                                                 \
-    do {                                                                                                         \
-        fmi2Status got_ = (call);                                                                                \
-        CHECK(got_ == fmi2OK, "%s returned %d; last log: %s", #call, (int)got_, LOG.message);                    \
-    } while (0)
-
-/* A refused call: fmi2Error, and a logged error (logStatusError) containing `needle`. */
-#define REFUSED(call, needle)                                                                                    \
-    do {                                                                                                         \
-        int before_ = LOG.count;                                                                                 \
-        fmi2Status got_ = (call);                                                                                \
-        CHECK(got_ == fmi2Error && LOG.count > before_ && LOG.status == fmi2Error &&                             \
-                  strcmp(LOG.category, "logStatusError") == 0 && strstr(LOG.message, (needle)) != NULL,          \
-              "%s returned %d, logged [%s, %d] \"%s\"; expected fmi2Error with \"%s\"", #call, (int)got_,        \
-              LOG.category, (int)LOG.status, LOG.message, (needle));                                             \
-    } while (0)
-
-static const fmi2CallbackFunctions CALLBACKS = {record_logger, NULL, NULL, NULL, &LOG};
-
-static fmi2Component instantiate(const char *name) {
-    return F.fmi2Instantiate(name, fmi2CoSimulation, F.guid, "file:///unused", &CALLBACKS, fmi2False, fmi2False);
-}
-
-/* Instantiate with lambda, sigma = 1, R_inf = 10 and initialize at t = 0. */
-static fmi2Component initialized(const char *name, double lambda) {
-    fmi2Component c = instantiate(name);
-    CHECK(c != NULL, "fmi2Instantiate(%s) failed: %s", name, LOG.message);
-    if (c == NULL) return NULL;
-    const fmi2ValueReference vr[3] = {VR_LAMBDA, VR_SIGMA, VR_R_INF};
-    const fmi2Real value[3] = {lambda, 1.0, 10.0};
-    OK(F.fmi2SetReal(c, vr, 3, value));
-    OK(F.fmi2SetupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0));
-    OK(F.fmi2EnterInitializationMode(c));
-    OK(F.fmi2ExitInitializationMode(c));
-    return c;
-}
-
-static void outputs(fmi2Component c, double *radius, double *velocity) {
-    const fmi2ValueReference vr[2] = {VR_RADIUS, VR_VELOCITY};
-    fmi2Real value[2] = {NAN, NAN};
-    OK(F.fmi2GetReal(c, vr, 2, value));
-    *radius = value[0];
-    *velocity = value[1];
-}
 
 /* Step from the instance's time `*t` through REFERENCE[from..4], checking each point. */
 static void reproduce(const char *who, fmi2Component c, double *t, int from) {
@@ -120,23 +70,13 @@ int main(int argc, char **argv) {
         fprintf(stderr, "usage: %s <directory of the extracted WoundOpening.fmu>\n", argv[0]);
         return 2;
     }
-    if (!fmu_load(&F, argv[1])) {
-        fmu_unload(&F);
-        return 1;
-    }
-    VR_LAMBDA = fmu_value_reference(&F, "lambda");
-    VR_SIGMA = fmu_value_reference(&F, "sigma");
-    VR_R_INF = fmu_value_reference(&F, "R_inf");
-    VR_EDGE_STRESS = fmu_value_reference(&F, "edge_stress");
-    VR_RADIUS = fmu_value_reference(&F, "wound_radius");
-    VR_VELOCITY = fmu_value_reference(&F, "edge_velocity");
-    CHECK(VR_VELOCITY != ~0u && VR_RADIUS != ~0u && VR_EDGE_STRESS != ~0u, "value references in modelDescription.xml");
+    if (!load_fmu(argv[1])) return 1;
     CHECK(strcmp(F.fmi2GetVersion(), "2.0") == 0, "fmi2GetVersion = %s", F.fmi2GetVersion());
     CHECK(strcmp(F.fmi2GetTypesPlatform(), "default") == 0, "fmi2GetTypesPlatform = %s", F.fmi2GetTypesPlatform());
 
     lambda_one_case();
     bad_instantiation();
-    null_component();
+    every_call_is_an_error(NULL, NULL, "NULL component");
     bad_calls();
     CHECK(LOG.foreign_environment == 0, "%d logger calls had another componentEnvironment", LOG.foreign_environment);
 

@@ -84,7 +84,7 @@ def test_co_simulation_interface(fmu):
     assert cs.providesDirectionalDerivative
     assert not cs.canBeInstantiatedOnlyOncePerProcess  # the tests run several instances
     categories = {c.name for c in md.logCategories}
-    assert {"logStatusError", "logStatusWarning", "logCalls"} <= categories, categories
+    assert {"logStatusError", "logStatusWarning", "logStatusDiscard", "logCalls"} <= categories, categories
 
 
 def test_variables_and_units(fmu):

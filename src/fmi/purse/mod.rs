@@ -5,7 +5,7 @@ pub mod variables;
 
 use super::model::{Description, FmuModel, Rejected};
 use super::state::{Reader, Writer, same_parameters};
-use crate::closure::{PurseString, check_nonnegative, check_radius};
+use crate::closure::{MAX_TENSION, PurseString, THICKNESS, check_radius, check_time};
 use variables::{DESCRIPTION, Vr};
 
 #[derive(Debug, Clone)]
@@ -48,8 +48,9 @@ impl FmuModel for PurseModel {
     fn check(&self, vr: u32, x: f64) -> Result<f64, Rejected> {
         match Vr::from_u32(vr) {
             Some(Vr::WoundRadius) => check_radius(x),
-            Some(v @ (Vr::MaxTension | Vr::AssemblyTime | Vr::Delay)) => check_nonnegative(v.var().name, x, false),
-            Some(Vr::Thickness) => check_nonnegative("thickness", x, true),
+            Some(Vr::MaxTension) => MAX_TENSION.check("T_max", x),
+            Some(v @ (Vr::AssemblyTime | Vr::Delay)) => check_time(v.var().name, x),
+            Some(Vr::Thickness) => THICKNESS.check("thickness", x),
             _ => Err(format!("value reference {vr} is not a parameter or input")),
         }
     }

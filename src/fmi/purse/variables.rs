@@ -36,11 +36,11 @@ impl Vr {
 }
 
 pub const VARIABLES: [Variable; 7] = [
-    Variable::parameter("T_max", 0, 6500.0, "pN", "Saturated line tension of the actin cable (>= 0)"),
+    Variable::parameter("T_max", 0, 6500.0, "pN", "Saturated line tension of the actin cable (0 ..= 1e9)"),
     Variable::parameter("t_assembly", 1, 30.0, "s", "Assembly time constant t_a of the line tension (>= 0; 0 = a step)"),
-    Variable::parameter("t_delay", 2, 20.0, "s", "Delay after the cut (master time 0) before assembly starts (>= 0)"),
-    Variable::parameter("thickness", 3, 5.0, "um", "Thickness h of the cell sheet (> 0)"),
-    Variable::input("wound_radius", 4, 10.0, "um", "Wound radius R received from the tissue model (> 0)"),
+    Variable::parameter("t_delay", 2, 20.0, "s", "Delay after the cut (the master's startTime) before assembly starts (>= 0)"),
+    Variable::parameter("thickness", 3, 5.0, "um", "Thickness h of the cell sheet (1e-6 ..= 1e6)"),
+    Variable::input("wound_radius", 4, 10.0, "um", "Wound radius R received from the tissue model (1e-6 ..= 1e9)"),
     Variable::output("edge_stress", 5, "Pa", "Edge stress p = T_c / (h R) pulling the wound edge inwards"),
     Variable::output("line_tension", 6, "pN", "Line tension T_c(t) = T_max (1 - exp(-(t - t_delay) / t_assembly)) after the delay"),
 ];

@@ -264,6 +264,10 @@ impl FmuModel for WoundModel {
         }))
     }
 
+    fn take_warning(&mut self) -> Option<String> {
+        self.warning.get_mut().take()
+    }
+
     /// The bytes must come from an instance with the same parameters, scales, tolerance
     /// and scheme (a state is a point of one trajectory, not a parameter set).
     fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected> {
