@@ -102,3 +102,49 @@ def test_largest_values_with_the_largest_scales_stay_finite(make_slave):
         s.step_to(t)
         r, v = s.outputs()
         assert math.isfinite(r) and math.isfinite(v), (t, r, v)
+
+
+def warnings(slave):
+    return [m for m in slave.log if m.status == 1]
+
+
+def test_a_tolerance_below_the_floor_is_answered_with_a_warning(make_slave):
+    """At 90e9375 tolerances below 1e-11 were silently capped. Now the master is told the
+    accuracy it gets (and the run meets it)."""
+    s = make_slave()
+    err = worst_error(s, 0.1, 10.0, tolerance=1e-13)
+    assert any("below what this FMU can deliver: results are accurate to 1e-11" in m.message for m in warnings(s)), s.log_text()
+    assert err <= 1e-11, err
+    quiet = make_slave()
+    worst_error(quiet, 0.1, 10.0, tolerance=1e-11)
+    assert warnings(quiet) == [], quiet.log_text()
+
+
+@pytest.mark.parametrize("method", [1, 2, 3])
+def test_methods_for_comparison_say_that_the_tolerance_does_not_bind_them(make_slave, method):
+    s = make_slave()
+    s.fmu.setupExperiment(startTime=0.0)
+    s.fmu.setInteger([s.vr["method"]], [method])
+    s.set({"lambda": 0.01})
+    s.fmu.enterInitializationMode()
+    s.exit_initialization()
+    assert any("is for comparison" in m.message for m in warnings(s)), s.log_text()
+
+
+def test_the_infinite_edge_velocity_at_lambda_zero_is_a_warning_not_a_number(make_slave):
+    """At lambda = 0 the exact edge velocity is infinite at the cut and just after any change
+    of the edge stress; 90e9375 returned a mesh artefact (588) with fmi2OK."""
+    s = make_slave()
+    s.initialize({"lambda": 0.0})
+    before = len(warnings(s))
+    s.outputs()
+    assert len(warnings(s)) == before + 1 and "infinite in the model at lambda = 0" in warnings(s)[-1].message
+    s.step_to(0.01)
+    s.outputs()
+    assert len(warnings(s)) == before + 1, "held edge stress: finite and no warning"
+    s.set({"edge_stress": 0.5})
+    s.outputs()
+    assert len(warnings(s)) == before + 2, "a changed edge stress: infinite again"
+    s.step_to(0.02)
+    s.outputs()
+    assert len(warnings(s)) == before + 2
