@@ -4,6 +4,7 @@
 //! C holds are numbers looked up in a table, never addresses).
 
 pub mod registry;
+mod unload;
 
 use std::cell::Cell;
 use std::panic::{AssertUnwindSafe, PanicHookInfo, catch_unwind};

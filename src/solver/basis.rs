@@ -75,6 +75,12 @@ pub fn fresh_basis_equals_cached(spec: MeshSpec, r_inf: f64) -> bool {
     }
 }
 
+/// Empty the cache (bases in use stay alive with their solvers). Called when the library
+/// is unloaded ([`crate::boundary`]).
+pub fn clear() {
+    *entries() = Vec::new();
+}
+
 /// Number of cached bases.
 pub fn cached() -> usize {
     entries().len()

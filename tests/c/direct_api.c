@@ -120,15 +120,15 @@ static void save_and_restore(void) {
 
 static void bad_creation(void) {
     wo_solver *s = (wo_solver *)&s; /* not NULL: a refused creation must set it to NULL */
-    REFUSED(wo_solver_new(NAN, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = NaN is invalid");
+    REFUSED(wo_solver_new(NAN, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = NaN is outside the accepted range [0, 1e6]");
     CHECK(s == NULL, "solver not set to NULL on failure");
-    REFUSED(wo_solver_new(-1, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = -1 is invalid: it must be finite and >= 0");
-    REFUSED(wo_solver_new(INFINITY, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = inf is invalid");
-    REFUSED(wo_solver_new(1, INFINITY, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = inf is invalid");
-    REFUSED(wo_solver_new(1, NAN, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = NaN is invalid");
-    REFUSED(wo_solver_new(1, 1, 1.0, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 1 is invalid: it must be finite, > 1");
-    REFUSED(wo_solver_new(1, 1, 0.5, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 0.5 is invalid");
-    REFUSED(wo_solver_new(1, 1, -INFINITY, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = -inf is invalid");
+    REFUSED(wo_solver_new(-1, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = -1 is outside the accepted range [0, 1e6]");
+    REFUSED(wo_solver_new(INFINITY, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = inf is outside");
+    REFUSED(wo_solver_new(1, INFINITY, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = inf is outside the accepted range [-1e6, 1e6]");
+    REFUSED(wo_solver_new(1, NAN, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = NaN is outside");
+    REFUSED(wo_solver_new(1, 1, 1.0, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 1 is outside the accepted range [1.001, 1e6]");
+    REFUSED(wo_solver_new(1, 1, 0.5, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 0.5 is outside");
+    REFUSED(wo_solver_new(1, 1, -INFINITY, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = -inf is outside");
     REFUSED(wo_solver_new(1, 1, 10, 0.0, &s), WO_INVALID_ARGUMENT, "tolerance = 0 is invalid");
     REFUSED(wo_solver_new(1, 1, 10, -1e-6, &s), WO_INVALID_ARGUMENT, "tolerance = -0.000001 is invalid");
     REFUSED(wo_solver_new(1, 1, 10, NAN, &s), WO_INVALID_ARGUMENT, "tolerance = NaN is invalid");
@@ -143,7 +143,7 @@ static void bad_creation(void) {
     REFUSED(wo_solver_new_grid(1, 1, 10, 8, 10, 0.0, &s), WO_INVALID_ARGUMENT, "edge_scale = 0 is invalid");
     REFUSED(wo_solver_new_grid(1, 1, 10, 8, 10, NAN, &s), WO_INVALID_ARGUMENT, "edge_scale = NaN is invalid");
     REFUSED(wo_solver_new_grid(1, 1, 10, 8, 10, 1e-320, &s), WO_INVALID_ARGUMENT, "edge_scale = 0.00000");
-    REFUSED(wo_solver_new_grid(-2, 1, 10, 8, 10, 0.05, &s), WO_INVALID_ARGUMENT, "lambda = -2 is invalid");
+    REFUSED(wo_solver_new_grid(-2, 1, 10, 8, 10, 0.05, &s), WO_INVALID_ARGUMENT, "lambda = -2 is outside");
     CHECK(s == NULL, "solver not set to NULL on failure");
 }
 
@@ -183,8 +183,8 @@ static void bad_calls(void) {
     REFUSED(wo_solver_advance(s, NAN, 0), WO_INVALID_ARGUMENT, "t_end = NaN is invalid: expected a finite time >= the solver's time 0.01");
     REFUSED(wo_solver_advance(s, INFINITY, 0), WO_INVALID_ARGUMENT, "t_end = inf is invalid");
     REFUSED(wo_solver_advance(s, 0.005, 0), WO_INVALID_ARGUMENT, "t_end = 0.005 is invalid: expected a finite time >= the solver's time 0.01");
-    REFUSED(wo_solver_advance(s, 1.0, NAN), WO_INVALID_ARGUMENT, "edge_stress = NaN is invalid: it must be finite");
-    REFUSED(wo_solver_advance(s, 1.0, -INFINITY), WO_INVALID_ARGUMENT, "edge_stress = -inf is invalid");
+    REFUSED(wo_solver_advance(s, 1.0, NAN), WO_INVALID_ARGUMENT, "edge stress NaN (in units of G) is outside the accepted range [-1e6, 1e6]");
+    REFUSED(wo_solver_advance(s, 1.0, -INFINITY), WO_INVALID_ARGUMENT, "edge stress -inf (in units of G) is outside");
     OK(wo_solver_node_count(s, &n));
     REFUSED(wo_solver_nodes(s, out, 3), WO_INVALID_ARGUMENT, "count = 3 is invalid: the solver has");
     r[1] = 0.5;

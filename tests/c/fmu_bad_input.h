@@ -68,15 +68,15 @@ static void before_initialization(fmi2Component c) {
     fmi2Boolean b = 0;
     fmi2String s = "x";
     REFUSED(F.fmi2DoStep(c, 0.0, 0.1, fmi2True), "fmi2DoStep is not allowed in state Instantiated");
-    REFUSED(set1(c, VR_LAMBDA, NAN), "lambda = NaN is invalid");
-    REFUSED(set1(c, VR_LAMBDA, -1.0), "lambda = -1 is invalid: it must be finite and >= 0");
-    REFUSED(set1(c, VR_LAMBDA, INFINITY), "lambda = inf is invalid");
-    REFUSED(set1(c, VR_SIGMA, INFINITY), "sigma = inf is invalid: it must be finite");
-    REFUSED(set1(c, VR_SIGMA, NAN), "sigma = NaN is invalid");
-    REFUSED(set1(c, VR_R_INF, 1.0), "R_inf = 1 is invalid: it must be finite, > 1");
-    REFUSED(set1(c, VR_R_INF, 0.5), "R_inf = 0.5 is invalid");
-    REFUSED(set1(c, VR_R_INF, -INFINITY), "R_inf = -inf is invalid");
-    REFUSED(set1(c, VR_EDGE_STRESS, NAN), "edge_stress = NaN is invalid");
+    REFUSED(set1(c, VR_LAMBDA, NAN), "lambda = NaN is outside the accepted range [0, 1e6]");
+    REFUSED(set1(c, VR_LAMBDA, -1.0), "lambda = -1 is outside the accepted range [0, 1e6]");
+    REFUSED(set1(c, VR_LAMBDA, INFINITY), "lambda = inf is outside");
+    REFUSED(set1(c, VR_SIGMA, INFINITY), "sigma = inf is outside the accepted range [-1e6, 1e6]");
+    REFUSED(set1(c, VR_SIGMA, NAN), "sigma = NaN is outside");
+    REFUSED(set1(c, VR_R_INF, 1.0), "R_inf = 1 is outside the accepted range [1.001, 1e6]");
+    REFUSED(set1(c, VR_R_INF, 0.5), "R_inf = 0.5 is outside");
+    REFUSED(set1(c, VR_R_INF, -INFINITY), "R_inf = -inf is outside");
+    REFUSED(set1(c, VR_EDGE_STRESS, NAN), "edge_stress = NaN Pa is outside the accepted range");
     REFUSED(set1(c, VR_RADIUS, 2.0), "wound_radius (value reference 4) is an output and cannot be set");
     REFUSED(set1(c, 99, 1.0), "no Real variable has value reference 99");
     REFUSED(F.fmi2SetReal(c, NULL, 1, &one), "vr is NULL but 1 elements were announced");
@@ -97,7 +97,7 @@ static void before_initialization(fmi2Component c) {
     /* A refused fmi2SetReal sets none of its values: sigma stays 1 (checked after initialization). */
     const fmi2ValueReference both[2] = {VR_SIGMA, VR_LAMBDA};
     const fmi2Real values[2] = {2.0, -1.0};
-    REFUSED(F.fmi2SetReal(c, both, 2, values), "lambda = -1 is invalid");
+    REFUSED(F.fmi2SetReal(c, both, 2, values), "lambda = -1 is outside");
 }
 
 /* d(wound_radius, edge_velocity)/d edge_stress: 0 and the slope of the (affine) velocity,

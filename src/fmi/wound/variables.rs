@@ -54,17 +54,17 @@ impl Vr {
 }
 
 pub const VARIABLES: [Variable; 13] = [
-    Variable::parameter("lambda", 0, 1.0, "1", "Viscous length over wound radius, 2 sqrt(eta/zeta)/R0 (>= 0)"),
-    Variable::parameter("sigma", 1, 1.0, "1", "Homeostatic tension over shear modulus"),
-    Variable::parameter("R_inf", 2, 10.0, "1", "Outer radius of the tissue over wound radius (> 1, <= 1e6)"),
-    Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step (0 = free edge); the model sees edge_stress / G"),
-    Variable::output("wound_radius", 4, "um", "Wound radius R0 (1 + u(1, t))"),
+    Variable::parameter("lambda", 0, 1.0, "1", "Viscous length over the cut radius, 2 sqrt(eta/zeta)/R0, in [0, 1e6]"),
+    Variable::parameter("sigma", 1, 1.0, "1", "Homeostatic tension over shear modulus, in [-1e6, 1e6]"),
+    Variable::parameter("R_inf", 2, 10.0, "1", "Outer radius of the tissue over the cut radius, in [1.001, 1e6]"),
+    Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
+    Variable::output("wound_radius", 4, "um", "Wound radius R0 (1 + u(1, t)) [um]; R1 = R0 (1 + sigma/6) just after the cut"),
     Variable::output("edge_velocity", 5, "um/s", "Edge velocity dR/dt [um/s] under the current edge_stress"),
-    Variable::parameter("tolerance", 6, 1e-10, "1", "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh"),
+    Variable::parameter("tolerance", 6, 1e-10, "1", "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh; below 1e-11 a warning names the 1e-11 delivered"),
     Variable::integer("method", 7, 0, (0, 3), "0: spectral elements, exact in time (mesh from the tolerance); 1: TR-BDF2 on that mesh; 2: the paper's scheme; 3: explicit scheme"),
     Variable::integer("grid_points", 8, 101, (3, 100000), "Uniform grid points of methods 2 and 3"),
     Variable::parameter("internal_step", 9, 1e-3, "s", "Largest internal time step [s] of methods 1 to 3"),
-    Variable::parameter("R0", 10, 1.0, "um", "Length scale: the wound radius (1e-12 ..= 1e12; 1 keeps lengths dimensionless)"),
+    Variable::parameter("R0", 10, 1.0, "um", "Length scale: the radius of the cut (1e-12 ..= 1e12; 1 keeps lengths dimensionless)"),
     Variable::parameter("T", 11, 1.0, "s", "Time scale T = zeta R0^2 / (4 G) (1e-12 ..= 1e12; 1 keeps time dimensionless)"),
     Variable::parameter("G", 12, 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
 ];
