@@ -52,6 +52,47 @@ def edge_transform(s, lam, sigma, r_inf, p=0.0):
     return rhs * (d_kb * i1a * e - d_ib * k1a) / (d_ia * d_kb * e - d_ka * d_ib)
 
 
+def profile_transform(s, r, lam, sigma, r_inf, p=0.0):
+    """V(r, s) = A I1(k r) + B K1(k r), the transform of v(r, t) = u(r, t) - sigma r / 6.
+
+    Same constants as `edge_transform`, whose value is this at r = 1:
+
+        (1 + lambda^2 s) D V(1, s) = (p - sigma) / s,   D V(R_inf, s) = 0,
+        A = rhs D_K(R) / det,  B = -rhs D_I(R) / det,  det = D_I(1) D_K(R) - D_K(1) D_I(R).
+
+    With scaled functions I~(z) = I(z) e^-Re(z), K~(z) = K(z) e^z and numerator and
+    determinant multiplied by the same factor as in `edge_transform`, the exponentials left
+    are exp(Re(k) (r - 1) + (Re(k) + k) (1 - R_inf)), of modulus exp(Re(k) (r + 1 - 2 R_inf))
+    <= 1, on the I part and exp(-k (r - 1)), of modulus <= 1, on the K part, for
+    1 <= r <= R_inf: nothing overflows.
+    """
+    k = np.sqrt(s / (1 + lam**2 * s))
+    kr, kb = k * r, k * r_inf
+    d_ia = 2 * (2 * k * sp.ive(0, k) - sp.ive(1, k))
+    d_ka = -2 * (2 * k * sp.kve(0, k) + sp.kve(1, k))
+    d_ib = 2 * (2 * k * sp.ive(0, kb) - sp.ive(1, kb) / r_inf)
+    d_kb = -2 * (2 * k * sp.kve(0, kb) + sp.kve(1, kb) / r_inf)
+    e = np.exp((k.real + k) * (1 - r_inf))
+    rhs = (p - sigma) / (s * (1 + lam**2 * s))
+    det = d_ia * d_kb * e - d_ka * d_ib
+    i_part = d_kb * sp.ive(1, kr) * np.exp(k.real * (r - 1) + (k.real + k) * (1 - r_inf))
+    k_part = d_ib * sp.kve(1, kr) * np.exp(-k * (r - 1))
+    return rhs * (i_part - k_part) / det
+
+
+def profile(lam, sigma, r_inf, r, t, p=0.0):
+    """Exact (u(r, t), u_t(r, t)) at radii r (1 <= r <= R_inf, reference positions) and
+    times t > 0, for a constant edge stress p from t = 0: arrays of shape (len(t), len(r))."""
+    r = np.atleast_1d(np.asarray(r, dtype=float))
+    u = np.empty((np.size(t), r.size))
+    v = np.empty_like(u)
+    for j, rj in enumerate(r):
+        f = lambda s: profile_transform(s, rj, lam, sigma, r_inf, p)  # noqa: E731
+        u[:, j] = sigma * rj / 6 + _invert(f, t)
+        v[:, j] = _invert(lambda s: s * f(s), t)
+    return u, v
+
+
 def _invert(transform, t, n=CONTOUR_NODES):
     """Inverse Laplace transform at each t > 0 on Weideman's contour."""
     t = np.atleast_1d(np.asarray(t, dtype=float))[:, None]

@@ -69,3 +69,20 @@ def test_edge_superposition_in_p():
     r1 = wound_exact.initial_radius(SIGMA)
     np.testing.assert_allclose(rp - r1, 0.7 * (r0 - r1), rtol=0, atol=1e-13 * AMPLITUDE)
     np.testing.assert_allclose(vp, 0.7 * v0, rtol=1e-13, atol=1e-16)
+
+
+def test_profile_reduces_to_the_edge_and_relaxes_to_the_final_state():
+    """u(1, t) is the wound radius minus 1 (same transform at r = 1), and u(r, t -> inf)
+    = a r + b / r with a = sigma k / 6, b = sigma k / 2, k = R^2 / (R^2 - 1)."""
+    t = np.array([0.01, 1.0, 100.0])
+    for lam in [0.0, 0.1, 1.0, 10.0]:
+        for r_inf in [10.0, 1e6]:
+            u, v = wound_exact.profile(lam, 1.0, r_inf, [1.0], t)
+            radius, velocity = wound_exact.edge(lam, 1.0, r_inf, t)
+            assert np.max(np.abs(1 + u[:, 0] - radius)) < 1e-14
+            assert np.max(np.abs(v[:, 0] - velocity)) < 1e-14
+    r = np.array([1.0, 2.0, 5.0, 10.0])
+    u, v = wound_exact.profile(1.0, 1.0, 10.0, r, [1e9])
+    k = 100.0 / 99.0
+    assert np.max(np.abs(u[0] - (k / 6 * r + k / 2 / r))) < 1e-12
+    assert np.max(np.abs(v[0])) < 1e-12
