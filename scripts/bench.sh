@@ -17,7 +17,7 @@ step "FMU"
 cargo run --release --quiet -- fmu
 step "exact references"
 python -m bench.reference --out "$data"
-for example in work_precision stability_map step_cost profiles; do
+for example in work_precision stability_map step_cost fresh_cost profiles; do
     step "cargo run --release --example $example"
     cargo run --release --quiet --example "$example" -- "$data"
 done

@@ -78,7 +78,8 @@ def main() -> None:
                        ("scipy_peer/paper_peer", peers), ("fmpy_timing", fmpy)):
         if not rows:
             print(f"charts: no {name} data in {args.data}: skipped what needs it")
-    summary.write(args.out / "benchmarks.md", rust + peers, read("step_cost"), fmpy, stability, limits, made)
+    summary.write(args.out / "benchmarks.md", rust + peers, read("step_cost"), fmpy, stability, limits, made,
+                  read("fresh_cost"))
     print(args.out / "benchmarks.md")
 
 
