@@ -7,6 +7,9 @@
 //! in units of one `fmi2DoStep` + `fmi2GetReal`).
 //!
 //! - `step`: `fmi2DoStep` + `fmi2GetReal` of both outputs (R_inf = 10, tolerance 1e-10).
+//! - `step_without_guard`: the same two calls through the safe `Instance` API: the
+//!   difference is what the C boundary's guard costs (handle lookup, the instance's lock,
+//!   the panic boundary).
 //! - `fresh_instance`: `fmi2Instantiate`, `fmi2SetReal(lambda)` (a new lambda each time),
 //!   initialization, `fmi2GetReal`, `fmi2FreeInstance`, at an outer radius already cached.
 //! - `reset_new_lambda`: `fmi2Reset`, a new lambda, initialization, `fmi2GetReal`.
@@ -19,7 +22,9 @@ mod bench_util;
 use bench_util::best_cpu;
 use std::ffi::{CString, c_void};
 use std::io::Write;
+use std::sync::Arc;
 use wound_opening::fmi::ffi::*;
+use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
 use wound_opening::fmi::types::*;
 use wound_opening::fmi::variables::GUID;
 
@@ -55,6 +60,31 @@ unsafe fn initialize(c: *mut c_void, values: &[(u32, f64)]) -> f64 {
     out[1]
 }
 
+struct Silent;
+
+impl Logger for Silent {
+    fn log(&self, _status: Status, _category: &str, _message: &str) {}
+}
+
+/// One step and read through the safe API, without the C boundary.
+fn step_without_guard() -> f64 {
+    let mut i = Instance::new("bench", Arc::new(Silent), false);
+    let ok = |r: Result<((), Status), Status>| assert_eq!(r, Ok(((), Status::Ok)));
+    ok(i.call(Call::SetupExperiment, String::new, |i| i.setup_experiment(Some(1e-10), 0.0, None)));
+    ok(i.call(Call::EnterInitializationMode, String::new, |i| i.enter_initialization_mode()));
+    ok(i.call(Call::ExitInitializationMode, String::new, |i| i.exit_initialization_mode()));
+    let (mut t, mut out) = (0.0, [0.0; 2]);
+    let (cpu, _) = best_cpu(|| {
+        for _ in 0..STEPS {
+            ok(i.call(Call::DoStep, String::new, |i| i.do_step(t, 1e-4)));
+            t += 1e-4;
+            ok(i.call(Call::Get, String::new, |i| i.get_real(&OUTPUTS, &mut out)));
+        }
+        out[0]
+    });
+    cpu / STEPS as f64
+}
+
 fn main() {
     let dir = std::path::PathBuf::from(std::env::args().nth(1).expect("usage: fresh_cost DIR"));
     let mut csv = std::fs::File::create(dir.join("fresh_cost.csv")).expect("writable DIR");
@@ -81,6 +111,7 @@ fn main() {
         println!("{what:<22} {:>10.0} ns  = {:>7.1} steps", seconds * 1e9, seconds / step);
     };
     row("step", step);
+    row("step_without_guard", step_without_guard());
 
     let mut k = 0u64;
     let mut next_lambda = move || {

@@ -121,6 +121,7 @@ def fresh_table(fresh: list[dict]) -> list[str]:
     """What a fresh parameter set costs against one step (examples/fresh_cost.rs)."""
     meaning = {
         "step": "`fmi2DoStep` + `fmi2GetReal` of both outputs",
+        "step_without_guard": "the same through the safe `Instance` API (the difference is the C boundary's guard)",
         "fresh_instance": "`fmi2Instantiate`, a new lambda, initialization, `fmi2GetReal`, `fmi2FreeInstance`",
         "reset_new_lambda": "`fmi2Reset`, a new lambda, initialization, `fmi2GetReal`",
         "fresh_outer_radius": "a new instance at a new R_inf (cache miss: assembly and decomposition, 49 unknowns)",
