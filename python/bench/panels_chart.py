@@ -57,16 +57,19 @@ def plot_lambda(lam: str, rows: list[dict], path) -> None:
     if has_zero:
         a.plot(p.r, p.u[zero], "r--", label="t = 0 (before the cut)", zorder=3)
         b.plot(p.r, p.v[zero], "r--", label="t = 0+ (just after the cut)", zorder=3)
+    top = np.nanmax(p.v[np.isfinite(p.t)])
+    floor = top * 10.0**-FLOOR_DECADES
     for i, colour in zip(p.shown_times(), colours):
         a.plot(p.r, p.u[i], color=colour, label=f"t = {p.t[i]:.3g}")
-        b.plot(p.r, p.v[i], color=colour, label=f"t = {p.t[i]:.3g}")
+        # A curve entirely below the log axis' floor is not drawn, so it gets no legend entry.
+        if np.nanmax(p.v[i]) > floor:
+            b.plot(p.r, p.v[i], color=colour, label=f"t = {p.t[i]:.3g}")
     if has_final:
         a.plot(p.r, p.u[final], "k--", label="t = inf (relaxed)", zorder=3)
     a.set(xlabel="r (R0)", ylabel="u (R0)", title="a) displacement u(r, t)")
     b.set(xlabel="r (R0)", ylabel="v = du/dt (R0/T)", yscale="log",
           title=f"b) velocity v(r, t), log scale (down to 1e-{FLOOR_DECADES} of its largest value)")
-    top = np.nanmax(p.v[np.isfinite(p.t)])
-    b.set_ylim(top * 10.0**-FLOOR_DECADES, top * 2)
+    b.set_ylim(floor, top * 2)
 
     times = p.t[p.live]
     rcol = plt.cm.plasma(np.linspace(0, 0.85, len(RADII)))

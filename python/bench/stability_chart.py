@@ -77,7 +77,9 @@ def plot_scheme(scheme: str, rows: list[dict], limits: list[dict], path) -> None
         mine = [r for r in limits if r["points"] == points]
         scheme_map(ax, [r for r in rows if r["points"] == points], mine)
         ax.set_title(f"{scheme}, " + ("default mesh" if points == "0" else f"{points} points"))
-    handles = [Patch(color=c, label=MEANING[s]) for s, c in zip(STATUSES, COLOURS)]
+    # Only the statuses that occur in this chart (an all-bounded map gets one entry).
+    present = {r["status"] for r in rows}
+    handles = [Patch(color=c, label=MEANING[s]) for s, c in zip(STATUSES, COLOURS) if s in present]
     fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=9)
     fig.suptitle(f"Stability map: {scheme} (R_inf = 10, sigma = 1, edge stress 0)")
     fig.tight_layout(rect=(0, 0.07, 1, 1))
