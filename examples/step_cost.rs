@@ -31,8 +31,15 @@ fn main() {
     // The whole scenario at tolerance 1e-9: set-up (assembly, eigen-decomposition) + 1000 steps.
     let (cpu, _) = best_cpu(|| scenario(1.0, &Scheme::Modal(settings)));
     row("modal_scenario_in_process", cpu);
+    // Set-up from scratch (assembly and decomposition), and with the basis cached (a new
+    // lambda or instance at a known outer radius: src/solver/basis.rs).
+    let (cpu, _) = best_cpu(|| {
+        wound_opening::solver::basis::clear();
+        Solver::new(&params, &settings).expect("valid")
+    });
+    row("modal_setup_in_process_cold", cpu);
     let (cpu, _) = best_cpu(|| Solver::new(&params, &settings).expect("valid"));
-    row("modal_setup_in_process", cpu);
+    row("modal_setup_in_process_cached_basis", cpu);
 
     // One step through the solver API.
     let mut s = Solver::new(&params, &settings).expect("valid");
