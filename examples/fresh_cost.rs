@@ -21,7 +21,7 @@ use std::ffi::{CString, c_void};
 use std::io::Write;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::variables::GUID;
+use wound_opening::fmi::wound::variables::GUID;
 
 const LAMBDA: u32 = 0;
 const R_INF: u32 = 2;

@@ -14,9 +14,10 @@ use bench_util::best_cpu;
 use std::ffi::CString;
 use std::sync::Arc;
 use wound_opening::fmi::ffi::*;
+use wound_opening::fmi::wound::WoundModel;
 use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::variables::{GUID, Vr};
+use wound_opening::fmi::wound::variables::{GUID, Vr};
 
 const STEPS: usize = 100_000;
 const H: f64 = 1e-4;
@@ -29,7 +30,7 @@ impl Logger for Silent {
 }
 
 fn safe_api() -> f64 {
-    let mut i = Instance::new("bench", Arc::new(Silent), false);
+    let mut i = Instance::new(WoundModel::fresh, "bench", Arc::new(Silent), false);
     let ok = |r: Result<((), Status), Status>| assert_eq!(r, Ok(((), Status::Ok)));
     ok(i.call(Call::SetupExperiment, String::new, |i| i.setup_experiment(Some(1e-9), 0.0, None)));
     ok(i.call(Call::EnterInitializationMode, String::new, |i| i.enter_initialization_mode()));

@@ -87,7 +87,7 @@ impl Logger for Collect {
 }
 
 fn warner(log: &Arc<Collect>) -> Instance {
-    let mut i = Instance::of_model(Warner::fresh, "warner", log.clone(), false);
+    let mut i = Instance::new(Warner::fresh, "warner", log.clone(), false);
     i.call(Call::EnterInitializationMode, String::new, |i| i.enter_initialization_mode()).unwrap();
     i.call(Call::ExitInitializationMode, String::new, |i| i.exit_initialization_mode()).unwrap();
     i

@@ -1,7 +1,7 @@
 //! The FMI calls an instance answers: in which states of the FMI 2.0 co-simulation state
 //! machine each is allowed (section 4.2.4), and its name for messages.
 
-use super::state::Machine;
+use super::machine::Machine;
 
 /// The FMI calls, for the state-machine check and the call log.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -68,7 +68,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
             return fail(format!("Expected GUID {} but was {}", known.join(" or "), guid.as_deref().unwrap_or("NULL")));
         };
         let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
-        Some(register(Instance::of_model(fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))
+        Some(register(Instance::new(fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))
     });
     made.ok().flatten().unwrap_or(std::ptr::null_mut())
 }

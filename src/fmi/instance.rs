@@ -12,8 +12,8 @@ pub use super::log::{Logger, Status};
 pub use super::model::Rejected;
 use super::log::Log;
 use super::model::{Causality, Description, FmuModel, Kind, Variability};
-pub use super::state::{Clock, time_slack};
-use super::state::{self, Machine};
+pub use super::machine::{Clock, Machine, time_slack};
+use super::state;
 use crate::boundary::registry::fresh_handle;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -49,13 +49,8 @@ pub struct Instance {
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
 
 impl Instance {
-    /// An instance of the wound-opening model.
-    pub fn new(name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
-        Self::of_model(super::wound::WoundModel::fresh, name, logger, logging_on)
-    }
-
     /// An instance of the model that `fresh` makes.
-    pub fn of_model(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
+    pub fn new(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
         Self {
             name: name.to_owned(),
             log: Log::new(logger, logging_on),

@@ -13,13 +13,12 @@ pub mod ffi;
 pub mod frame;
 pub mod instance;
 pub mod log;
+pub mod machine;
 pub mod model;
 pub mod purse;
 pub mod state;
 pub mod types;
 pub mod wound;
-
-pub use wound::variables;
 
 use model::{Description, FmuModel};
 

@@ -3,7 +3,7 @@
 
 use plotters::prelude::*;
 use wound_opening::fmi::model::Variable;
-use wound_opening::fmi::{purse, variables::VARIABLES};
+use wound_opening::fmi::{purse, wound::variables::VARIABLES};
 use wound_opening::solver::{Params, Settings, Solver, exact};
 
 type BoxError = Box<dyn std::error::Error>;
