@@ -19,6 +19,7 @@ pub mod purse;
 pub mod state;
 pub mod types;
 pub mod wound;
+pub mod xml;
 
 use model::{Description, FmuModel};
 

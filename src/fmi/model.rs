@@ -118,13 +118,39 @@ impl Variable {
     }
 }
 
-/// Everything `modelDescription.xml` says that the code relies on; the XML itself is
-/// compiled in and `tests/model_description.rs` checks one against the other.
+/// SI base units of every unit a variable may declare (`<UnitDefinitions>`): name, then
+/// `(attribute, value)` of its `<BaseUnit>` (none for "1").
+pub const UNITS: [(&str, &[(&str, &str)]); 6] = [
+    ("1", &[]),
+    ("Pa", &[("kg", "1"), ("m", "-1"), ("s", "-2")]),
+    ("pN", &[("kg", "1"), ("m", "1"), ("s", "-2"), ("factor", "1e-12")]),
+    ("s", &[("s", "1")]),
+    ("um", &[("m", "1"), ("factor", "1e-6")]),
+    ("um/s", &[("m", "1"), ("s", "-1"), ("factor", "1e-6")]),
+];
+
+/// `<DefaultExperiment>`: what a master runs when told nothing, and what the reference
+/// results of the archive are computed with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Experiment {
+    pub start: f64,
+    pub stop: f64,
+    pub step: f64,
+    pub tolerance: f64,
+}
+
+/// A model as the glue, the description generator ([`super::xml`]) and the packaging see
+/// it: every `modelDescription.xml` is generated from this table, so the XML and the code
+/// cannot disagree.
 #[derive(Debug)]
 pub struct Description {
     pub model_identifier: &'static str,
+    /// `guid` (FMI 2.0) and `instantiationToken` (FMI 3.0).
     pub guid: &'static str,
-    pub xml: &'static str,
+    /// `fmiModelDescription/@description`.
+    pub summary: &'static str,
+    /// The model in HTML, for `documentation/index.html`.
+    pub about: &'static str,
     /// Indexed by value reference.
     pub variables: &'static [Variable],
     /// `ModelStructure/Outputs`: each output's value reference with the inputs it depends
@@ -134,6 +160,7 @@ pub struct Description {
     pub initial_unknowns: &'static [(u32, &'static [u32])],
     /// Flags of `<CoSimulation>`.
     pub capabilities: &'static [(&'static str, &'static str)],
+    pub default_experiment: Experiment,
 }
 
 impl Description {

@@ -1,12 +1,15 @@
-//! The wound FMU's variables: the one table that `modelDescription.xml` must match
-//! (checked by `tests/model_description.rs`).
+//! The wound FMU's variables: the one table that `modelDescription.xml` is generated
+//! from ([`crate::fmi::xml`]), and that the code uses.
 
-pub use crate::fmi::model::{CAPABILITIES, Causality, Description, Kind, LOG_CATEGORIES, Variability, Variable};
+pub use crate::fmi::model::{CAPABILITIES, Experiment, Causality, Description, Kind, LOG_CATEGORIES, Variability, Variable};
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
 pub const MODEL_IDENTIFIER: &str = "WoundOpening";
 /// `guid` of `modelDescription.xml`; `fmi2Instantiate` rejects any other.
 pub const GUID: &str = "{8c4e1f0a-3b7d-4e52-9a61-2f0d5c7b9e14}";
+
+/// `description` of `modelDescription.xml`.
+pub const SUMMARY: &str = "Opening of a circular wound in a thin incompressible Kelvin-Voigt tissue with substrate friction. Lengths scale with R0 (wound radius), stresses with G (shear modulus), time with T = zeta R0^2 / (4 G); with R0 = 1 um, T = 1 s and G = 1 Pa (the defaults) values are dimensionless.";
 
 /// Value references, in the order of the table (index = value reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -73,7 +76,8 @@ pub const VARIABLES: [Variable; 13] = [
 pub static DESCRIPTION: Description = Description {
     model_identifier: MODEL_IDENTIFIER,
     guid: GUID,
-    xml: include_str!("../../../modelDescription/modelDescription.xml"),
+    summary: SUMMARY,
+    about: include_str!("about.html"),
     variables: &VARIABLES,
     // The edge velocity is linear in the edge stress with a factor set by fixed
     // parameters (`fixed`); the radius has no direct dependence on it.
@@ -99,6 +103,7 @@ pub static DESCRIPTION: Description = Description {
         ),
     ],
     capabilities: &CAPABILITIES,
+    default_experiment: Experiment { start: 0.0, stop: 100.0, step: 0.01, tolerance: 1e-10 },
 };
 
 #[cfg(test)]
