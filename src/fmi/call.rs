@@ -1,7 +1,9 @@
-//! The FMI calls an instance answers: in which states of the FMI 2.0 co-simulation state
-//! machine each is allowed (section 4.2.4), and its name for messages.
+//! The FMI calls an instance answers: in which states of the FMI 2.0 state machines each
+//! is allowed (co-simulation, section 4.2.4; Model Exchange, section 3.2.3, as the
+//! Reference-FMUs' masks in `fmi2Functions.c` read it), for which interface type, and its
+//! name for messages.
 
-use super::machine::Machine;
+use super::machine::{Interface, Machine};
 
 /// The FMI calls, for the state-machine check and the call log.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,10 +27,32 @@ pub enum Call {
     GetDirectionalDerivative,
     SetRealInputDerivatives,
     GetRealOutputDerivatives,
+    EnterEventMode,
+    NewDiscreteStates,
+    EnterContinuousTimeMode,
+    CompletedIntegratorStep,
+    SetTime,
+    SetContinuousStates,
+    GetDerivatives,
+    GetEventIndicators,
+    GetContinuousStates,
+    GetNominalsOfContinuousStates,
 }
 
 impl Call {
-    /// States in which FMI 2.0 (section 4.2.4) allows the call.
+    /// The interface type the call belongs to (`None`: both).
+    pub fn interface(self) -> Option<Interface> {
+        use Call::*;
+        match self {
+            DoStep | CancelStep | GetStatus | SetRealInputDerivatives | GetRealOutputDerivatives => Some(Interface::CoSimulation),
+            EnterEventMode | NewDiscreteStates | EnterContinuousTimeMode | CompletedIntegratorStep | SetTime
+            | SetContinuousStates | GetDerivatives | GetEventIndicators | GetContinuousStates
+            | GetNominalsOfContinuousStates => Some(Interface::ModelExchange),
+            _ => None,
+        }
+    }
+
+    /// States in which FMI 2.0 allows the call.
     pub fn allowed(self, m: Machine) -> bool {
         use Machine::*;
         if m == Error {
@@ -36,13 +60,23 @@ impl Call {
             return matches!(
                 self,
                 Call::SetDebugLogging | Call::Reset | Call::Get | Call::GetFmuState | Call::SetFmuState | Call::FreeFmuState
-                    | Call::SerializeFmuState | Call::DeSerializeFmuState
+                    | Call::SerializeFmuState | Call::DeSerializeFmuState | Call::GetDerivatives | Call::GetEventIndicators
+                    | Call::GetContinuousStates | Call::GetNominalsOfContinuousStates
             );
         }
         match self {
             Call::SetupExperiment | Call::EnterInitializationMode => m == Instantiated,
             Call::ExitInitializationMode => m == InitializationMode,
-            Call::Terminate | Call::DoStep => m == StepComplete,
+            Call::DoStep => m == StepComplete,
+            Call::Terminate => matches!(m, StepComplete | EventMode | ContinuousTimeMode),
+            Call::EnterEventMode | Call::SetTime => matches!(m, EventMode | ContinuousTimeMode),
+            Call::NewDiscreteStates | Call::EnterContinuousTimeMode => m == EventMode,
+            Call::CompletedIntegratorStep | Call::SetContinuousStates => m == ContinuousTimeMode,
+            Call::GetEventIndicators | Call::GetContinuousStates => {
+                matches!(m, InitializationMode | EventMode | ContinuousTimeMode | Terminated)
+            }
+            Call::GetDerivatives => matches!(m, EventMode | ContinuousTimeMode | Terminated),
+            Call::GetNominalsOfContinuousStates => matches!(m, Instantiated | EventMode | ContinuousTimeMode | Terminated),
             Call::SetDebugLogging
             | Call::Reset
             | Call::GetFmuState
@@ -78,6 +112,16 @@ impl Call {
             Call::GetDirectionalDerivative => "fmi2GetDirectionalDerivative",
             Call::SetRealInputDerivatives => "fmi2SetRealInputDerivatives",
             Call::GetRealOutputDerivatives => "fmi2GetRealOutputDerivatives",
+            Call::EnterEventMode => "fmi2EnterEventMode",
+            Call::NewDiscreteStates => "fmi2NewDiscreteStates",
+            Call::EnterContinuousTimeMode => "fmi2EnterContinuousTimeMode",
+            Call::CompletedIntegratorStep => "fmi2CompletedIntegratorStep",
+            Call::SetTime => "fmi2SetTime",
+            Call::SetContinuousStates => "fmi2SetContinuousStates",
+            Call::GetDerivatives => "fmi2GetDerivatives",
+            Call::GetEventIndicators => "fmi2GetEventIndicators",
+            Call::GetContinuousStates => "fmi2GetContinuousStates",
+            Call::GetNominalsOfContinuousStates => "fmi2GetNominalsOfContinuousStates",
         }
     }
 }

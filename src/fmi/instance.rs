@@ -1,5 +1,6 @@
-//! One FMU instance in safe Rust: the FMI 2.0 co-simulation state machine, the variables,
-//! FMU states and logging. It knows nothing of C: the `ffi` layer converts pointers.
+//! One FMU instance in safe Rust: the FMI 2.0 state machine (co-simulation here, Model
+//! Exchange in [`super::exchange`]), the variables, FMU states and logging. It knows
+//! nothing of C: the `ffi` layer converts pointers.
 //!
 //! Every call goes through [`Instance::call`]: log the call (category `logCalls`), check
 //! that it is allowed in the current state, run it. A call that is rejected (not allowed
@@ -11,8 +12,8 @@ pub use super::call::Call;
 pub use super::log::{Logger, Status};
 pub use super::model::Rejected;
 use super::log::Log;
-use super::model::{Causality, Description, FmuModel, Kind, Variability};
-pub use super::machine::{Clock, Machine, time_slack};
+use super::model::{Causality, Description, FmuModel, Kind, Named, Variability};
+pub use super::machine::{Clock, Interface, Machine, time_slack};
 use super::state;
 use crate::boundary::registry::fresh_handle;
 use std::collections::HashMap;
@@ -35,9 +36,10 @@ impl Clone for Snapshot {
 pub struct Instance {
     name: String,
     log: Log,
-    machine: Machine,
-    clock: Clock,
-    model: Box<dyn FmuModel>,
+    pub(super) interface: Interface,
+    pub(super) machine: Machine,
+    pub(super) clock: Clock,
+    pub(super) model: Box<dyn FmuModel>,
     /// A fresh model, for `fmi2Reset`.
     fresh: fn() -> Box<dyn FmuModel>,
     /// FMU states handed to the master, by handle. Handles come from the process-wide
@@ -49,11 +51,23 @@ pub struct Instance {
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
 
 impl Instance {
-    /// An instance of the model that `fresh` makes.
+    /// A co-simulation instance of the model that `fresh` makes.
     pub fn new(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
+        Self::of_interface(Interface::CoSimulation, fresh, name, logger, logging_on)
+    }
+
+    /// An instance of `interface` of the model that `fresh` makes.
+    pub fn of_interface(
+        interface: Interface,
+        fresh: fn() -> Box<dyn FmuModel>,
+        name: &str,
+        logger: Arc<dyn Logger>,
+        logging_on: bool,
+    ) -> Self {
         Self {
             name: name.to_owned(),
             log: Log::new(logger, logging_on),
+            interface,
             machine: Machine::Instantiated,
             clock: FRESH_CLOCK,
             model: fresh(),
@@ -73,6 +87,10 @@ impl Instance {
 
     pub fn machine(&self) -> Machine {
         self.machine
+    }
+
+    pub fn interface(&self) -> Interface {
+        self.interface
     }
 
     pub fn description(&self) -> &'static Description {
@@ -110,6 +128,10 @@ impl Instance {
     ) -> Result<(T, Status), Status> {
         if self.log.calls_on() {
             self.log.call(&describe());
+        }
+        if let Some(only) = call.interface().filter(|&i| i != self.interface) {
+            self.log_error(&format!("{} is a {only:?} function but this instance is {:?}", call.fmi_name(), self.interface));
+            return Err(Status::Error);
         }
         if !call.allowed(self.machine) {
             self.log_error(&format!("{} is not allowed in state {:?}", call.fmi_name(), self.machine));
@@ -153,9 +175,17 @@ impl Instance {
         Ok(())
     }
 
+    /// Into `StepComplete` (co-simulation) or `EventMode` (Model Exchange, once the model
+    /// says its parameters make an ODE).
     pub fn exit_initialization_mode(&mut self) -> Result<(), Rejected> {
         self.prepare()?;
-        self.machine = Machine::StepComplete;
+        self.machine = match self.interface {
+            Interface::CoSimulation => Machine::StepComplete,
+            Interface::ModelExchange => {
+                self.model.check_model_exchange()?;
+                Machine::EventMode
+            }
+        };
         Ok(())
     }
 
@@ -172,7 +202,7 @@ impl Instance {
         Ok(())
     }
 
-    fn prepare(&mut self) -> Result<(), Rejected> {
+    pub(super) fn prepare(&mut self) -> Result<(), Rejected> {
         if let Some(text) = self.model.prepare()? {
             self.log.call(&text);
         }
@@ -182,15 +212,28 @@ impl Instance {
     /// Values of the listed variables, all of type `kind` (Integers are exact in f64).
     fn get_values(&mut self, kind: Kind, vrs: &[u32]) -> Result<Vec<f64>, Rejected> {
         let d = self.description();
-        let mut needs_model = false;
+        let mut named = Vec::with_capacity(vrs.len());
         for &v in vrs {
-            needs_model |= d.typed(kind, v)?.causality == Causality::Output;
+            named.push(d.named(kind, v)?);
         }
-        if needs_model {
-            self.prepare()?;
+        let computed = |n: &Named| !matches!(n, Named::Table(v) if v.causality != Causality::Output);
+        if !named.iter().any(computed) {
+            let t = self.clock.since_start();
+            return Ok(vrs.iter().map(|&v| self.model.get(v, t)).collect());
         }
+        self.prepare()?;
         let t = self.clock.since_start();
-        Ok(vrs.iter().map(|&v| self.model.get(v, t)).collect())
+        let states = named.iter().any(|n| matches!(n, Named::State(_))).then(|| self.model.continuous_states());
+        let rates = named.iter().any(|n| matches!(n, Named::Derivative(_))).then(|| self.model.derivatives(t));
+        Ok(vrs
+            .iter()
+            .zip(&named)
+            .map(|(&v, n)| match n {
+                Named::Table(_) => self.model.get(v, t),
+                Named::State(k) => states.as_ref().map_or(f64::NAN, |x| x[*k]),
+                Named::Derivative(k) => rates.as_ref().map_or(f64::NAN, |x| x[*k]),
+            })
+            .collect())
     }
 
     pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
@@ -211,7 +254,15 @@ impl Instance {
         let d = self.description();
         let mut checked = Vec::with_capacity(vrs.len());
         for (&v, &x) in vrs.iter().zip(values) {
-            let var = d.typed(kind, v)?;
+            let var = match d.named(kind, v)? {
+                Named::Table(var) => var,
+                state => {
+                    let name = d.state_name(state);
+                    return Err(format!(
+                        "{name} (value reference {v}) is a continuous state or derivative: states are set with fmi2SetContinuousStates"
+                    ));
+                }
+            };
             let fixed_now = var.variability == Variability::Fixed
                 && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
             if var.causality == Causality::Output {
@@ -372,6 +423,9 @@ impl Instance {
             self.snapshot(h)?;
         }
         let (machine, clock, payload) = state::decode(self.description().model_identifier, bytes)?;
+        if !machine.belongs_to(self.interface) {
+            return Err(format!("serialized FMU state is in state {machine:?}, which a {:?} instance never is", self.interface));
+        }
         let model = self.model.decode(payload)?;
         let handle = target.unwrap_or_else(fresh_handle);
         self.states.insert(handle, Snapshot { machine, clock, model });

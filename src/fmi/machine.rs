@@ -2,7 +2,16 @@
 //! the tolerance on communication points, [`time_slack`]): what the glue keeps for every
 //! model besides the model itself. Which call is allowed in which state is [`super::call`].
 
-/// The FMI state machine's states (FMI 2.0 co-simulation, synchronous).
+/// The interface type an instance was made for (`fmi2Instantiate`'s `fmuType`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Interface {
+    ModelExchange,
+    CoSimulation,
+}
+
+/// The FMI 2.0 state machine's states: co-simulation (synchronous, section 4.2.4) and
+/// Model Exchange (section 3.2.3) share all but `StepComplete` (co-simulation) and
+/// `EventMode`, `ContinuousTimeMode` (Model Exchange).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Machine {
     Instantiated,
@@ -11,6 +20,8 @@ pub enum Machine {
     Terminated,
     /// After an internal failure: only reset, restore or inspection are allowed.
     Error,
+    EventMode,
+    ContinuousTimeMode,
 }
 
 impl Machine {
@@ -19,9 +30,26 @@ impl Machine {
     }
 
     pub fn from_code(c: u8) -> Option<Self> {
-        [Self::Instantiated, Self::InitializationMode, Self::StepComplete, Self::Terminated, Self::Error]
-            .get(c as usize)
-            .copied()
+        [
+            Self::Instantiated,
+            Self::InitializationMode,
+            Self::StepComplete,
+            Self::Terminated,
+            Self::Error,
+            Self::EventMode,
+            Self::ContinuousTimeMode,
+        ]
+        .get(c as usize)
+        .copied()
+    }
+
+    /// Whether an instance of `interface` can be in this state.
+    pub fn belongs_to(self, interface: Interface) -> bool {
+        match self {
+            Self::StepComplete => interface == Interface::CoSimulation,
+            Self::EventMode | Self::ContinuousTimeMode => interface == Interface::ModelExchange,
+            _ => true,
+        }
     }
 }
 

@@ -1,4 +1,4 @@
-//! The FMI 2.0 co-simulation boundary, shared by every model of the library: the model
+//! The FMI 2.0 boundary (co-simulation and Model Exchange), shared by every model of the library: the model
 //! interface ([`model`]), a safe instance with its state machine ([`instance`], [`call`]),
 //! logging ([`log`]) and FMU states ([`state`]), and the `unsafe` code of the FMI side:
 //! the C types ([`types`]), the frame of every call (the table of live instances and their
@@ -9,7 +9,9 @@
 //! master passes (each `.fmu` carries a copy named after its `modelIdentifier`).
 
 pub mod call;
+pub mod exchange;
 pub mod ffi;
+pub mod ffi_exchange;
 pub mod frame;
 pub mod instance;
 pub mod log;

@@ -31,6 +31,8 @@ pub enum Causality {
     Parameter,
     Input,
     Output,
+    /// A continuous state or its derivative (Model Exchange).
+    Local,
 }
 
 impl Causality {
@@ -39,6 +41,7 @@ impl Causality {
             Self::Parameter => "parameter",
             Self::Input => "input",
             Self::Output => "output",
+            Self::Local => "local",
         }
     }
 }
@@ -120,8 +123,9 @@ impl Variable {
 
 /// SI base units of every unit a variable may declare (`<UnitDefinitions>`): name, then
 /// `(attribute, value)` of its `<BaseUnit>` (none for "1").
-pub const UNITS: [(&str, &[(&str, &str)]); 6] = [
+pub const UNITS: [(&str, &[(&str, &str)]); 7] = [
     ("1", &[]),
+    ("1/s", &[("s", "-1")]),
     ("Pa", &[("kg", "1"), ("m", "-1"), ("s", "-2")]),
     ("pN", &[("kg", "1"), ("m", "1"), ("s", "-2"), ("factor", "1e-12")]),
     ("s", &[("s", "1")]),
@@ -161,6 +165,39 @@ pub struct Description {
     /// Flags of `<CoSimulation>`.
     pub capabilities: &'static [(&'static str, &'static str)],
     pub default_experiment: Experiment,
+    /// Continuous states for Model Exchange, if any (see [`States`]).
+    pub states: Option<States>,
+}
+
+/// A model's continuous states (Model Exchange): `count` state variables and as many
+/// derivatives, after the table's variables. FMI 2.0 fixes the number of states in the
+/// XML, so `count` is the most the accepted domain needs; a model using fewer keeps the
+/// rest at 0 with derivative 0.
+///
+/// ```text
+/// value reference  table.len() + k            name[k+1]         k = 0 .. count
+///                  table.len() + count + k    der(name[k+1])
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct States {
+    pub count: usize,
+    pub name: &'static str,
+    pub unit: &'static str,
+    pub description: &'static str,
+    /// Unit of the derivatives.
+    pub derivative_unit: &'static str,
+    /// Which table variables (inputs and parameters) the derivatives depend on at
+    /// initialization, and which inputs during the run (with `dependenciesKind`).
+    pub initial_dependencies: &'static [u32],
+    pub input_dependencies: &'static [(u32, &'static str)],
+}
+
+/// What a value reference names: a row of the table, a state or a derivative.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Named {
+    Table(&'static Variable),
+    State(usize),
+    Derivative(usize),
 }
 
 impl Description {
@@ -170,6 +207,32 @@ impl Description {
             Some(v) if v.kind == kind => Ok(v),
             Some(v) => Err(format!("{} (value reference {vr}) is {}, not {}", v.name, v.kind.as_str(), kind.as_str())),
             None => Err(format!("no {} variable has value reference {vr}", kind.as_str())),
+        }
+    }
+
+    /// Number of continuous states (0 without Model Exchange states).
+    pub fn state_count(&self) -> usize {
+        self.states.map_or(0, |s| s.count)
+    }
+
+    /// What `vr` names, if it is a variable of type `kind` (states are Reals).
+    pub fn named(&self, kind: Kind, vr: u32) -> Result<Named, Rejected> {
+        let (table, n) = (self.variables.len(), self.state_count());
+        let k = (vr as usize).wrapping_sub(table);
+        match vr as usize {
+            v if v < table => self.typed(kind, vr).map(Named::Table),
+            _ if k < 2 * n && kind == Kind::Real => Ok(if k < n { Named::State(k) } else { Named::Derivative(k - n) }),
+            _ => self.typed(kind, vr).map(Named::Table),
+        }
+    }
+
+    /// The name of a state's or derivative's variable.
+    pub fn state_name(&self, named: Named) -> String {
+        let s = self.states.map_or("x", |s| s.name);
+        match named {
+            Named::Table(v) => v.name.to_owned(),
+            Named::State(k) => format!("{s}[{}]", k + 1),
+            Named::Derivative(k) => format!("der({s}[{}])", k + 1),
         }
     }
 }
@@ -207,5 +270,29 @@ pub trait FmuModel: Send {
     /// section 2.1.3). The default has none.
     fn take_warning(&mut self) -> Option<String> {
         None
+    }
+
+    /// Model Exchange: whether this parameter set can run as an ODE for an outside
+    /// integrator (`Err` with the reason; after [`FmuModel::prepare`]). Models without
+    /// states can.
+    fn check_model_exchange(&self) -> Result<(), Rejected> {
+        Ok(())
+    }
+    /// The continuous states, `description().state_count()` of them (after `prepare`).
+    fn continuous_states(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Set the continuous states at time `time` since the cut (validated: finite, the
+    /// declared count).
+    fn set_continuous_states(&mut self, _time: f64, x: &[f64]) -> Result<(), Rejected> {
+        if x.is_empty() { Ok(()) } else { Err(format!("this model has no continuous states, {} given", x.len())) }
+    }
+    /// `dx/dt` per unit of the master's time at `time` since the cut, under the inputs set.
+    fn derivatives(&self, _time: f64) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Nominal values of the states (> 0).
+    fn nominals(&self) -> Vec<f64> {
+        vec![1.0; self.description().state_count()]
     }
 }

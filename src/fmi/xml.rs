@@ -1,10 +1,12 @@
 //! `modelDescription.xml` generated from a model's [`Description`]: the variable table
 //! the code uses is the only source, so the XML cannot drift from it (as rust-fmi's
 //! exporter does it). FMI 2.0 (fmi2ModelDescription.xsd): `ScalarVariable`s in table
-//! order, so the 1-based index that `ModelStructure` uses is `value reference + 1` (the
-//! tables have value reference = position, checked by [`fmi2`]).
+//! order, then the continuous states and their derivatives ([`States`]), so the 1-based
+//! index that `ModelStructure` uses is `value reference + 1` (the tables have value
+//! reference = position, checked by [`fmi2`]). One archive declares both interfaces:
+//! `<ModelExchange>` and `<CoSimulation>` with the same `modelIdentifier`.
 
-use super::model::{Causality, Description, Kind, LOG_CATEGORIES, UNITS};
+use super::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, States, UNITS};
 use std::fmt::Write;
 
 const GENERATION_TOOL: &str = "wound_opening (Rust)";
@@ -23,7 +25,9 @@ pub fn number(x: f64) -> String {
 /// `<UnitDefinitions>` of the units the variables use, in [`UNITS`] order.
 fn unit_definitions(d: &Description) -> String {
     let mut out = String::from("  <UnitDefinitions>\n");
-    for (name, base) in UNITS.iter().filter(|(n, _)| d.variables.iter().any(|v| v.unit == *n)) {
+    let state_units = d.states.map_or([""; 2], |s| [s.unit, s.derivative_unit]);
+    let used = |n: &str| d.variables.iter().any(|v| v.unit == n) || state_units.contains(&n);
+    for (name, base) in UNITS.iter().filter(|(n, _)| used(n)) {
         if base.is_empty() {
             let _ = writeln!(out, "    <Unit name=\"{}\"/>", escape(name));
         } else {
@@ -55,7 +59,54 @@ fn default_experiment(d: &Description) -> String {
     )
 }
 
-/// The FMI 2.0 `modelDescription.xml` of a model (co-simulation).
+/// Flags of `<ModelExchange>`: no events, so `fmi2CompletedIntegratorStep` is not needed;
+/// FMU states as in co-simulation; no directional derivatives of the derivatives.
+const ME_CAPABILITIES: [(&str, &str); 6] = [
+    ("completedIntegratorStepNotNeeded", "true"),
+    ("canBeInstantiatedOnlyOncePerProcess", "false"),
+    ("canNotUseMemoryManagementFunctions", "true"),
+    ("canGetAndSetFMUstate", "true"),
+    ("canSerializeFMUstate", "true"),
+    ("providesDirectionalDerivative", "false"),
+];
+
+/// `<Unknown index dependencies dependenciesKind/>` of `ModelStructure`.
+fn unknown(vr: u32, deps: &[(u32, &str)]) -> String {
+    let list: Vec<String> = deps.iter().map(|(k, _)| (k + 1).to_string()).collect();
+    let kinds: Vec<&str> = deps.iter().map(|(_, kind)| *kind).collect();
+    let kinds = if kinds.is_empty() { String::new() } else { format!(" dependenciesKind=\"{}\"", kinds.join(" ")) };
+    format!("      <Unknown index=\"{}\" dependencies=\"{}\"{kinds}/>\n", vr + 1, list.join(" "))
+}
+
+/// The states (local, continuous, calculated: 0 at the cut) and their derivatives.
+fn state_variables(d: &Description, s: &States) -> String {
+    let table = d.variables.len();
+    let mut x = String::new();
+    for k in 0..s.count {
+        let vr = table + k;
+        let _ = write!(
+            x,
+            "    <ScalarVariable name=\"{}\" valueReference=\"{vr}\" causality=\"local\" variability=\"continuous\" initial=\"calculated\"\n      description=\"{}\">\n      <Real unit=\"{}\"/>\n    </ScalarVariable>\n",
+            escape(&d.state_name(Named::State(k))),
+            escape(s.description),
+            escape(s.unit)
+        );
+    }
+    for k in 0..s.count {
+        let vr = table + s.count + k;
+        let _ = write!(
+            x,
+            "    <ScalarVariable name=\"{}\" valueReference=\"{vr}\" causality=\"local\" variability=\"continuous\" initial=\"calculated\"\n      description=\"Time derivative of {}\">\n      <Real unit=\"{}\" derivative=\"{}\"/>\n    </ScalarVariable>\n",
+            escape(&d.state_name(Named::Derivative(k))),
+            escape(&d.state_name(Named::State(k))),
+            escape(s.derivative_unit),
+            table + k + 1
+        );
+    }
+    x
+}
+
+/// The FMI 2.0 `modelDescription.xml` of a model (Model Exchange and co-simulation).
 ///
 /// # Panics
 /// If a value reference is not the variable's position in the table (a table error that
@@ -75,6 +126,12 @@ pub fn fmi2(d: &Description) -> String {
         guid = escape(d.guid),
         summary = escape(d.summary),
     );
+    let _ = write!(x, "  <ModelExchange\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
+    for (flag, value) in ME_CAPABILITIES {
+        let _ = writeln!(x, "    {flag}=\"{value}\"");
+    }
+    x.truncate(x.len() - 1);
+    x.push_str("/>\n\n");
     let _ = write!(x, "  <CoSimulation\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
     x.push_str("    canBeInstantiatedOnlyOncePerProcess=\"false\"\n");
     for (flag, value) in d.capabilities {
@@ -111,17 +168,39 @@ pub fn fmi2(d: &Description) -> String {
         }
         let _ = write!(x, "      <{}{attrs}/>\n    </ScalarVariable>\n", v.kind.as_str());
     }
-    x.push_str("  </ModelVariables>\n\n  <ModelStructure>\n    <Outputs>\n");
-    for (vr, deps) in d.outputs {
-        let list: Vec<String> = deps.iter().map(|(k, _)| index(*k)).collect();
-        let kinds: Vec<&str> = deps.iter().map(|(_, kind)| *kind).collect();
-        let kinds = if kinds.is_empty() { String::new() } else { format!(" dependenciesKind=\"{}\"", kinds.join(" ")) };
-        let _ = writeln!(x, "      <Unknown index=\"{}\" dependencies=\"{}\"{kinds}/>", index(*vr), list.join(" "));
+    if let Some(s) = d.states {
+        x.push_str(&state_variables(d, &s));
     }
-    x.push_str("    </Outputs>\n    <InitialUnknowns>\n");
-    for (vr, deps) in d.initial_unknowns {
+    x.push_str("  </ModelVariables>\n\n  <ModelStructure>\n    <Outputs>\n");
+    let table = d.variables.len() as u32;
+    let states: Vec<u32> = (0..d.state_count() as u32).map(|k| table + k).collect();
+    for (vr, deps) in d.outputs {
+        // In Model Exchange every output is a function of the states as well.
+        let mut all: Vec<(u32, &str)> = deps.to_vec();
+        all.extend(states.iter().map(|&s| (s, "fixed")));
+        all.sort_by_key(|(k, _)| *k);
+        x.push_str(&unknown(*vr, &all));
+    }
+    x.push_str("    </Outputs>\n");
+    if let Some(s) = d.states {
+        x.push_str("    <Derivatives>\n");
+        for k in 0..s.count as u32 {
+            let mut deps: Vec<(u32, &str)> = s.input_dependencies.to_vec();
+            deps.push((table + k, "fixed"));
+            x.push_str(&unknown(table + s.count as u32 + k, &deps));
+        }
+        x.push_str("    </Derivatives>\n");
+    }
+    x.push_str("    <InitialUnknowns>\n");
+    let mut initial: Vec<(u32, Vec<u32>)> = d.initial_unknowns.iter().map(|(v, deps)| (*v, deps.to_vec())).collect();
+    if let Some(s) = d.states {
+        // The states are 0 at the cut whatever the parameters; their derivatives are not.
+        initial.extend(states.iter().map(|&v| (v, Vec::new())));
+        initial.extend(states.iter().map(|&v| (v + s.count as u32, s.initial_dependencies.to_vec())));
+    }
+    for (vr, deps) in initial {
         let list: Vec<String> = deps.iter().map(|k| index(*k)).collect();
-        let _ = writeln!(x, "      <Unknown index=\"{}\" dependencies=\"{}\"/>", index(*vr), list.join(" "));
+        let _ = writeln!(x, "      <Unknown index=\"{}\" dependencies=\"{}\"/>", index(vr), list.join(" "));
     }
     x.push_str("    </InitialUnknowns>\n  </ModelStructure>\n</fmiModelDescription>\n");
     debug_assert!(d.variables.iter().filter(|v| v.causality == Causality::Output).count() == d.outputs.len());

@@ -53,7 +53,7 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
     for (description, fresh) in &MODELS {
         let id = description.model_identifier;
         let results = reference::simulate(description, *fresh)?;
-        let docs = docs::index_html(description, "FMI 2.0 co-simulation", &results)?;
+        let docs = docs::index_html(description, "FMI 2.0: co-simulation and Model Exchange, from one library", &results)?;
         let csv_name = format!("{id}_out.csv");
         let path = out_dir.join(format!("{id}.fmu"));
         let so_name = format!("binaries/{}/{id}{}", platform_dir()?, std::env::consts::DLL_SUFFIX);

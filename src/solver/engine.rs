@@ -49,6 +49,25 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     fn may_diverge(&self) -> bool {
         false
     }
+    /// The semi-discrete system as an ODE in its own coordinates, for an outside
+    /// integrator (Model Exchange): `(x, dx/dt under p, relaxation times)`, `None` for
+    /// engines whose state is not such a system (all but the modal one).
+    fn ode(&self, _p: f64) -> Option<Ode> {
+        None
+    }
+    /// Set the ODE coordinates of [`Engine::ode`], the state having evolved under `p`
+    /// (so that `p` is the reference of the velocity split); `false` where there is no ODE.
+    fn set_ode_state(&mut self, _x: &[f64], _p: f64) -> bool {
+        false
+    }
+}
+
+/// See [`Engine::ode`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ode {
+    pub x: Vec<f64>,
+    pub rates: Vec<f64>,
+    pub relaxation_times: Vec<f64>,
 }
 
 /// Number of equal internal steps of at most `max_step` covering `h`.

@@ -4,7 +4,7 @@
 //! [`super::modal`]); each step then costs one exponential-weighted update per mode.
 
 use super::basis;
-use super::engine::Engine;
+use super::engine::{Engine, Ode};
 use super::exact;
 use super::mesh::MeshSpec;
 use super::modal::Basis;
@@ -200,5 +200,21 @@ impl Engine for ModalEngine {
 
     fn boxed_clone(&self) -> Box<dyn Engine> {
         Box::new(self.clone())
+    }
+
+    /// The modal coordinates with `c_k' = (g_k(p) - c_k) / nu_k`: uncoupled, linear,
+    /// with the relaxation times `nu_k` (the fastest sets the stiffness).
+    fn ode(&self, p: f64) -> Option<Ode> {
+        Some(Ode {
+            x: self.coeffs.iter().copied().collect(),
+            rates: self.modal_rates(p).iter().copied().collect(),
+            relaxation_times: self.op.nu.iter().copied().collect(),
+        })
+    }
+
+    fn set_ode_state(&mut self, x: &[f64], p: f64) -> bool {
+        self.coeffs.copy_from_slice(x);
+        self.p_ref = p;
+        true
     }
 }

@@ -35,6 +35,7 @@ pub use params::{
 
 pub use explicit::{stability_limits as explicit_stability_limits, unchecked_trajectory as explicit_unchecked_trajectory};
 
+pub use engine::Ode;
 use engine::Engine;
 use exact_time::{ModalEngine, Operator};
 use std::sync::Arc;
@@ -285,6 +286,33 @@ impl Solver {
     /// Velocity `u_t(r)` with edge stress `p`, at each requested radius.
     pub fn velocity(&self, p: f64, radii: &[f64]) -> Vec<f64> {
         self.engine.velocity(p, radii)
+    }
+
+    /// The semi-discrete system as an ODE for an outside integrator (Model Exchange),
+    /// under the edge stress `p`: its coordinates, their rates (per unit of T) and the
+    /// relaxation times (in T); `None` for the schemes that are not such an ODE (all but
+    /// the modal one).
+    pub fn ode(&self, p: f64) -> Option<Ode> {
+        self.engine.ode(p)
+    }
+
+    /// Set the coordinates of [`Solver::ode`] at time `time`, the state having evolved
+    /// under `p`. Refused for a length other than the ODE's, for values that are not
+    /// finite, and for schemes without an ODE.
+    pub fn set_ode_state(&mut self, time: f64, x: &[f64], p: f64) -> Result<(), SolverError> {
+        let want = self.engine.ode(p).map_or(0, |o| o.x.len());
+        if x.len() != want {
+            return Err(SolverError::StateLength(want, x.len()));
+        }
+        if !time.is_finite() || x.iter().any(|c| !c.is_finite()) {
+            return Err(SolverError::StateNotFinite);
+        }
+        check_edge_stress(p)?;
+        if !self.engine.set_ode_state(x, p) {
+            return Err(SolverError::StateLength(0, x.len()));
+        }
+        self.time = time;
+        Ok(())
     }
 
     pub fn state(&self) -> SolverState {

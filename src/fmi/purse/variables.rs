@@ -65,4 +65,6 @@ pub static DESCRIPTION: Description = Description {
     ],
     capabilities: &CAPABILITIES,
     default_experiment: Experiment { start: 0.0, stop: 300.0, step: 0.5, tolerance: 1e-10 },
+    // A closed form in time: nothing to integrate.
+    states: None,
 };

@@ -20,7 +20,7 @@ use super::state::same_parameters;
 use crate::solver::{EDGE_STRESS_MAX, Params, Settings, Solver, check_edge_stress, delivered_accuracy, check_lambda, check_r_inf, check_sigma};
 use crate::units::{Scales, check_scale};
 use std::cell::RefCell;
-use variables::{DESCRIPTION, Vr};
+use variables::{DESCRIPTION, MODEL_EXCHANGE_STATES, Vr};
 
 /// The instance's model data: what an FMU state saves (with the machine state and clock).
 #[derive(Debug, Clone)]
@@ -38,6 +38,10 @@ pub struct WoundModel {
     solver: Option<Solver>,
     /// A warning for the glue to log with the current call (see [`WoundModel::warn`]).
     warning: RefCell<Option<String>>,
+    /// Model Exchange: the states beyond the mesh's modes, as the integrator last set
+    /// them. They are inert (derivative 0, no effect on any output): an integrator that
+    /// perturbs them for a finite-difference Jacobian sees a zero column. Not serialized.
+    spare_states: Vec<f64>,
 }
 
 impl WoundModel {
@@ -57,6 +61,7 @@ impl WoundModel {
             edge_stress: start(Vr::EdgeStress),
             solver: None,
             warning: RefCell::new(None),
+            spare_states: Vec::new(),
         })
     }
 
@@ -268,6 +273,44 @@ impl FmuModel for WoundModel {
         self.warning.get_mut().take()
     }
 
+    /// Only the modal scheme is an ODE in its coordinates (methods 1 to 3 are stepping
+    /// schemes kept for comparison).
+    fn check_model_exchange(&self) -> Result<(), Rejected> {
+        match self.solver().ode(self.p()) {
+            Some(ode) if ode.x.len() <= MODEL_EXCHANGE_STATES => Ok(()),
+            Some(ode) => Err(format!("the mesh has {} modes, more than the {MODEL_EXCHANGE_STATES} states declared", ode.x.len())),
+            None => Err(format!(
+                "Model Exchange needs method = 0 (the modal scheme, an ODE in its modal coordinates); method = {} is a stepping scheme",
+                self.scheme.method
+            )),
+        }
+    }
+
+    fn continuous_states(&self) -> Vec<f64> {
+        let mut x = self.solver().ode(self.p()).map_or_else(Vec::new, |o| o.x);
+        x.extend(&self.spare_states);
+        x.resize(MODEL_EXCHANGE_STATES, 0.0);
+        x
+    }
+
+    /// The modes the mesh uses, in solver units, then the inert spare states.
+    fn set_continuous_states(&mut self, time: f64, x: &[f64]) -> Result<(), Rejected> {
+        let p = self.p();
+        let used = self.solver().ode(p).map_or(0, |o| o.x.len());
+        self.spare_states = x[used..].to_vec();
+        let t = time / self.scales.time;
+        let solver = self.solver.as_mut().expect("prepare() builds the solver before states are set");
+        solver.set_ode_state(t, &x[..used], p).map_err(|e| e.to_string())
+    }
+
+    /// `c_k' = (g_k(p) - c_k) / nu_k` per second of master time (`/ T`).
+    fn derivatives(&self, _time: f64) -> Vec<f64> {
+        let mut dx: Vec<f64> =
+            self.solver().ode(self.p()).map_or_else(Vec::new, |o| o.rates.iter().map(|r| r / self.scales.time).collect());
+        dx.resize(MODEL_EXCHANGE_STATES, 0.0);
+        dx
+    }
+
     /// The bytes must come from an instance with the same parameters, scales, tolerance
     /// and scheme (a state is a point of one trajectory, not a parameter set).
     fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected> {
@@ -305,6 +348,7 @@ impl FmuModel for WoundModel {
             edge_stress: saved.edge_stress,
             solver: None,
             warning: RefCell::new(None),
+            spare_states: Vec::new(),
         };
         if let Some(st) = &saved.solver {
             // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.

@@ -1,7 +1,7 @@
 //! The wound FMU's variables: the one table that `modelDescription.xml` is generated
 //! from ([`crate::fmi::xml`]), and that the code uses.
 
-pub use crate::fmi::model::{CAPABILITIES, Experiment, Causality, Description, Kind, LOG_CATEGORIES, Variability, Variable};
+pub use crate::fmi::model::{CAPABILITIES, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Variability, Variable};
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
 pub const MODEL_IDENTIFIER: &str = "WoundOpening";
@@ -72,6 +72,31 @@ pub const VARIABLES: [Variable; 13] = [
     Variable::parameter("G", 12, 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
 ];
 
+/// Continuous states of Model Exchange: the modal coordinates of the spectral-element
+/// mesh. The modes are uncoupled (`c_k' = (g_k(p) - c_k) / nu_k`), so the ODE is the
+/// one the co-simulation step integrates exactly, the states are the co-simulation
+/// state (FMU states and their serialization carry over unchanged), and the relaxation
+/// times `nu_k` state its stiffness. Nodal values would couple every unknown through the
+/// mass matrix. FMI 2.0 fixes the count: the mesh of the largest accepted `R_inf` (1e6)
+/// at the finest tolerance (1e-11), 27 elements of degree 8; a smaller mesh leaves the
+/// last states at 0 with derivative 0.
+pub const MODEL_EXCHANGE_STATES: usize = 217;
+
+/// What the initial edge velocity (and the initial derivatives) depend on.
+const INITIAL_RATE_DEPENDENCIES: [u32; 11] = [
+    Vr::Lambda as u32,
+    Vr::Sigma as u32,
+    Vr::RInf as u32,
+    Vr::EdgeStress as u32,
+    Vr::Tolerance as u32,
+    Vr::Method as u32,
+    Vr::GridPoints as u32,
+    Vr::InternalStep as u32,
+    Vr::LengthScale as u32,
+    Vr::TimeScale as u32,
+    Vr::StressScale as u32,
+];
+
 /// The table in the form the shared glue reads.
 pub static DESCRIPTION: Description = Description {
     model_identifier: MODEL_IDENTIFIER,
@@ -85,25 +110,19 @@ pub static DESCRIPTION: Description = Description {
     // R1 = R0 (1 + sigma / 6); the initial velocity depends on everything but the outputs.
     initial_unknowns: &[
         (Vr::WoundRadius as u32, &[Vr::Sigma as u32, Vr::LengthScale as u32]),
-        (
-            Vr::EdgeVelocity as u32,
-            &[
-                Vr::Lambda as u32,
-                Vr::Sigma as u32,
-                Vr::RInf as u32,
-                Vr::EdgeStress as u32,
-                Vr::Tolerance as u32,
-                Vr::Method as u32,
-                Vr::GridPoints as u32,
-                Vr::InternalStep as u32,
-                Vr::LengthScale as u32,
-                Vr::TimeScale as u32,
-                Vr::StressScale as u32,
-            ],
-        ),
+        (Vr::EdgeVelocity as u32, &INITIAL_RATE_DEPENDENCIES),
     ],
     capabilities: &CAPABILITIES,
     default_experiment: Experiment { start: 0.0, stop: 100.0, step: 0.01, tolerance: 1e-10 },
+    states: Some(States {
+        count: MODEL_EXCHANGE_STATES,
+        name: "modal_coordinate",
+        unit: "1",
+        description: "Modal coordinate of the departure u - sigma r / 6 from the uniform tension (in R0); 0 at the cut and on modes the mesh does not use",
+        derivative_unit: "1/s",
+        initial_dependencies: &INITIAL_RATE_DEPENDENCIES,
+        input_dependencies: &[(Vr::EdgeStress as u32, "fixed")],
+    }),
 };
 
 #[cfg(test)]
