@@ -198,10 +198,10 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c,
                                         fmi2Real *dvUnknown);
 
 fmi2Status fmi2SetRealInputDerivatives(fmi2Component c,
-                                       const fmi2ValueReference *_vr,
-                                       size_t _nvr,
-                                       const fmi2Integer *_order,
-                                       const fmi2Real *_value);
+                                       const fmi2ValueReference *vr,
+                                       size_t nvr,
+                                       const fmi2Integer *order,
+                                       const fmi2Real *value);
 
 fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c,
                                         const fmi2ValueReference *_vr,

@@ -17,6 +17,7 @@ use std::collections::BTreeMap;
 use std::ffi::{CString, c_char};
 use wound_opening::boundary::caught_panics;
 use wound_opening::fmi::ffi::*;
+use wound_opening::fmi::ffi_exchange::*;
 use wound_opening::fmi::types::*;
 use wound_opening::fmi::MODELS;
 
@@ -100,7 +101,7 @@ impl World {
     }
 
     fn step(&mut self) {
-        match self.rng.below(24) {
+        match self.rng.below(27) {
             0 => self.instantiate(),
             1 if self.live.len() > 3 && self.rng.chance(0.3) => {
                 let l = self.live.swap_remove(self.rng.below(self.live.len()));
@@ -140,8 +141,37 @@ impl World {
             13 | 14 => self.deserialize(),
             15..=21 => self.do_step(),
             22 => self.status(),
+            23..=25 => self.exchange(),
             _ => self.unsupported(),
         }
+    }
+
+    /// The Model Exchange functions with random counts, states and times, on instances of
+    /// either interface (a CS instance refuses them all).
+    fn exchange(&mut self) {
+        let i = self.target();
+        let c = self.component(i);
+        let nx = if self.rng.chance(0.7) { 217 } else { self.rng.below(300) };
+        let mut x: Vec<f64> = (0..nx).map(|_| if self.rng.chance(0.8) { self.rng.unit() - 0.5 } else { self.rng.real() }).collect();
+        let (mut a, mut b) = (0, 0);
+        let (name, s) = match self.rng.below(9) {
+            0 => ("fmi2EnterEventMode", unsafe { fmi2EnterEventMode(c) }),
+            1 => ("fmi2NewDiscreteStates", unsafe { fmi2NewDiscreteStates(c, &mut std::mem::zeroed()) }),
+            2 => ("fmi2EnterContinuousTimeMode", unsafe { fmi2EnterContinuousTimeMode(c) }),
+            3 => ("fmi2CompletedIntegratorStep", unsafe { fmi2CompletedIntegratorStep(c, 1, &mut a, &mut b) }),
+            4 => ("fmi2SetTime", unsafe { fmi2SetTime(c, if self.rng.chance(0.7) { self.rng.unit() * 10.0 } else { self.rng.real() }) }),
+            5 => ("fmi2SetContinuousStates", unsafe { fmi2SetContinuousStates(c, x.as_ptr(), nx) }),
+            6 => {
+                let s = unsafe { fmi2GetDerivatives(c, x.as_mut_ptr(), nx) };
+                if s == 0 {
+                    assert!(x.iter().all(|v| v.is_finite()), "derivatives accepted with OK are finite");
+                }
+                ("fmi2GetDerivatives", s)
+            }
+            7 => ("fmi2GetContinuousStates", unsafe { fmi2GetContinuousStates(c, x.as_mut_ptr(), nx) }),
+            _ => ("fmi2GetNominalsOfContinuousStates", unsafe { fmi2GetNominalsOfContinuousStates(c, x.as_mut_ptr(), nx) }),
+        };
+        self.record(name, s);
     }
 
     fn instantiate(&mut self) {
@@ -157,10 +187,15 @@ impl World {
             1 => wrong.as_ptr(),
             _ => guid.as_ptr(),
         };
-        let kind = if self.rng.chance(0.9) { 1 } else { self.rng.next_u64() as i32 };
+        // Co-simulation mostly, Model Exchange often, a random fmuType sometimes.
+        let kind = match self.rng.below(10) {
+            0..=5 => 1,
+            6..=8 => 0,
+            _ => self.rng.next_u64() as i32,
+        };
         let functions: *const fmi2CallbackFunctions = if self.rng.chance(0.05) { std::ptr::null() } else { &self.callbacks };
         let c = unsafe { fmi2Instantiate(name, kind, guid_ptr, c"".as_ptr(), functions, 0, self.rng.below(2) as i32) };
-        let valid = !name.is_null() && kind == 1 && guid_ptr == guid.as_ptr() && !functions.is_null();
+        let valid = !name.is_null() && (kind == 0 || kind == 1) && guid_ptr == guid.as_ptr() && !functions.is_null();
         assert_eq!(!c.is_null(), valid, "fmi2Instantiate succeeds exactly for valid arguments");
         if !c.is_null() {
             self.live.push(Live { c, states: Vec::new(), freed: Vec::new() });

@@ -85,7 +85,8 @@ impl Call {
             | Call::SerializeFmuState
             | Call::DeSerializeFmuState => true,
             Call::Get | Call::GetDirectionalDerivative => m != Instantiated,
-            Call::Set | Call::SetRealInputDerivatives => m != Terminated,
+            Call::Set => m != Terminated,
+            Call::SetRealInputDerivatives => matches!(m, Instantiated | InitializationMode | StepComplete),
             Call::GetStatus | Call::GetRealOutputDerivatives => matches!(m, StepComplete | Terminated),
             Call::CancelStep => false,
         }

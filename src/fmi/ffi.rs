@@ -308,8 +308,15 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: fmi2Component, _vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer, _value: *const fmi2Real) -> fmi2Status {
-    with_instance(c, Call::SetRealInputDerivatives, || "fmi2SetRealInputDerivatives".into(), |_| not_supported("fmi2SetRealInputDerivatives (canInterpolateInputs)"))
+pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, order: *const fmi2Integer, value: *const fmi2Real) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::SetRealInputDerivatives, || format!("fmi2SetRealInputDerivatives(nvr={nvr})"), |i| {
+            let vr = slice(vr, nvr, "vr")?;
+            let order = slice(order, nvr, "order")?;
+            let value = slice(value, nvr, "value")?;
+            i.set_real_input_derivatives(vr, order, value).map(|_| Status::Ok)
+        })
+    }
 }
 
 #[unsafe(no_mangle)]

@@ -285,6 +285,29 @@ impl Instance {
         self.set_values(Kind::Real, vrs, values)
     }
 
+    /// `fmi2SetRealInputDerivatives`: first derivatives of Real inputs (order 1 only,
+    /// `maxInputDerivativeOrder` being 1), all checked before any is stored. The input is
+    /// then `value + rate (t - t_now)` over the next steps, until `fmi2SetReal` sets it
+    /// again (which resets its rate to 0).
+    pub fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], rates: &[f64]) -> Result<(), Rejected> {
+        let d = self.description();
+        for ((&v, &order), &rate) in vrs.iter().zip(orders).zip(rates) {
+            let var = d.typed(Kind::Real, v)?;
+            if var.causality != Causality::Input {
+                return Err(format!("{} (value reference {v}) is not an input", var.name));
+            }
+            if order != 1 {
+                return Err(format!("order = {order} for {} is invalid: this FMU interpolates linearly (order 1 only)", var.name));
+            }
+            if !rate.is_finite() {
+                return Err(format!("the derivative of {} = {rate} is invalid: it must be finite", var.name));
+            }
+            self.model.check_input_rate(v, rate)?;
+        }
+        vrs.iter().zip(rates).for_each(|(&v, &rate)| self.model.set_input_rate(v, rate));
+        Ok(())
+    }
+
     /// `fmi2SetInteger`.
     pub fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Result<(), Rejected> {
         let values: Vec<f64> = values.iter().map(|&v| v as f64).collect();

@@ -17,7 +17,7 @@ pub const CAPABILITIES: [(&str, &str); 8] = [
     ("canGetAndSetFMUstate", "true"),
     ("canSerializeFMUstate", "true"),
     ("providesDirectionalDerivative", "true"),
-    ("canInterpolateInputs", "false"),
+    ("canInterpolateInputs", "true"),
     ("maxOutputDerivativeOrder", "0"),
     ("canRunAsynchronuously", "false"),
     ("canNotUseMemoryManagementFunctions", "true"),
@@ -271,6 +271,15 @@ pub trait FmuModel: Send {
     fn take_warning(&mut self) -> Option<String> {
         None
     }
+
+    /// `fmi2SetRealInputDerivatives`: validate `rate`, the first time derivative of the
+    /// input `vr` per second of master time, which makes the input linear in time over the
+    /// next steps (`canInterpolateInputs`). The default refuses.
+    fn check_input_rate(&self, vr: u32, _rate: f64) -> Result<(), Rejected> {
+        Err(format!("value reference {vr}: this model does not interpolate its inputs"))
+    }
+    /// Store a checked input rate (reset to 0 by the next `set` of that input).
+    fn set_input_rate(&mut self, _vr: u32, _rate: f64) {}
 
     /// Model Exchange: whether this parameter set can run as an ODE for an outside
     /// integrator (`Err` with the reason; after [`FmuModel::prepare`]). Models without

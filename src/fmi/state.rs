@@ -7,7 +7,7 @@
 //! ```text
 //! offset  size  field
 //! 0       8     magic "WOUNDFMU"
-//! 8       4     format version (u32 LE) = 2
+//! 8       4     format version (u32 LE) = 3 (2 had no input rates)
 //! 12      4     payload length in bytes (u32 LE)
 //! 16      n     payload (below)
 //! 16+n    4     CRC-32 of bytes 0 .. 16+n (u32 LE)
@@ -24,7 +24,7 @@
 use super::machine::{Clock, Machine};
 
 const MAGIC: &[u8; 8] = b"WOUNDFMU";
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 const HEADER: usize = 16;
 
 /// Little-endian writer of a serialized state.

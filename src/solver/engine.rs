@@ -49,6 +49,11 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     fn may_diverge(&self) -> bool {
         false
     }
+    /// Advance by `h > 0` under the edge stress `p(t) = p0 + p1 (t - t0)`, linear in time
+    /// over the step, exactly; `false` (nothing done) for engines that cannot.
+    fn advance_linear(&mut self, _h: f64, _p0: f64, _p1: f64) -> bool {
+        false
+    }
     /// The semi-discrete system as an ODE in its own coordinates, for an outside
     /// integrator (Model Exchange): `(x, dx/dt under p, relaxation times)`, `None` for
     /// engines whose state is not such a system (all but the modal one).

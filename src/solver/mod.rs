@@ -77,6 +77,8 @@ pub enum SolverError {
     Diverged,
     /// A step of the explicit scheme beyond its von Neumann limits, refused before it is taken.
     Unstable { lambda: f64, lambda_max: f64, dt: f64, dt_max: f64 },
+    /// An edge stress varying within a step asked of a scheme that holds it constant.
+    NotLinearInTime,
 }
 
 impl std::fmt::Display for SolverError {
@@ -105,6 +107,10 @@ impl std::fmt::Display for SolverError {
             Self::Diverged => write!(
                 f,
                 "the explicit scheme blew up in this step (internal step above its stability limit, or lambda > dr/2); the state is left as before the step"
+            ),
+            Self::NotLinearInTime => write!(
+                f,
+                "an edge stress that varies within a step (an input derivative) needs method 0 (exact in time); methods 1 to 3 hold it constant over a step"
             ),
         }
     }
@@ -248,6 +254,26 @@ impl Solver {
                 self.engine.restore(&before)?;
                 return Err(SolverError::Diverged);
             }
+        }
+        self.time += h;
+        Ok(())
+    }
+
+    /// Advance by `h > 0` under the edge stress `p0 + p1 (t - t0)`, linear in time over the
+    /// step: exact for the modal scheme (see its `advance_linear`); refused for the stepping
+    /// schemes, which hold the edge stress over a step. `p1 = 0` is [`Solver::advance`].
+    /// Both `p0` and the final `p0 + p1 h` must be accepted edge stresses.
+    pub fn advance_linear(&mut self, h: f64, p0: f64, p1: f64) -> Result<(), SolverError> {
+        if p1 == 0.0 {
+            return self.advance(h, p0);
+        }
+        if !(h.is_finite() && h > 0.0) {
+            return Err(SolverError::Step(h));
+        }
+        check_edge_stress(p0)?;
+        check_edge_stress(p0 + p1 * h)?;
+        if !self.engine.advance_linear(h, p0, p1) {
+            return Err(SolverError::NotLinearInTime);
         }
         self.time += h;
         Ok(())

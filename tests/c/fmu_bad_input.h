@@ -149,7 +149,9 @@ static void after_initialization(fmi2Component c) {
             "edge_stress (value reference 3) is an input but a vUnknown_ref entry must be a Real output");
     REFUSED(F.fmi2GetDirectionalDerivative(c, &vr, 1, &VR_EDGE_STRESS, 1, NULL, &r), "dvKnown is NULL but 1 elements");
     directional_derivative(c);
-    REFUSED(F.fmi2SetRealInputDerivatives(c, &VR_EDGE_STRESS, 1, &order, &r), "is not supported");
+    fmi2Integer second = 2;
+    REFUSED(F.fmi2SetRealInputDerivatives(c, &VR_EDGE_STRESS, 1, &second, &r), "order = 2 for edge_stress is invalid");
+    REFUSED(F.fmi2SetRealInputDerivatives(c, &vr, 1, &order, &r), "wound_radius (value reference 4) is not an input");
     REFUSED(F.fmi2GetRealOutputDerivatives(c, &vr, 1, &order, &r), "is not supported");
     REFUSED(F.fmi2CancelStep(c), "fmi2CancelStep is not allowed in state StepComplete");
     REFUSED(F.fmi2GetInteger(c, &vr, 1, &i), "wound_radius (value reference 4) is Real, not Integer");
@@ -200,7 +202,7 @@ static void fmu_states(fmi2Component c) {
     memcpy(bad, bytes, size);
     put_u32(bad + 8, 1); /* another (the previous) format version, with a valid checksum */
     reseal(bad, size);
-    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "has format version 1; this FMU reads version 2");
+    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "has format version 1; this FMU reads version 3");
     CHECK(back == NULL, "a refused fmi2DeSerializeFMUstate leaves the state NULL");
 
     /* A state of another parameter set (lambda = 2). */

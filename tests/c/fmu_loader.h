@@ -22,6 +22,7 @@ struct fmu {
     char identifier[128];
 #define FIELD(name) name##TYPE *name;
     FMI2_CS_FUNCTIONS(FIELD)
+    FMI2_ME_FUNCTIONS(FIELD)
 #undef FIELD
 };
 
@@ -81,6 +82,7 @@ static int fmu_load(struct fmu *fmu, const char *dir) {
         ok = 0;                                                                                                  \
     }
     FMI2_CS_FUNCTIONS(LOAD)
+    FMI2_ME_FUNCTIONS(LOAD)
 #undef LOAD
     return ok;
 }

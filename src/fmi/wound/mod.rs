@@ -34,6 +34,8 @@ pub struct WoundModel {
     scheme: SchemeChoice,
     /// Edge stress in pascals (the master's unit).
     edge_stress: f64,
+    /// Its time derivative in Pa/s from `fmi2SetRealInputDerivatives` (0: held).
+    edge_stress_rate: f64,
     /// Built when first needed after the parameters are final; dropped when they change.
     solver: Option<Solver>,
     /// A warning for the glue to log with the current call (see [`WoundModel::warn`]).
@@ -59,6 +61,7 @@ impl WoundModel {
                 internal_step: start(Vr::InternalStep),
             },
             edge_stress: start(Vr::EdgeStress),
+            edge_stress_rate: 0.0,
             solver: None,
             warning: RefCell::new(None),
             spare_states: Vec::new(),
@@ -170,7 +173,7 @@ impl FmuModel for WoundModel {
             Vr::LengthScale => self.scales.length = x,
             Vr::TimeScale => self.scales.time = x,
             Vr::StressScale => self.scales.stress = x,
-            Vr::EdgeStress => self.edge_stress = x,
+            Vr::EdgeStress => (self.edge_stress, self.edge_stress_rate) = (x, 0.0),
             Vr::WoundRadius | Vr::EdgeVelocity => {}
         }
         // Everything but the input changes the solver (scales: the internal step).
@@ -234,10 +237,30 @@ impl FmuModel for WoundModel {
         }
     }
 
+    /// Held (`advance`) or, after `fmi2SetRealInputDerivatives`, linear in time over the
+    /// step (`advance_linear`, exact); the input then ends the step at its value there.
     fn step(&mut self, _time: f64, h: f64) -> Result<(), Rejected> {
-        let (h, p) = (h / self.scales.time, self.p());
+        let (dt, p, rate) = (h / self.scales.time, self.p(), self.edge_stress_rate);
+        let p1 = rate * self.scales.time / self.scales.stress;
         let solver = self.solver.as_mut().expect("prepare() builds the solver before a step");
-        solver.advance(h, p).map_err(|e| e.to_string())
+        solver.advance_linear(dt, p, p1).map_err(|e| e.to_string())?;
+        self.edge_stress += rate * h;
+        Ok(())
+    }
+
+    /// The edge stress's rate (Pa/s); only method 0 integrates a varying input exactly.
+    fn check_input_rate(&self, vr: u32, _rate: f64) -> Result<(), Rejected> {
+        if Vr::from_u32(vr) != Some(Vr::EdgeStress) {
+            return Err(format!("value reference {vr} is not edge_stress"));
+        }
+        if self.scheme.method != 0 {
+            return Err(crate::solver::SolverError::NotLinearInTime.to_string());
+        }
+        Ok(())
+    }
+
+    fn set_input_rate(&mut self, _vr: u32, rate: f64) {
+        self.edge_stress_rate = rate;
     }
 
     /// `d edge_velocity / d edge_stress = (R0 / T) / G * w(1)`, the exact closed form of the
@@ -265,6 +288,7 @@ impl FmuModel for WoundModel {
             experiment_tolerance: self.experiment_tolerance,
             scheme: self.scheme,
             edge_stress: self.edge_stress,
+            edge_stress_rate: self.edge_stress_rate,
             solver: self.solver.as_ref().map(Solver::state),
         }))
     }
@@ -346,6 +370,7 @@ impl FmuModel for WoundModel {
             experiment_tolerance: saved.experiment_tolerance,
             scheme: saved.scheme,
             edge_stress: saved.edge_stress,
+            edge_stress_rate: saved.edge_stress_rate,
             solver: None,
             warning: RefCell::new(None),
             spare_states: Vec::new(),

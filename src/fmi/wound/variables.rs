@@ -60,7 +60,7 @@ pub const VARIABLES: [Variable; 13] = [
     Variable::parameter("lambda", 0, 1.0, "1", "Viscous length over the cut radius, 2 sqrt(eta/zeta)/R0, in [0, 1e6]"),
     Variable::parameter("sigma", 1, 1.0, "1", "Homeostatic tension over shear modulus, in [-1e6, 1e6]"),
     Variable::parameter("R_inf", 2, 10.0, "1", "Outer radius of the tissue over the cut radius, in [1.001, 1e6]"),
-    Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
+    Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step or, with fmi2SetRealInputDerivatives, linear in time (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
     Variable::output("wound_radius", 4, "um", "Wound radius R0 (1 + u(1, t)) [um]; R1 = R0 (1 + sigma/6) just after the cut"),
     Variable::output("edge_velocity", 5, "um/s", "Edge velocity dR/dt [um/s] under the current edge_stress"),
     Variable::parameter("tolerance", 6, 1e-10, "1", "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh; below 1e-11 a warning names the 1e-11 delivered"),
