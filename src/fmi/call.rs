@@ -37,6 +37,11 @@ pub enum Call {
     GetEventIndicators,
     GetContinuousStates,
     GetNominalsOfContinuousStates,
+    /// FMI 3.0: `fmi3GetNumberOfContinuousStates`, `fmi3GetNumberOfEventIndicators`.
+    GetNumberOf,
+    /// FMI 3.0 functions this FMU does not provide (clocks, configuration, adjoints, ...):
+    /// allowed in every state, refused by their body with the reason.
+    Unsupported,
 }
 
 impl Call {
@@ -47,7 +52,7 @@ impl Call {
             DoStep | CancelStep | GetStatus | SetRealInputDerivatives | GetRealOutputDerivatives => Some(Interface::CoSimulation),
             EnterEventMode | NewDiscreteStates | EnterContinuousTimeMode | CompletedIntegratorStep | SetTime
             | SetContinuousStates | GetDerivatives | GetEventIndicators | GetContinuousStates
-            | GetNominalsOfContinuousStates => Some(Interface::ModelExchange),
+            | GetNominalsOfContinuousStates | GetNumberOf => Some(Interface::ModelExchange),
             _ => None,
         }
     }
@@ -77,6 +82,7 @@ impl Call {
             }
             Call::GetDerivatives => matches!(m, EventMode | ContinuousTimeMode | Terminated),
             Call::GetNominalsOfContinuousStates => matches!(m, Instantiated | EventMode | ContinuousTimeMode | Terminated),
+            Call::GetNumberOf | Call::Unsupported => true,
             Call::SetDebugLogging
             | Call::Reset
             | Call::GetFmuState
@@ -123,6 +129,26 @@ impl Call {
             Call::GetEventIndicators => "fmi2GetEventIndicators",
             Call::GetContinuousStates => "fmi2GetContinuousStates",
             Call::GetNominalsOfContinuousStates => "fmi2GetNominalsOfContinuousStates",
+            Call::GetNumberOf => "fmi2GetNumberOf*",
+            Call::Unsupported => "fmi2",
+        }
+    }
+
+    /// The FMI 3.0 name, where it is not the FMI 2.0 one with `fmi3` for `fmi2`.
+    pub fn fmi3_name(self) -> String {
+        match self {
+            Call::SetupExperiment | Call::EnterInitializationMode => "fmi3EnterInitializationMode".into(),
+            Call::Get => "fmi3Get*".into(),
+            Call::Set => "fmi3Set*".into(),
+            Call::GetFmuState => "fmi3GetFMUState".into(),
+            Call::SetFmuState => "fmi3SetFMUState".into(),
+            Call::FreeFmuState => "fmi3FreeFMUState".into(),
+            Call::SerializeFmuState => "fmi3SerializeFMUState".into(),
+            Call::DeSerializeFmuState => "fmi3DeserializeFMUState".into(),
+            Call::NewDiscreteStates => "fmi3UpdateDiscreteStates".into(),
+            Call::GetDerivatives => "fmi3GetContinuousStateDerivatives".into(),
+            Call::GetRealOutputDerivatives => "fmi3GetOutputDerivatives".into(),
+            other => other.fmi_name().replacen("fmi2", "fmi3", 1),
         }
     }
 }

@@ -37,6 +37,8 @@ pub struct Instance {
     name: String,
     log: Log,
     pub(super) interface: Interface,
+    /// FMI 3.0 (its function names in messages), else FMI 2.0.
+    fmi3: bool,
     pub(super) machine: Machine,
     pub(super) clock: Clock,
     pub(super) model: Box<dyn FmuModel>,
@@ -68,6 +70,7 @@ impl Instance {
             name: name.to_owned(),
             log: Log::new(logger, logging_on),
             interface,
+            fmi3: false,
             machine: Machine::Instantiated,
             clock: FRESH_CLOCK,
             model: fresh(),
@@ -91,6 +94,18 @@ impl Instance {
 
     pub fn interface(&self) -> Interface {
         self.interface
+    }
+
+    /// An instance made by the FMI 3.0 functions: the same machine and model, its calls
+    /// named `fmi3*` in messages.
+    pub fn fmi3(mut self) -> Self {
+        self.fmi3 = true;
+        self
+    }
+
+    /// The name of `call` in this instance's FMI version.
+    pub fn name_of(&self, call: Call) -> String {
+        if self.fmi3 { call.fmi3_name().to_string() } else { call.fmi_name().to_string() }
     }
 
     pub fn description(&self) -> &'static Description {
@@ -129,21 +144,22 @@ impl Instance {
         if self.log.calls_on() {
             self.log.call(&describe());
         }
+        let name = self.name_of(call);
         if let Some(only) = call.interface().filter(|&i| i != self.interface) {
-            self.log_error(&format!("{} is a {only:?} function but this instance is {:?}", call.fmi_name(), self.interface));
+            self.log_error(&format!("{name} is a {only:?} function but this instance is {:?}", self.interface));
             return Err(Status::Error);
         }
         if !call.allowed(self.machine) {
-            self.log_error(&format!("{} is not allowed in state {:?}", call.fmi_name(), self.machine));
+            self.log_error(&format!("{name} is not allowed in state {:?}", self.machine));
             return Err(Status::Error);
         }
         let value = body(self).map_err(|why| {
-            self.log_error(&format!("{}: {why}", call.fmi_name()));
+            self.log_error(&format!("{name}: {why}"));
             Status::Error
         })?;
         match self.model.take_warning() {
             Some(warning) => {
-                self.log.warning(&format!("{}: {warning}", call.fmi_name()));
+                self.log.warning(&format!("{name}: {warning}"));
                 Ok((value, Status::Warning))
             }
             None => Ok((value, Status::Ok)),

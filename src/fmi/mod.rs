@@ -12,6 +12,9 @@ pub mod call;
 pub mod exchange;
 pub mod ffi;
 pub mod ffi_exchange;
+pub mod ffi3;
+pub mod ffi3_exchange;
+pub mod ffi3_other;
 pub mod frame;
 pub mod instance;
 pub mod log;
@@ -20,8 +23,10 @@ pub mod model;
 pub mod purse;
 pub mod state;
 pub mod types;
+pub mod types3;
 pub mod wound;
 pub mod xml;
+pub mod xml3;
 
 use model::{Description, FmuModel};
 

@@ -6,10 +6,10 @@
 //! reference = position, checked by [`fmi2`]). One archive declares both interfaces:
 //! `<ModelExchange>` and `<CoSimulation>` with the same `modelIdentifier`.
 
-use super::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, States, UNITS};
+use super::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, States, UNITS, Variable};
 use std::fmt::Write;
 
-const GENERATION_TOOL: &str = "wound_opening (Rust)";
+pub(super) const GENERATION_TOOL: &str = "wound_opening (Rust)";
 
 /// An attribute value with `& < > "` escaped.
 pub fn escape(s: &str) -> String {
@@ -39,6 +39,27 @@ fn unit_definitions(d: &Description) -> String {
     out
 }
 
+/// `start`, `min`/`max` and `unit` of a table variable, as attributes (the same in FMI 2.0's
+/// type element and FMI 3.0's variable element).
+pub(super) fn value_attributes(v: &Variable) -> String {
+    let mut attrs = String::new();
+    if let Some(s) = v.start {
+        let _ = write!(attrs, " start=\"{}\"", number(s));
+    }
+    if let Some((lo, hi)) = v.range {
+        let _ = write!(attrs, " min=\"{lo}\" max=\"{hi}\"");
+    }
+    if v.kind == Kind::Real && !v.unit.is_empty() {
+        let _ = write!(attrs, " unit=\"{}\"", escape(v.unit));
+    }
+    attrs
+}
+
+/// `<UnitDefinitions>`, `<LogCategories>` and `<DefaultExperiment>`, in schema order.
+pub(super) fn units_categories_experiment(d: &Description) -> String {
+    format!("{}\n{}\n{}", unit_definitions(d), log_categories(), default_experiment(d))
+}
+
 fn log_categories() -> String {
     let mut out = String::from("  <LogCategories>\n");
     for (name, description) in LOG_CATEGORIES {
@@ -57,6 +78,47 @@ fn default_experiment(d: &Description) -> String {
         number(e.step),
         number(e.tolerance)
     )
+}
+
+/// `ModelStructure` in value references, the same for FMI 2.0 (which writes indices,
+/// `value reference + 1`) and FMI 3.0.
+pub(super) struct Structure {
+    /// Each output on its inputs, then (Model Exchange) on every state.
+    pub outputs: Vec<(u32, Vec<(u32, &'static str)>)>,
+    /// Each derivative on the model's inputs and its own state (the modes are uncoupled).
+    pub derivatives: Vec<(u32, Vec<(u32, &'static str)>)>,
+    /// The table's initial unknowns, the states (0 at the cut whatever the parameters: no
+    /// dependencies) and the derivatives.
+    pub initial: Vec<(u32, Vec<u32>)>,
+}
+
+impl Structure {
+    pub(super) fn of(d: &Description) -> Self {
+        let table = d.variables.len() as u32;
+        let states: Vec<u32> = (0..d.state_count() as u32).map(|k| table + k).collect();
+        let outputs = d
+            .outputs
+            .iter()
+            .map(|(vr, deps)| {
+                let mut all: Vec<(u32, &str)> = deps.to_vec();
+                all.extend(states.iter().map(|&s| (s, "fixed")));
+                (*vr, all)
+            })
+            .collect();
+        let mut initial: Vec<(u32, Vec<u32>)> = d.initial_unknowns.iter().map(|(v, deps)| (*v, deps.to_vec())).collect();
+        let mut derivatives = Vec::new();
+        if let Some(s) = d.states {
+            let n = s.count as u32;
+            for &state in &states {
+                let mut deps: Vec<(u32, &str)> = s.input_dependencies.to_vec();
+                deps.push((state, "fixed"));
+                derivatives.push((state + n, deps));
+            }
+            initial.extend(states.iter().map(|&v| (v, Vec::new())));
+            initial.extend(states.iter().map(|&v| (v + n, s.initial_dependencies.to_vec())));
+        }
+        Self { outputs, derivatives, initial }
+    }
 }
 
 /// Flags of `<ModelExchange>`: no events, so `fmi2CompletedIntegratorStep` is not needed;
@@ -139,11 +201,7 @@ pub fn fmi2(d: &Description) -> String {
     }
     x.truncate(x.len() - 1);
     x.push_str("/>\n\n");
-    x.push_str(&unit_definitions(d));
-    x.push('\n');
-    x.push_str(&log_categories());
-    x.push('\n');
-    x.push_str(&default_experiment(d));
+    x.push_str(&units_categories_experiment(d));
     x.push_str("\n  <ModelVariables>\n");
     for v in d.variables {
         let _ = write!(
@@ -156,49 +214,27 @@ pub fn fmi2(d: &Description) -> String {
             v.variability.as_str(),
             escape(v.description)
         );
-        let mut attrs = String::new();
-        if let Some(s) = v.start {
-            let _ = write!(attrs, " start=\"{}\"", number(s));
-        }
-        if let Some((lo, hi)) = v.range {
-            let _ = write!(attrs, " min=\"{lo}\" max=\"{hi}\"");
-        }
-        if v.kind == Kind::Real && !v.unit.is_empty() {
-            let _ = write!(attrs, " unit=\"{}\"", escape(v.unit));
-        }
+        let attrs = value_attributes(v);
         let _ = write!(x, "      <{}{attrs}/>\n    </ScalarVariable>\n", v.kind.as_str());
     }
     if let Some(s) = d.states {
         x.push_str(&state_variables(d, &s));
     }
     x.push_str("  </ModelVariables>\n\n  <ModelStructure>\n    <Outputs>\n");
-    let table = d.variables.len() as u32;
-    let states: Vec<u32> = (0..d.state_count() as u32).map(|k| table + k).collect();
-    for (vr, deps) in d.outputs {
-        // In Model Exchange every output is a function of the states as well.
-        let mut all: Vec<(u32, &str)> = deps.to_vec();
-        all.extend(states.iter().map(|&s| (s, "fixed")));
-        all.sort_by_key(|(k, _)| *k);
-        x.push_str(&unknown(*vr, &all));
+    let structure = Structure::of(d);
+    for (vr, deps) in &structure.outputs {
+        x.push_str(&unknown(*vr, deps));
     }
     x.push_str("    </Outputs>\n");
-    if let Some(s) = d.states {
+    if d.states.is_some() {
         x.push_str("    <Derivatives>\n");
-        for k in 0..s.count as u32 {
-            let mut deps: Vec<(u32, &str)> = s.input_dependencies.to_vec();
-            deps.push((table + k, "fixed"));
-            x.push_str(&unknown(table + s.count as u32 + k, &deps));
+        for (vr, deps) in &structure.derivatives {
+            x.push_str(&unknown(*vr, deps));
         }
         x.push_str("    </Derivatives>\n");
     }
     x.push_str("    <InitialUnknowns>\n");
-    let mut initial: Vec<(u32, Vec<u32>)> = d.initial_unknowns.iter().map(|(v, deps)| (*v, deps.to_vec())).collect();
-    if let Some(s) = d.states {
-        // The states are 0 at the cut whatever the parameters; their derivatives are not.
-        initial.extend(states.iter().map(|&v| (v, Vec::new())));
-        initial.extend(states.iter().map(|&v| (v + s.count as u32, s.initial_dependencies.to_vec())));
-    }
-    for (vr, deps) in initial {
+    for (vr, deps) in structure.initial {
         let list: Vec<String> = deps.iter().map(|k| index(*k)).collect();
         let _ = writeln!(x, "      <Unknown index=\"{}\" dependencies=\"{}\"/>", index(vr), list.join(" "));
     }

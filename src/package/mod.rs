@@ -6,7 +6,8 @@
 //! ├── binaries/linux64/WoundOpening.so (the cdylib built beside this executable)
 //! ├── documentation/index.html         (generated: model, variables, plots of the results)
 //! └── extra/org.fmi-standard.fmi-ls-ref/fmi-ls-manifest.xml, WoundOpening_out.csv
-//! PurseString.fmu                      (the same, with the same cdylib: it picks the model by GUID)
+//! WoundOpening-fmi3.fmu                (FMI 3.0: the same, binaries/x86_64-linux/WoundOpening.so)
+//! PurseString.fmu, PurseString-fmi3.fmu (the same cdylib: it picks the model by GUID)
 //!
 //! Nothing here names a model: every archive comes from the table of models (fmi::MODELS).
 //! ```
@@ -16,7 +17,7 @@ mod reference;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use wound_opening::fmi::{MODELS, xml};
+use wound_opening::fmi::{MODELS, xml, xml3};
 
 type BoxError = Box<dyn std::error::Error>;
 
@@ -42,7 +43,8 @@ fn platform_dir() -> Result<&'static str, BoxError> {
     }
 }
 
-/// Build every archive and return their paths.
+/// Build every archive and return their paths: per model, `<id>.fmu` (FMI 2.0) and
+/// `<id>-fmi3.fmu` (FMI 3.0), each with co-simulation and Model Exchange.
 pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
     let profile = profile_dir()?;
     let so = shared_object(&profile)?;
@@ -53,21 +55,39 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
     for (description, fresh) in &MODELS {
         let id = description.model_identifier;
         let results = reference::simulate(description, *fresh)?;
-        let docs = docs::index_html(description, "FMI 2.0: co-simulation and Model Exchange, from one library", &results)?;
         let csv_name = format!("{id}_out.csv");
-        let path = out_dir.join(format!("{id}.fmu"));
-        let so_name = format!("binaries/{}/{id}{}", platform_dir()?, std::env::consts::DLL_SUFFIX);
-        let entries: Vec<(String, Vec<u8>)> = vec![
-            ("modelDescription.xml".into(), xml::fmi2(description).into_bytes()),
-            (so_name, so.clone()),
-            ("documentation/index.html".into(), docs.into_bytes()),
-            (format!("{}/fmi-ls-manifest.xml", reference::FOLDER), reference::manifest(description, &csv_name).into_bytes()),
-            (format!("{}/{csv_name}", reference::FOLDER), results.csv().into_bytes()),
+        let versions = [
+            ("", "FMI 2.0: co-simulation and Model Exchange, from one library", platform_dir()?, xml::fmi2(description)),
+            ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, xml3::fmi3(description)),
         ];
-        write_zip(&path, &entries)?;
-        paths.push(path);
+        for (suffix, interfaces, platform, model_description) in versions {
+            let docs = docs::index_html(description, interfaces, &results)?;
+            let path = out_dir.join(format!("{id}{suffix}.fmu"));
+            let so_name = format!("binaries/{platform}/{id}{}", std::env::consts::DLL_SUFFIX);
+            let entries: Vec<(String, Vec<u8>)> = vec![
+                ("modelDescription.xml".into(), model_description.into_bytes()),
+                (so_name, so.clone()),
+                ("documentation/index.html".into(), docs.into_bytes()),
+                (format!("{}/fmi-ls-manifest.xml", reference::FOLDER), reference::manifest(description, &csv_name).into_bytes()),
+                (format!("{}/{csv_name}", reference::FOLDER), results.csv().into_bytes()),
+            ];
+            write_zip(&path, &entries)?;
+            paths.push(path);
+        }
     }
     Ok(paths)
+}
+
+/// The FMI 3.0 platform tuple (`<arch>-<os>`).
+fn platform_tuple() -> Result<&'static str, BoxError> {
+    match (std::env::consts::OS, std::env::consts::ARCH) {
+        ("linux", "x86_64") => Ok("x86_64-linux"),
+        ("linux", "aarch64") => Ok("aarch64-linux"),
+        ("macos", "aarch64") => Ok("aarch64-darwin"),
+        ("macos", "x86_64") => Ok("x86_64-darwin"),
+        ("windows", "x86_64") => Ok("x86_64-windows"),
+        (os, arch) => Err(format!("no FMI 3.0 platform tuple for {os}/{arch}").into()),
+    }
 }
 
 fn write_zip(path: &Path, entries: &[(String, Vec<u8>)]) -> Result<(), BoxError> {
