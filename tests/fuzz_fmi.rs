@@ -101,7 +101,7 @@ impl World {
     }
 
     fn step(&mut self) {
-        match self.rng.below(27) {
+        match self.rng.below(30) {
             0 => self.instantiate(),
             1 if self.live.len() > 3 && self.rng.chance(0.3) => {
                 let l = self.live.swap_remove(self.rng.below(self.live.len()));
@@ -142,8 +142,65 @@ impl World {
             15..=21 => self.do_step(),
             22 => self.status(),
             23..=25 => self.exchange(),
+            26..=28 => self.fmi3(),
             _ => self.unsupported(),
         }
+    }
+
+    /// FMI 3.0 functions on the same instances (one handle table for both versions): the
+    /// calls whose arguments differ from FMI 2.0's, with random counts and values, and an
+    /// FMI 3.0 instantiation now and then.
+    fn fmi3(&mut self) {
+        use wound_opening::fmi::ffi3::*;
+        use wound_opening::fmi::ffi3_exchange::*;
+        use wound_opening::fmi::ffi3_other::*;
+        if self.rng.chance(0.1) && self.live.len() < 6 {
+            let guid = CString::new(MODELS[self.rng.below(MODELS.len())].0.guid).unwrap();
+            let c = if self.rng.chance(0.5) {
+                unsafe { fmi3InstantiateModelExchange(c"f3".as_ptr(), guid.as_ptr(), std::ptr::null(), 0, 0, std::ptr::null_mut(), None) }
+            } else {
+                let event = self.rng.below(2) as u8;
+                unsafe {
+                    fmi3InstantiateCoSimulation(c"f3".as_ptr(), guid.as_ptr(), std::ptr::null(), 0, 0, event, 0, std::ptr::null(), 0, std::ptr::null_mut(), None, None)
+                }
+            };
+            self.record("fmi3Instantiate*", if c.is_null() { 3 } else { 0 });
+            if !c.is_null() {
+                self.live.push(Live { c, states: Vec::new(), freed: Vec::new() });
+            }
+            return;
+        }
+        let i = self.target();
+        let c = self.component(i);
+        let nvr = self.rng.below(4);
+        let vrs: Vec<u32> = (0..nvr).map(|_| self.value_reference()).collect();
+        let n_values = if self.rng.chance(0.8) { nvr } else { self.rng.below(6) };
+        let mut x: Vec<f64> = (0..n_values.max(nvr)).map(|_| self.rng.real()).collect();
+        let mut k: Vec<i32> = (0..n_values.max(nvr)).map(|_| self.rng.next_u64() as i32).collect();
+        let (mut b, mut t) = ([0u8; 5], 0.0);
+        let (name, s) = match self.rng.below(8) {
+            0 => ("fmi3GetFloat64", unsafe { fmi3GetFloat64(c, vrs.as_ptr(), nvr, x.as_mut_ptr(), n_values) }),
+            1 => ("fmi3SetFloat64", unsafe { fmi3SetFloat64(c, vrs.as_ptr(), nvr, x.as_ptr(), n_values) }),
+            2 => ("fmi3GetInt32", unsafe { fmi3GetInt32(c, vrs.as_ptr(), nvr, k.as_mut_ptr(), n_values) }),
+            3 => ("fmi3SetInt32", unsafe { fmi3SetInt32(c, vrs.as_ptr(), nvr, k.as_ptr(), n_values) }),
+            4 => {
+                let (tol, stop) = (self.rng.real(), self.rng.real());
+                let tol_defined = self.rng.below(2) as u8;
+                ("fmi3EnterInitializationMode", unsafe { fmi3EnterInitializationMode(c, tol_defined, tol, 0.0, self.rng.below(2) as u8, stop) })
+            }
+            5 => {
+                let (mut now, h) = (0.0, self.rng.unit() * 10.0);
+                let _ = unsafe { fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now) };
+                let [e, f, g, ..] = &mut b;
+                ("fmi3DoStep", unsafe { fmi3DoStep(c, now, h, 0, e, f, g, &mut t) })
+            }
+            6 => {
+                let [p, q, r, u, v] = &mut b;
+                ("fmi3UpdateDiscreteStates", unsafe { fmi3UpdateDiscreteStates(c, p, q, r, u, v, &mut t) })
+            }
+            _ => ("fmi3GetClock", unsafe { fmi3GetClock(c, vrs.as_ptr(), nvr, b.as_mut_ptr()) }),
+        };
+        self.record(name, s);
     }
 
     /// The Model Exchange functions with random counts, states and times, on instances of
