@@ -15,6 +15,7 @@
 
 #include "check.h"
 #include "fmi3_standard.h"
+#include "read_file.h"
 #include "reference.h"
 
 #include <dlfcn.h>
@@ -32,23 +33,6 @@ static void logger(fmi3InstanceEnvironment env, fmi3Status status, fmi3String ca
     logged++;
     if (status == fmi3Error) errors_logged++;
     if (status != fmi3OK && status != fmi3Warning) fprintf(stderr, "  [log %d] %s\n", (int)status, message);
-}
-
-static char *read_file(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *text = malloc((size_t)n + 1);
-    if (text != NULL && fread(text, 1, (size_t)n, f) == (size_t)n) {
-        text[n] = '\0';
-    } else {
-        free(text);
-        text = NULL;
-    }
-    fclose(f);
-    return text;
 }
 
 /* The instantiationToken attribute of modelDescription.xml. */
