@@ -25,6 +25,7 @@ static DESCRIPTION: Description = Description {
     capabilities: &[],
     default_experiment: Experiment { start: 0.0, stop: 1.0, step: 0.1, tolerance: 1e-10 },
     states: None,
+    arrays: None,
 };
 
 /// Counts its steps; after every second step it has a warning, and from the fifth step on

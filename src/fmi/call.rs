@@ -39,6 +39,9 @@ pub enum Call {
     GetNominalsOfContinuousStates,
     /// FMI 3.0: `fmi3GetNumberOfContinuousStates`, `fmi3GetNumberOfEventIndicators`.
     GetNumberOf,
+    /// FMI 3.0 Configuration Mode (structural parameters).
+    EnterConfigurationMode,
+    ExitConfigurationMode,
     /// FMI 3.0 functions this FMU does not provide (clocks, configuration, adjoints, ...):
     /// allowed in every state, refused by their body with the reason.
     Unsupported,
@@ -83,6 +86,8 @@ impl Call {
             Call::GetDerivatives => matches!(m, EventMode | ContinuousTimeMode | Terminated),
             Call::GetNominalsOfContinuousStates => matches!(m, Instantiated | EventMode | ContinuousTimeMode | Terminated),
             Call::GetNumberOf | Call::Unsupported => true,
+            Call::EnterConfigurationMode => m == Instantiated,
+            Call::ExitConfigurationMode => m == ConfigurationMode,
             Call::SetDebugLogging
             | Call::Reset
             | Call::GetFmuState
@@ -130,6 +135,8 @@ impl Call {
             Call::GetContinuousStates => "fmi2GetContinuousStates",
             Call::GetNominalsOfContinuousStates => "fmi2GetNominalsOfContinuousStates",
             Call::GetNumberOf => "fmi2GetNumberOf*",
+            Call::EnterConfigurationMode => "fmi2EnterConfigurationMode",
+            Call::ExitConfigurationMode => "fmi2ExitConfigurationMode",
             Call::Unsupported => "fmi2",
         }
     }

@@ -178,18 +178,20 @@ pub unsafe extern "C" fn fmi3Reset(instance: fmi3Instance) -> fmi3Status {
     transition(instance, Call::Reset, Instance::reset)
 }
 
-/// FMI 3.0 passes `nValues` beside the value references; every variable here is a scalar.
+/// FMI 3.0 passes `nValues` beside the value references; for scalar variables they agree.
 fn scalars(nvr: usize, n_values: usize) -> Result<(), String> {
     if nvr == n_values { Ok(()) } else { Err(format!("nValues = {n_values} but {nvr} scalar variables were named")) }
 }
 
+/// Scalars, `time` and whole arrays (one value reference each, values concatenated).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetFloat64(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *mut fmi3Float64, nValues: usize) -> fmi3Status {
     unsafe {
         with_instance(instance, Call::Get, || format!("fmi3GetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
-            scalars(nValueReferences, nValues)?;
             let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-            i.get_real(vr, slice_mut(values, nValues, "values")?).map(|_| Status::Ok)
+            let got = i.get_float64(vr, nValues)?;
+            slice_mut(values, nValues, "values")?.copy_from_slice(&got);
+            OK
         })
     }
 }
@@ -198,11 +200,46 @@ pub unsafe extern "C" fn fmi3GetFloat64(instance: fmi3Instance, valueReferences:
 pub unsafe extern "C" fn fmi3SetFloat64(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *const fmi3Float64, nValues: usize) -> fmi3Status {
     unsafe {
         with_instance(instance, Call::Set, || format!("fmi3SetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
-            scalars(nValueReferences, nValues)?;
             let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-            i.set_real(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
+            i.set_float64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
         })
     }
+}
+
+/// The structural parameter (the number of probes).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3GetUInt64(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *mut fmi3UInt64, nValues: usize) -> fmi3Status {
+    unsafe {
+        with_instance(instance, Call::Get, || format!("fmi3GetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
+            scalars(nValueReferences, nValues)?;
+            let got = i.get_uint64(slice(valueReferences, nValueReferences, "valueReferences")?)?;
+            slice_mut(values, nValues, "values")?.copy_from_slice(&got);
+            OK
+        })
+    }
+}
+
+/// In Configuration Mode only.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3SetUInt64(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *const fmi3UInt64, nValues: usize) -> fmi3Status {
+    unsafe {
+        with_instance(instance, Call::Set, || format!("fmi3SetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
+            scalars(nValueReferences, nValues)?;
+            let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
+            i.set_uint64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
+        })
+    }
+}
+
+/// Configuration Mode, for the structural parameter (from Instantiated, back to it).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3EnterConfigurationMode(instance: fmi3Instance) -> fmi3Status {
+    transition(instance, Call::EnterConfigurationMode, Instance::enter_configuration_mode)
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3ExitConfigurationMode(instance: fmi3Instance) -> fmi3Status {
+    transition(instance, Call::ExitConfigurationMode, Instance::exit_configuration_mode)
 }
 
 #[unsafe(no_mangle)]

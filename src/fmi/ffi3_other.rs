@@ -1,10 +1,9 @@
 //! The FMI 3.0 functions this FMU exports because every FMU must (fmi3Functions.h; importers
 //! resolve all of them when loading) but does not provide: the variable types it has none
 //! of (a call naming no variable succeeds, any value reference is an error naming the
-//! type), clocks and their intervals and shifts, configuration mode (no structural
-//! parameters), event mode in co-simulation, adjoint and output derivatives, variable
-//! dependencies at run time, and scheduled execution. Each is framed like every other
-//! function and refused with the reason under `logStatusError`.
+//! type), clocks and their intervals and shifts, event mode in co-simulation, adjoint and
+//! output derivatives, variable dependencies at run time, and scheduled execution. Each is
+//! framed like every other function and refused with the reason under `logStatusError`.
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
 use super::frame::{slice, with_instance};
@@ -19,7 +18,7 @@ unsafe fn no_variables(instance: fmi3Instance, call: Call, name: &'static str, k
     unsafe {
         with_instance(instance, call, || format!("{name}(nValueReferences={nvr})"), |_| match slice(vr, nvr, "valueReferences")?.first() {
             None => Ok(Status::Ok),
-            Some(v) => Err(format!("{name}: no {kind} variable has value reference {v} (this FMU has Float64 and Int32 variables only)")),
+            Some(v) => Err(format!("{name}: no {kind} variable has value reference {v} (this FMU has Float64, Int32 and UInt64 variables only)")),
         })
     }
 }
@@ -50,7 +49,6 @@ typed_access! {
     fmi3GetUInt16, fmi3SetUInt16, fmi3UInt16, "UInt16";
     fmi3GetUInt32, fmi3SetUInt32, fmi3UInt32, "UInt32";
     fmi3GetInt64, fmi3SetInt64, fmi3Int64, "Int64";
-    fmi3GetUInt64, fmi3SetUInt64, fmi3UInt64, "UInt64";
     fmi3GetBoolean, fmi3SetBoolean, fmi3Boolean, "Boolean";
     fmi3GetString, fmi3SetString, fmi3String, "String";
 }
@@ -148,16 +146,6 @@ pub unsafe extern "C" fn fmi3GetAdjointDerivative(
     _nSensitivity: usize,
 ) -> fmi3Status {
     unsupported(instance, "fmi3GetAdjointDerivative", "providesAdjointDerivatives = false (use fmi3GetDirectionalDerivative)")
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3EnterConfigurationMode(instance: fmi3Instance) -> fmi3Status {
-    unsupported(instance, "fmi3EnterConfigurationMode", "it has no structural parameters")
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3ExitConfigurationMode(instance: fmi3Instance) -> fmi3Status {
-    unsupported(instance, "fmi3ExitConfigurationMode", "it has no structural parameters")
 }
 
 #[unsafe(no_mangle)]

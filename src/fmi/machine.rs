@@ -22,6 +22,8 @@ pub enum Machine {
     Error,
     EventMode,
     ContinuousTimeMode,
+    /// FMI 3.0: structural parameters may be set (entered from `Instantiated`).
+    ConfigurationMode,
 }
 
 impl Machine {
@@ -38,6 +40,7 @@ impl Machine {
             Self::Error,
             Self::EventMode,
             Self::ContinuousTimeMode,
+            Self::ConfigurationMode,
         ]
         .get(c as usize)
         .copied()

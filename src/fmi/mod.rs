@@ -8,6 +8,7 @@
 //! One shared object serves both FMUs: `fmi2Instantiate` picks the model by the GUID the
 //! master passes (each `.fmu` carries a copy named after its `modelIdentifier`).
 
+pub mod arrays;
 pub mod call;
 pub mod exchange;
 pub mod ffi;

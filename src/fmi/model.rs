@@ -167,6 +167,38 @@ pub struct Description {
     pub default_experiment: Experiment,
     /// Continuous states for Model Exchange, if any (see [`States`]).
     pub states: Option<States>,
+    /// FMI 3.0 only: array variables sized by a structural parameter (see [`Arrays`]).
+    pub arrays: Option<Arrays>,
+}
+
+/// FMI 3.0 array variables whose length is one structural parameter (`UInt64`,
+/// settable in Configuration Mode), after the independent variable `time`:
+///
+/// ```text
+/// value reference  time + 1        the structural parameter (the length)
+///                  time + 2 + j    arrays[j]
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arrays {
+    pub length_name: &'static str,
+    pub length_description: &'static str,
+    /// Start and largest accepted length.
+    pub length_start: u64,
+    pub length_max: u64,
+    pub arrays: &'static [ArrayVariable],
+}
+
+/// One array of [`Arrays`]: a fixed parameter (with start values, as many as the start
+/// length) or a continuous output.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArrayVariable {
+    pub name: &'static str,
+    pub causality: Causality,
+    pub unit: &'static str,
+    pub start: &'static [f64],
+    pub description: &'static str,
+    /// Inputs (table value references) an output depends on directly, with their kind.
+    pub input_dependencies: &'static [(u32, &'static str)],
 }
 
 /// A model's continuous states (Model Exchange): `count` state variables and as many
@@ -303,5 +335,22 @@ pub trait FmuModel: Send {
     /// Nominal values of the states (> 0).
     fn nominals(&self) -> Vec<f64> {
         vec![1.0; self.description().state_count()]
+    }
+
+    /// FMI 3.0 arrays ([`Arrays`]): the current length.
+    fn array_length(&self) -> u64 {
+        0
+    }
+    /// Set the length (checked by the glue against `1 ..= length_max`); the parameter
+    /// arrays take their start values, or as many as fit.
+    fn set_array_length(&mut self, _n: u64) {}
+    /// Validate the values of parameter array `j` (length checked by the glue).
+    fn check_array(&self, j: usize, _values: &[f64]) -> Result<(), Rejected> {
+        Err(format!("array {j} cannot be set"))
+    }
+    fn set_array(&mut self, _j: usize, _values: &[f64]) {}
+    /// Array `j` at time `time` since the cut (after `prepare` for outputs).
+    fn get_array(&self, j: usize, _time: f64) -> Result<Vec<f64>, Rejected> {
+        Err(format!("this model has no array {j}"))
     }
 }

@@ -4,8 +4,8 @@
 //! references `table + k` and `table + count + k`, as in FMI 2.0), then the independent
 //! variable `time` (FMI 3.0 wants exactly one). `ModelStructure` names value references.
 
-use super::model::{Description, Kind, Named, States};
-use super::xml::{GENERATION_TOOL, Structure, escape, units_categories_experiment, value_attributes};
+use super::model::{Arrays, Causality, Description, Kind, Named, States};
+use super::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 
 /// Value reference of the independent variable `time`.
@@ -99,9 +99,17 @@ pub fn fmi3(d: &Description) -> String {
         "    <Float64 name=\"time\" valueReference=\"{}\" causality=\"independent\" variability=\"continuous\"\n      description=\"Master time; the cut is at the startTime of fmi3EnterInitializationMode\"/>",
         time_reference(d)
     );
+    if let Some(a) = d.arrays {
+        x.push_str(&arrays(d, &a));
+    }
     x.push_str("  </ModelVariables>\n\n  <ModelStructure>\n");
     let structure = Structure::of(d);
     for (vr, deps) in &structure.outputs {
+        x.push_str(&unknown("Output", *vr, deps));
+    }
+    // The array outputs, on their inputs and every state.
+    let array_outputs = array_outputs(d);
+    for (vr, deps) in &array_outputs {
         x.push_str(&unknown("Output", *vr, deps));
     }
     for (vr, deps) in &structure.derivatives {
@@ -111,6 +119,59 @@ pub fn fmi3(d: &Description) -> String {
         let list: Vec<String> = deps.iter().map(|k| k.to_string()).collect();
         let _ = writeln!(x, "    <InitialUnknown valueReference=\"{vr}\" dependencies=\"{}\"/>", list.join(" "));
     }
+    // Initially the array outputs depend on every known (no `dependencies` attribute).
+    for (vr, _) in &array_outputs {
+        let _ = writeln!(x, "    <InitialUnknown valueReference=\"{vr}\"/>");
+    }
     x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
     x
+}
+
+/// The structural parameter, then each array with a `<Dimension>` naming it.
+fn arrays(d: &Description, a: &Arrays) -> String {
+    let length = time_reference(d) + 1;
+    let mut x = String::new();
+    let _ = writeln!(
+        x,
+        "    <UInt64 name=\"{}\" valueReference=\"{length}\" causality=\"structuralParameter\" variability=\"fixed\" start=\"{}\" min=\"1\" max=\"{}\"\n      description=\"{}\"/>",
+        escape(a.length_name),
+        a.length_start,
+        a.length_max,
+        escape(a.length_description)
+    );
+    for (j, v) in a.arrays.iter().enumerate() {
+        let (variability, start) = match v.causality {
+            Causality::Parameter => {
+                let values: Vec<String> = v.start.iter().map(|&s| number(s)).collect();
+                ("fixed", format!(" start=\"{}\"", values.join(" ")))
+            }
+            _ => ("continuous", String::new()),
+        };
+        let _ = writeln!(
+            x,
+            "    <Float64 name=\"{}\" valueReference=\"{}\" causality=\"{}\" variability=\"{variability}\" unit=\"{}\"{start}\n      description=\"{}\">\n      <Dimension valueReference=\"{length}\"/>\n    </Float64>",
+            escape(v.name),
+            length + 1 + j as u32,
+            v.causality.as_str(),
+            escape(v.unit),
+            escape(v.description)
+        );
+    }
+    x
+}
+
+/// Each array output's value reference with its dependencies: its inputs, then every state.
+fn array_outputs(d: &Description) -> Vec<(u32, Vec<(u32, &'static str)>)> {
+    let Some(a) = d.arrays else { return Vec::new() };
+    let (length, table) = (time_reference(d) + 1, d.variables.len() as u32);
+    let states: Vec<(u32, &str)> = (0..d.state_count() as u32).map(|k| (table + k, "fixed")).collect();
+    a.arrays
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.causality == Causality::Output)
+        .map(|(j, v)| {
+            let deps = v.input_dependencies.iter().copied().chain(states.iter().copied()).collect();
+            (length + 1 + j as u32, deps)
+        })
+        .collect()
 }

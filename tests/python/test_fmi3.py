@@ -74,3 +74,89 @@ def test_purse_string_fmi3_both_interfaces(purse3_path):
         t = r["time"]
         want = np.where(t > 20.0, 6500.0 * (1 - np.exp(-(t - 20.0) / 30.0)), 0.0)
         np.testing.assert_allclose(r["line_tension"], want, rtol=1e-14, atol=1e-9)
+
+
+# The displacement field (FMI 3.0 arrays): value references from the archive.
+PROBE_RADII = [1.0, 1.5, 2.0, 3.0, 5.0, 10.0]
+PROFILE_TIMES = [0.01, 0.1, 1.0, 10.0]
+# Measured worst errors at these radii and times (lambda = 0.1, 1, 10): displacement
+# 1.3e-8 of the opening (the edge alone: 1e-10; between the mesh's nodes the polynomial
+# interpolation of the modes adds up to ~1e-8), velocity 4.7e-5 relative (floor AMPLITUDE /
+# 100; lambda = 0.1 at t <= 0.1, inside the viscous boundary layer of width lambda),
+# 1e-6 at lambda = 1 and 1e-8 at lambda = 10. The tolerances are twice those.
+PROFILE_U_TOL = 3e-8
+PROFILE_V_TOL = {0.1: 1e-4, 1.0: 2e-6, 10.0: 2e-8}
+
+
+def _slave3(path):
+    from fmpy import extract
+    from fmpy.fmi3 import FMU3Slave
+
+    md = read_model_description(path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    fmu = FMU3Slave(guid=md.guid, unzipDirectory=extract(path), modelIdentifier=md.coSimulation.modelIdentifier,
+                    instanceName="probes")
+    fmu.instantiate()
+    return fmu, vr
+
+
+@pytest.mark.parametrize("lam", [0.1, 1.0, 10.0])
+def test_displacement_field_matches_the_exact_profiles(fmu3_path, lam):
+    import wound_exact
+
+    from fmu_harness import AMPLITUDE
+
+    fmu, vr = _slave3(fmu3_path)
+    fmu.setFloat64([vr["lambda"]], [lam])
+    fmu.enterInitializationMode(startTime=0.0)
+    fmu.exitInitializationMode()
+    assert fmu.getFloat64([vr["probe_radii"]], nValues=6) == PROBE_RADII
+    u0 = fmu.getFloat64([vr["displacement"]], nValues=6)
+    assert u0 == [r / 6 for r in PROBE_RADII], "sigma r / 6 at the cut"
+    u_exact, v_exact = wound_exact.profile(lam, 1.0, 10.0, PROBE_RADII, np.array(PROFILE_TIMES))
+    t = 0.0
+    for k, tk in enumerate(PROFILE_TIMES):
+        fmu.doStep(t, tk - t)
+        t = tk
+        u = np.array(fmu.getFloat64([vr["displacement"]], nValues=6))
+        v = np.array(fmu.getFloat64([vr["velocity"]], nValues=6))
+        eu = np.max(np.abs(u - u_exact[k])) / AMPLITUDE
+        ev = np.max(np.abs(v - v_exact[k]) / np.maximum(np.abs(v_exact[k]), AMPLITUDE / 100))
+        record(f"FMI 3.0 displacement field error, lambda = {lam}", eu)
+        record(f"FMI 3.0 velocity field error, lambda = {lam}", ev)
+        assert eu < PROFILE_U_TOL, (lam, tk, eu)
+        assert ev < PROFILE_V_TOL[lam], (lam, tk, ev)
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_number_of_probes_is_a_structural_parameter(fmu3_path):
+    """Set in Configuration Mode; the radii then have that many values; a radius outside
+    the tissue is refused when the field is read (R_inf may be set after the radii)."""
+    from fmpy.fmi1 import FMICallException
+
+    fmu, vr = _slave3(fmu3_path)
+    with pytest.raises(FMICallException):
+        fmu.setUInt64([vr["n_probes"]], [3])  # not in Configuration Mode
+    fmu.enterConfigurationMode()
+    fmu.setUInt64([vr["n_probes"]], [3])
+    fmu.exitConfigurationMode()
+    fmu.setFloat64([vr["probe_radii"]], [1.0, 4.0, 10.0])
+    with pytest.raises(FMICallException):
+        fmu.setFloat64([vr["probe_radii"]], [1.0, 4.0])  # two values for three probes
+    fmu.enterInitializationMode(startTime=0.0)
+    fmu.exitInitializationMode()
+    fmu.doStep(0.0, 1.0)
+    u = fmu.getFloat64([vr["displacement"]], nValues=3)
+    assert len(u) == 3 and u[0] == pytest.approx(fmu.getFloat64([vr["wound_radius"]])[0] - 1.0, abs=1e-15)
+    fmu.terminate()
+    fmu.freeInstance()
+    fmu, vr = _slave3(fmu3_path)
+    fmu.setFloat64([vr["probe_radii"]], [1.0, 2.0, 3.0, 4.0, 5.0, 11.0])  # R_inf = 10
+    fmu.enterInitializationMode(startTime=0.0)
+    fmu.exitInitializationMode()
+    with pytest.raises(FMICallException):
+        fmu.getFloat64([vr["displacement"]], nValues=6)
+    assert fmu.getFloat64([vr["wound_radius"]]) == [1 + 1 / 6], "the scalars are unaffected"
+    fmu.terminate()
+    fmu.freeInstance()

@@ -67,4 +67,5 @@ pub static DESCRIPTION: Description = Description {
     default_experiment: Experiment { start: 0.0, stop: 300.0, step: 0.5, tolerance: 1e-10 },
     // A closed form in time: nothing to integrate.
     states: None,
+    arrays: None,
 };

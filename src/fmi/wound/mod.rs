@@ -44,6 +44,8 @@ pub struct WoundModel {
     /// them. They are inert (derivative 0, no effect on any output): an integrator that
     /// perturbs them for a finite-difference Jacobian sees a zero column. Not serialized.
     spare_states: Vec<f64>,
+    /// FMI 3.0: the probe radii in um (master units).
+    probe_radii: Vec<f64>,
 }
 
 impl WoundModel {
@@ -65,6 +67,7 @@ impl WoundModel {
             solver: None,
             warning: RefCell::new(None),
             spare_states: Vec::new(),
+            probe_radii: variables::PROBE_RADII.to_vec(),
         })
     }
 
@@ -191,6 +194,7 @@ impl FmuModel for WoundModel {
         if self.solver.is_some() {
             return Ok(None);
         }
+
         let solver = self.build_solver()?;
         let text = format!(
             "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns (tolerance {:e}, {:?}, {:?})",
@@ -327,6 +331,58 @@ impl FmuModel for WoundModel {
         solver.set_ode_state(t, &x[..used], p).map_err(|e| e.to_string())
     }
 
+    fn array_length(&self) -> u64 {
+        self.probe_radii.len() as u64
+    }
+
+    /// The default radii as far as they go, then the outer edge of the default tissue.
+    fn set_array_length(&mut self, n: u64) {
+        let start = variables::PROBE_RADII;
+        self.probe_radii = (0..n as usize).map(|i| start.get(i).copied().unwrap_or(start[start.len() - 1])).collect();
+        self.solver = None;
+    }
+
+    fn check_array(&self, j: usize, values: &[f64]) -> Result<(), Rejected> {
+        if j != 0 {
+            return Err(format!("{} is an output", variables::PROBE_ARRAYS[j.min(2)].name));
+        }
+        match values.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
+            Some(r) => Err(format!("probe radius {r} um is invalid: it must be finite and > 0 (and in [R0, R0 R_inf])")),
+            None => Ok(()),
+        }
+    }
+
+    fn set_array(&mut self, _j: usize, values: &[f64]) {
+        self.probe_radii = values.to_vec();
+        self.solver = None;
+    }
+
+    /// The radii, or u and u_t there (the solver's, at reference radii in R0, scaled to um
+    /// and um/s).
+    /// A radius outside the tissue is refused when the field is read (the probes need not
+    /// fit a tissue until then: R_inf may be set after them, and FMI 2.0 has no probes).
+    fn get_array(&self, j: usize, _time: f64) -> Result<Vec<f64>, Rejected> {
+        if j == 0 {
+            return Ok(self.probe_radii.clone());
+        }
+        let (r0, p) = (self.scales.length, self.p());
+        let (lo, hi) = (r0, r0 * self.params.r_inf);
+        if let Some(r) = self.probe_radii.iter().find(|&&r| !(lo..=hi).contains(&r)) {
+            return Err(format!("probe radius {r} um is outside the tissue [R0, R0 R_inf] = [{lo}, {hi}] um"));
+        }
+        let radii: Vec<f64> = self.probe_radii.iter().map(|r| r / r0).collect();
+        Ok(match j {
+            1 => self.solver().displacement(&radii).iter().map(|u| u * r0).collect(),
+            _ => {
+                let solver = self.solver();
+                if !solver.edge_velocity_defined(p) {
+                    self.warn("velocity is infinite in the model at the edge at lambda = 0 at the cut and just after a change of edge_stress; the values returned are the mesh's".into());
+                }
+                solver.velocity(p, &radii).iter().map(|v| v * self.scales.velocity()).collect()
+            }
+        })
+    }
+
     /// `c_k' = (g_k(p) - c_k) / nu_k` per second of master time (`/ T`).
     fn derivatives(&self, _time: f64) -> Vec<f64> {
         let mut dx: Vec<f64> =
@@ -374,6 +430,7 @@ impl FmuModel for WoundModel {
             solver: None,
             warning: RefCell::new(None),
             spare_states: Vec::new(),
+            probe_radii: self.probe_radii.clone(),
         };
         if let Some(st) = &saved.solver {
             // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.

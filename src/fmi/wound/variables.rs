@@ -1,7 +1,9 @@
 //! The wound FMU's variables: the one table that `modelDescription.xml` is generated
 //! from ([`crate::fmi::xml`]), and that the code uses.
 
-pub use crate::fmi::model::{CAPABILITIES, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Variability, Variable};
+pub use crate::fmi::model::{
+    ArrayVariable, Arrays, CAPABILITIES, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Variability, Variable,
+};
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
 pub const MODEL_IDENTIFIER: &str = "WoundOpening";
@@ -123,7 +125,46 @@ pub static DESCRIPTION: Description = Description {
         initial_dependencies: &INITIAL_RATE_DEPENDENCIES,
         input_dependencies: &[(Vr::EdgeStress as u32, "fixed")],
     }),
+    arrays: Some(Arrays {
+        length_name: "n_probes",
+        length_description: "Number of probe radii (structural parameter: set in Configuration Mode), 1 ..= 1000",
+        length_start: PROBE_RADII.len() as u64,
+        length_max: 1000,
+        arrays: &PROBE_ARRAYS,
+    }),
 };
+
+/// Default probe radii, in um with R0 = 1 um (so in R0): the edge, the viscous boundary
+/// layer at lambda = 0.1 to 1, the bulk, and the outer edge of the default R_inf.
+pub const PROBE_RADII: [f64; 6] = [1.0, 1.5, 2.0, 3.0, 5.0, 10.0];
+
+/// FMI 3.0 arrays: the radii and the displacement field and velocity there.
+pub const PROBE_ARRAYS: [ArrayVariable; 3] = [
+    ArrayVariable {
+        name: "probe_radii",
+        causality: Causality::Parameter,
+        unit: "um",
+        start: &PROBE_RADII,
+        description: "Reference radii of the probes [um], each in [R0, R0 R_inf] (checked when displacement or velocity is read)",
+        input_dependencies: &[],
+    },
+    ArrayVariable {
+        name: "displacement",
+        causality: Causality::Output,
+        unit: "um",
+        start: &[],
+        description: "Radial displacement u(r, t) at the probe radii [um] (sigma r / 6 at the cut)",
+        input_dependencies: &[],
+    },
+    ArrayVariable {
+        name: "velocity",
+        causality: Causality::Output,
+        unit: "um/s",
+        start: &[],
+        description: "Radial velocity u_t(r, t) at the probe radii [um/s] under the current edge_stress",
+        input_dependencies: &[(Vr::EdgeStress as u32, "fixed")],
+    },
+];
 
 #[cfg(test)]
 mod tests {
