@@ -7,7 +7,8 @@
  *   3. Model Exchange: the states are uncoupled linear modes, c_k' = (g_k - c_k) / nu_k, so
  *      two derivative evaluations (at c = 0 and c = 1) give g_k and nu_k, the master
  *      integrates each mode exactly, and the radius read back matches the reference;
- *   4. every function it uses on NULL, made-up and freed instances returns fmi3Error and
+ *   4. instance A's FMU state handed to instance B is refused, and stays A's;
+ *   5. every function it uses on NULL, made-up and freed instances returns fmi3Error and
  *      logs nothing (there is no instance to log for).
  * Run under valgrind by scripts/c_tests.sh: no error, no leak.
  */
@@ -54,7 +55,7 @@ static struct {
     FIELD(fmi3GetFloat64) FIELD(fmi3SetFloat64) FIELD(fmi3DoStep) FIELD(fmi3UpdateDiscreteStates)
     FIELD(fmi3EnterContinuousTimeMode) FIELD(fmi3SetTime) FIELD(fmi3SetContinuousStates)
     FIELD(fmi3GetContinuousStateDerivatives) FIELD(fmi3GetNumberOfContinuousStates) FIELD(fmi3GetFMUState)
-    FIELD(fmi3FreeFMUState) FIELD(fmi3SerializedFMUStateSize)
+    FIELD(fmi3FreeFMUState) FIELD(fmi3SerializedFMUStateSize) FIELD(fmi3SetFMUState)
 } F;
 #undef FIELD
 
@@ -122,6 +123,29 @@ static void model_exchange(const char *token) {
     F.fmi3FreeInstance(c);
 }
 
+/* Instance A's FMU state handed to instance B: refused with a logged reason, and A's
+ * state stays A's (FMU states belong to the instance that made them). */
+static void foreign_state(const char *token) {
+    fmi3Instance a = F.fmi3InstantiateCoSimulation("a", token, NULL, false, false, false, false, NULL, 0, NULL, logger, NULL);
+    fmi3Instance b = F.fmi3InstantiateCoSimulation("b", token, NULL, false, false, false, false, NULL, 0, NULL, logger, NULL);
+    CHECK(a != NULL && b != NULL, "two instances");
+    if (a == NULL || b == NULL) return;
+    fmi3FMUState theirs = NULL, slot = NULL;
+    size_t size = 0;
+    CHECK(F.fmi3GetFMUState(a, &theirs) == fmi3OK && theirs != NULL, "A's state");
+    int before = errors_logged;
+    CHECK(F.fmi3SetFMUState(b, theirs) == fmi3Error, "B refuses A's state");
+    slot = theirs;
+    CHECK(F.fmi3GetFMUState(b, &slot) == fmi3Error && slot == theirs, "B does not save into A's state");
+    CHECK(F.fmi3SerializedFMUStateSize(b, theirs, &size) == fmi3Error && size == 0, "B does not size A's state");
+    CHECK(F.fmi3FreeFMUState(b, &slot) == fmi3Error && slot == theirs, "B does not free A's state");
+    CHECK(errors_logged == before + 4, "each refusal logged");
+    CHECK(F.fmi3SetFMUState(a, theirs) == fmi3OK && F.fmi3FreeFMUState(a, &theirs) == fmi3OK && theirs == NULL,
+          "A's state is still A's");
+    F.fmi3FreeInstance(a);
+    F.fmi3FreeInstance(b);
+}
+
 /* Every function used above on something that is no live instance: fmi3Error, no log. */
 static void no_instance(fmi3Instance c, const char *who) {
     int before = logged;
@@ -171,12 +195,14 @@ int main(int argc, char **argv) {
     LOAD(fmi3SetFloat64) LOAD(fmi3DoStep) LOAD(fmi3UpdateDiscreteStates) LOAD(fmi3EnterContinuousTimeMode)
     LOAD(fmi3SetTime) LOAD(fmi3SetContinuousStates) LOAD(fmi3GetContinuousStateDerivatives)
     LOAD(fmi3GetNumberOfContinuousStates) LOAD(fmi3GetFMUState) LOAD(fmi3FreeFMUState)
-    LOAD(fmi3SerializedFMUStateSize)
+    LOAD(fmi3SerializedFMUStateSize) LOAD(fmi3SetFMUState)
 #undef LOAD
     co_simulation(token);
     model_exchange(token);
+    foreign_state(token);
+    int refused_before = errors_logged;
     CHECK(F.fmi3InstantiateCoSimulation("x", "{wrong}", NULL, false, false, false, false, NULL, 0, NULL, logger, NULL) == NULL
-              && errors_logged == 1, "a wrong instantiationToken: NULL, with the reason logged");
+              && errors_logged == refused_before + 1, "a wrong instantiationToken: NULL, with the reason logged");
     CHECK(F.fmi3InstantiateCoSimulation("x", token, NULL, false, false, true, false, NULL, 0, NULL, logger, NULL) == NULL,
           "eventModeUsed without hasEventMode: NULL");
     fmi3Instance freed = F.fmi3InstantiateModelExchange("f", token, NULL, false, false, NULL, logger);
