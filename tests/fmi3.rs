@@ -207,3 +207,20 @@ fn every_call3(i: fmi2Component) -> Vec<(&'static str, fmi3Status)> {
         ]
     }
 }
+
+/// FMI 3.0 (section 2.3.2) lets fmi3Get* read start values before initialization (FMI 2.0
+/// does not): parameters and inputs yes, outputs and states are refused (they have none).
+#[test]
+fn start_values_are_readable_before_initialization() {
+    let i = cs(WOUND, 0);
+    let c2 = fmi_support::instantiate(WOUND, "fmi2");
+    assert_eq!(get(i, Vr::Lambda as u32), (OK, 1.0));
+    assert_eq!(get(i, Vr::EdgeStress as u32), (OK, 0.0));
+    assert_eq!(get(i, Vr::WoundRadius as u32).0, ERROR, "an output has no start value");
+    assert_eq!(get(i, 13).0, ERROR, "nor a state");
+    assert_eq!(fmi_support::get_real(c2, Vr::Lambda as u32).0, ERROR, "FMI 2.0: not in Instantiated");
+    unsafe {
+        fmi3FreeInstance(i);
+        fmi2FreeInstance(c2);
+    }
+}

@@ -7,7 +7,7 @@
 
 use super::instance::{Instance, Rejected};
 use super::machine::Machine;
-use super::model::{Arrays, Causality};
+use super::model::{Arrays, Causality, Kind, Named};
 use super::xml3::time_reference;
 
 /// What an FMI 3.0-only value reference names.
@@ -43,7 +43,7 @@ impl Instance {
                 Some(Extra::Array(j)) => {
                     let is_output = self.arrays().is_some_and(|a| a.arrays[j].causality == Causality::Output);
                     if is_output {
-                        if self.machine == Machine::Instantiated || self.machine == Machine::ConfigurationMode {
+                        if self.before_initialization() {
                             return Err(format!("{} is an output: it has no value before fmi3EnterInitializationMode", self.arrays().map_or("", |a| a.arrays[j].name)));
                         }
                         self.prepare()?;
@@ -52,6 +52,14 @@ impl Instance {
                 }
                 Some(Extra::Length) => return Err(format!("value reference {vr} is a UInt64 (the structural parameter), not a Float64")),
                 None => {
+                    let d = self.description();
+                    let computed = match d.named(Kind::Real, vr)? {
+                        Named::Table(v) => v.causality == Causality::Output,
+                        _ => true,
+                    };
+                    if computed && self.before_initialization() {
+                        return Err(format!("value reference {vr} is computed: it has no value before fmi3EnterInitializationMode"));
+                    }
                     let mut x = [0.0];
                     self.get_real(&[vr], &mut x)?;
                     out.push(x[0]);

@@ -103,6 +103,11 @@ impl Instance {
         self
     }
 
+    /// Whether the FMU has no computed values yet: only start values can be read.
+    pub(super) fn before_initialization(&self) -> bool {
+        matches!(self.machine, Machine::Instantiated | Machine::ConfigurationMode)
+    }
+
     /// The name of `call` in this instance's FMI version.
     pub fn name_of(&self, call: Call) -> String {
         if self.fmi3 { call.fmi3_name().to_string() } else { call.fmi_name().to_string() }
@@ -149,7 +154,10 @@ impl Instance {
             self.log_error(&format!("{name} is a {only:?} function but this instance is {:?}", self.interface));
             return Err(Status::Error);
         }
-        if !call.allowed(self.machine) {
+        // FMI 3.0 (section 2.3.2) also lets fmi3Get* read start values in Instantiated and
+        // Configuration Mode (fmi3::arrays refuses outputs and states there).
+        let start_values = self.fmi3 && call == Call::Get && matches!(self.machine, Machine::Instantiated | Machine::ConfigurationMode);
+        if !(call.allowed(self.machine) || start_values) {
             self.log_error(&format!("{name} is not allowed in state {:?}", self.machine));
             return Err(Status::Error);
         }
