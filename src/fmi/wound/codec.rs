@@ -7,6 +7,9 @@
 //! method, grid points (u32), internal step (f64),
 //! has solver (u8), [solver time (f64), n (u32), n modal coefficients (f64)],
 //! edge stress rate (f64, Pa/s; 0 unless fmi2SetRealInputDerivatives set one)
+//!
+//! (The FMI 3.0 probe radii are not in it: they say where the field is read, not where
+//! the trajectory is; a restored state reads at the instance's own radii.)
 //! ```
 
 use crate::fmi::state::{Reader, Writer};
