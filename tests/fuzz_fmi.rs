@@ -173,13 +173,27 @@ impl World {
         let i = self.target();
         let c = self.component(i);
         let nvr = self.rng.below(4);
-        let vrs: Vec<u32> = (0..nvr).map(|_| self.value_reference()).collect();
+        // The FMI 3.0-only references too: time (447), n_probes (448), probe_radii,
+        // displacement, velocity (449..451), and the states and derivatives (13..446).
+        let vrs: Vec<u32> = (0..nvr)
+            .map(|_| if self.rng.chance(0.5) { 440 + self.rng.below(14) as u32 } else { self.value_reference() })
+            .collect();
         let n_values = if self.rng.chance(0.8) { nvr } else { self.rng.below(6) };
-        let mut x: Vec<f64> = (0..n_values.max(nvr)).map(|_| self.rng.real()).collect();
+        let x: Vec<f64> = (0..n_values.max(nvr)).map(|_| self.rng.real()).collect();
         let mut k: Vec<i32> = (0..n_values.max(nvr)).map(|_| self.rng.next_u64() as i32).collect();
         let (mut b, mut t) = ([0u8; 5], 0.0);
-        let (name, s) = match self.rng.below(8) {
-            0 => ("fmi3GetFloat64", unsafe { fmi3GetFloat64(c, vrs.as_ptr(), nvr, x.as_mut_ptr(), n_values) }),
+        let mut big: Vec<u64> = (0..n_values.max(nvr)).map(|_| if self.rng.chance(0.8) { self.rng.below(12) as u64 } else { self.rng.next_u64() }).collect();
+        let (name, s) = match self.rng.below(12) {
+            8 => ("fmi3EnterConfigurationMode", unsafe { fmi3EnterConfigurationMode(c) }),
+            9 => ("fmi3ExitConfigurationMode", unsafe { fmi3ExitConfigurationMode(c) }),
+            10 => ("fmi3SetUInt64", unsafe { fmi3SetUInt64(c, vrs.as_ptr(), nvr, big.as_ptr(), n_values) }),
+            11 => ("fmi3GetUInt64", unsafe { fmi3GetUInt64(c, vrs.as_ptr(), nvr, big.as_mut_ptr(), n_values) }),
+            0 => {
+                // Arrays take up to 1000 values each: a buffer that large, nValues as chosen.
+                let mut out = vec![0.0; 4000];
+                let n = if self.rng.chance(0.5) { n_values } else { self.rng.below(30) };
+                ("fmi3GetFloat64", unsafe { fmi3GetFloat64(c, vrs.as_ptr(), nvr, out.as_mut_ptr(), n) })
+            }
             1 => ("fmi3SetFloat64", unsafe { fmi3SetFloat64(c, vrs.as_ptr(), nvr, x.as_ptr(), n_values) }),
             2 => ("fmi3GetInt32", unsafe { fmi3GetInt32(c, vrs.as_ptr(), nvr, k.as_mut_ptr(), n_values) }),
             3 => ("fmi3SetInt32", unsafe { fmi3SetInt32(c, vrs.as_ptr(), nvr, k.as_ptr(), n_values) }),
