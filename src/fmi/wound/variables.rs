@@ -120,7 +120,7 @@ pub static DESCRIPTION: Description = Description {
         count: MODEL_EXCHANGE_STATES,
         name: "modal_coordinate",
         unit: "1",
-        description: "Modal coordinate of the departure u - sigma r / 6 from the uniform tension (in R0); 0 at the cut and on modes the mesh does not use",
+        description: "Modal coordinate of the departure u - sigma r / 6 from the uniform tension (in R0); 0 at the cut; inert (derivative 0) on modes the mesh does not use",
         derivative_unit: "1/s",
         initial_dependencies: &INITIAL_RATE_DEPENDENCIES,
         input_dependencies: &[(Vr::EdgeStress as u32, "fixed")],
