@@ -224,3 +224,91 @@ fn start_values_are_readable_before_initialization() {
         fmi2FreeInstance(c2);
     }
 }
+
+mod intermediate {
+    //! Intermediate Update Mode (FMI 3.0's replacement of input derivatives): the importer
+    //! sets `edge_stress` at the end of the step from inside `intermediateUpdate`; the step
+    //! is then the linear-in-time one, as `fmi2SetRealInputDerivatives` gives in FMI 2.0.
+    use super::*;
+    use std::sync::Mutex;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// The instance the callback talks to, the ramp it follows, and what it saw.
+    static INSTANCE: AtomicUsize = AtomicUsize::new(0);
+    static SEEN: Mutex<Vec<(f64, fmi3Status, fmi3Status, fmi3Status)>> = Mutex::new(Vec::new());
+    const P0: f64 = 10.0;
+    const RATE: f64 = 4.0;
+
+    unsafe extern "C" fn update(_: fmi3InstanceEnvironment, time: f64, set: u8, _: u8, _: u8, _: u8, _: *mut u8, _: *mut f64) {
+        let i = INSTANCE.load(Ordering::SeqCst) as fmi3Instance;
+        let (es, lambda) = (Vr::EdgeStress as u32, Vr::Lambda as u32);
+        let p = P0 + RATE * time;
+        let mut x = 0.0;
+        let statuses = unsafe {
+            (
+                if set != 0 { fmi3SetFloat64(i, &es, 1, &p, 1) } else { ERROR },
+                fmi3SetFloat64(i, &lambda, 1, &0.5, 1),
+                fmi3GetFloat64(i, &es, 1, &mut x, 1),
+            )
+        };
+        SEEN.lock().unwrap().push((time, statuses.0, statuses.1, statuses.2));
+    }
+
+    #[test]
+    fn the_importer_sets_the_ramp_at_the_end_of_each_step() {
+        let token = CString::new(WOUND).unwrap();
+        let es = Vr::EdgeStress as u32;
+        let i = unsafe {
+            fmi3InstantiateCoSimulation(c"iu".as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, 0, 0, &es, 1, std::ptr::null_mut(), None, Some(update))
+        };
+        assert!(!i.is_null());
+        INSTANCE.store(i as usize, Ordering::SeqCst);
+        let lambda = Vr::Lambda as u32;
+        let c2 = fmi_support::initialized(WOUND, 0.0, &[(lambda, 0.3)]);
+        unsafe {
+            assert_eq!(fmi3SetFloat64(i, &lambda, 1, &0.3, 1), OK);
+            assert_eq!(fmi3SetFloat64(i, &es, 1, &P0, 1), OK);
+            assert_eq!(fmi3EnterInitializationMode(i, 0, 0.0, 0.0, 0, 0.0), OK);
+            assert_eq!(fmi3ExitInitializationMode(i), OK);
+            // FMI 2.0 with the input derivative, for comparison.
+            assert_eq!(fmi_support::set_real(c2, es, P0), OK);
+            let one = 1;
+            assert_eq!(fmi2SetRealInputDerivatives(c2, &es, 1, &one, &RATE), OK);
+            let (mut a, mut b, mut e, mut last) = (0u8, 0u8, 0u8, 0.0);
+            for n in 0..3 {
+                let t = n as f64 * 0.5;
+                assert_eq!(fmi3DoStep(i, t, 0.5, 0, &mut a, &mut b, &mut e, &mut last), OK);
+                assert_eq!(fmi2DoStep(c2, t, 0.5, 0), OK);
+                assert_eq!(last, t + 0.5);
+            }
+        }
+        let seen = SEEN.lock().unwrap().clone();
+        assert_eq!(seen.len(), 3);
+        for (k, (time, set, other, get)) in seen.into_iter().enumerate() {
+            assert_eq!(time, 0.5 * (k + 1) as f64, "asked at the end of the step");
+            assert_eq!((set, other, get), (OK, ERROR, ERROR), "only the required input may be set, nothing read");
+        }
+        let (r3, r2) = (get(i, Vr::WoundRadius as u32).1, fmi_support::get_real(c2, Vr::WoundRadius as u32).1);
+        assert!((r3 - r2).abs() < 1e-14, "{r3} vs {r2}: the same ramp as fmi2SetRealInputDerivatives");
+        assert_eq!(get(i, es), (OK, P0 + RATE * 1.5));
+        unsafe {
+            fmi3FreeInstance(i);
+            fmi2FreeInstance(c2);
+        }
+    }
+
+    #[test]
+    fn only_continuous_inputs_with_a_callback_can_be_intermediate() {
+        let token = CString::new(WOUND).unwrap();
+        let lambda = Vr::Lambda as u32;
+        let refused = unsafe {
+            fmi3InstantiateCoSimulation(c"x".as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, 0, 0, &lambda, 1, std::ptr::null_mut(), None, Some(update))
+        };
+        assert!(refused.is_null(), "a parameter is no intermediate variable");
+        let es = Vr::EdgeStress as u32;
+        let refused = unsafe {
+            fmi3InstantiateCoSimulation(c"x".as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, 0, 0, &es, 1, std::ptr::null_mut(), None, None)
+        };
+        assert!(refused.is_null(), "no callback");
+    }
+}

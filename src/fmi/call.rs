@@ -39,6 +39,8 @@ pub enum Call {
     GetNominalsOfContinuousStates,
     /// FMI 3.0: `fmi3GetNumberOfContinuousStates`, `fmi3GetNumberOfEventIndicators`.
     GetNumberOf,
+    /// FMI 3.0: the second half of an `fmi3DoStep` with intermediate update.
+    FinishStep,
     /// FMI 3.0 Configuration Mode (structural parameters).
     EnterConfigurationMode,
     ExitConfigurationMode,
@@ -52,7 +54,7 @@ impl Call {
     pub fn interface(self) -> Option<Interface> {
         use Call::*;
         match self {
-            DoStep | CancelStep | GetStatus | SetRealInputDerivatives | GetRealOutputDerivatives => Some(Interface::CoSimulation),
+            DoStep | FinishStep | CancelStep | GetStatus | SetRealInputDerivatives | GetRealOutputDerivatives => Some(Interface::CoSimulation),
             EnterEventMode | NewDiscreteStates | EnterContinuousTimeMode | CompletedIntegratorStep | SetTime
             | SetContinuousStates | GetDerivatives | GetEventIndicators | GetContinuousStates
             | GetNominalsOfContinuousStates | GetNumberOf => Some(Interface::ModelExchange),
@@ -63,6 +65,12 @@ impl Call {
     /// States in which FMI 2.0 allows the call.
     pub fn allowed(self, m: Machine) -> bool {
         use Machine::*;
+        if m == IntermediateUpdate {
+            // FMI 3.0, section 4.2.4: the importer sets the required intermediate inputs
+            // from inside the callback (getting them is not allowed: we pass
+            // intermediateVariableGetAllowed = false); the step then finishes.
+            return matches!(self, Call::Set | Call::FinishStep);
+        }
         if m == Error {
             // After an internal failure only recovery and inspection remain.
             return matches!(
@@ -87,6 +95,7 @@ impl Call {
             Call::GetNominalsOfContinuousStates => matches!(m, Instantiated | EventMode | ContinuousTimeMode | Terminated),
             Call::GetNumberOf | Call::Unsupported => true,
             Call::EnterConfigurationMode => m == Instantiated,
+            Call::FinishStep => m == IntermediateUpdate,
             Call::ExitConfigurationMode => m == ConfigurationMode,
             Call::SetDebugLogging
             | Call::Reset
@@ -95,7 +104,7 @@ impl Call {
             | Call::FreeFmuState
             | Call::SerializeFmuState
             | Call::DeSerializeFmuState => true,
-            Call::Get | Call::GetDirectionalDerivative => m != Instantiated,
+            Call::Get | Call::GetDirectionalDerivative => !matches!(m, Instantiated | IntermediateUpdate),
             Call::Set => m != Terminated,
             Call::SetRealInputDerivatives => matches!(m, Instantiated | InitializationMode | StepComplete),
             Call::GetStatus | Call::GetRealOutputDerivatives => matches!(m, StepComplete | Terminated),
@@ -136,6 +145,7 @@ impl Call {
             Call::GetNominalsOfContinuousStates => "fmi2GetNominalsOfContinuousStates",
             Call::GetNumberOf => "fmi2GetNumberOf*",
             Call::EnterConfigurationMode => "fmi2EnterConfigurationMode",
+            Call::FinishStep => "fmi2DoStep",
             Call::ExitConfigurationMode => "fmi2ExitConfigurationMode",
             Call::Unsupported => "fmi2",
         }

@@ -91,8 +91,30 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
     instantiate(Interface::ModelExchange, instanceName, instantiationToken, loggingOn, instanceEnvironment, logMessage, None)
 }
 
-/// `eventModeUsed` needs `hasEventMode` (false here) and intermediate variables need
-/// `intermediateUpdate` variables (none): both are refused, as the standard asks.
+/// The importer's `intermediateUpdate` callback, asked for the inputs at the end of each
+/// step (see [`super::intermediate`]).
+struct IntermediateUpdate {
+    callback: unsafe extern "C" fn(fmi3InstanceEnvironment, f64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut f64),
+    env: fmi3InstanceEnvironment,
+}
+
+// SAFETY: as for the logger: the importer's C function and its environment pointer, only
+// passed back to it, on the thread that called fmi3DoStep.
+unsafe impl Send for IntermediateUpdate {}
+unsafe impl Sync for IntermediateUpdate {}
+
+impl super::intermediate::Requester for IntermediateUpdate {
+    fn request_inputs(&self, time: f64) {
+        let (mut early, mut early_time) = (FMI3_FALSE, time);
+        // SAFETY: the importer promised a valid callback; the out-arguments are ours.
+        unsafe { (self.callback)(self.env, time, FMI3_TRUE, FMI3_FALSE, FMI3_FALSE, FMI3_FALSE, &mut early, &mut early_time) };
+    }
+}
+
+/// `eventModeUsed` needs `hasEventMode` (false here) and is refused, as the standard asks.
+/// `requiredIntermediateVariables` (continuous inputs, with an `intermediateUpdate`
+/// callback) are asked for at the end of every step: the FMI 3.0 way to an input linear in
+/// time over the step (FMI 2.0: `fmi2SetRealInputDerivatives`).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     instanceName: fmi3String,
@@ -102,20 +124,36 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     loggingOn: fmi3Boolean,
     eventModeUsed: fmi3Boolean,
     _earlyReturnAllowed: fmi3Boolean,
-    _requiredIntermediateVariables: *const fmi3ValueReference,
+    requiredIntermediateVariables: *const fmi3ValueReference,
     nRequiredIntermediateVariables: usize,
     instanceEnvironment: fmi3InstanceEnvironment,
     logMessage: fmi3LogMessageCallback,
-    _intermediateUpdate: fmi3IntermediateUpdateCallback,
+    intermediateUpdate: fmi3IntermediateUpdateCallback,
 ) -> fmi3Instance {
     let refuse = if eventModeUsed != FMI3_FALSE {
         Some("eventModeUsed = true but this FMU has no event mode (hasEventMode = false)".to_string())
-    } else if nRequiredIntermediateVariables > 0 {
-        Some(format!("{nRequiredIntermediateVariables} requiredIntermediateVariables but this FMU has no intermediate update"))
+    } else if nRequiredIntermediateVariables > 0 && intermediateUpdate.is_none() {
+        Some(format!("{nRequiredIntermediateVariables} requiredIntermediateVariables but intermediateUpdate is NULL"))
     } else {
         None
     };
-    instantiate(Interface::CoSimulation, instanceName, instantiationToken, loggingOn, instanceEnvironment, logMessage, refuse)
+    let c = instantiate(Interface::CoSimulation, instanceName, instantiationToken, loggingOn, instanceEnvironment, logMessage, refuse);
+    let (Some(callback), false) = (intermediateUpdate, c.is_null()) else { return c };
+    if nRequiredIntermediateVariables == 0 {
+        return c;
+    }
+    let required = with_instance(c, Call::Unsupported, || "fmi3InstantiateCoSimulation(requiredIntermediateVariables)".into(), |i| {
+        let vrs = unsafe { slice(requiredIntermediateVariables, nRequiredIntermediateVariables, "requiredIntermediateVariables")? };
+        let requester = Arc::new(IntermediateUpdate { callback, env: instanceEnvironment });
+        let set = i.set_intermediate_update(requester, vrs);
+        set.map(|_| Status::Ok).map_err(|why| format!("fmi3InstantiateCoSimulation: requiredIntermediateVariables: {why}"))
+    });
+    if required == Status::Ok as fmi3Status {
+        c
+    } else {
+        unregister(c);
+        std::ptr::null_mut()
+    }
 }
 
 /// Frees the instance once no call uses it; an unknown or already freed instance is ignored.
@@ -329,6 +367,8 @@ pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
 
 /// One step; never early, no event handling (no event mode), `lastSuccessfulTime` the end
 /// of an accepted step (else the time before it), `terminateSimulation` at the stop time.
+/// With required intermediate variables, the importer is asked for them at the end of the
+/// step, the instance unlocked meanwhile ([`super::intermediate`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3DoStep(
     instance: fmi3Instance,
@@ -340,17 +380,36 @@ pub unsafe extern "C" fn fmi3DoStep(
     earlyReturn: *mut fmi3Boolean,
     lastSuccessfulTime: *mut fmi3Float64,
 ) -> fmi3Status {
-    unsafe {
-        with_instance(instance, Call::DoStep, || format!("fmi3DoStep(currentCommunicationPoint={currentCommunicationPoint}, communicationStepSize={communicationStepSize})"), |i| {
-            let event = eventHandlingNeeded.as_mut().ok_or("eventHandlingNeeded is NULL")?;
-            let terminate = terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
-            let early = earlyReturn.as_mut().ok_or("earlyReturn is NULL")?;
-            let last = lastSuccessfulTime.as_mut().ok_or("lastSuccessfulTime is NULL")?;
-            (*event, *early) = (FMI3_FALSE, FMI3_FALSE);
-            let stepped = i.do_step(currentCommunicationPoint, communicationStepSize);
-            *last = i.last_successful_time();
-            *terminate = if i.wants_to_terminate() { FMI3_TRUE } else { FMI3_FALSE };
-            stepped.map(|_| Status::Ok)
-        })
-    }
+    let (t, h) = (currentCommunicationPoint, communicationStepSize);
+    let describe = || format!("fmi3DoStep(currentCommunicationPoint={t}, communicationStepSize={h})");
+    let outs = |i: &Instance| -> Result<(), String> {
+        let event = unsafe { eventHandlingNeeded.as_mut() }.ok_or("eventHandlingNeeded is NULL")?;
+        let terminate = unsafe { terminateSimulation.as_mut() }.ok_or("terminateSimulation is NULL")?;
+        let early = unsafe { earlyReturn.as_mut() }.ok_or("earlyReturn is NULL")?;
+        let last = unsafe { lastSuccessfulTime.as_mut() }.ok_or("lastSuccessfulTime is NULL")?;
+        (*event, *early) = (FMI3_FALSE, FMI3_FALSE);
+        *last = i.last_successful_time();
+        *terminate = if i.wants_to_terminate() { FMI3_TRUE } else { FMI3_FALSE };
+        Ok(())
+    };
+    let mut asked = None;
+    let first = with_instance(instance, Call::DoStep, describe, |i| {
+        outs(i)?;
+        match i.begin_step(t, h)? {
+            Some(ask) => asked = Some(ask),
+            None => {
+                let stepped = i.do_step(t, h);
+                outs(i)?;
+                stepped?;
+            }
+        }
+        OK
+    });
+    let Some((requester, p0)) = asked else { return first };
+    if guard(|| requester.request_inputs(t + h)).is_err() {}
+    with_instance(instance, Call::FinishStep, describe, |i| {
+        let stepped = i.finish_step(t, h, &p0);
+        outs(i)?;
+        stepped.map(|_| Status::Ok)
+    })
 }

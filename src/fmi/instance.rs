@@ -48,6 +48,9 @@ pub struct Instance {
     /// counter ([`fresh_handle`]), never reused, so a handle of another instance (of either
     /// model), of a freed instance, or a made-up one is never in this table.
     states: HashMap<u64, Snapshot>,
+    /// FMI 3.0 co-simulation: the importer's `intermediateUpdate` callback and the inputs
+    /// it may set in Intermediate Update Mode (see [`super::intermediate`]).
+    pub(super) intermediate: Option<(Arc<dyn super::intermediate::Requester>, Vec<u32>)>,
 }
 
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
@@ -76,6 +79,7 @@ impl Instance {
             model: fresh(),
             fresh,
             states: HashMap::new(),
+            intermediate: None,
         }
     }
 
@@ -278,6 +282,7 @@ impl Instance {
         let d = self.description();
         let mut checked = Vec::with_capacity(vrs.len());
         for (&v, &x) in vrs.iter().zip(values) {
+            self.settable_now(v)?;
             let var = match d.named(kind, v)? {
                 Named::Table(var) => var,
                 state => {
@@ -383,6 +388,15 @@ impl Instance {
     /// instance, as it did from a clock that summed the step sizes. The step may end past
     /// `stopTime` by the same slack and no more.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<(), Rejected> {
+        let end = self.check_step(t, h)?;
+        self.prepare()?;
+        self.model.step(t - self.clock.start, h)?;
+        self.clock.time = end;
+        Ok(())
+    }
+
+    /// The checks of [`Instance::do_step`], before anything moves: the end of the step.
+    pub(super) fn check_step(&self, t: f64, h: f64) -> Result<f64, Rejected> {
         if !(h.is_finite() && h > 0.0) {
             return Err(format!("communicationStepSize = {h} is invalid: it must be finite and > 0"));
         }
@@ -401,10 +415,7 @@ impl Instance {
         if let Some(stop) = self.clock.stop.filter(|&s| end > s + time_slack(h, s)) {
             return Err(format!("a step of {h} from {t} would end at {end}, past stopTime = {stop}"));
         }
-        self.prepare()?;
-        self.model.step(t - self.clock.start, h)?;
-        self.clock.time = end;
-        Ok(())
+        Ok(end)
     }
 
     /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`.
@@ -470,8 +481,11 @@ impl Instance {
             self.snapshot(h)?;
         }
         let (machine, clock, payload) = state::decode(self.description().model_identifier, bytes)?;
-        if !machine.belongs_to(self.interface) {
-            return Err(format!("serialized FMU state is in state {machine:?}, which a {:?} instance never is", self.interface));
+        // Intermediate Update Mode exists only inside an fmi3DoStep (no state is saved there),
+        // Configuration Mode only in FMI 3.0.
+        let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && !self.fmi3);
+        if transient || !machine.belongs_to(self.interface) {
+            return Err(format!("serialized FMU state is in state {machine:?}, which this instance ({:?}) is never saved in", self.interface));
         }
         let model = self.model.decode(payload)?;
         let handle = target.unwrap_or_else(fresh_handle);

@@ -24,6 +24,9 @@ pub enum Machine {
     ContinuousTimeMode,
     /// FMI 3.0: structural parameters may be set (entered from `Instantiated`).
     ConfigurationMode,
+    /// FMI 3.0 co-simulation: inside `fmi3DoStep`, while the importer's `intermediateUpdate`
+    /// runs; only the required intermediate inputs may be set.
+    IntermediateUpdate,
 }
 
 impl Machine {
@@ -41,6 +44,7 @@ impl Machine {
             Self::EventMode,
             Self::ContinuousTimeMode,
             Self::ConfigurationMode,
+            Self::IntermediateUpdate,
         ]
         .get(c as usize)
         .copied()
@@ -49,7 +53,7 @@ impl Machine {
     /// Whether an instance of `interface` can be in this state.
     pub fn belongs_to(self, interface: Interface) -> bool {
         match self {
-            Self::StepComplete => interface == Interface::CoSimulation,
+            Self::StepComplete | Self::IntermediateUpdate => interface == Interface::CoSimulation,
             Self::EventMode | Self::ContinuousTimeMode => interface == Interface::ModelExchange,
             _ => true,
         }

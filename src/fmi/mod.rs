@@ -29,6 +29,7 @@ pub mod ffi3_exchange;
 pub mod ffi3_other;
 pub mod frame;
 pub mod instance;
+pub mod intermediate;
 pub mod log;
 pub mod machine;
 pub mod model;

@@ -4,7 +4,7 @@
 //! references `table + k` and `table + count + k`, as in FMI 2.0), then the independent
 //! variable `time` (FMI 3.0 wants exactly one). `ModelStructure` names value references.
 
-use super::model::{Arrays, Causality, Description, Kind, Named, States};
+use super::model::{Arrays, Causality, Description, Kind, Named, States, Variability};
 use super::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 
@@ -74,12 +74,17 @@ pub fn fmi3(d: &Description) -> String {
     let _ = write!(
         x,
         "  <CoSimulation\n    modelIdentifier=\"{id}\"\n    canHandleVariableCommunicationStepSize=\"true\"\n    canGetAndSetFMUState=\"true\"\n    \
-         canSerializeFMUState=\"true\"\n    providesDirectionalDerivatives=\"true\"\n    hasEventMode=\"false\"/>\n\n"
+         canSerializeFMUState=\"true\"\n    providesDirectionalDerivatives=\"true\"\n    hasEventMode=\"false\"\n    \
+         providesIntermediateUpdate=\"true\"/>\n\n"
     );
     x.push_str(&units_categories_experiment(d));
     x.push_str("\n  <ModelVariables>\n");
     for v in d.variables {
-        let attrs = value_attributes(v);
+        let mut attrs = value_attributes(v);
+        if v.causality == Causality::Input && v.variability == Variability::Continuous {
+            // Settable in Intermediate Update Mode (the FMI 3.0 way to interpolated inputs).
+            attrs.push_str(" intermediateUpdate=\"true\"");
+        }
         let _ = writeln!(
             x,
             "    <{} name=\"{}\" valueReference=\"{}\" causality=\"{}\" variability=\"{}\"{attrs}\n      description=\"{}\"/>",
