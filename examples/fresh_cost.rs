@@ -26,7 +26,8 @@ use std::sync::Arc;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::variables::GUID;
+use wound_opening::fmi::wound::WoundModel;
+use wound_opening::fmi::wound::variables::GUID;
 
 const LAMBDA: u32 = 0;
 const R_INF: u32 = 2;
@@ -68,7 +69,7 @@ impl Logger for Silent {
 
 /// One step and read through the safe API, without the C boundary.
 fn step_without_guard() -> f64 {
-    let mut i = Instance::new("bench", Arc::new(Silent), false);
+    let mut i = Instance::new(WoundModel::fresh, "bench", Arc::new(Silent), false);
     let ok = |r: Result<((), Status), Status>| assert_eq!(r, Ok(((), Status::Ok)));
     ok(i.call(Call::SetupExperiment, String::new, |i| i.setup_experiment(Some(1e-10), 0.0, None)));
     ok(i.call(Call::EnterInitializationMode, String::new, |i| i.enter_initialization_mode()));

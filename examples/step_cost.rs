@@ -12,7 +12,7 @@ use std::ffi::CString;
 use std::io::Write;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::variables::GUID;
+use wound_opening::fmi::wound::variables::GUID;
 use wound_opening::solver::{Params, Scheme, Settings, Solver};
 
 const STEPS_TIMED: usize = 100_000;

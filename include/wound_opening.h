@@ -2,7 +2,7 @@
  * WoundOpening: wound opening in a thin viscoelastic tissue.
  *
  * Two C interfaces to one library (libwound_opening.so, or the FMU's WoundOpening.so):
- *   - the FMI 2.0 co-simulation functions fmi2*, for FMI masters;
+ *   - the FMI 2.0 functions fmi2* (co-simulation and Model Exchange), for FMI masters;
  *   - a direct API wo_* for programs without an FMI master: see "C API" in README.md.
  */
 
@@ -50,6 +50,15 @@ typedef struct {
     const fmi2StepFinished stepFinished;
     const fmi2ComponentEnvironment componentEnvironment;
 } fmi2CallbackFunctions;
+
+typedef struct {
+    fmi2Boolean newDiscreteStatesNeeded;
+    fmi2Boolean terminateSimulation;
+    fmi2Boolean nominalsOfContinuousStatesChanged;
+    fmi2Boolean valuesOfContinuousStatesChanged;
+    fmi2Boolean nextEventTimeDefined;
+    fmi2Real nextEventTime;
+} fmi2EventInfo;
 #endif /* fmi2FunctionTypes_h */
 
 
@@ -189,10 +198,10 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c,
                                         fmi2Real *dvUnknown);
 
 fmi2Status fmi2SetRealInputDerivatives(fmi2Component c,
-                                       const fmi2ValueReference *_vr,
-                                       size_t _nvr,
-                                       const fmi2Integer *_order,
-                                       const fmi2Real *_value);
+                                       const fmi2ValueReference *vr,
+                                       size_t nvr,
+                                       const fmi2Integer *order,
+                                       const fmi2Real *value);
 
 fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c,
                                         const fmi2ValueReference *_vr,
@@ -216,6 +225,29 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, fmi2StatusKind s, fmi2Integer *
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, fmi2StatusKind s, fmi2Boolean *value);
 
 fmi2Status fmi2GetStringStatus(fmi2Component c, fmi2StatusKind s, fmi2String *_value);
+
+fmi2Status fmi2EnterEventMode(fmi2Component c);
+
+fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *fmi2eventInfo);
+
+fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c);
+
+fmi2Status fmi2CompletedIntegratorStep(fmi2Component c,
+                                       fmi2Boolean _noSetFMUStatePriorToCurrentPoint,
+                                       fmi2Boolean *enterEventMode,
+                                       fmi2Boolean *terminateSimulation);
+
+fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time);
+
+fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real *x, size_t nx);
+
+fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real *derivatives, size_t nx);
+
+fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real *_eventIndicators, size_t ni);
+
+fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real *x, size_t nx);
+
+fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real *x_nominal, size_t nx);
 
 // Create a solver at t = 0 (just after the cut, in uniform tension) for lambda >= 0,
 // finite sigma and R_inf > 1, on the cheapest grid whose wound radius stays within

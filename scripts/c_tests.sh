@@ -2,13 +2,16 @@
 # The C programs of the test suite (tests/c), built with the system C compiler with
 # -Wall -Wextra -Werror and run under valgrind: any memory error or any leak (of any
 # kind, reachable included) fails. Builds what it needs: the release library and
-# target/fmu/WoundOpening.fmu.
+# target/fmu/WoundOpening.fmu and WoundOpening-fmi3.fmu.
 #
 #   fmi2_signatures  every exported FMI function has the standard's type (compile time)
 #   direct_api       the wo_* API, linked: lambda = 1 against the exact solution, bad input
 #   fmu_master       a minimal FMI 2.0 master, dlopen of the FMU's .so: same, through FMI
 #   fmu_misuse       a master that misbehaves: freed, NULL and forged instances, double
 #                    free, another instance's FMU states
+#   fmu3_master      an FMI 3.0 master, dlopen of WoundOpening-fmi3.fmu's .so: all 75
+#                    functions exported, co-simulation and Model Exchange against the exact
+#                    solution, every function it uses on NULL, made-up and freed instances
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -31,11 +34,20 @@ else
     python3 -m zipfile -e target/fmu/WoundOpening.fmu "$out/fmu"
 fi
 
+rm -rf "$out/fmu3"
+mkdir -p "$out/fmu3"
+if command -v unzip >/dev/null; then
+    unzip -q -o target/fmu/WoundOpening-fmi3.fmu -d "$out/fmu3"
+else
+    python3 -m zipfile -e target/fmu/WoundOpening-fmi3.fmu "$out/fmu3"
+fi
+
 lib="$PWD/target/release"
 "$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/fmi2_signatures.c -L"$lib" -lwound_opening -Wl,-rpath,"$lib" -o "$out/fmi2_signatures"
 "$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/direct_api.c -L"$lib" -lwound_opening -lm -Wl,-rpath,"$lib" -o "$out/direct_api"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_master.c -ldl -lm -o "$out/fmu_master"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_misuse.c -ldl -lm -o "$out/fmu_misuse"
+"$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu3_master.c -ldl -lm -o "$out/fmu3_master"
 
 memcheck=(valgrind -q --error-exitcode=1 --leak-check=full --show-leak-kinds=all --errors-for-leak-kinds=all
           --suppressions=tests/c/valgrind.supp)
@@ -51,4 +63,5 @@ run "$out/fmi2_signatures"
 run "$out/direct_api"
 run "$out/fmu_master" "$out/fmu"
 run "$out/fmu_misuse" "$out/fmu"
+run "$out/fmu3_master" "$out/fmu3"
 exit "$failed"

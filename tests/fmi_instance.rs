@@ -3,9 +3,10 @@
 //! tests/python.)
 
 use std::sync::{Arc, Mutex};
+use wound_opening::fmi::wound::WoundModel;
 use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
-use wound_opening::fmi::state::Machine;
-use wound_opening::fmi::variables::Vr;
+use wound_opening::fmi::machine::Machine;
+use wound_opening::fmi::wound::variables::Vr;
 
 #[derive(Clone, Default)]
 struct Collect(Arc<Mutex<Vec<(Status, String, String)>>>);
@@ -27,7 +28,7 @@ impl Collect {
 
 fn instance() -> (Instance, Collect) {
     let log = Collect::default();
-    (Instance::new("test", Arc::new(log.clone()), false), log)
+    (Instance::new(WoundModel::fresh, "test", Arc::new(log.clone()), false), log)
 }
 
 fn run<T>(i: &mut Instance, call: Call, body: impl FnOnce(&mut Instance) -> Result<T, String>) -> Result<T, Status> {

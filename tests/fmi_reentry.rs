@@ -11,6 +11,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::frame::{self, BUSY};
+use wound_opening::fmi::wound::WoundModel;
 use wound_opening::fmi::instance::{Instance, Logger, Status};
 use wound_opening::fmi::types::*;
 
@@ -58,7 +59,7 @@ impl Reentrant {
 
 /// A WoundOpening instance in the table with `logger`, logCalls on, initialized at 0.
 fn registered(logger: &Arc<Reentrant>) -> fmi2Component {
-    let c = frame::register(Instance::new("reentry", logger.clone(), true));
+    let c = frame::register(Instance::new(WoundModel::fresh, "reentry", logger.clone(), true));
     logger.component.store(c as usize, Ordering::SeqCst);
     unsafe {
         assert_eq!(fmi2EnterInitializationMode(c), OK);

@@ -6,6 +6,7 @@
 
 use std::ffi::CString;
 use wound_opening::fmi::ffi::*;
+use wound_opening::fmi::ffi_exchange::*;
 use wound_opening::fmi::types::*;
 
 pub const OK: fmi2Status = 0;
@@ -104,6 +105,16 @@ pub fn every_call(c: fmi2Component) -> Vec<(&'static str, fmi2Status)> {
             ("fmi2GetIntegerStatus", fmi2GetIntegerStatus(c, FMI2_TERMINATED, i.as_mut_ptr())),
             ("fmi2GetBooleanStatus", fmi2GetBooleanStatus(c, FMI2_TERMINATED, b.as_mut_ptr())),
             ("fmi2GetStringStatus", fmi2GetStringStatus(c, FMI2_TERMINATED, s.as_mut_ptr())),
+            ("fmi2EnterEventMode", fmi2EnterEventMode(c)),
+            ("fmi2NewDiscreteStates", fmi2NewDiscreteStates(c, &mut std::mem::zeroed())),
+            ("fmi2EnterContinuousTimeMode", fmi2EnterContinuousTimeMode(c)),
+            ("fmi2CompletedIntegratorStep", fmi2CompletedIntegratorStep(c, 1, &mut b[0], &mut st)),
+            ("fmi2SetTime", fmi2SetTime(c, 0.0)),
+            ("fmi2SetContinuousStates", fmi2SetContinuousStates(c, r.as_ptr(), 1)),
+            ("fmi2GetDerivatives", fmi2GetDerivatives(c, r.as_mut_ptr(), 1)),
+            ("fmi2GetEventIndicators", fmi2GetEventIndicators(c, r.as_mut_ptr(), 1)),
+            ("fmi2GetContinuousStates", fmi2GetContinuousStates(c, r.as_mut_ptr(), 1)),
+            ("fmi2GetNominalsOfContinuousStates", fmi2GetNominalsOfContinuousStates(c, r.as_mut_ptr(), 1)),
             ("fmi2Terminate", fmi2Terminate(c)),
             ("fmi2Reset", fmi2Reset(c)),
         ]

@@ -11,17 +11,21 @@ use std::sync::{Arc, Mutex};
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::frame;
 use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
-use wound_opening::fmi::model::{Description, FmuModel, Rejected, Variable};
+use wound_opening::fmi::model::{Description, Experiment, FmuModel, Rejected, Variable};
 
 static VARIABLES: [Variable; 1] = [Variable::output("steps", 0, "1", "Steps taken")];
 static DESCRIPTION: Description = Description {
     model_identifier: "Warner",
     guid: "{test-only}",
-    xml: "",
+    summary: "",
+    about: "",
     variables: &VARIABLES,
     outputs: &[(0, &[])],
     initial_unknowns: &[],
     capabilities: &[],
+    default_experiment: Experiment { start: 0.0, stop: 1.0, step: 0.1, tolerance: 1e-10 },
+    states: None,
+    arrays: None,
 };
 
 /// Counts its steps; after every second step it has a warning, and from the fifth step on
@@ -87,7 +91,7 @@ impl Logger for Collect {
 }
 
 fn warner(log: &Arc<Collect>) -> Instance {
-    let mut i = Instance::of_model(Warner::fresh, "warner", log.clone(), false);
+    let mut i = Instance::new(Warner::fresh, "warner", log.clone(), false);
     i.call(Call::EnterInitializationMode, String::new, |i| i.enter_initialization_mode()).unwrap();
     i.call(Call::ExitInitializationMode, String::new, |i| i.exit_initialization_mode()).unwrap();
     i

@@ -1,28 +1,19 @@
-//! Each `modelDescription.xml` (WoundOpening's and PurseString's) is written by hand;
-//! the variable tables in `src/fmi/{wound,purse}/variables.rs` are what the code uses.
-//! This test parses each XML and fails on any disagreement with its table.
+//! The generated `modelDescription.xml` of each model ([`wound_opening::fmi::xml`]) parsed
+//! back and compared with the model's table: the generator writes what the code uses
+//! (fmpy's validation of the archives is in tests/python/test_model_description.py).
 
 use quick_xml::Reader;
 use quick_xml::events::Event;
 use std::collections::BTreeMap;
 use wound_opening::fmi::MODELS;
 use wound_opening::fmi::model::{Causality, Description, LOG_CATEGORIES};
+use wound_opening::fmi::xml;
 
 type Elements = Vec<(String, BTreeMap<String, String>)>;
 
-/// Both models' descriptions, each with the XML file read from disk (not the copy
-/// compiled in), so that the test reads what the package step ships.
+/// Both models' descriptions with their generated FMI 2.0 XML.
 fn models() -> Vec<(&'static Description, String)> {
-    let files = ["modelDescription/modelDescription.xml", "modelDescription/PurseString/modelDescription.xml"];
-    MODELS
-        .iter()
-        .zip(files)
-        .map(|((d, _), f)| {
-            let xml = std::fs::read_to_string(format!("{}/{f}", env!("CARGO_MANIFEST_DIR"))).expect("readable XML");
-            assert_eq!(xml, d.xml, "{f} is the file compiled into {}", d.model_identifier);
-            (*d, xml)
-        })
-        .collect()
+    MODELS.iter().map(|(d, _)| (*d, xml::fmi2(d))).collect()
 }
 
 /// Every element of the document as (path, attributes), in document order.
@@ -77,7 +68,10 @@ fn identity_and_capabilities_match_the_code() {
         for (flag, value) in d.capabilities {
             assert_eq!(cs.get(*flag).map(String::as_str), Some(*value), "{}: CoSimulation/@{flag}", d.model_identifier);
         }
-        assert!(find(&all, "fmiModelDescription/ModelExchange").is_empty(), "co-simulation only");
+        let me = find(&all, "fmiModelDescription/ModelExchange");
+        assert_eq!(me.len(), 1, "both interfaces in one archive");
+        assert_eq!(me[0]["modelIdentifier"], d.model_identifier, "one library for both");
+        assert_eq!(me[0]["completedIntegratorStepNotNeeded"], "true", "no events");
     }
     let guids: Vec<&str> = MODELS.iter().map(|(d, _)| d.guid).collect();
     assert_ne!(guids[0], guids[1], "the shared object tells the models apart by GUID");
@@ -97,17 +91,30 @@ fn log_categories_match_the_code() {
 fn variables_match_the_table_one_for_one() {
     for (d, xml) in models() {
         let all = elements(&xml);
-        let svs = find(&all, "fmiModelDescription/ModelVariables/ScalarVariable");
-        assert_eq!(svs.len(), d.variables.len(), "number of ScalarVariables");
+        let all_svs = find(&all, "fmiModelDescription/ModelVariables/ScalarVariable");
+        let nx = d.state_count();
+        assert_eq!(all_svs.len(), d.variables.len() + 2 * nx, "the table, the states and their derivatives");
         // The type element of each ScalarVariable, in document order.
-        let typed: Vec<(&str, &BTreeMap<String, String>)> = all
+        let all_typed: Vec<(&str, &BTreeMap<String, String>)> = all
             .iter()
             .filter_map(|(p, a)| p.strip_prefix("fmiModelDescription/ModelVariables/ScalarVariable/").map(|k| (k, a)))
             .collect();
-        assert_eq!(typed.len(), d.variables.len(), "one type element per variable");
+        assert_eq!(all_typed.len(), all_svs.len(), "one type element per variable");
+        let (svs, states) = all_svs.split_at(d.variables.len());
+        let (typed, state_types) = all_typed.split_at(d.variables.len());
+        for (k, (sv, (kind, ty))) in states.iter().zip(state_types).enumerate() {
+            let vr = d.variables.len() + k;
+            assert_eq!((sv["valueReference"].as_str(), *kind), (vr.to_string().as_str(), "Real"));
+            assert_eq!((sv["causality"].as_str(), sv["initial"].as_str()), ("local", "calculated"));
+            if k >= nx {
+                let state = vr - nx + 1;
+                assert_eq!(ty["derivative"], state.to_string(), "derivative of index {state}");
+                assert_eq!(sv["name"], format!("der({})", all_svs[state - 1]["name"]));
+            }
+        }
         let units: Vec<&str> =
             find(&all, "fmiModelDescription/UnitDefinitions/Unit").iter().map(|a| a["name"].as_str()).collect();
-        for (i, ((sv, (kind, ty)), var)) in svs.iter().zip(&typed).zip(d.variables).enumerate() {
+        for (i, ((sv, (kind, ty)), var)) in svs.iter().zip(typed).zip(d.variables).enumerate() {
             assert_eq!(var.value_reference as usize, i, "{}: value references are table indices", var.name);
             assert_eq!(sv["name"], var.name);
             assert_eq!(*kind, var.kind.as_str(), "{}", var.name);
@@ -136,6 +143,7 @@ fn units_are_defined_in_si_base_units() {
         ("um", &[("m", "1"), ("factor", "1e-6")]),
         ("um/s", &[("m", "1"), ("s", "-1"), ("factor", "1e-6")]),
         ("pN", &[("kg", "1"), ("m", "1"), ("s", "-2"), ("factor", "1e-12")]),
+        ("1/s", &[("s", "-1")]),
     ];
     for (d, xml) in models() {
         let all = elements(&xml);
@@ -167,15 +175,35 @@ fn model_structure_matches_the_declared_dependencies() {
         let name = |vr: u32| d.variables[vr as usize].name;
         let outputs = find(&all, "fmiModelDescription/ModelStructure/Outputs/Unknown");
         assert_eq!(outputs.len(), d.outputs.len());
+        // Each output on its inputs, then on every state (in Model Exchange).
+        let (table, nx) = (d.variables.len() as u32, d.state_count() as u32);
+        let states: Vec<(u32, &str)> = (table..table + nx).map(|v| (v, "fixed")).collect();
         for (xml, (vr, deps)) in outputs.iter().zip(d.outputs) {
             assert_eq!(xml["index"], index(*vr));
+            let deps: Vec<(u32, &str)> = deps.iter().copied().chain(states.iter().copied()).collect();
             let want: Vec<String> = deps.iter().map(|(v, _)| index(*v)).collect();
             assert_eq!(xml["dependencies"], want.join(" "), "{}", name(*vr));
             let kinds: Vec<&str> = deps.iter().map(|(_, k)| *k).collect();
             assert_eq!(xml.get("dependenciesKind").map(String::as_str).unwrap_or(""), kinds.join(" "));
         }
+        // Each derivative on the inputs of the model's table and its own state.
+        let derivatives = find(&all, "fmiModelDescription/ModelStructure/Derivatives/Unknown");
+        assert_eq!(derivatives.len(), nx as usize);
+        if let Some(s) = d.states {
+            for (k, xml) in derivatives.iter().enumerate() {
+                let k = k as u32;
+                assert_eq!(xml["index"], index(table + nx + k));
+                let mut want: Vec<String> = s.input_dependencies.iter().map(|(v, _)| index(*v)).collect();
+                want.push(index(table + k));
+                assert_eq!(xml["dependencies"], want.join(" "));
+            }
+        }
+        // The table's initial unknowns, then the states, then the derivatives.
         let initial = find(&all, "fmiModelDescription/ModelStructure/InitialUnknowns/Unknown");
-        assert_eq!(initial.len(), d.initial_unknowns.len());
+        assert_eq!(initial.len(), d.initial_unknowns.len() + 2 * nx as usize);
+        for (k, xml) in initial[d.initial_unknowns.len()..].iter().enumerate() {
+            assert_eq!(xml["index"], index(table + k as u32));
+        }
         for (xml, (vr, deps)) in initial.iter().zip(d.initial_unknowns) {
             assert_eq!(xml["index"], index(*vr));
             let want: Vec<String> = deps.iter().map(|v| index(*v)).collect();

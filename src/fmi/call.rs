@@ -1,7 +1,9 @@
-//! The FMI calls an instance answers: in which states of the FMI 2.0 co-simulation state
-//! machine each is allowed (section 4.2.4), and its name for messages.
+//! The FMI calls an instance answers: in which states of the FMI 2.0 state machines each
+//! is allowed (co-simulation, section 4.2.4; Model Exchange, section 3.2.3, as the
+//! Reference-FMUs' masks in `fmi2Functions.c` read it), for which interface type, and its
+//! name for messages.
 
-use super::state::Machine;
+use super::machine::{Interface, Machine};
 
 /// The FMI calls, for the state-machine check and the call log.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,24 +27,76 @@ pub enum Call {
     GetDirectionalDerivative,
     SetRealInputDerivatives,
     GetRealOutputDerivatives,
+    EnterEventMode,
+    NewDiscreteStates,
+    EnterContinuousTimeMode,
+    CompletedIntegratorStep,
+    SetTime,
+    SetContinuousStates,
+    GetDerivatives,
+    GetEventIndicators,
+    GetContinuousStates,
+    GetNominalsOfContinuousStates,
+    /// FMI 3.0: `fmi3GetNumberOfContinuousStates`, `fmi3GetNumberOfEventIndicators`.
+    GetNumberOf,
+    /// FMI 3.0: the second half of an `fmi3DoStep` with intermediate update.
+    FinishStep,
+    /// FMI 3.0 Configuration Mode (structural parameters).
+    EnterConfigurationMode,
+    ExitConfigurationMode,
+    /// FMI 3.0 functions this FMU does not provide (clocks, configuration, adjoints, ...):
+    /// allowed in every state, refused by their body with the reason.
+    Unsupported,
 }
 
 impl Call {
-    /// States in which FMI 2.0 (section 4.2.4) allows the call.
+    /// The interface type the call belongs to (`None`: both).
+    pub fn interface(self) -> Option<Interface> {
+        use Call::*;
+        match self {
+            DoStep | FinishStep | CancelStep | GetStatus | SetRealInputDerivatives | GetRealOutputDerivatives => Some(Interface::CoSimulation),
+            EnterEventMode | NewDiscreteStates | EnterContinuousTimeMode | CompletedIntegratorStep | SetTime
+            | SetContinuousStates | GetDerivatives | GetEventIndicators | GetContinuousStates
+            | GetNominalsOfContinuousStates | GetNumberOf => Some(Interface::ModelExchange),
+            _ => None,
+        }
+    }
+
+    /// States in which FMI 2.0 allows the call.
     pub fn allowed(self, m: Machine) -> bool {
         use Machine::*;
+        if m == IntermediateUpdate {
+            // FMI 3.0, section 4.2.4: the importer sets the required intermediate inputs
+            // from inside the callback (getting them is not allowed: we pass
+            // intermediateVariableGetAllowed = false); the step then finishes.
+            return matches!(self, Call::Set | Call::FinishStep);
+        }
         if m == Error {
             // After an internal failure only recovery and inspection remain.
             return matches!(
                 self,
                 Call::SetDebugLogging | Call::Reset | Call::Get | Call::GetFmuState | Call::SetFmuState | Call::FreeFmuState
-                    | Call::SerializeFmuState | Call::DeSerializeFmuState
+                    | Call::SerializeFmuState | Call::DeSerializeFmuState | Call::GetDerivatives | Call::GetEventIndicators
+                    | Call::GetContinuousStates | Call::GetNominalsOfContinuousStates
             );
         }
         match self {
             Call::SetupExperiment | Call::EnterInitializationMode => m == Instantiated,
             Call::ExitInitializationMode => m == InitializationMode,
-            Call::Terminate | Call::DoStep => m == StepComplete,
+            Call::DoStep => m == StepComplete,
+            Call::Terminate => matches!(m, StepComplete | EventMode | ContinuousTimeMode),
+            Call::EnterEventMode | Call::SetTime => matches!(m, EventMode | ContinuousTimeMode),
+            Call::NewDiscreteStates | Call::EnterContinuousTimeMode => m == EventMode,
+            Call::CompletedIntegratorStep | Call::SetContinuousStates => m == ContinuousTimeMode,
+            Call::GetEventIndicators | Call::GetContinuousStates => {
+                matches!(m, InitializationMode | EventMode | ContinuousTimeMode | Terminated)
+            }
+            Call::GetDerivatives => matches!(m, EventMode | ContinuousTimeMode | Terminated),
+            Call::GetNominalsOfContinuousStates => matches!(m, Instantiated | EventMode | ContinuousTimeMode | Terminated),
+            Call::GetNumberOf | Call::Unsupported => true,
+            Call::EnterConfigurationMode => m == Instantiated,
+            Call::FinishStep => m == IntermediateUpdate,
+            Call::ExitConfigurationMode => m == ConfigurationMode,
             Call::SetDebugLogging
             | Call::Reset
             | Call::GetFmuState
@@ -50,8 +104,9 @@ impl Call {
             | Call::FreeFmuState
             | Call::SerializeFmuState
             | Call::DeSerializeFmuState => true,
-            Call::Get | Call::GetDirectionalDerivative => m != Instantiated,
-            Call::Set | Call::SetRealInputDerivatives => m != Terminated,
+            Call::Get | Call::GetDirectionalDerivative => !matches!(m, Instantiated | IntermediateUpdate),
+            Call::Set => m != Terminated,
+            Call::SetRealInputDerivatives => matches!(m, Instantiated | InitializationMode | StepComplete),
             Call::GetStatus | Call::GetRealOutputDerivatives => matches!(m, StepComplete | Terminated),
             Call::CancelStep => false,
         }
@@ -78,6 +133,39 @@ impl Call {
             Call::GetDirectionalDerivative => "fmi2GetDirectionalDerivative",
             Call::SetRealInputDerivatives => "fmi2SetRealInputDerivatives",
             Call::GetRealOutputDerivatives => "fmi2GetRealOutputDerivatives",
+            Call::EnterEventMode => "fmi2EnterEventMode",
+            Call::NewDiscreteStates => "fmi2NewDiscreteStates",
+            Call::EnterContinuousTimeMode => "fmi2EnterContinuousTimeMode",
+            Call::CompletedIntegratorStep => "fmi2CompletedIntegratorStep",
+            Call::SetTime => "fmi2SetTime",
+            Call::SetContinuousStates => "fmi2SetContinuousStates",
+            Call::GetDerivatives => "fmi2GetDerivatives",
+            Call::GetEventIndicators => "fmi2GetEventIndicators",
+            Call::GetContinuousStates => "fmi2GetContinuousStates",
+            Call::GetNominalsOfContinuousStates => "fmi2GetNominalsOfContinuousStates",
+            Call::GetNumberOf => "fmi2GetNumberOf*",
+            Call::EnterConfigurationMode => "fmi2EnterConfigurationMode",
+            Call::FinishStep => "fmi2DoStep",
+            Call::ExitConfigurationMode => "fmi2ExitConfigurationMode",
+            Call::Unsupported => "fmi2",
+        }
+    }
+
+    /// The FMI 3.0 name, where it is not the FMI 2.0 one with `fmi3` for `fmi2`.
+    pub fn fmi3_name(self) -> String {
+        match self {
+            Call::SetupExperiment | Call::EnterInitializationMode => "fmi3EnterInitializationMode".into(),
+            Call::Get => "fmi3Get*".into(),
+            Call::Set => "fmi3Set*".into(),
+            Call::GetFmuState => "fmi3GetFMUState".into(),
+            Call::SetFmuState => "fmi3SetFMUState".into(),
+            Call::FreeFmuState => "fmi3FreeFMUState".into(),
+            Call::SerializeFmuState => "fmi3SerializeFMUState".into(),
+            Call::DeSerializeFmuState => "fmi3DeserializeFMUState".into(),
+            Call::NewDiscreteStates => "fmi3UpdateDiscreteStates".into(),
+            Call::GetDerivatives => "fmi3GetContinuousStateDerivatives".into(),
+            Call::GetRealOutputDerivatives => "fmi3GetOutputDerivatives".into(),
+            other => other.fmi_name().replacen("fmi2", "fmi3", 1),
         }
     }
 }

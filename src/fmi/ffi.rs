@@ -6,7 +6,7 @@
 
 use super::frame::{CallbackLogger, register, slice, slice_mut, text, unregister, with_instance};
 use crate::boundary::guard;
-use super::instance::{Call, Instance, Status};
+use super::instance::{Call, Instance, Interface, Status};
 use super::types::*;
 use super::MODELS;
 use std::ffi::{c_char, CString};
@@ -59,16 +59,18 @@ pub unsafe extern "C" fn fmi2Instantiate(
             None
         };
         let Some(name) = name else { return fail("instanceName is NULL".into()) };
-        if fmuType != FMI2_CO_SIMULATION {
-            return fail(format!("fmuType = {fmuType}: this FMU supports co-simulation (1) only"));
-        }
+        let interface = match fmuType {
+            FMI2_CO_SIMULATION => Interface::CoSimulation,
+            FMI2_MODEL_EXCHANGE => Interface::ModelExchange,
+            other => return fail(format!("fmuType = {other}: this FMU supports Model Exchange (0) and co-simulation (1)")),
+        };
         let guid = unsafe { text(fmuGUID) };
         let Some(fresh) = guid.as_deref().and_then(super::model_for_guid) else {
             let known: Vec<String> = MODELS.iter().map(|(d, _)| format!("{} ({})", d.guid, d.model_identifier)).collect();
             return fail(format!("Expected GUID {} but was {}", known.join(" or "), guid.as_deref().unwrap_or("NULL")));
         };
         let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
-        Some(register(Instance::of_model(fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))
+        Some(register(Instance::of_interface(interface, fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))
     });
     made.ok().flatten().unwrap_or(std::ptr::null_mut())
 }
@@ -306,8 +308,15 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: fmi2Component, _vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer, _value: *const fmi2Real) -> fmi2Status {
-    with_instance(c, Call::SetRealInputDerivatives, || "fmi2SetRealInputDerivatives".into(), |_| not_supported("fmi2SetRealInputDerivatives (canInterpolateInputs)"))
+pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, order: *const fmi2Integer, value: *const fmi2Real) -> fmi2Status {
+    unsafe {
+        with_instance(c, Call::SetRealInputDerivatives, || format!("fmi2SetRealInputDerivatives(nvr={nvr})"), |i| {
+            let vr = slice(vr, nvr, "vr")?;
+            let order = slice(order, nvr, "order")?;
+            let value = slice(value, nvr, "value")?;
+            i.set_real_input_derivatives(vr, order, value).map(|_| Status::Ok)
+        })
+    }
 }
 
 #[unsafe(no_mangle)]

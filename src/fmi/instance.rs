@@ -1,5 +1,6 @@
-//! One FMU instance in safe Rust: the FMI 2.0 co-simulation state machine, the variables,
-//! FMU states and logging. It knows nothing of C: the `ffi` layer converts pointers.
+//! One FMU instance in safe Rust: the FMI 2.0 state machine (co-simulation here, Model
+//! Exchange in [`super::exchange`]), the variables, FMU states and logging. It knows
+//! nothing of C: the `ffi` layer converts pointers.
 //!
 //! Every call goes through [`Instance::call`]: log the call (category `logCalls`), check
 //! that it is allowed in the current state, run it. A call that is rejected (not allowed
@@ -11,9 +12,9 @@ pub use super::call::Call;
 pub use super::log::{Logger, Status};
 pub use super::model::Rejected;
 use super::log::Log;
-use super::model::{Causality, Description, FmuModel, Kind, Variability};
-pub use super::state::{Clock, time_slack};
-use super::state::{self, Machine};
+use super::model::{Causality, Description, FmuModel, Kind, Named, Variability};
+pub use super::machine::{Clock, Interface, Machine, time_slack};
+use super::state;
 use crate::boundary::registry::fresh_handle;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -35,35 +36,50 @@ impl Clone for Snapshot {
 pub struct Instance {
     name: String,
     log: Log,
-    machine: Machine,
-    clock: Clock,
-    model: Box<dyn FmuModel>,
+    pub(super) interface: Interface,
+    /// FMI 3.0 (its function names in messages), else FMI 2.0.
+    fmi3: bool,
+    pub(super) machine: Machine,
+    pub(super) clock: Clock,
+    pub(super) model: Box<dyn FmuModel>,
     /// A fresh model, for `fmi2Reset`.
     fresh: fn() -> Box<dyn FmuModel>,
     /// FMU states handed to the master, by handle. Handles come from the process-wide
     /// counter ([`fresh_handle`]), never reused, so a handle of another instance (of either
     /// model), of a freed instance, or a made-up one is never in this table.
     states: HashMap<u64, Snapshot>,
+    /// FMI 3.0 co-simulation: the importer's `intermediateUpdate` callback and the inputs
+    /// it may set in Intermediate Update Mode (see [`super::intermediate`]).
+    pub(super) intermediate: Option<(Arc<dyn super::intermediate::Requester>, Vec<u32>)>,
 }
 
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
 
 impl Instance {
-    /// An instance of the wound-opening model.
-    pub fn new(name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
-        Self::of_model(super::wound::WoundModel::fresh, name, logger, logging_on)
+    /// A co-simulation instance of the model that `fresh` makes.
+    pub fn new(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
+        Self::of_interface(Interface::CoSimulation, fresh, name, logger, logging_on)
     }
 
-    /// An instance of the model that `fresh` makes.
-    pub fn of_model(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
+    /// An instance of `interface` of the model that `fresh` makes.
+    pub fn of_interface(
+        interface: Interface,
+        fresh: fn() -> Box<dyn FmuModel>,
+        name: &str,
+        logger: Arc<dyn Logger>,
+        logging_on: bool,
+    ) -> Self {
         Self {
             name: name.to_owned(),
             log: Log::new(logger, logging_on),
+            interface,
+            fmi3: false,
             machine: Machine::Instantiated,
             clock: FRESH_CLOCK,
             model: fresh(),
             fresh,
             states: HashMap::new(),
+            intermediate: None,
         }
     }
 
@@ -78,6 +94,27 @@ impl Instance {
 
     pub fn machine(&self) -> Machine {
         self.machine
+    }
+
+    pub fn interface(&self) -> Interface {
+        self.interface
+    }
+
+    /// An instance made by the FMI 3.0 functions: the same machine and model, its calls
+    /// named `fmi3*` in messages.
+    pub fn fmi3(mut self) -> Self {
+        self.fmi3 = true;
+        self
+    }
+
+    /// Whether the FMU has no computed values yet: only start values can be read.
+    pub(super) fn before_initialization(&self) -> bool {
+        matches!(self.machine, Machine::Instantiated | Machine::ConfigurationMode)
+    }
+
+    /// The name of `call` in this instance's FMI version.
+    pub fn name_of(&self, call: Call) -> String {
+        if self.fmi3 { call.fmi3_name().to_string() } else { call.fmi_name().to_string() }
     }
 
     pub fn description(&self) -> &'static Description {
@@ -116,17 +153,25 @@ impl Instance {
         if self.log.calls_on() {
             self.log.call(&describe());
         }
-        if !call.allowed(self.machine) {
-            self.log_error(&format!("{} is not allowed in state {:?}", call.fmi_name(), self.machine));
+        let name = self.name_of(call);
+        if let Some(only) = call.interface().filter(|&i| i != self.interface) {
+            self.log_error(&format!("{name} is a {only:?} function but this instance is {:?}", self.interface));
+            return Err(Status::Error);
+        }
+        // FMI 3.0 (section 2.3.2) also lets fmi3Get* read start values in Instantiated and
+        // Configuration Mode (fmi3::arrays refuses outputs and states there).
+        let start_values = self.fmi3 && call == Call::Get && matches!(self.machine, Machine::Instantiated | Machine::ConfigurationMode);
+        if !(call.allowed(self.machine) || start_values) {
+            self.log_error(&format!("{name} is not allowed in state {:?}", self.machine));
             return Err(Status::Error);
         }
         let value = body(self).map_err(|why| {
-            self.log_error(&format!("{}: {why}", call.fmi_name()));
+            self.log_error(&format!("{name}: {why}"));
             Status::Error
         })?;
         match self.model.take_warning() {
             Some(warning) => {
-                self.log.warning(&format!("{}: {warning}", call.fmi_name()));
+                self.log.warning(&format!("{name}: {warning}"));
                 Ok((value, Status::Warning))
             }
             None => Ok((value, Status::Ok)),
@@ -158,9 +203,17 @@ impl Instance {
         Ok(())
     }
 
+    /// Into `StepComplete` (co-simulation) or `EventMode` (Model Exchange, once the model
+    /// says its parameters make an ODE).
     pub fn exit_initialization_mode(&mut self) -> Result<(), Rejected> {
         self.prepare()?;
-        self.machine = Machine::StepComplete;
+        self.machine = match self.interface {
+            Interface::CoSimulation => Machine::StepComplete,
+            Interface::ModelExchange => {
+                self.model.check_model_exchange()?;
+                Machine::EventMode
+            }
+        };
         Ok(())
     }
 
@@ -177,7 +230,7 @@ impl Instance {
         Ok(())
     }
 
-    fn prepare(&mut self) -> Result<(), Rejected> {
+    pub(super) fn prepare(&mut self) -> Result<(), Rejected> {
         if let Some(text) = self.model.prepare()? {
             self.log.call(&text);
         }
@@ -187,15 +240,28 @@ impl Instance {
     /// Values of the listed variables, all of type `kind` (Integers are exact in f64).
     fn get_values(&mut self, kind: Kind, vrs: &[u32]) -> Result<Vec<f64>, Rejected> {
         let d = self.description();
-        let mut needs_model = false;
+        let mut named = Vec::with_capacity(vrs.len());
         for &v in vrs {
-            needs_model |= d.typed(kind, v)?.causality == Causality::Output;
+            named.push(d.named(kind, v)?);
         }
-        if needs_model {
-            self.prepare()?;
+        let computed = |n: &Named| !matches!(n, Named::Table(v) if v.causality != Causality::Output);
+        if !named.iter().any(computed) {
+            let t = self.clock.since_start();
+            return Ok(vrs.iter().map(|&v| self.model.get(v, t)).collect());
         }
+        self.prepare()?;
         let t = self.clock.since_start();
-        Ok(vrs.iter().map(|&v| self.model.get(v, t)).collect())
+        let states = named.iter().any(|n| matches!(n, Named::State(_))).then(|| self.model.continuous_states());
+        let rates = named.iter().any(|n| matches!(n, Named::Derivative(_))).then(|| self.model.derivatives(t));
+        Ok(vrs
+            .iter()
+            .zip(&named)
+            .map(|(&v, n)| match n {
+                Named::Table(_) => self.model.get(v, t),
+                Named::State(k) => states.as_ref().map_or(f64::NAN, |x| x[*k]),
+                Named::Derivative(k) => rates.as_ref().map_or(f64::NAN, |x| x[*k]),
+            })
+            .collect())
     }
 
     pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Result<(), Rejected> {
@@ -216,7 +282,16 @@ impl Instance {
         let d = self.description();
         let mut checked = Vec::with_capacity(vrs.len());
         for (&v, &x) in vrs.iter().zip(values) {
-            let var = d.typed(kind, v)?;
+            self.settable_now(v)?;
+            let var = match d.named(kind, v)? {
+                Named::Table(var) => var,
+                state => {
+                    let name = d.state_name(state);
+                    return Err(format!(
+                        "{name} (value reference {v}) is a continuous state or derivative: states are set with fmi2SetContinuousStates"
+                    ));
+                }
+            };
             let fixed_now = var.variability == Variability::Fixed
                 && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
             if var.causality == Causality::Output {
@@ -237,6 +312,29 @@ impl Instance {
     /// `fmi2SetReal`.
     pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
         self.set_values(Kind::Real, vrs, values)
+    }
+
+    /// `fmi2SetRealInputDerivatives`: first derivatives of Real inputs (order 1 only,
+    /// `maxInputDerivativeOrder` being 1), all checked before any is stored. The input is
+    /// then `value + rate (t - t_now)` over the next steps, until `fmi2SetReal` sets it
+    /// again (which resets its rate to 0).
+    pub fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], rates: &[f64]) -> Result<(), Rejected> {
+        let d = self.description();
+        for ((&v, &order), &rate) in vrs.iter().zip(orders).zip(rates) {
+            let var = d.typed(Kind::Real, v)?;
+            if var.causality != Causality::Input {
+                return Err(format!("{} (value reference {v}) is not an input", var.name));
+            }
+            if order != 1 {
+                return Err(format!("order = {order} for {} is invalid: this FMU interpolates linearly (order 1 only)", var.name));
+            }
+            if !rate.is_finite() {
+                return Err(format!("the derivative of {} = {rate} is invalid: it must be finite", var.name));
+            }
+            self.model.check_input_rate(v, rate)?;
+        }
+        vrs.iter().zip(rates).for_each(|(&v, &rate)| self.model.set_input_rate(v, rate));
+        Ok(())
     }
 
     /// `fmi2SetInteger`.
@@ -290,6 +388,15 @@ impl Instance {
     /// instance, as it did from a clock that summed the step sizes. The step may end past
     /// `stopTime` by the same slack and no more.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<(), Rejected> {
+        let end = self.check_step(t, h)?;
+        self.prepare()?;
+        self.model.step(t - self.clock.start, h)?;
+        self.clock.time = end;
+        Ok(())
+    }
+
+    /// The checks of [`Instance::do_step`], before anything moves: the end of the step.
+    pub(super) fn check_step(&self, t: f64, h: f64) -> Result<f64, Rejected> {
         if !(h.is_finite() && h > 0.0) {
             return Err(format!("communicationStepSize = {h} is invalid: it must be finite and > 0"));
         }
@@ -308,10 +415,7 @@ impl Instance {
         if let Some(stop) = self.clock.stop.filter(|&s| end > s + time_slack(h, s)) {
             return Err(format!("a step of {h} from {t} would end at {end}, past stopTime = {stop}"));
         }
-        self.prepare()?;
-        self.model.step(t - self.clock.start, h)?;
-        self.clock.time = end;
-        Ok(())
+        Ok(end)
     }
 
     /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`.
@@ -377,6 +481,12 @@ impl Instance {
             self.snapshot(h)?;
         }
         let (machine, clock, payload) = state::decode(self.description().model_identifier, bytes)?;
+        // Intermediate Update Mode exists only inside an fmi3DoStep (no state is saved there),
+        // Configuration Mode only in FMI 3.0.
+        let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && !self.fmi3);
+        if transient || !machine.belongs_to(self.interface) {
+            return Err(format!("serialized FMU state is in state {machine:?}, which this instance ({:?}) is never saved in", self.interface));
+        }
         let model = self.model.decode(payload)?;
         let handle = target.unwrap_or_else(fresh_handle);
         self.states.insert(handle, Snapshot { machine, clock, model });

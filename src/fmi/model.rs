@@ -17,7 +17,7 @@ pub const CAPABILITIES: [(&str, &str); 8] = [
     ("canGetAndSetFMUstate", "true"),
     ("canSerializeFMUstate", "true"),
     ("providesDirectionalDerivative", "true"),
-    ("canInterpolateInputs", "false"),
+    ("canInterpolateInputs", "true"),
     ("maxOutputDerivativeOrder", "0"),
     ("canRunAsynchronuously", "false"),
     ("canNotUseMemoryManagementFunctions", "true"),
@@ -31,6 +31,8 @@ pub enum Causality {
     Parameter,
     Input,
     Output,
+    /// A continuous state or its derivative (Model Exchange).
+    Local,
 }
 
 impl Causality {
@@ -39,6 +41,7 @@ impl Causality {
             Self::Parameter => "parameter",
             Self::Input => "input",
             Self::Output => "output",
+            Self::Local => "local",
         }
     }
 }
@@ -118,13 +121,40 @@ impl Variable {
     }
 }
 
-/// Everything `modelDescription.xml` says that the code relies on; the XML itself is
-/// compiled in and `tests/model_description.rs` checks one against the other.
+/// SI base units of every unit a variable may declare (`<UnitDefinitions>`): name, then
+/// `(attribute, value)` of its `<BaseUnit>` (none for "1").
+pub const UNITS: [(&str, &[(&str, &str)]); 7] = [
+    ("1", &[]),
+    ("1/s", &[("s", "-1")]),
+    ("Pa", &[("kg", "1"), ("m", "-1"), ("s", "-2")]),
+    ("pN", &[("kg", "1"), ("m", "1"), ("s", "-2"), ("factor", "1e-12")]),
+    ("s", &[("s", "1")]),
+    ("um", &[("m", "1"), ("factor", "1e-6")]),
+    ("um/s", &[("m", "1"), ("s", "-1"), ("factor", "1e-6")]),
+];
+
+/// `<DefaultExperiment>`: what a master runs when told nothing, and what the reference
+/// results of the archive are computed with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Experiment {
+    pub start: f64,
+    pub stop: f64,
+    pub step: f64,
+    pub tolerance: f64,
+}
+
+/// A model as the glue, the description generator ([`super::xml`]) and the packaging see
+/// it: every `modelDescription.xml` is generated from this table, so the XML and the code
+/// cannot disagree.
 #[derive(Debug)]
 pub struct Description {
     pub model_identifier: &'static str,
+    /// `guid` (FMI 2.0) and `instantiationToken` (FMI 3.0).
     pub guid: &'static str,
-    pub xml: &'static str,
+    /// `fmiModelDescription/@description`.
+    pub summary: &'static str,
+    /// The model in HTML, for `documentation/index.html`.
+    pub about: &'static str,
     /// Indexed by value reference.
     pub variables: &'static [Variable],
     /// `ModelStructure/Outputs`: each output's value reference with the inputs it depends
@@ -134,6 +164,72 @@ pub struct Description {
     pub initial_unknowns: &'static [(u32, &'static [u32])],
     /// Flags of `<CoSimulation>`.
     pub capabilities: &'static [(&'static str, &'static str)],
+    pub default_experiment: Experiment,
+    /// Continuous states for Model Exchange, if any (see [`States`]).
+    pub states: Option<States>,
+    /// FMI 3.0 only: array variables sized by a structural parameter (see [`Arrays`]).
+    pub arrays: Option<Arrays>,
+}
+
+/// FMI 3.0 array variables whose length is one structural parameter (`UInt64`,
+/// settable in Configuration Mode), after the independent variable `time`:
+///
+/// ```text
+/// value reference  time + 1        the structural parameter (the length)
+///                  time + 2 + j    arrays[j]
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arrays {
+    pub length_name: &'static str,
+    pub length_description: &'static str,
+    /// Start and largest accepted length.
+    pub length_start: u64,
+    pub length_max: u64,
+    pub arrays: &'static [ArrayVariable],
+}
+
+/// One array of [`Arrays`]: a fixed parameter (with start values, as many as the start
+/// length) or a continuous output.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArrayVariable {
+    pub name: &'static str,
+    pub causality: Causality,
+    pub unit: &'static str,
+    pub start: &'static [f64],
+    pub description: &'static str,
+    /// Inputs (table value references) an output depends on directly, with their kind.
+    pub input_dependencies: &'static [(u32, &'static str)],
+}
+
+/// A model's continuous states (Model Exchange): `count` state variables and as many
+/// derivatives, after the table's variables. FMI 2.0 fixes the number of states in the
+/// XML, so `count` is the most the accepted domain needs; a model using fewer keeps the
+/// rest at 0 with derivative 0.
+///
+/// ```text
+/// value reference  table.len() + k            name[k+1]         k = 0 .. count
+///                  table.len() + count + k    der(name[k+1])
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct States {
+    pub count: usize,
+    pub name: &'static str,
+    pub unit: &'static str,
+    pub description: &'static str,
+    /// Unit of the derivatives.
+    pub derivative_unit: &'static str,
+    /// Which table variables (inputs and parameters) the derivatives depend on at
+    /// initialization, and which inputs during the run (with `dependenciesKind`).
+    pub initial_dependencies: &'static [u32],
+    pub input_dependencies: &'static [(u32, &'static str)],
+}
+
+/// What a value reference names: a row of the table, a state or a derivative.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Named {
+    Table(&'static Variable),
+    State(usize),
+    Derivative(usize),
 }
 
 impl Description {
@@ -143,6 +239,32 @@ impl Description {
             Some(v) if v.kind == kind => Ok(v),
             Some(v) => Err(format!("{} (value reference {vr}) is {}, not {}", v.name, v.kind.as_str(), kind.as_str())),
             None => Err(format!("no {} variable has value reference {vr}", kind.as_str())),
+        }
+    }
+
+    /// Number of continuous states (0 without Model Exchange states).
+    pub fn state_count(&self) -> usize {
+        self.states.map_or(0, |s| s.count)
+    }
+
+    /// What `vr` names, if it is a variable of type `kind` (states are Reals).
+    pub fn named(&self, kind: Kind, vr: u32) -> Result<Named, Rejected> {
+        let (table, n) = (self.variables.len(), self.state_count());
+        let k = (vr as usize).wrapping_sub(table);
+        match vr as usize {
+            v if v < table => self.typed(kind, vr).map(Named::Table),
+            _ if k < 2 * n && kind == Kind::Real => Ok(if k < n { Named::State(k) } else { Named::Derivative(k - n) }),
+            _ => self.typed(kind, vr).map(Named::Table),
+        }
+    }
+
+    /// The name of a state's or derivative's variable.
+    pub fn state_name(&self, named: Named) -> String {
+        let s = self.states.map_or("x", |s| s.name);
+        match named {
+            Named::Table(v) => v.name.to_owned(),
+            Named::State(k) => format!("{s}[{}]", k + 1),
+            Named::Derivative(k) => format!("der({s}[{}])", k + 1),
         }
     }
 }
@@ -180,5 +302,55 @@ pub trait FmuModel: Send {
     /// section 2.1.3). The default has none.
     fn take_warning(&mut self) -> Option<String> {
         None
+    }
+
+    /// `fmi2SetRealInputDerivatives`: validate `rate`, the first time derivative of the
+    /// input `vr` per second of master time, which makes the input linear in time over the
+    /// next steps (`canInterpolateInputs`). The default refuses.
+    fn check_input_rate(&self, vr: u32, _rate: f64) -> Result<(), Rejected> {
+        Err(format!("value reference {vr}: this model does not interpolate its inputs"))
+    }
+    /// Store a checked input rate (reset to 0 by the next `set` of that input).
+    fn set_input_rate(&mut self, _vr: u32, _rate: f64) {}
+
+    /// Model Exchange: whether this parameter set can run as an ODE for an outside
+    /// integrator (`Err` with the reason; after [`FmuModel::prepare`]). Models without
+    /// states can.
+    fn check_model_exchange(&self) -> Result<(), Rejected> {
+        Ok(())
+    }
+    /// The continuous states, `description().state_count()` of them (after `prepare`).
+    fn continuous_states(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Set the continuous states at time `time` since the cut (validated: finite, the
+    /// declared count).
+    fn set_continuous_states(&mut self, _time: f64, x: &[f64]) -> Result<(), Rejected> {
+        if x.is_empty() { Ok(()) } else { Err(format!("this model has no continuous states, {} given", x.len())) }
+    }
+    /// `dx/dt` per unit of the master's time at `time` since the cut, under the inputs set.
+    fn derivatives(&self, _time: f64) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Nominal values of the states (> 0).
+    fn nominals(&self) -> Vec<f64> {
+        vec![1.0; self.description().state_count()]
+    }
+
+    /// FMI 3.0 arrays ([`Arrays`]): the current length.
+    fn array_length(&self) -> u64 {
+        0
+    }
+    /// Set the length (checked by the glue against `1 ..= length_max`); the parameter
+    /// arrays take their start values, or as many as fit.
+    fn set_array_length(&mut self, _n: u64) {}
+    /// Validate the values of parameter array `j` (length checked by the glue).
+    fn check_array(&self, j: usize, _values: &[f64]) -> Result<(), Rejected> {
+        Err(format!("array {j} cannot be set"))
+    }
+    fn set_array(&mut self, _j: usize, _values: &[f64]) {}
+    /// Array `j` at time `time` since the cut (after `prepare` for outputs).
+    fn get_array(&self, j: usize, _time: f64) -> Result<Vec<f64>, Rejected> {
+        Err(format!("this model has no array {j}"))
     }
 }

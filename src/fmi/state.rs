@@ -1,12 +1,13 @@
-//! What an FMU state holds besides the model (the state machine's state, [`Machine`], and
-//! the master's clock, [`Clock`]), and the byte format of serialized FMU states
-//! (`fmi2SerializeFMUstate` / `fmi2DeSerializeFMUstate`): an envelope that the glue writes
-//! for every model, around the model's own bytes ([`super::model::FmuModel::encode`]).
+//! The byte format of serialized FMU states (`fmi2SerializeFMUstate` /
+//! `fmi2DeSerializeFMUstate`): an envelope that the glue writes for every model around the
+//! model's own bytes ([`super::model::FmuModel::encode`]), holding what an FMU state has
+//! besides the model: the state machine's state ([`Machine`]) and the master's clock
+//! ([`Clock`]), both of [`super::machine`].
 //!
 //! ```text
 //! offset  size  field
 //! 0       8     magic "WOUNDFMU"
-//! 8       4     format version (u32 LE) = 2
+//! 8       4     format version (u32 LE) = 3 (2 had no input rates)
 //! 12      4     payload length in bytes (u32 LE)
 //! 16      n     payload (below)
 //! 16+n    4     CRC-32 of bytes 0 .. 16+n (u32 LE)
@@ -20,66 +21,11 @@
 //! every value, so truncated, corrupted or foreign bytes are rejected with a reason,
 //! never read past. The model checks its own bytes the same way, with [`Reader`].
 
+use super::machine::{Clock, Machine};
+
 const MAGIC: &[u8; 8] = b"WOUNDFMU";
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 const HEADER: usize = 16;
-
-/// The FMI state machine's states (FMI 2.0 co-simulation, synchronous).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Machine {
-    Instantiated,
-    InitializationMode,
-    StepComplete,
-    Terminated,
-    /// After an internal failure: only reset, restore or inspection are allowed.
-    Error,
-}
-
-impl Machine {
-    fn code(self) -> u8 {
-        self as u8
-    }
-
-    fn from_code(c: u8) -> Option<Self> {
-        [Self::Instantiated, Self::InitializationMode, Self::StepComplete, Self::Terminated, Self::Error]
-            .get(c as usize)
-            .copied()
-    }
-}
-
-/// The master's clock of one instance.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Clock {
-    /// `startTime` of `fmi2SetupExperiment`: the cut, time 0 of every model.
-    pub start: f64,
-    pub stop: Option<f64>,
-    /// Master time of the last communication point.
-    pub time: f64,
-}
-
-impl Clock {
-    /// The time a model sees: since `startTime`, so that every model puts the cut at the
-    /// same instant whatever the master's time origin.
-    pub fn since_start(&self) -> f64 {
-        self.time - self.start
-    }
-}
-
-/// How far apart the master's time and the instance's may be and still be the same
-/// instant, for a step `h` at time `t`:
-///
-/// ```text
-/// |currentCommunicationPoint - time| <= 1e-6 h + 4 eps |t|        (eps = f64::EPSILON)
-/// ```
-///
-/// 4 eps |t| is a few roundings of a time near t, whatever the step (a master that sums
-/// its steps, or computes t_n = n h, differs from t + h by that much); 1e-6 h lets a master
-/// whose clock is coarser than that still through, while a point a millionth of a step
-/// away from the instance's time is refused. The same slack bounds how far a step may end
-/// past `stopTime`.
-pub fn time_slack(h: f64, t: f64) -> f64 {
-    1e-6 * h + 4.0 * f64::EPSILON * t.abs()
-}
 
 /// Little-endian writer of a serialized state.
 pub struct Writer(pub Vec<u8>);

@@ -22,6 +22,7 @@ pub type fmi2StatusKind = c_int;
 
 pub const FMI2_TRUE: fmi2Boolean = 1;
 pub const FMI2_FALSE: fmi2Boolean = 0;
+pub const FMI2_MODEL_EXCHANGE: fmi2Type = 0;
 pub const FMI2_CO_SIMULATION: fmi2Type = 1;
 pub const FMI2_LAST_SUCCESSFUL_TIME: fmi2StatusKind = 2;
 pub const FMI2_TERMINATED: fmi2StatusKind = 3;
@@ -53,4 +54,16 @@ impl fmi2CallbackFunctions {
         stepFinished: None,
         componentEnvironment: std::ptr::null_mut(),
     };
+}
+
+/// `fmi2EventInfo` (Model Exchange), filled by `fmi2NewDiscreteStates`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct fmi2EventInfo {
+    pub newDiscreteStatesNeeded: fmi2Boolean,
+    pub terminateSimulation: fmi2Boolean,
+    pub nominalsOfContinuousStatesChanged: fmi2Boolean,
+    pub valuesOfContinuousStatesChanged: fmi2Boolean,
+    pub nextEventTimeDefined: fmi2Boolean,
+    pub nextEventTime: fmi2Real,
 }

@@ -2,20 +2,22 @@
 //!
 //! ```text
 //! WoundOpening.fmu
-//! ├── modelDescription.xml             (modelDescription/modelDescription.xml, as compiled in)
+//! ├── modelDescription.xml             (generated from the model's table: fmi::xml)
 //! ├── binaries/linux64/WoundOpening.so (the cdylib built beside this executable)
-//! └── documentation/index.html         (generated: model, variables, a plot)
-//! PurseString.fmu
-//! ├── modelDescription.xml             (modelDescription/PurseString/modelDescription.xml)
-//! ├── binaries/linux64/PurseString.so  (the same cdylib: it picks the model by GUID)
-//! └── documentation/index.html
+//! ├── documentation/index.html         (generated: model, variables, plots of the results)
+//! └── extra/org.fmi-standard.fmi-ls-ref/fmi-ls-manifest.xml, WoundOpening_out.csv
+//! WoundOpening-fmi3.fmu                (FMI 3.0: the same, binaries/x86_64-linux/WoundOpening.so)
+//! PurseString.fmu, PurseString-fmi3.fmu (the same cdylib: it picks the model by GUID)
+//!
+//! Nothing here names a model: every archive comes from the table of models (fmi::MODELS).
 //! ```
 
 mod docs;
+mod reference;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use wound_opening::fmi::{MODELS, purse, wound};
+use wound_opening::fmi::{MODELS, xml, xml3};
 
 type BoxError = Box<dyn std::error::Error>;
 
@@ -41,7 +43,8 @@ fn platform_dir() -> Result<&'static str, BoxError> {
     }
 }
 
-/// Build every archive and return their paths.
+/// Build every archive and return their paths: per model, `<id>.fmu` (FMI 2.0) and
+/// `<id>-fmi3.fmu` (FMI 3.0), each with co-simulation and Model Exchange.
 pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
     let profile = profile_dir()?;
     let so = shared_object(&profile)?;
@@ -49,29 +52,50 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
     let out_dir = target.join("fmu");
     std::fs::create_dir_all(&out_dir)?;
     let mut paths = Vec::new();
-    for (description, _) in &MODELS {
+    for (description, fresh) in &MODELS {
         let id = description.model_identifier;
-        let docs = match id {
-            wound::variables::MODEL_IDENTIFIER => docs::index_html()?,
-            purse::variables::MODEL_IDENTIFIER => docs::purse_html(),
-            other => return Err(format!("no documentation page for model {other}").into()),
-        };
-        let path = out_dir.join(format!("{id}.fmu"));
-        write_fmu(&path, id, description.xml, &so, &docs)?;
-        paths.push(path);
+        let results = reference::simulate(description, *fresh)?;
+        let csv_name = format!("{id}_out.csv");
+        let versions = [
+            ("", "FMI 2.0: co-simulation and Model Exchange, from one library", platform_dir()?, xml::fmi2(description)),
+            ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, xml3::fmi3(description)),
+        ];
+        for (suffix, interfaces, platform, model_description) in versions {
+            let docs = docs::index_html(description, interfaces, &results)?;
+            let path = out_dir.join(format!("{id}{suffix}.fmu"));
+            let so_name = format!("binaries/{platform}/{id}{}", std::env::consts::DLL_SUFFIX);
+            let entries: Vec<(String, Vec<u8>)> = vec![
+                ("modelDescription.xml".into(), model_description.into_bytes()),
+                (so_name, so.clone()),
+                ("documentation/index.html".into(), docs.into_bytes()),
+                (format!("{}/fmi-ls-manifest.xml", reference::FOLDER), reference::manifest(description, &csv_name).into_bytes()),
+                (format!("{}/{csv_name}", reference::FOLDER), results.csv().into_bytes()),
+            ];
+            write_zip(&path, &entries)?;
+            paths.push(path);
+        }
     }
     Ok(paths)
 }
 
-fn write_fmu(path: &Path, id: &str, xml: &str, so: &[u8], docs: &str) -> Result<(), BoxError> {
+/// The FMI 3.0 platform tuple (`<arch>-<os>`).
+fn platform_tuple() -> Result<&'static str, BoxError> {
+    match (std::env::consts::OS, std::env::consts::ARCH) {
+        ("linux", "x86_64") => Ok("x86_64-linux"),
+        ("linux", "aarch64") => Ok("aarch64-linux"),
+        ("macos", "aarch64") => Ok("aarch64-darwin"),
+        ("macos", "x86_64") => Ok("x86_64-darwin"),
+        ("windows", "x86_64") => Ok("x86_64-windows"),
+        (os, arch) => Err(format!("no FMI 3.0 platform tuple for {os}/{arch}").into()),
+    }
+}
+
+fn write_zip(path: &Path, entries: &[(String, Vec<u8>)]) -> Result<(), BoxError> {
     let file = std::fs::File::create(path)?;
     let mut zip = zip::ZipWriter::new(file);
     let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
-    let so_name = format!("binaries/{}/{id}{}", platform_dir()?, std::env::consts::DLL_SUFFIX);
-    let entries: [(&str, &[u8]); 3] =
-        [("modelDescription.xml", xml.as_bytes()), (&so_name, so), ("documentation/index.html", docs.as_bytes())];
     for (name, bytes) in entries {
-        zip.start_file(name, options)?;
+        zip.start_file(name.as_str(), options)?;
         zip.write_all(bytes)?;
     }
     zip.finish()?;

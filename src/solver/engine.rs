@@ -49,6 +49,30 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     fn may_diverge(&self) -> bool {
         false
     }
+    /// Advance by `h > 0` under the edge stress `p(t) = p0 + p1 (t - t0)`, linear in time
+    /// over the step, exactly; `false` (nothing done) for engines that cannot.
+    fn advance_linear(&mut self, _h: f64, _p0: f64, _p1: f64) -> bool {
+        false
+    }
+    /// The semi-discrete system as an ODE in its own coordinates, for an outside
+    /// integrator (Model Exchange): `(x, dx/dt under p, relaxation times)`, `None` for
+    /// engines whose state is not such a system (all but the modal one).
+    fn ode(&self, _p: f64) -> Option<Ode> {
+        None
+    }
+    /// Set the ODE coordinates of [`Engine::ode`], the state having evolved under `p`
+    /// (so that `p` is the reference of the velocity split); `false` where there is no ODE.
+    fn set_ode_state(&mut self, _x: &[f64], _p: f64) -> bool {
+        false
+    }
+}
+
+/// See [`Engine::ode`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ode {
+    pub x: Vec<f64>,
+    pub rates: Vec<f64>,
+    pub relaxation_times: Vec<f64>,
 }
 
 /// Number of equal internal steps of at most `max_step` covering `h`.

@@ -4,7 +4,7 @@
 //! [`super::modal`]); each step then costs one exponential-weighted update per mode.
 
 use super::basis;
-use super::engine::Engine;
+use super::engine::{Engine, Ode};
 use super::exact;
 use super::mesh::MeshSpec;
 use super::modal::Basis;
@@ -200,5 +200,51 @@ impl Engine for ModalEngine {
 
     fn boxed_clone(&self) -> Box<dyn Engine> {
         Box::new(self.clone())
+    }
+
+    /// Exact for an edge stress linear in time over the step. With
+    ///
+    /// ```text
+    /// p(t) = p0 + p1 (t - t0),   g(t) = (sigma - p(t)) X[0, :],   g1 = dg/dt = -p1 X[0, :]
+    ///
+    /// c_k' = (g_k(t) - c_k) / nu_k  has the particular solution  g_k(t) - nu_k g1_k
+    /// (its derivative g1_k equals (g_k - (g_k - nu_k g1_k)) / nu_k), so
+    ///
+    /// c_k(t0 + h) = g_k(t0 + h) - nu_k g1_k + (c_k(t0) - g_k(t0) + nu_k g1_k) exp(-h / nu_k)
+    /// ```
+    ///
+    /// (`p1 = 0` is the held step of [`Engine::advance`]). After the step the state has
+    /// evolved under the edge stress `p0 + p1 h`, the reference of the velocity split.
+    fn advance_linear(&mut self, h: f64, p0: f64, p1: f64) -> bool {
+        let nu = &self.op.nu;
+        let decay = match &self.decay {
+            Some((h0, d)) if *h0 == h => d,
+            _ => &self.decay.insert((h, nu.map(|v| (-h / v).exp()))).1,
+        };
+        let p_end = p0 + p1 * h;
+        let (start, end) = (self.op.target(self.sigma, p0), self.op.target(self.sigma, p_end));
+        let g1 = -p1 * &self.op.basis.edge_row;
+        for k in 0..self.coeffs.len() {
+            let shift = nu[k] * g1[k];
+            self.coeffs[k] = end[k] - shift + (self.coeffs[k] - start[k] + shift) * decay[k];
+        }
+        self.p_ref = p_end;
+        true
+    }
+
+    /// The modal coordinates with `c_k' = (g_k(p) - c_k) / nu_k`: uncoupled, linear,
+    /// with the relaxation times `nu_k` (the fastest sets the stiffness).
+    fn ode(&self, p: f64) -> Option<Ode> {
+        Some(Ode {
+            x: self.coeffs.iter().copied().collect(),
+            rates: self.modal_rates(p).iter().copied().collect(),
+            relaxation_times: self.op.nu.iter().copied().collect(),
+        })
+    }
+
+    fn set_ode_state(&mut self, x: &[f64], p: f64) -> bool {
+        self.coeffs.copy_from_slice(x);
+        self.p_ref = p;
+        true
     }
 }

@@ -35,6 +35,7 @@ pub use params::{
 
 pub use explicit::{stability_limits as explicit_stability_limits, unchecked_trajectory as explicit_unchecked_trajectory};
 
+pub use engine::Ode;
 use engine::Engine;
 use exact_time::{ModalEngine, Operator};
 use std::sync::Arc;
@@ -76,6 +77,8 @@ pub enum SolverError {
     Diverged,
     /// A step of the explicit scheme beyond its von Neumann limits, refused before it is taken.
     Unstable { lambda: f64, lambda_max: f64, dt: f64, dt_max: f64 },
+    /// An edge stress varying within a step asked of a scheme that holds it constant.
+    NotLinearInTime,
 }
 
 impl std::fmt::Display for SolverError {
@@ -104,6 +107,10 @@ impl std::fmt::Display for SolverError {
             Self::Diverged => write!(
                 f,
                 "the explicit scheme blew up in this step (internal step above its stability limit, or lambda > dr/2); the state is left as before the step"
+            ),
+            Self::NotLinearInTime => write!(
+                f,
+                "an edge stress that varies within a step (an input derivative) needs method 0 (exact in time); methods 1 to 3 hold it constant over a step"
             ),
         }
     }
@@ -252,6 +259,26 @@ impl Solver {
         Ok(())
     }
 
+    /// Advance by `h > 0` under the edge stress `p0 + p1 (t - t0)`, linear in time over the
+    /// step: exact for the modal scheme (see its `advance_linear`); refused for the stepping
+    /// schemes, which hold the edge stress over a step. `p1 = 0` is [`Solver::advance`].
+    /// Both `p0` and the final `p0 + p1 h` must be accepted edge stresses.
+    pub fn advance_linear(&mut self, h: f64, p0: f64, p1: f64) -> Result<(), SolverError> {
+        if p1 == 0.0 {
+            return self.advance(h, p0);
+        }
+        if !(h.is_finite() && h > 0.0) {
+            return Err(SolverError::Step(h));
+        }
+        check_edge_stress(p0)?;
+        check_edge_stress(p0 + p1 * h)?;
+        if !self.engine.advance_linear(h, p0, p1) {
+            return Err(SolverError::NotLinearInTime);
+        }
+        self.time += h;
+        Ok(())
+    }
+
     /// Wound radius `R = 1 + u(1, t)`, in R0.
     pub fn wound_radius(&self) -> f64 {
         self.engine.wound_radius()
@@ -285,6 +312,33 @@ impl Solver {
     /// Velocity `u_t(r)` with edge stress `p`, at each requested radius.
     pub fn velocity(&self, p: f64, radii: &[f64]) -> Vec<f64> {
         self.engine.velocity(p, radii)
+    }
+
+    /// The semi-discrete system as an ODE for an outside integrator (Model Exchange),
+    /// under the edge stress `p`: its coordinates, their rates (per unit of T) and the
+    /// relaxation times (in T); `None` for the schemes that are not such an ODE (all but
+    /// the modal one).
+    pub fn ode(&self, p: f64) -> Option<Ode> {
+        self.engine.ode(p)
+    }
+
+    /// Set the coordinates of [`Solver::ode`] at time `time`, the state having evolved
+    /// under `p`. Refused for a length other than the ODE's, for values that are not
+    /// finite, and for schemes without an ODE.
+    pub fn set_ode_state(&mut self, time: f64, x: &[f64], p: f64) -> Result<(), SolverError> {
+        let want = self.engine.ode(p).map_or(0, |o| o.x.len());
+        if x.len() != want {
+            return Err(SolverError::StateLength(want, x.len()));
+        }
+        if !time.is_finite() || x.iter().any(|c| !c.is_finite()) {
+            return Err(SolverError::StateNotFinite);
+        }
+        check_edge_stress(p)?;
+        if !self.engine.set_ode_state(x, p) {
+            return Err(SolverError::StateLength(0, x.len()));
+        }
+        self.time = time;
+        Ok(())
     }
 
     pub fn state(&self) -> SolverState {

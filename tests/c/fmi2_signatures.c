@@ -13,13 +13,15 @@
 
 #define CHECK(name) static name##TYPE *const check_##name = name;
 FMI2_CS_FUNCTIONS(CHECK)
+FMI2_ME_FUNCTIONS(CHECK)
 #undef CHECK
 
 int main(void) {
     int n = 0;
 #define COUNT(name) n += check_##name != NULL;
     FMI2_CS_FUNCTIONS(COUNT)
+    FMI2_ME_FUNCTIONS(COUNT)
 #undef COUNT
-    printf("fmi2_signatures: %d of 34 FMI 2.0 functions have the standard's type\n", n);
-    return n == 34 ? 0 : 1;
+    printf("fmi2_signatures: %d of 44 FMI 2.0 functions (co-simulation and Model Exchange) have the standard's type\n", n);
+    return n == 44 ? 0 : 1;
 }

@@ -41,9 +41,8 @@ static void bad_instantiation(void) {
     INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2CoSimulation, wrong, "", &CALLBACKS, fmi2False, fmi2False), expected);
     INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2CoSimulation, NULL, "", &CALLBACKS, fmi2False, fmi2False), "but was NULL");
     INSTANTIATE_REFUSED(F.fmi2Instantiate(NULL, fmi2CoSimulation, F.guid, "", &CALLBACKS, fmi2False, fmi2False), "instanceName is NULL");
-    INSTANTIATE_REFUSED(F.fmi2Instantiate("x", fmi2ModelExchange, F.guid, "", &CALLBACKS, fmi2False, fmi2False),
-                        "fmuType = 0: this FMU supports co-simulation (1) only");
-    INSTANTIATE_REFUSED(F.fmi2Instantiate("x", (fmi2Type)7, F.guid, "", &CALLBACKS, fmi2False, fmi2False), "fmuType = 7");
+    INSTANTIATE_REFUSED(F.fmi2Instantiate("x", (fmi2Type)7, F.guid, "", &CALLBACKS, fmi2False, fmi2False),
+                        "fmuType = 7: this FMU supports Model Exchange (0) and co-simulation (1)");
     /* Without callbacks, or without a logger, there is no one to tell: NULL, and no crash. */
     CHECK(F.fmi2Instantiate("x", fmi2CoSimulation, F.guid, "", NULL, fmi2False, fmi2False) == NULL, "NULL functions");
     const fmi2CallbackFunctions silent = {NULL, NULL, NULL, NULL, NULL};
@@ -78,7 +77,8 @@ static void before_initialization(fmi2Component c) {
     REFUSED(set1(c, VR_R_INF, -INFINITY), "R_inf = -inf is outside");
     REFUSED(set1(c, VR_EDGE_STRESS, NAN), "edge_stress = NaN Pa is outside the accepted range");
     REFUSED(set1(c, VR_RADIUS, 2.0), "wound_radius (value reference 4) is an output and cannot be set");
-    REFUSED(set1(c, 99, 1.0), "no Real variable has value reference 99");
+    REFUSED(set1(c, 99999, 1.0), "no Real variable has value reference 99999");
+    REFUSED(set1(c, 99, 1.0), "modal_coordinate[87] (value reference 99) is a continuous state or derivative");
     REFUSED(F.fmi2SetReal(c, NULL, 1, &one), "vr is NULL but 1 elements were announced");
     REFUSED(F.fmi2SetReal(c, &vr, 1, NULL), "value is NULL but 1 elements were announced");
     REFUSED(F.fmi2GetReal(c, &vr, 1, &out), "fmi2Get* is not allowed in state Instantiated");
@@ -149,7 +149,9 @@ static void after_initialization(fmi2Component c) {
             "edge_stress (value reference 3) is an input but a vUnknown_ref entry must be a Real output");
     REFUSED(F.fmi2GetDirectionalDerivative(c, &vr, 1, &VR_EDGE_STRESS, 1, NULL, &r), "dvKnown is NULL but 1 elements");
     directional_derivative(c);
-    REFUSED(F.fmi2SetRealInputDerivatives(c, &VR_EDGE_STRESS, 1, &order, &r), "is not supported");
+    fmi2Integer second = 2;
+    REFUSED(F.fmi2SetRealInputDerivatives(c, &VR_EDGE_STRESS, 1, &second, &r), "order = 2 for edge_stress is invalid");
+    REFUSED(F.fmi2SetRealInputDerivatives(c, &vr, 1, &order, &r), "wound_radius (value reference 4) is not an input");
     REFUSED(F.fmi2GetRealOutputDerivatives(c, &vr, 1, &order, &r), "is not supported");
     REFUSED(F.fmi2CancelStep(c), "fmi2CancelStep is not allowed in state StepComplete");
     REFUSED(F.fmi2GetInteger(c, &vr, 1, &i), "wound_radius (value reference 4) is Real, not Integer");
@@ -200,7 +202,7 @@ static void fmu_states(fmi2Component c) {
     memcpy(bad, bytes, size);
     put_u32(bad + 8, 1); /* another (the previous) format version, with a valid checksum */
     reseal(bad, size);
-    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "has format version 1; this FMU reads version 2");
+    REFUSED(F.fmi2DeSerializeFMUstate(c, (fmi2Byte *)bad, size, &back), "has format version 1; this FMU reads version 3");
     CHECK(back == NULL, "a refused fmi2DeSerializeFMUstate leaves the state NULL");
 
     /* A state of another parameter set (lambda = 2). */

@@ -123,6 +123,15 @@ static void every_call_is_an_error(fmi2Component c, fmi2FMUstate state, const ch
     CHECK(F.fmi2GetIntegerStatus(c, fmi2DoStepStatus, &i) == e, "%s: GetIntegerStatus", who);
     CHECK(F.fmi2GetBooleanStatus(c, fmi2Terminated, &b) == e, "%s: GetBooleanStatus", who);
     CHECK(F.fmi2GetStringStatus(c, fmi2DoStepStatus, &s) == e, "%s: GetStringStatus", who);
+    fmi2EventInfo info;
+    fmi2Boolean enter = 0, stop = 0;
+    CHECK(F.fmi2EnterEventMode(c) == e && F.fmi2NewDiscreteStates(c, &info) == e, "%s: EnterEventMode, NewDiscreteStates", who);
+    CHECK(F.fmi2EnterContinuousTimeMode(c) == e && F.fmi2CompletedIntegratorStep(c, fmi2True, &enter, &stop) == e,
+          "%s: EnterContinuousTimeMode, CompletedIntegratorStep", who);
+    CHECK(F.fmi2SetTime(c, 0) == e && F.fmi2SetContinuousStates(c, &r, 1) == e, "%s: SetTime, SetContinuousStates", who);
+    CHECK(F.fmi2GetDerivatives(c, &r, 1) == e && F.fmi2GetEventIndicators(c, &r, 1) == e, "%s: GetDerivatives, GetEventIndicators", who);
+    CHECK(F.fmi2GetContinuousStates(c, &r, 1) == e && F.fmi2GetNominalsOfContinuousStates(c, &r, 1) == e,
+          "%s: GetContinuousStates, GetNominalsOfContinuousStates", who);
     CHECK(r == 0 && i == 0 && b == 0 && s == NULL && st == fmi2OK, "%s: nothing written", who);
     F.fmi2FreeInstance(c);
     CHECK(LOG.count == before, "%s: nothing can be logged without an instance", who);

@@ -8,6 +8,7 @@
 #define TESTS_FMU_LOADER_H
 
 #include "fmi2_standard.h"
+#include "read_file.h"
 
 #include <dlfcn.h>
 #include <stdarg.h>
@@ -22,6 +23,7 @@ struct fmu {
     char identifier[128];
 #define FIELD(name) name##TYPE *name;
     FMI2_CS_FUNCTIONS(FIELD)
+    FMI2_ME_FUNCTIONS(FIELD)
 #undef FIELD
 };
 
@@ -37,23 +39,6 @@ static int xml_attribute(const char *xml, const char *name, char *out, size_t si
     memcpy(out, start, (size_t)(end - start));
     out[end - start] = '\0';
     return 1;
-}
-
-static char *read_file(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *text = malloc((size_t)n + 1);
-    if (text != NULL && fread(text, 1, (size_t)n, f) == (size_t)n) {
-        text[n] = '\0';
-    } else {
-        free(text);
-        text = NULL;
-    }
-    fclose(f);
-    return text;
 }
 
 /* Load the FMU extracted in `dir`; 1 on success, else 0 with the reason on stderr. */
@@ -81,6 +66,7 @@ static int fmu_load(struct fmu *fmu, const char *dir) {
         ok = 0;                                                                                                  \
     }
     FMI2_CS_FUNCTIONS(LOAD)
+    FMI2_ME_FUNCTIONS(LOAD)
 #undef LOAD
     return ok;
 }

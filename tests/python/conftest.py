@@ -49,6 +49,16 @@ def purse_path() -> str:
 
 
 @pytest.fixture(scope="session")
+def fmu3_path() -> str:
+    return _built("WoundOpening-fmi3")
+
+
+@pytest.fixture(scope="session")
+def purse3_path() -> str:
+    return _built("PurseString-fmi3")
+
+
+@pytest.fixture(scope="session")
 def model_description(fmu_path):
     from fmpy import read_model_description
 

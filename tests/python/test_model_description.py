@@ -75,7 +75,7 @@ def test_co_simulation_interface(fmu):
     name, path = fmu
     md = read_model_description(path)
     assert md.fmiVersion == "2.0"
-    assert md.modelExchange is None
+    assert md.modelExchange is not None and md.modelExchange.modelIdentifier == name, "both interfaces, one library"
     cs = md.coSimulation
     assert cs is not None and cs.modelIdentifier == name
     assert cs.canHandleVariableCommunicationStepSize
@@ -91,7 +91,7 @@ def test_variables_and_units(fmu):
     name, path = fmu
     md = read_model_description(path)
     table, _ = MODELS[name]
-    found = {v.name: v for v in md.modelVariables}
+    found = {v.name: v for v in md.modelVariables if v.causality != "local"}
     assert set(found) == set(table), sorted(found)
     units = {u.name: u for u in md.unitDefinitions}
     for var, (vr, causality, variability, start, unit) in table.items():
@@ -119,4 +119,35 @@ def test_output_dependencies(fmu):
     for out, inputs in want.items():
         deps = outputs[out].dependencies
         assert deps is not None, f"{out}: dependencies are declared"
-        assert [d.name for d in deps] == inputs, (out, deps)
+        # The outputs depend on the continuous states (Model Exchange) and on these inputs.
+        assert [d.name for d in deps if d.causality == "input"] == inputs, (out, deps)
+
+
+def test_reference_results_are_declared_and_start_at_the_start_values(fmu):
+    """FMI-LS-REF: the manifest names the CSV as the result, the CSV has time and every
+    output as columns, over the DefaultExperiment; WoundOpening starts at R1 = 1 + 1/6
+    (sigma = 1, R0 = 1) to the last bit, PurseString with no tension (t < t_delay)."""
+    import csv
+    import io
+    import xml.etree.ElementTree as ET
+
+    name, path = fmu
+    folder = "extra/org.fmi-standard.fmi-ls-ref"
+    with zipfile.ZipFile(path) as zf:
+        manifest = ET.fromstring(zf.read(f"{folder}/fmi-ls-manifest.xml"))
+        ns = "{http://fmi-standard.org/fmi-ls-manifest}"
+        assert manifest.tag == "fmiReferences"
+        assert manifest.get(f"{ns}fmi-ls-name") == "org.fmi-standard.fmi-ls-ref"
+        (related,) = manifest.findall("Related")
+        assert related.get("role") == "result" and related.get("type") == "text/csv"
+        rows = list(csv.reader(io.StringIO(zf.read(f"{folder}/{related.get('source')}").decode())))
+    md = read_model_description(path)
+    outputs = [v.name for v in md.modelVariables if v.causality == "output"]
+    assert rows[0] == ["time"] + outputs
+    first, last = [float(x) for x in rows[1]], [float(x) for x in rows[-1]]
+    experiment = md.defaultExperiment
+    assert first[0] == float(experiment.startTime) and last[0] == float(experiment.stopTime)
+    if name == "WoundOpening":
+        assert first[1] == 1 + 1 / 6
+    else:
+        assert first[1:] == [0.0, 0.0]

@@ -1,5 +1,6 @@
 //! The purse-string closure model ([`crate::closure`]) behind the FMI glue: no state
-//! but the clock and the input, so a step only moves time.
+//! but the clock and the input, so a step only moves time (and the input along its rate,
+//! after `fmi2SetRealInputDerivatives`).
 
 pub mod variables;
 
@@ -13,6 +14,8 @@ pub struct PurseModel {
     purse: PurseString,
     /// The input, micrometres.
     wound_radius: f64,
+    /// Its rate in um/s (0: held).
+    radius_rate: f64,
 }
 
 impl PurseModel {
@@ -27,6 +30,7 @@ impl PurseModel {
                 thickness: start(Vr::Thickness),
             },
             wound_radius: start(Vr::WoundRadius),
+            radius_rate: 0.0,
         })
     }
 
@@ -62,7 +66,7 @@ impl FmuModel for PurseModel {
             Some(Vr::AssemblyTime) => p.assembly_time = x,
             Some(Vr::Delay) => p.delay = x,
             Some(Vr::Thickness) => p.thickness = x,
-            Some(Vr::WoundRadius) => self.wound_radius = x,
+            Some(Vr::WoundRadius) => (self.wound_radius, self.radius_rate) = (x, 0.0),
             _ => {}
         }
     }
@@ -88,8 +92,23 @@ impl FmuModel for PurseModel {
         }
     }
 
-    fn step(&mut self, _time: f64, _h: f64) -> Result<(), Rejected> {
+    /// The input moves along its rate; the end value must be an accepted radius.
+    fn step(&mut self, _time: f64, h: f64) -> Result<(), Rejected> {
+        if self.radius_rate != 0.0 {
+            self.wound_radius = check_radius(self.wound_radius + self.radius_rate * h)?;
+        }
         Ok(())
+    }
+
+    fn check_input_rate(&self, vr: u32, _rate: f64) -> Result<(), Rejected> {
+        match Vr::from_u32(vr) {
+            Some(Vr::WoundRadius) => Ok(()),
+            _ => Err(format!("value reference {vr} is not wound_radius")),
+        }
+    }
+
+    fn set_input_rate(&mut self, _vr: u32, rate: f64) {
+        self.radius_rate = rate;
     }
 
     fn partial(&self, output: u32, input: u32, time: f64) -> Result<f64, Rejected> {
@@ -99,10 +118,10 @@ impl FmuModel for PurseModel {
         })
     }
 
-    /// `T_max, t_assembly, t_delay, thickness, wound_radius` (f64 LE).
+    /// `T_max, t_assembly, t_delay, thickness, wound_radius, its rate` (f64 LE).
     fn encode(&self) -> Result<Vec<u8>, Rejected> {
-        let mut w = Writer(Vec::with_capacity(40));
-        self.parameters().into_iter().chain([self.wound_radius]).for_each(|v| w.f64(v));
+        let mut w = Writer(Vec::with_capacity(48));
+        self.parameters().into_iter().chain([self.wound_radius, self.radius_rate]).for_each(|v| w.f64(v));
         Ok(w.0)
     }
 
@@ -110,11 +129,12 @@ impl FmuModel for PurseModel {
         let mut r = Reader::new(bytes);
         let theirs = [r.f64()?, r.f64()?, r.f64()?, r.f64()?];
         let radius = r.f64()?;
+        let radius_rate = r.finite("radius rate")?;
         r.finish()?;
         let pairs: Vec<(&str, f64, f64)> =
             Vr::ALL.iter().zip(self.parameters()).zip(theirs).map(|((vr, a), b)| (vr.var().name, a, b)).collect();
         same_parameters(&pairs)?;
         let wound_radius = check_radius(radius).map_err(|e| format!("serialized FMU state: {e}"))?;
-        Ok(Box::new(Self { purse: self.purse, wound_radius }))
+        Ok(Box::new(Self { purse: self.purse, wound_radius, radius_rate }))
     }
 }

@@ -1,13 +1,15 @@
-//! The purse-string FMU's variables: the one table that
-//! `modelDescription/PurseString/modelDescription.xml` must match (checked by
-//! `tests/model_description.rs`).
+//! The purse-string FMU's variables: the one table that `modelDescription.xml` is
+//! generated from ([`crate::fmi::xml`]), and that the code uses.
 
-pub use crate::fmi::model::{CAPABILITIES, Description, Variable};
+pub use crate::fmi::model::{CAPABILITIES, Experiment, Description, Variable};
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
 pub const MODEL_IDENTIFIER: &str = "PurseString";
 /// `guid` of its `modelDescription.xml`.
 pub const GUID: &str = "{3f9b2d71-6c4a-4e8f-b5d0-91a7e2c4f6b3}";
+
+/// `description` of `modelDescription.xml`.
+pub const SUMMARY: &str = "Actin purse-string closing a wound: line tension T_c(t) = T_max (1 - exp(-(t - t_delay) / t_assembly)) after a delay, giving the edge stress p = T_c / (h R) on a wound of radius R. Couples to WoundOpening (wound_radius to wound_radius, edge_stress to edge_stress).";
 
 /// Value references (index = value reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,7 +51,8 @@ pub const VARIABLES: [Variable; 7] = [
 pub static DESCRIPTION: Description = Description {
     model_identifier: MODEL_IDENTIFIER,
     guid: GUID,
-    xml: include_str!("../../../modelDescription/PurseString/modelDescription.xml"),
+    summary: SUMMARY,
+    about: include_str!("about.html"),
     variables: &VARIABLES,
     // p = T_c / (h R) is nonlinear in R (`dependent`); T_c depends on time only.
     outputs: &[(Vr::EdgeStress as u32, &[(Vr::WoundRadius as u32, "dependent")]), (Vr::LineTension as u32, &[])],
@@ -61,4 +64,8 @@ pub static DESCRIPTION: Description = Description {
         (Vr::LineTension as u32, &[Vr::MaxTension as u32, Vr::AssemblyTime as u32, Vr::Delay as u32]),
     ],
     capabilities: &CAPABILITIES,
+    default_experiment: Experiment { start: 0.0, stop: 300.0, step: 0.5, tolerance: 1e-10 },
+    // A closed form in time: nothing to integrate.
+    states: None,
+    arrays: None,
 };

@@ -5,7 +5,11 @@
 //! lambda, sigma, R_inf, R0, T, G (f64 LE), mesh degree, elements (u32), edge scale,
 //! tolerance, edge stress (f64), has experiment tolerance (u8), experiment tolerance (f64),
 //! method, grid points (u32), internal step (f64),
-//! has solver (u8), [solver time (f64), n (u32), n modal coefficients (f64)]
+//! has solver (u8), [solver time (f64), n (u32), n modal coefficients (f64)],
+//! edge stress rate (f64, Pa/s; 0 unless fmi2SetRealInputDerivatives set one)
+//!
+//! (The FMI 3.0 probe radii are not in it: they say where the field is read, not where
+//! the trajectory is; a restored state reads at the instance's own radii.)
 //! ```
 
 use crate::fmi::state::{Reader, Writer};
@@ -47,6 +51,7 @@ pub struct Saved {
     pub experiment_tolerance: Option<f64>,
     pub scheme: SchemeChoice,
     pub edge_stress: f64,
+    pub edge_stress_rate: f64,
     pub solver: Option<SolverState>,
 }
 
@@ -72,6 +77,7 @@ pub fn encode(s: &Saved) -> Vec<u8> {
         w.u32(st.coeffs.len() as u32);
         st.coeffs.iter().for_each(|&c| w.f64(c));
     }
+    w.f64(s.edge_stress_rate);
     w.0
 }
 
@@ -114,8 +120,9 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
     } else {
         None
     };
+    let edge_stress_rate = r.finite("edge stress rate")?;
     r.finish()?;
-    Ok(Saved { params, scales, settings, tolerance, experiment_tolerance, scheme, edge_stress, solver })
+    Ok(Saved { params, scales, settings, tolerance, experiment_tolerance, scheme, edge_stress, edge_stress_rate, solver })
 }
 
 #[cfg(test)]
@@ -131,6 +138,7 @@ mod tests {
             experiment_tolerance: Some(1e-6),
             scheme: SchemeChoice { method: 2, grid_points: 101, internal_step: 1e-3 },
             edge_stress: 0.25,
+            edge_stress_rate: -1.5,
             solver: Some(SolverState { time: 1.5, coeffs: vec![0.5, -1.25, 3.0] }),
         }
     }

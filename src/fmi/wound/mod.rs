@@ -20,7 +20,7 @@ use super::state::same_parameters;
 use crate::solver::{EDGE_STRESS_MAX, Params, Settings, Solver, check_edge_stress, delivered_accuracy, check_lambda, check_r_inf, check_sigma};
 use crate::units::{Scales, check_scale};
 use std::cell::RefCell;
-use variables::{DESCRIPTION, Vr};
+use variables::{DESCRIPTION, MODEL_EXCHANGE_STATES, Vr};
 
 /// The instance's model data: what an FMU state saves (with the machine state and clock).
 #[derive(Debug, Clone)]
@@ -34,10 +34,18 @@ pub struct WoundModel {
     scheme: SchemeChoice,
     /// Edge stress in pascals (the master's unit).
     edge_stress: f64,
+    /// Its time derivative in Pa/s from `fmi2SetRealInputDerivatives` (0: held).
+    edge_stress_rate: f64,
     /// Built when first needed after the parameters are final; dropped when they change.
     solver: Option<Solver>,
     /// A warning for the glue to log with the current call (see [`WoundModel::warn`]).
     warning: RefCell<Option<String>>,
+    /// Model Exchange: the states beyond the mesh's modes, as the integrator last set
+    /// them. They are inert (derivative 0, no effect on any output): an integrator that
+    /// perturbs them for a finite-difference Jacobian sees a zero column. Not serialized.
+    spare_states: Vec<f64>,
+    /// FMI 3.0: the probe radii in um (master units).
+    probe_radii: Vec<f64>,
 }
 
 impl WoundModel {
@@ -55,8 +63,11 @@ impl WoundModel {
                 internal_step: start(Vr::InternalStep),
             },
             edge_stress: start(Vr::EdgeStress),
+            edge_stress_rate: 0.0,
             solver: None,
             warning: RefCell::new(None),
+            spare_states: Vec::new(),
+            probe_radii: variables::PROBE_RADII.to_vec(),
         })
     }
 
@@ -165,7 +176,7 @@ impl FmuModel for WoundModel {
             Vr::LengthScale => self.scales.length = x,
             Vr::TimeScale => self.scales.time = x,
             Vr::StressScale => self.scales.stress = x,
-            Vr::EdgeStress => self.edge_stress = x,
+            Vr::EdgeStress => (self.edge_stress, self.edge_stress_rate) = (x, 0.0),
             Vr::WoundRadius | Vr::EdgeVelocity => {}
         }
         // Everything but the input changes the solver (scales: the internal step).
@@ -183,6 +194,7 @@ impl FmuModel for WoundModel {
         if self.solver.is_some() {
             return Ok(None);
         }
+
         let solver = self.build_solver()?;
         let text = format!(
             "solver: lambda = {}, sigma = {}, R_inf = {}, {} unknowns (tolerance {:e}, {:?}, {:?})",
@@ -229,10 +241,30 @@ impl FmuModel for WoundModel {
         }
     }
 
+    /// Held (`advance`) or, after `fmi2SetRealInputDerivatives`, linear in time over the
+    /// step (`advance_linear`, exact); the input then ends the step at its value there.
     fn step(&mut self, _time: f64, h: f64) -> Result<(), Rejected> {
-        let (h, p) = (h / self.scales.time, self.p());
+        let (dt, p, rate) = (h / self.scales.time, self.p(), self.edge_stress_rate);
+        let p1 = rate * self.scales.time / self.scales.stress;
         let solver = self.solver.as_mut().expect("prepare() builds the solver before a step");
-        solver.advance(h, p).map_err(|e| e.to_string())
+        solver.advance_linear(dt, p, p1).map_err(|e| e.to_string())?;
+        self.edge_stress += rate * h;
+        Ok(())
+    }
+
+    /// The edge stress's rate (Pa/s); only method 0 integrates a varying input exactly.
+    fn check_input_rate(&self, vr: u32, _rate: f64) -> Result<(), Rejected> {
+        if Vr::from_u32(vr) != Some(Vr::EdgeStress) {
+            return Err(format!("value reference {vr} is not edge_stress"));
+        }
+        if self.scheme.method != 0 {
+            return Err(crate::solver::SolverError::NotLinearInTime.to_string());
+        }
+        Ok(())
+    }
+
+    fn set_input_rate(&mut self, _vr: u32, rate: f64) {
+        self.edge_stress_rate = rate;
     }
 
     /// `d edge_velocity / d edge_stress = (R0 / T) / G * w(1)`, the exact closed form of the
@@ -260,12 +292,103 @@ impl FmuModel for WoundModel {
             experiment_tolerance: self.experiment_tolerance,
             scheme: self.scheme,
             edge_stress: self.edge_stress,
+            edge_stress_rate: self.edge_stress_rate,
             solver: self.solver.as_ref().map(Solver::state),
         }))
     }
 
     fn take_warning(&mut self) -> Option<String> {
         self.warning.get_mut().take()
+    }
+
+    /// Only the modal scheme is an ODE in its coordinates (methods 1 to 3 are stepping
+    /// schemes kept for comparison).
+    fn check_model_exchange(&self) -> Result<(), Rejected> {
+        match self.solver().ode(self.p()) {
+            Some(ode) if ode.x.len() <= MODEL_EXCHANGE_STATES => Ok(()),
+            Some(ode) => Err(format!("the mesh has {} modes, more than the {MODEL_EXCHANGE_STATES} states declared", ode.x.len())),
+            None => Err(format!(
+                "Model Exchange needs method = 0 (the modal scheme, an ODE in its modal coordinates); method = {} is a stepping scheme",
+                self.scheme.method
+            )),
+        }
+    }
+
+    fn continuous_states(&self) -> Vec<f64> {
+        let mut x = self.solver().ode(self.p()).map_or_else(Vec::new, |o| o.x);
+        x.extend(&self.spare_states);
+        x.resize(MODEL_EXCHANGE_STATES, 0.0);
+        x
+    }
+
+    /// The modes the mesh uses, in solver units, then the inert spare states.
+    fn set_continuous_states(&mut self, time: f64, x: &[f64]) -> Result<(), Rejected> {
+        let p = self.p();
+        let used = self.solver().ode(p).map_or(0, |o| o.x.len());
+        self.spare_states = x[used..].to_vec();
+        let t = time / self.scales.time;
+        let solver = self.solver.as_mut().expect("prepare() builds the solver before states are set");
+        solver.set_ode_state(t, &x[..used], p).map_err(|e| e.to_string())
+    }
+
+    fn array_length(&self) -> u64 {
+        self.probe_radii.len() as u64
+    }
+
+    /// The default radii as far as they go, then the outer edge of the default tissue.
+    fn set_array_length(&mut self, n: u64) {
+        let start = variables::PROBE_RADII;
+        self.probe_radii = (0..n as usize).map(|i| start.get(i).copied().unwrap_or(start[start.len() - 1])).collect();
+        self.solver = None;
+    }
+
+    fn check_array(&self, j: usize, values: &[f64]) -> Result<(), Rejected> {
+        if j != 0 {
+            return Err(format!("{} is an output", variables::PROBE_ARRAYS[j.min(2)].name));
+        }
+        match values.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
+            Some(r) => Err(format!("probe radius {r} um is invalid: it must be finite and > 0 (and in [R0, R0 R_inf])")),
+            None => Ok(()),
+        }
+    }
+
+    fn set_array(&mut self, _j: usize, values: &[f64]) {
+        self.probe_radii = values.to_vec();
+        self.solver = None;
+    }
+
+    /// The radii, or u and u_t there (the solver's, at reference radii in R0, scaled to um
+    /// and um/s).
+    /// A radius outside the tissue is refused when the field is read (the probes need not
+    /// fit a tissue until then: R_inf may be set after them, and FMI 2.0 has no probes).
+    fn get_array(&self, j: usize, _time: f64) -> Result<Vec<f64>, Rejected> {
+        if j == 0 {
+            return Ok(self.probe_radii.clone());
+        }
+        let (r0, p) = (self.scales.length, self.p());
+        let (lo, hi) = (r0, r0 * self.params.r_inf);
+        if let Some(r) = self.probe_radii.iter().find(|&&r| !(lo..=hi).contains(&r)) {
+            return Err(format!("probe radius {r} um is outside the tissue [R0, R0 R_inf] = [{lo}, {hi}] um"));
+        }
+        let radii: Vec<f64> = self.probe_radii.iter().map(|r| r / r0).collect();
+        Ok(match j {
+            1 => self.solver().displacement(&radii).iter().map(|u| u * r0).collect(),
+            _ => {
+                let solver = self.solver();
+                if !solver.edge_velocity_defined(p) {
+                    self.warn("velocity is infinite in the model at the edge at lambda = 0 at the cut and just after a change of edge_stress; the values returned are the mesh's".into());
+                }
+                solver.velocity(p, &radii).iter().map(|v| v * self.scales.velocity()).collect()
+            }
+        })
+    }
+
+    /// `c_k' = (g_k(p) - c_k) / nu_k` per second of master time (`/ T`).
+    fn derivatives(&self, _time: f64) -> Vec<f64> {
+        let mut dx: Vec<f64> =
+            self.solver().ode(self.p()).map_or_else(Vec::new, |o| o.rates.iter().map(|r| r / self.scales.time).collect());
+        dx.resize(MODEL_EXCHANGE_STATES, 0.0);
+        dx
     }
 
     /// The bytes must come from an instance with the same parameters, scales, tolerance
@@ -303,8 +426,11 @@ impl FmuModel for WoundModel {
             experiment_tolerance: saved.experiment_tolerance,
             scheme: saved.scheme,
             edge_stress: saved.edge_stress,
+            edge_stress_rate: saved.edge_stress_rate,
             solver: None,
             warning: RefCell::new(None),
+            spare_states: Vec::new(),
+            probe_radii: self.probe_radii.clone(),
         };
         if let Some(st) = &saved.solver {
             // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.

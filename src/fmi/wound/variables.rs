@@ -1,12 +1,17 @@
-//! The wound FMU's variables: the one table that `modelDescription.xml` must match
-//! (checked by `tests/model_description.rs`).
+//! The wound FMU's variables: the one table that `modelDescription.xml` is generated
+//! from ([`crate::fmi::xml`]), and that the code uses.
 
-pub use crate::fmi::model::{CAPABILITIES, Causality, Description, Kind, LOG_CATEGORIES, Variability, Variable};
+pub use crate::fmi::model::{
+    ArrayVariable, Arrays, CAPABILITIES, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Variability, Variable,
+};
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
 pub const MODEL_IDENTIFIER: &str = "WoundOpening";
 /// `guid` of `modelDescription.xml`; `fmi2Instantiate` rejects any other.
 pub const GUID: &str = "{8c4e1f0a-3b7d-4e52-9a61-2f0d5c7b9e14}";
+
+/// `description` of `modelDescription.xml`.
+pub const SUMMARY: &str = "Opening of a circular wound in a thin incompressible Kelvin-Voigt tissue with substrate friction. Lengths scale with R0 (wound radius), stresses with G (shear modulus), time with T = zeta R0^2 / (4 G); with R0 = 1 um, T = 1 s and G = 1 Pa (the defaults) values are dimensionless.";
 
 /// Value references, in the order of the table (index = value reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -57,7 +62,7 @@ pub const VARIABLES: [Variable; 13] = [
     Variable::parameter("lambda", 0, 1.0, "1", "Viscous length over the cut radius, 2 sqrt(eta/zeta)/R0, in [0, 1e6]"),
     Variable::parameter("sigma", 1, 1.0, "1", "Homeostatic tension over shear modulus, in [-1e6, 1e6]"),
     Variable::parameter("R_inf", 2, 10.0, "1", "Outer radius of the tissue over the cut radius, in [1.001, 1e6]"),
-    Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
+    Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step or, with fmi2SetRealInputDerivatives, linear in time (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
     Variable::output("wound_radius", 4, "um", "Wound radius R0 (1 + u(1, t)) [um]; R1 = R0 (1 + sigma/6) just after the cut"),
     Variable::output("edge_velocity", 5, "um/s", "Edge velocity dR/dt [um/s] under the current edge_stress"),
     Variable::parameter("tolerance", 6, 1e-10, "1", "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh; below 1e-11 a warning names the 1e-11 delivered"),
@@ -69,11 +74,37 @@ pub const VARIABLES: [Variable; 13] = [
     Variable::parameter("G", 12, 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
 ];
 
+/// Continuous states of Model Exchange: the modal coordinates of the spectral-element
+/// mesh. The modes are uncoupled (`c_k' = (g_k(p) - c_k) / nu_k`), so the ODE is the
+/// one the co-simulation step integrates exactly, the states are the co-simulation
+/// state (FMU states and their serialization carry over unchanged), and the relaxation
+/// times `nu_k` state its stiffness. Nodal values would couple every unknown through the
+/// mass matrix. FMI 2.0 fixes the count: the mesh of the largest accepted `R_inf` (1e6)
+/// at the finest tolerance (1e-11), 27 elements of degree 8; a smaller mesh leaves the
+/// last states at 0 with derivative 0.
+pub const MODEL_EXCHANGE_STATES: usize = 217;
+
+/// What the initial edge velocity (and the initial derivatives) depend on.
+const INITIAL_RATE_DEPENDENCIES: [u32; 11] = [
+    Vr::Lambda as u32,
+    Vr::Sigma as u32,
+    Vr::RInf as u32,
+    Vr::EdgeStress as u32,
+    Vr::Tolerance as u32,
+    Vr::Method as u32,
+    Vr::GridPoints as u32,
+    Vr::InternalStep as u32,
+    Vr::LengthScale as u32,
+    Vr::TimeScale as u32,
+    Vr::StressScale as u32,
+];
+
 /// The table in the form the shared glue reads.
 pub static DESCRIPTION: Description = Description {
     model_identifier: MODEL_IDENTIFIER,
     guid: GUID,
-    xml: include_str!("../../../modelDescription/modelDescription.xml"),
+    summary: SUMMARY,
+    about: include_str!("about.html"),
     variables: &VARIABLES,
     // The edge velocity is linear in the edge stress with a factor set by fixed
     // parameters (`fixed`); the radius has no direct dependence on it.
@@ -81,25 +112,59 @@ pub static DESCRIPTION: Description = Description {
     // R1 = R0 (1 + sigma / 6); the initial velocity depends on everything but the outputs.
     initial_unknowns: &[
         (Vr::WoundRadius as u32, &[Vr::Sigma as u32, Vr::LengthScale as u32]),
-        (
-            Vr::EdgeVelocity as u32,
-            &[
-                Vr::Lambda as u32,
-                Vr::Sigma as u32,
-                Vr::RInf as u32,
-                Vr::EdgeStress as u32,
-                Vr::Tolerance as u32,
-                Vr::Method as u32,
-                Vr::GridPoints as u32,
-                Vr::InternalStep as u32,
-                Vr::LengthScale as u32,
-                Vr::TimeScale as u32,
-                Vr::StressScale as u32,
-            ],
-        ),
+        (Vr::EdgeVelocity as u32, &INITIAL_RATE_DEPENDENCIES),
     ],
     capabilities: &CAPABILITIES,
+    default_experiment: Experiment { start: 0.0, stop: 100.0, step: 0.01, tolerance: 1e-10 },
+    states: Some(States {
+        count: MODEL_EXCHANGE_STATES,
+        name: "modal_coordinate",
+        unit: "1",
+        description: "Modal coordinate of the departure u - sigma r / 6 from the uniform tension (in R0); 0 at the cut; inert (derivative 0) on modes the mesh does not use",
+        derivative_unit: "1/s",
+        initial_dependencies: &INITIAL_RATE_DEPENDENCIES,
+        input_dependencies: &[(Vr::EdgeStress as u32, "fixed")],
+    }),
+    arrays: Some(Arrays {
+        length_name: "n_probes",
+        length_description: "Number of probe radii (structural parameter: set in Configuration Mode), 1 ..= 1000",
+        length_start: PROBE_RADII.len() as u64,
+        length_max: 1000,
+        arrays: &PROBE_ARRAYS,
+    }),
 };
+
+/// Default probe radii, in um with R0 = 1 um (so in R0): the edge, the viscous boundary
+/// layer at lambda = 0.1 to 1, the bulk, and the outer edge of the default R_inf.
+pub const PROBE_RADII: [f64; 6] = [1.0, 1.5, 2.0, 3.0, 5.0, 10.0];
+
+/// FMI 3.0 arrays: the radii and the displacement field and velocity there.
+pub const PROBE_ARRAYS: [ArrayVariable; 3] = [
+    ArrayVariable {
+        name: "probe_radii",
+        causality: Causality::Parameter,
+        unit: "um",
+        start: &PROBE_RADII,
+        description: "Reference radii of the probes [um], each in [R0, R0 R_inf] (checked when displacement or velocity is read)",
+        input_dependencies: &[],
+    },
+    ArrayVariable {
+        name: "displacement",
+        causality: Causality::Output,
+        unit: "um",
+        start: &[],
+        description: "Radial displacement u(r, t) at the probe radii [um] (sigma r / 6 at the cut)",
+        input_dependencies: &[],
+    },
+    ArrayVariable {
+        name: "velocity",
+        causality: Causality::Output,
+        unit: "um/s",
+        start: &[],
+        description: "Radial velocity u_t(r, t) at the probe radii [um/s] under the current edge_stress",
+        input_dependencies: &[(Vr::EdgeStress as u32, "fixed")],
+    },
+];
 
 #[cfg(test)]
 mod tests {

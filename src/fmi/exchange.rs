@@ -1,0 +1,97 @@
+//! Model Exchange (FMI 2.0, chapter 3) on the shared [`Instance`]: the master integrates
+//! the model's continuous states ([`crate::fmi::model::States`]) with its own solver.
+//! None of the models has events: no event indicators, no discrete states, no time
+//! events, and `fmi2CompletedIntegratorStep` never asks for event mode.
+//!
+//! ```text
+//! fmi2ExitInitializationMode      -> EventMode (after the model accepts the parameters)
+//! fmi2NewDiscreteStates           nothing to update
+//! fmi2EnterContinuousTimeMode     -> ContinuousTimeMode
+//! fmi2SetTime t                   finite, not before startTime
+//! fmi2SetContinuousStates x       exactly nx finite values, checked by the model
+//! fmi2GetDerivatives              dx/dt per second of master time
+//! ```
+
+use super::instance::{Instance, Rejected};
+use super::machine::Machine;
+
+/// The flags `fmi2NewDiscreteStates` returns in `fmi2EventInfo`, all false.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EventInfo {
+    pub new_discrete_states_needed: bool,
+    pub terminate_simulation: bool,
+    pub nominals_changed: bool,
+    pub values_changed: bool,
+    pub next_event_time: Option<f64>,
+}
+
+impl Instance {
+    fn check_count(&self, n: usize, what: &str) -> Result<(), Rejected> {
+        let want = self.description().state_count();
+        if n == want { Ok(()) } else { Err(format!("{what} = {n} but this model has {want} continuous states")) }
+    }
+
+    pub fn enter_event_mode(&mut self) -> Result<(), Rejected> {
+        self.machine = Machine::EventMode;
+        Ok(())
+    }
+
+    /// No discrete states and no time events.
+    pub fn new_discrete_states(&mut self) -> Result<EventInfo, Rejected> {
+        Ok(EventInfo::default())
+    }
+
+    pub fn enter_continuous_time_mode(&mut self) -> Result<(), Rejected> {
+        self.machine = Machine::ContinuousTimeMode;
+        Ok(())
+    }
+
+    /// `(enterEventMode, terminateSimulation)`: never, since the models have no events.
+    pub fn completed_integrator_step(&mut self) -> Result<(bool, bool), Rejected> {
+        Ok((false, false))
+    }
+
+    /// `fmi2SetTime`: the master's time, not before `startTime` (the cut).
+    pub fn set_time(&mut self, t: f64) -> Result<(), Rejected> {
+        if !(t.is_finite() && t >= self.clock.start) {
+            return Err(format!("time = {t} is invalid: it must be finite and >= startTime = {}", self.clock.start));
+        }
+        self.clock.time = t;
+        Ok(())
+    }
+
+    pub fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), Rejected> {
+        self.check_count(x.len(), "nx")?;
+        if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+            return Err(format!("x[{i}] = {} is invalid: states must be finite", x[i]));
+        }
+        let t = self.clock.since_start();
+        self.model.set_continuous_states(t, x)
+    }
+
+    pub fn get_continuous_states(&mut self, n: usize) -> Result<Vec<f64>, Rejected> {
+        self.check_count(n, "nx")?;
+        self.prepare()?;
+        Ok(self.model.continuous_states())
+    }
+
+    pub fn get_derivatives(&mut self, n: usize) -> Result<Vec<f64>, Rejected> {
+        self.check_count(n, "nx")?;
+        self.prepare()?;
+        let rates = self.model.derivatives(self.clock.since_start());
+        match rates.iter().position(|x| !x.is_finite()) {
+            Some(i) => Err(format!("derivative {i} is {}: the states set are outside what the model accepts", rates[i])),
+            None => Ok(rates),
+        }
+    }
+
+    pub fn get_nominals(&mut self, n: usize) -> Result<Vec<f64>, Rejected> {
+        self.check_count(n, "nx")?;
+        Ok(self.model.nominals())
+    }
+
+    /// No event indicators: only `ni = 0` is valid.
+    pub fn get_event_indicators(&mut self, n: usize) -> Result<(), Rejected> {
+        if n == 0 { Ok(()) } else { Err(format!("ni = {n} but this model has no event indicators")) }
+    }
+}

@@ -1,0 +1,218 @@
+/*
+ * A minimal FMI 3.0 master in C. It loads the shared object of WoundOpening-fmi3.fmu
+ * (extracted into argv[1], binaries/x86_64-linux) with dlopen, knowing only the standard
+ * (fmi3_standard.h) and modelDescription.xml, and checks:
+ *   1. all 75 functions of fmi3Functions.h are exported;
+ *   2. co-simulation: the paper's lambda = 1 case against the exact solution (reference.h);
+ *   3. Model Exchange: the states are uncoupled linear modes, c_k' = (g_k - c_k) / nu_k, so
+ *      two derivative evaluations (at c = 0 and c = 1) give g_k and nu_k, the master
+ *      integrates each mode exactly, and the radius read back matches the reference;
+ *   4. instance A's FMU state handed to instance B is refused, and stays A's;
+ *   5. every function it uses on NULL, made-up and freed instances returns fmi3Error and
+ *      logs nothing (there is no instance to log for).
+ * Run under valgrind by scripts/c_tests.sh: no error, no leak.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include "check.h"
+#include "fmi3_standard.h"
+#include "read_file.h"
+#include "reference.h"
+
+#include <dlfcn.h>
+#include <stdlib.h>
+
+#define VR_RADIUS 4u
+#define VR_VELOCITY 5u
+
+static int logged = 0;
+static int errors_logged = 0;
+
+static void logger(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category, fmi3String message) {
+    (void)env;
+    (void)category;
+    logged++;
+    if (status == fmi3Error) errors_logged++;
+    if (status != fmi3OK && status != fmi3Warning) fprintf(stderr, "  [log %d] %s\n", (int)status, message);
+}
+
+/* The instantiationToken attribute of modelDescription.xml. */
+static int token_of(const char *xml, char *out, size_t size) {
+    const char *start = strstr(xml, "instantiationToken=\"");
+    if (start == NULL) return 0;
+    start += strlen("instantiationToken=\"");
+    const char *end = strchr(start, '"');
+    if (end == NULL || (size_t)(end - start) >= size) return 0;
+    memcpy(out, start, (size_t)(end - start));
+    out[end - start] = '\0';
+    return 1;
+}
+
+#define FIELD(name) name##TYPE *name;
+static struct {
+    FIELD(fmi3InstantiateModelExchange) FIELD(fmi3InstantiateCoSimulation) FIELD(fmi3FreeInstance)
+    FIELD(fmi3EnterInitializationMode) FIELD(fmi3ExitInitializationMode) FIELD(fmi3Terminate)
+    FIELD(fmi3GetFloat64) FIELD(fmi3SetFloat64) FIELD(fmi3DoStep) FIELD(fmi3UpdateDiscreteStates)
+    FIELD(fmi3EnterContinuousTimeMode) FIELD(fmi3SetTime) FIELD(fmi3SetContinuousStates)
+    FIELD(fmi3GetContinuousStateDerivatives) FIELD(fmi3GetNumberOfContinuousStates) FIELD(fmi3GetFMUState)
+    FIELD(fmi3FreeFMUState) FIELD(fmi3SerializedFMUStateSize) FIELD(fmi3SetFMUState)
+} F;
+#undef FIELD
+
+static void outputs(fmi3Instance c, double *radius, double *velocity) {
+    const fmi3ValueReference vr[2] = {VR_RADIUS, VR_VELOCITY};
+    double out[2] = {NAN, NAN};
+    CHECK(F.fmi3GetFloat64(c, vr, 2, out, 2) <= fmi3Warning, "fmi3GetFloat64");
+    *radius = out[0];
+    *velocity = out[1];
+}
+
+static void co_simulation(const char *token) {
+    fmi3Instance c = F.fmi3InstantiateCoSimulation("cs", token, NULL, false, false, false, false, NULL, 0, NULL,
+                                                   logger, NULL);
+    CHECK(c != NULL, "fmi3InstantiateCoSimulation");
+    if (c == NULL) return;
+    CHECK(F.fmi3EnterInitializationMode(c, false, 0, 0, false, 0) == fmi3OK, "EnterInitializationMode");
+    CHECK(F.fmi3ExitInitializationMode(c) == fmi3OK, "ExitInitializationMode");
+    double t = 0.0;
+    for (int k = 0; k < 5; k++) {
+        fmi3Boolean event = true, terminate = true, early = true;
+        double last = NAN, radius, velocity;
+        CHECK(F.fmi3DoStep(c, t, REFERENCE[k].t - t, true, &event, &terminate, &early, &last) == fmi3OK, "DoStep");
+        CHECK(!event && !early && last == REFERENCE[k].t, "DoStep out-arguments");
+        t = REFERENCE[k].t;
+        outputs(c, &radius, &velocity);
+        CHECK(matches_reference("FMI 3.0 co-simulation", k, radius, velocity), "t = %g", t);
+    }
+    CHECK(F.fmi3Terminate(c) == fmi3OK, "Terminate");
+    F.fmi3FreeInstance(c);
+}
+
+/* Exact integration of the uncoupled modes by the master, from two derivative evaluations. */
+static void model_exchange(const char *token) {
+    fmi3Instance c = F.fmi3InstantiateModelExchange("me", token, NULL, false, false, NULL, logger);
+    CHECK(c != NULL, "fmi3InstantiateModelExchange");
+    if (c == NULL) return;
+    size_t nx = 0;
+    CHECK(F.fmi3GetNumberOfContinuousStates(c, &nx) == fmi3OK && nx == 217, "217 states, not %zu", nx);
+    CHECK(F.fmi3EnterInitializationMode(c, false, 0, 0, false, 0) == fmi3OK, "EnterInitializationMode");
+    CHECK(F.fmi3ExitInitializationMode(c) == fmi3OK, "ExitInitializationMode");
+    fmi3Boolean a, b, d, e, g;
+    double next;
+    CHECK(F.fmi3UpdateDiscreteStates(c, &a, &b, &d, &e, &g, &next) == fmi3OK && !a && !b && !g, "UpdateDiscreteStates");
+    CHECK(F.fmi3EnterContinuousTimeMode(c) == fmi3OK, "EnterContinuousTimeMode");
+    double *x = calloc(nx, sizeof *x), *d0 = calloc(nx, sizeof *d0), *d1 = calloc(nx, sizeof *d1);
+    CHECK(F.fmi3GetContinuousStateDerivatives(c, d0, nx) == fmi3OK, "derivatives at c = 0");
+    for (size_t k = 0; k < nx; k++) x[k] = 1.0;
+    CHECK(F.fmi3SetContinuousStates(c, x, nx) == fmi3OK, "SetContinuousStates");
+    CHECK(F.fmi3GetContinuousStateDerivatives(c, d1, nx) == fmi3OK, "derivatives at c = 1");
+    for (int k = 0; k < 5; k++) {
+        double t = REFERENCE[k].t, radius, velocity;
+        for (size_t m = 0; m < nx; m++) {
+            double rate = d0[m] - d1[m]; /* 1 / nu_m; 0 for the spare states */
+            x[m] = rate > 0 ? d0[m] / rate * -expm1(-t * rate) : 0.0;
+        }
+        CHECK(F.fmi3SetTime(c, t) == fmi3OK && F.fmi3SetContinuousStates(c, x, nx) == fmi3OK, "set t = %g", t);
+        outputs(c, &radius, &velocity);
+        CHECK(matches_reference("FMI 3.0 Model Exchange", k, radius, velocity), "t = %g", t);
+    }
+    free(x);
+    free(d0);
+    free(d1);
+    CHECK(F.fmi3Terminate(c) == fmi3OK, "Terminate");
+    F.fmi3FreeInstance(c);
+}
+
+/* Instance A's FMU state handed to instance B: refused with a logged reason, and A's
+ * state stays A's (FMU states belong to the instance that made them). */
+static void foreign_state(const char *token) {
+    fmi3Instance a = F.fmi3InstantiateCoSimulation("a", token, NULL, false, false, false, false, NULL, 0, NULL, logger, NULL);
+    fmi3Instance b = F.fmi3InstantiateCoSimulation("b", token, NULL, false, false, false, false, NULL, 0, NULL, logger, NULL);
+    CHECK(a != NULL && b != NULL, "two instances");
+    if (a == NULL || b == NULL) return;
+    fmi3FMUState theirs = NULL, slot = NULL;
+    size_t size = 0;
+    CHECK(F.fmi3GetFMUState(a, &theirs) == fmi3OK && theirs != NULL, "A's state");
+    int before = errors_logged;
+    CHECK(F.fmi3SetFMUState(b, theirs) == fmi3Error, "B refuses A's state");
+    slot = theirs;
+    CHECK(F.fmi3GetFMUState(b, &slot) == fmi3Error && slot == theirs, "B does not save into A's state");
+    CHECK(F.fmi3SerializedFMUStateSize(b, theirs, &size) == fmi3Error && size == 0, "B does not size A's state");
+    CHECK(F.fmi3FreeFMUState(b, &slot) == fmi3Error && slot == theirs, "B does not free A's state");
+    CHECK(errors_logged == before + 4, "each refusal logged");
+    CHECK(F.fmi3SetFMUState(a, theirs) == fmi3OK && F.fmi3FreeFMUState(a, &theirs) == fmi3OK && theirs == NULL,
+          "A's state is still A's");
+    F.fmi3FreeInstance(a);
+    F.fmi3FreeInstance(b);
+}
+
+/* Every function used above on something that is no live instance: fmi3Error, no log. */
+static void no_instance(fmi3Instance c, const char *who) {
+    int before = logged;
+    double r = 0.0;
+    size_t n = 0;
+    fmi3ValueReference vr = VR_RADIUS;
+    fmi3Boolean flag = false;
+    fmi3FMUState state = NULL;
+    CHECK(F.fmi3EnterInitializationMode(c, false, 0, 0, false, 0) == fmi3Error, "%s: EnterInitializationMode", who);
+    CHECK(F.fmi3ExitInitializationMode(c) == fmi3Error && F.fmi3Terminate(c) == fmi3Error, "%s: Exit, Terminate", who);
+    CHECK(F.fmi3GetFloat64(c, &vr, 1, &r, 1) == fmi3Error && F.fmi3SetFloat64(c, &vr, 1, &r, 1) == fmi3Error, "%s: Float64", who);
+    CHECK(F.fmi3DoStep(c, 0, 1, false, &flag, &flag, &flag, &r) == fmi3Error, "%s: DoStep", who);
+    CHECK(F.fmi3UpdateDiscreteStates(c, &flag, &flag, &flag, &flag, &flag, &r) == fmi3Error, "%s: UpdateDiscreteStates", who);
+    CHECK(F.fmi3EnterContinuousTimeMode(c) == fmi3Error && F.fmi3SetTime(c, 0) == fmi3Error, "%s: CT mode, SetTime", who);
+    CHECK(F.fmi3SetContinuousStates(c, &r, 1) == fmi3Error, "%s: SetContinuousStates", who);
+    CHECK(F.fmi3GetContinuousStateDerivatives(c, &r, 1) == fmi3Error, "%s: GetContinuousStateDerivatives", who);
+    CHECK(F.fmi3GetNumberOfContinuousStates(c, &n) == fmi3Error && n == 0, "%s: GetNumberOfContinuousStates", who);
+    CHECK(F.fmi3GetFMUState(c, &state) == fmi3Error && state == NULL, "%s: GetFMUState", who);
+    CHECK(F.fmi3SerializedFMUStateSize(c, (fmi3FMUState)1, &n) == fmi3Error && n == 0, "%s: SerializedFMUStateSize", who);
+    CHECK(F.fmi3FreeFMUState(c, &state) == fmi3Error, "%s: FreeFMUState", who);
+    F.fmi3FreeInstance(c);
+    CHECK(logged == before, "%s: nothing logged without a live instance", who);
+}
+
+int main(int argc, char **argv) {
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s <directory of the extracted WoundOpening-fmi3.fmu>\n", argv[0]);
+        return 2;
+    }
+    char path[4096], token[128];
+    snprintf(path, sizeof path, "%s/modelDescription.xml", argv[1]);
+    char *xml = read_file(path);
+    CHECK(xml != NULL && token_of(xml, token, sizeof token), "instantiationToken in %s", path);
+    free(xml);
+    snprintf(path, sizeof path, "%s/binaries/x86_64-linux/WoundOpening.so", argv[1]);
+    void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    CHECK(lib != NULL, "dlopen(%s): %s", path, lib == NULL ? dlerror() : "");
+    if (lib == NULL) return check_report("fmu3_master");
+    int exported = 0;
+#define COUNT(name) exported += dlsym(lib, #name) != NULL;
+    FMI3_ALL_FUNCTIONS(COUNT)
+#undef COUNT
+    CHECK(exported == 75, "%d of the 75 FMI 3.0 functions exported", exported);
+#define LOAD(name) *(void **)(&F.name) = dlsym(lib, #name);
+    LOAD(fmi3InstantiateModelExchange) LOAD(fmi3InstantiateCoSimulation) LOAD(fmi3FreeInstance)
+    LOAD(fmi3EnterInitializationMode) LOAD(fmi3ExitInitializationMode) LOAD(fmi3Terminate) LOAD(fmi3GetFloat64)
+    LOAD(fmi3SetFloat64) LOAD(fmi3DoStep) LOAD(fmi3UpdateDiscreteStates) LOAD(fmi3EnterContinuousTimeMode)
+    LOAD(fmi3SetTime) LOAD(fmi3SetContinuousStates) LOAD(fmi3GetContinuousStateDerivatives)
+    LOAD(fmi3GetNumberOfContinuousStates) LOAD(fmi3GetFMUState) LOAD(fmi3FreeFMUState)
+    LOAD(fmi3SerializedFMUStateSize) LOAD(fmi3SetFMUState)
+#undef LOAD
+    co_simulation(token);
+    model_exchange(token);
+    foreign_state(token);
+    int refused_before = errors_logged;
+    CHECK(F.fmi3InstantiateCoSimulation("x", "{wrong}", NULL, false, false, false, false, NULL, 0, NULL, logger, NULL) == NULL
+              && errors_logged == refused_before + 1, "a wrong instantiationToken: NULL, with the reason logged");
+    CHECK(F.fmi3InstantiateCoSimulation("x", token, NULL, false, false, true, false, NULL, 0, NULL, logger, NULL) == NULL,
+          "eventModeUsed without hasEventMode: NULL");
+    fmi3Instance freed = F.fmi3InstantiateModelExchange("f", token, NULL, false, false, NULL, logger);
+    F.fmi3FreeInstance(freed);
+    long own = 0;
+    no_instance(NULL, "NULL");
+    no_instance((fmi3Instance)(uintptr_t)0xdeadbeef, "made-up");
+    no_instance(freed, "freed");
+    no_instance((fmi3Instance)&own, "the caller's memory");
+    CHECK(own == 0, "nothing written through a forged instance");
+    dlclose(lib);
+    return check_report("fmu3_master");
+}
