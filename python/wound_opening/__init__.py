@@ -11,6 +11,11 @@ See docs/fitting.md.
 """
 
 from ._native import NativeLibraryMissing, SolverError, library_path
+from .data import RadiusSeries, VelocityProfile
+from .fit import fit
 from .model import Simulation, simulate
+from .result import FitResult
+from .sweep import sweep
 
-__all__ = ["NativeLibraryMissing", "SolverError", "Simulation", "library_path", "simulate"]
+__all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
+           "fit", "library_path", "simulate", "sweep"]
