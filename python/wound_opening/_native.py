@@ -40,7 +40,7 @@ class _Problem(ctypes.Structure):
     _fields_ = [(name, ctypes.c_double) for name in ("lambda_", "sigma", "r_inf", "tolerance", "edge_stress")]
 
 
-_DOUBLES = ctypes.POINTER(ctypes.c_double)
+_DOUBLES = ctypes.c_void_p  # float64 arrays, passed by address
 _lib = None
 
 
@@ -73,7 +73,8 @@ def _load():
 
 
 def _ptr(a: np.ndarray | None):
-    return None if a is None else a.ctypes.data_as(_DOUBLES)
+    """The address of a contiguous float64 array (argtypes c_void_p: no ctypes object per call)."""
+    return None if a is None else a.__array_interface__["data"][0]
 
 
 def _check(lib, status: int) -> None:
