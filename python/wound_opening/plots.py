@@ -43,7 +43,7 @@ def fit_figure(result, radius, profile, path):
             model = simulate([time], lam=lam, sigma=sigma, R0_um=R0, T_s=T, outer_radius_um=result.outer_radius_um,
                              radii_um=rr)
             ax.plot(rr, model.velocity_um_s[0], "-", c=line.get_color())
-        ax.set(xlabel="distance from the wound centre (µm)", ylabel="tissue velocity (µm/s)")
+        ax.set(xlabel="distance from the centre (µm)", ylabel="tissue velocity (µm/s)")
         ax.legend(loc="upper right")
     else:
         ax.axis("off")
@@ -74,7 +74,10 @@ def sweep_figure(df, path):
     fig, ax = plt.subplots(figsize=(6.5, 5), layout="constrained")
     if lams.size > 1 and sigmas.size > 1:
         table = last.pivot_table(index="sigma", columns="lambda", values="wound_radius")
-        mesh = ax.pcolormesh(table.columns, table.index, table.values, shading="nearest")
+        # One cell per value, whatever the spacing (the values label the cells).
+        mesh = ax.pcolormesh(np.arange(table.shape[1] + 1), np.arange(table.shape[0] + 1), table.values)
+        ax.set_xticks(np.arange(table.shape[1]) + 0.5, [f"{v:g}" for v in table.columns])
+        ax.set_yticks(np.arange(table.shape[0]) + 0.5, [f"{v:g}" for v in table.index])
         fig.colorbar(mesh, ax=ax, label=f"wound radius at t = {last.time.iloc[0]:g}")
         ax.set(xlabel="λ", ylabel="σ", title=f"R_inf = {first.R_inf.iloc[0]:g}")
     else:
