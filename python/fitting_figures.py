@@ -56,7 +56,7 @@ def identifiability(path):
     a.axhline(result.threshold, ls="--", c="gray", label="95 % threshold")
     a.axvline(LAM, c="k", lw=0.8, label="true λ = 0.5")
     a.set_xscale("symlog", linthresh=1.0)
-    a.set(xlabel="λ", ylabel="Δχ² (profile likelihood)", xlim=(0, 200), ylim=(0, 12),
+    a.set(xlabel="λ", ylabel="Δχ² (profile likelihood)", xlim=(0, 50), ylim=(0, 12),
           title="λ from R(t) alone, and with PIV")
     a.legend(loc="upper right", fontsize="small")
     t = np.linspace(0, 60, 200)

@@ -17,8 +17,9 @@ from . import _native
 from .data import RadiusSeries, VelocityProfile
 
 NAMES = ("R0_um", "sigma", "lambda", "T_s")
-#: Largest lambda searched (viscous length 200 R0: far beyond any tissue's outer radius).
-LAMBDA_MAX = 200.0
+#: Largest lambda searched: a viscous length of 50 R0, beyond which the tissues of these
+#: experiments (outer radius ~10 R0) move as one and R(t) depends on tau = lambda^2 T only.
+LAMBDA_MAX = 50.0
 #: Accuracy of the curves inside fits: far below any measurement noise, coarser grids.
 FIT_TOLERANCE = 1e-8
 #: Residual given to a data point the model cannot produce (a PIV radius inside the wound).

@@ -9,7 +9,7 @@ delta(v) = min over the others of chi^2 - chi^2_min,   95 % interval = { v : del
 Steps start at the Jacobian's standard error and double; the crossing is refined by two
 secant steps on sqrt(delta), which is close to linear in the parameter near the optimum.
 lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
-and at LAMBDA_MAX; ln T and ln R0 at a factor 1000 and 3, sigma at 10 |sigma| + 1 from the
+and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1 from the
 estimate. An end that reaches such a search limit is open (None): the data do not bound it.
 """
 
@@ -47,7 +47,7 @@ def _limits_around(i: int, z: np.ndarray) -> tuple[float, float]:
         return z[1] - span, z[1] + span
     if i == 2:
         return 0.0, LAMBDA_MAX
-    return z[3] - math.log(1e3), z[3] + math.log(1e3)
+    return z[3] - math.log(1e2), z[3] + math.log(1e2)
 
 
 def _own_units(i: int, v: float) -> float:

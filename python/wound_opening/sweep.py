@@ -27,8 +27,10 @@ import numpy as np
 from .model import edge_series
 
 COLUMNS = ["lambda", "sigma", "R_inf", "time", "wound_radius", "edge_velocity"]
-#: (lambda, R_inf) pairs per task.
+#: Fewest (lambda, R_inf) pairs per task; large sweeps are cut into at most MAX_TASKS tasks
+#: (each pair is solved alone, so the cut does not change a single bit of the result).
 CHUNK = 256
+MAX_TASKS = 64
 
 
 def parameter_sets(grid=None, sets=None) -> np.ndarray:
@@ -62,7 +64,8 @@ def solve_chunk(pairs, times):
 
 
 def _chunks(pairs):
-    return [pairs[i:i + CHUNK] for i in range(0, len(pairs), CHUNK)]
+    size = max(CHUNK, -(-len(pairs) // MAX_TASKS))
+    return [pairs[i:i + size] for i in range(0, len(pairs), size)]
 
 
 def _progress(total, enabled):
