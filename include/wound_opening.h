@@ -95,6 +95,17 @@ typedef struct wo_solver wo_solver;
 // `wo_solver_save_state` and released by `wo_state_free`.
 typedef struct wo_state wo_state;
 
+// One problem of a series call: the parameters (lambda, sigma, R_inf, as in
+// `wo_solver_new`), the accuracy target `tolerance` (which picks the grid, as there) and
+// the edge stress (in G) held constant from the cut on.
+typedef struct {
+    double lambda;
+    double sigma;
+    double r_inf;
+    double tolerance;
+    double edge_stress;
+} wo_problem;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -325,6 +336,31 @@ const char *wo_last_error(void);
 
 // The name of a status code ("WO_OK", ...), or "unknown status" for any other number.
 const char *wo_status_name(int status);
+
+// The wound radius R(t_i) (in R0) and the edge velocity dR/dt(t_i) (in R0 / T) at
+// `times[i]` (in T; finite, >= 0, ascending), `i < count`, of one `problem`. `velocity` may be NULL (radius only); at
+// lambda = 0 a velocity asked for at t = 0 is infinite in the model: `WO_UNDEFINED`, and
+// nothing is written. One solver is built (O(modes) when the basis of this R_inf is
+// cached) and advanced from time to time, exactly.
+wo_status wo_series(wo_problem problem,
+                    const double *times,
+                    size_t count,
+                    double *radius,
+                    double *velocity);
+
+// Displacement u and velocity u_t, at each of `times[i]` (`i < n_times`, ascending), of
+// the material points found at the CURRENT radii `radii[j]` (`j < n_radii`, in R0 from the
+// wound centre, as PIV measures them): X_j solves X + u(X, t_i) = radii[j]. Row-major
+// outputs of `n_times * n_radii` values, `u[i * n_radii + j]`; `u` or `v` may be NULL
+// (not computed). A radius inside the wound or beyond the outer edge at some time is
+// `WO_INVALID_ARGUMENT`, naming the span of the tissue then. Other rules as `wo_series`.
+wo_status wo_profile_series(wo_problem problem,
+                            const double *times,
+                            size_t n_times,
+                            const double *radii,
+                            size_t n_radii,
+                            double *u,
+                            double *v);
 
 #ifdef __cplusplus
 }  // extern "C"

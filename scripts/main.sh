@@ -2,7 +2,8 @@
 # The main job: build both FMUs, simulate the paper's cases (lambda = 0.1, 1, 10) with
 # fmpy, then the coupled worked example (wound opening, purse-string closure, in um and s)
 # by an fmpy loop and as a container FMU (target/fmu/WoundClosure.fmu); CSV and PNG plots
-# go to out/.
+# go to out/. Then the wound_opening package: a synthetic experiment (exact solution plus
+# noise) fitted by `wound-opening fit`, and a lambda x sigma sweep by `wound-opening sweep`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/venv.sh
@@ -10,3 +11,9 @@ cargo run --release --quiet -- fmu
 python python/run_paper_cases.py --fmu target/fmu/WoundOpening.fmu --out out
 python python/coupled_example.py --fmu-dir target/fmu --out out
 python python/coupling/container.py
+cargo build --release --quiet
+python python/fitting_figures.py --data-only --out out
+wound-opening fit out/experiment_radius.csv --profile out/experiment_profile.csv --outer-radius-um 100 \
+    --json out/fit.json --plot out/fit.png
+wound-opening sweep --lambda 0,0.1,0.3,1,3,10 --sigma 0.25,0.5,1,2 --R-inf 10 --times 0,1,10,100 \
+    --csv out/sweep.csv --parquet out/sweep.parquet --plot out/sweep.png

@@ -114,6 +114,7 @@ fn status_names_match_the_enum() {
         WoStatus::WoIncompatibleState,
         WoStatus::WoSolverFailed,
         WoStatus::WoInternalError,
+        WoStatus::WoUndefined,
     ];
     for (i, s) in all.iter().enumerate() {
         assert_eq!(*s as i32, i as i32);

@@ -7,6 +7,8 @@
 //! wo_solver_node_count, _nodes, _displacement, _velocity  profiles u(r), u_t(r) into caller arrays
 //! wo_solver_save_state(s, &st), wo_solver_restore_state(s, st), wo_state_free(st)
 //! wo_solver_free(s)
+//! wo_series(problem, times, n, R, dRdt)                  a whole R(t) in one call
+//! wo_profile_series(problem, times, n_t, radii, n_r, u, v) u, u_t at CURRENT radii
 //! wo_last_error()                                         the calling thread's last message
 //! ```
 //!
@@ -17,5 +19,7 @@
 //! both run behind the panic boundary of [`crate::boundary`], as the FMI functions do.
 
 pub mod error;
+pub mod series;
+pub mod series_c;
 pub mod solver;
 pub mod solver_c;

@@ -39,7 +39,7 @@ fn slot<'a, T>(p: *mut T, what: &str) -> Result<&'a mut T, Failure> {
 }
 
 /// An input array as an owned copy (so that it may alias an output array).
-fn input(p: *const f64, count: usize, what: &str) -> Result<Vec<f64>, Failure> {
+pub(super) fn input(p: *const f64, count: usize, what: &str) -> Result<Vec<f64>, Failure> {
     match (p.is_null(), count) {
         (_, 0) => Ok(Vec::new()),
         (true, _) => Err(Failure::null(&format!("{what} (with count = {count})"))),
@@ -48,7 +48,7 @@ fn input(p: *const f64, count: usize, what: &str) -> Result<Vec<f64>, Failure> {
     }
 }
 
-fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mut [f64], Failure> {
+pub(super) fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mut [f64], Failure> {
     match (p.is_null(), count) {
         (_, 0) => Ok(&mut []),
         (true, _) => Err(Failure::null(&format!("{what} (with count = {count})"))),
@@ -228,7 +228,7 @@ pub extern "C" fn wo_last_error() -> *const c_char {
 pub extern "C" fn wo_status_name(status: c_int) -> *const c_char {
     let names = [
         c"WO_OK", c"WO_NULL_POINTER", c"WO_INVALID_ARGUMENT", c"WO_UNKNOWN_HANDLE",
-        c"WO_INCOMPATIBLE_STATE", c"WO_SOLVER_FAILED", c"WO_INTERNAL_ERROR",
+        c"WO_INCOMPATIBLE_STATE", c"WO_SOLVER_FAILED", c"WO_INTERNAL_ERROR", c"WO_UNDEFINED",
     ];
     usize::try_from(status).ok().and_then(|i| names.get(i)).map_or(c"unknown status".as_ptr(), |n| n.as_ptr())
 }

@@ -5,7 +5,9 @@
  *   2. profiles u(r), u_t(r) at the grid nodes, consistent with the edge values;
  *   3. save / restore of a state, bit for bit;
  *   4. bad input: every refused call gives its status and a message naming what was
- *      wrong, changes nothing, and the solver still reproduces the reference afterwards.
+ *      wrong, changes nothing, and the solver still reproduces the reference afterwards;
+ *   5. wo_series (a whole R(t) in one call) against the reference, and wo_profile_series
+ *      at current radii r = X + u(X, t) against the handle's profile at X; bad input.
  * Run under valgrind by scripts/c_tests.sh: no error, no leak.
  */
 #include "wound_opening.h"
@@ -233,11 +235,45 @@ static void bad_calls(void) {
     OK(wo_solver_free(s));
 }
 
+static void series(void) {
+    double times[5], radius[5], velocity[5];
+    for (int k = 0; k < 5; k++) times[k] = REFERENCE[k].t;
+    OK(wo_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, times, 5, radius, velocity));
+    for (int k = 0; k < 5; k++) CHECK(matches_reference("wo_series", k, radius[k], velocity[k]), "wo_series at %g", times[k]);
+
+    /* Material points X at t = 1, their current radii, then wo_profile_series there. */
+    double x[3] = {1.0, 2.0, 10.0}, ux[3], vx[3], r[3], u[3], v[3];
+    wo_solver *s = NULL;
+    OK(wo_solver_new(1.0, 1.0, 10.0, 1e-10, &s));
+    OK(wo_solver_advance(s, 1.0, 0.0));
+    OK(wo_solver_displacement(s, x, ux, 3));
+    OK(wo_solver_velocity(s, x, vx, 3));
+    OK(wo_solver_free(s));
+    for (int j = 0; j < 3; j++) r[j] = x[j] + ux[j];
+    double one = 1.0;
+    OK(wo_profile_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &one, 1, r, 3, u, v));
+    for (int j = 0; j < 3; j++) {
+        CHECK(fabs(u[j] - ux[j]) < 1e-13 && fabs(v[j] - vx[j]) < 1e-12, "current radius %g: u %g vs %g, v %g vs %g", r[j], u[j],
+              ux[j], v[j], vx[j]);
+    }
+
+    double bad_times[2] = {1.0, 0.5}, inside = 1.01;
+    REFUSED(wo_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, bad_times, 2, radius, NULL), WO_INVALID_ARGUMENT,
+            "times[1] = 0.5 is before times[0] = 1");
+    REFUSED(wo_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, NULL, 2, radius, NULL), WO_NULL_POINTER, "times (with count = 2) is NULL");
+    double zero = 0.0;
+    REFUSED(wo_series((wo_problem){0.0, 1.0, 10.0, 1e-10, 0.0}, &zero, 1, radius, velocity), WO_UNDEFINED, "is infinite");
+    REFUSED(wo_profile_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &one, 1, &inside, 1, u, NULL), WO_INVALID_ARGUMENT,
+            "radii[0] = 1.01 is inside the wound at times[0] = 1");
+    CHECK(strcmp(wo_status_name(WO_UNDEFINED), "WO_UNDEFINED") == 0, "status name of WO_UNDEFINED");
+}
+
 int main(void) {
     lambda_one_case();
     profiles();
     save_and_restore();
     bad_creation();
     bad_calls();
+    series();
     return check_report("direct_api");
 }

@@ -1,0 +1,112 @@
+"""ctypes binding of the two series functions of the direct C API (include/wound_opening.h).
+
+Everything here is dimensionless (lengths in R0, time in T, stresses in G); `model.py`
+converts. The library is loaded once per process: `$WOUND_OPENING_LIB` if set, else
+`target/release/libwound_opening.so` of this repository (built by `cargo build --release`).
+Each worker process of a sweep loads it itself (nothing native crosses a pickle).
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+ENV_VAR = "WOUND_OPENING_LIB"
+DEFAULT_LIB = ROOT / "target" / "release" / "libwound_opening.so"
+
+#: Grid accuracy asked of the solver (relative to the opening amplitude R_final - R1).
+TOLERANCE = 1e-10
+
+WO_OK, WO_UNDEFINED = 0, 7
+
+
+class NativeLibraryMissing(RuntimeError):
+    """The native library was not found where it was looked for."""
+
+
+class SolverError(ValueError):
+    """A call refused by the native library; the message is wo_last_error()'s."""
+
+    def __init__(self, status: int, message: str):
+        super().__init__(message)
+        self.status = status
+
+
+class _Problem(ctypes.Structure):
+    _fields_ = [(name, ctypes.c_double) for name in ("lambda_", "sigma", "r_inf", "tolerance", "edge_stress")]
+
+
+_DOUBLES = ctypes.c_void_p  # float64 arrays, passed by address
+_lib = None
+
+
+def library_path() -> Path:
+    """Where the native library is looked for: $WOUND_OPENING_LIB, else the release build."""
+    override = os.environ.get(ENV_VAR)
+    return Path(override) if override else DEFAULT_LIB
+
+
+def _load():
+    global _lib
+    if _lib is None:
+        path = library_path()
+        if not path.is_file():
+            raise NativeLibraryMissing(
+                f"wound_opening: native library not found at {path}; build it with "
+                f"`cargo build --release` in {ROOT}, or set {ENV_VAR} to its path"
+            )
+        lib = ctypes.CDLL(str(path))
+        lib.wo_series.argtypes = [_Problem, _DOUBLES, ctypes.c_size_t, _DOUBLES, _DOUBLES]
+        lib.wo_profile_series.argtypes = [
+            _Problem, _DOUBLES, ctypes.c_size_t, _DOUBLES, ctypes.c_size_t, _DOUBLES, _DOUBLES,
+        ]
+        for f in (lib.wo_series, lib.wo_profile_series):
+            f.restype = ctypes.c_int
+        lib.wo_last_error.restype = ctypes.c_char_p
+        lib.wo_last_error.argtypes = []
+        _lib = lib
+    return _lib
+
+
+def _ptr(a: np.ndarray | None):
+    """The address of a contiguous float64 array (argtypes c_void_p: no ctypes object per call)."""
+    return None if a is None else a.__array_interface__["data"][0]
+
+
+def _check(lib, status: int) -> None:
+    if status != WO_OK:
+        raise SolverError(status, lib.wo_last_error().decode("utf-8", "replace"))
+
+
+def _doubles(x) -> np.ndarray:
+    return np.ascontiguousarray(x, dtype=np.float64)
+
+
+def series(lam: float, sigma: float, r_inf: float, times, edge_stress: float = 0.0, *,
+           velocity: bool = True, tolerance: float = TOLERANCE):
+    """R(t) and (if `velocity`) dR/dt at ascending dimensionless `times`, in one C call.
+    Returns (radius, velocity or None)."""
+    lib = _load()
+    t = _doubles(times)
+    r = np.empty_like(t)
+    v = np.empty_like(t) if velocity else None
+    problem = _Problem(lam, sigma, r_inf, tolerance, edge_stress)
+    _check(lib, lib.wo_series(problem, _ptr(t), t.size, _ptr(r), _ptr(v)))
+    return r, v
+
+
+def profile_series(lam: float, sigma: float, r_inf: float, times, radii, edge_stress: float = 0.0, *,
+                   velocity: bool = True, tolerance: float = TOLERANCE):
+    """u and (if `velocity`) u_t of the material points at CURRENT radii `radii`, at each
+    ascending time: arrays (len(times), len(radii)), in one C call."""
+    lib = _load()
+    t, r = _doubles(times), _doubles(radii)
+    u = np.empty((t.size, r.size))
+    v = np.empty((t.size, r.size)) if velocity else None
+    problem = _Problem(lam, sigma, r_inf, tolerance, edge_stress)
+    _check(lib, lib.wo_profile_series(problem, _ptr(t), t.size, _ptr(r), r.size, _ptr(u), _ptr(v)))
+    return u, v

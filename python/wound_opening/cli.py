@@ -1,0 +1,130 @@
+"""The command line `wound-opening`: fit, sweep, simulate. Bad input ends with one line
+naming the file, the row and the problem, and exit code 2 (no traceback)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+import numpy as np
+
+from ._native import NativeLibraryMissing
+from .tables import InputError, float_list, read_columns
+
+
+def _fit(args) -> None:
+    from .data import RadiusSeries, VelocityProfile
+    from .fit import fit
+
+    cols = read_columns(args.radius_csv, ("time_s", "radius_um"))
+    radius = RadiusSeries(cols["time_s"], cols["radius_um"], args.radius_noise_um)
+    profile = None
+    if args.profile:
+        p = read_columns(args.profile, ("time_s", "r_um", "velocity_um_s"), min_rows=1)
+        profile = VelocityProfile(p["time_s"], p["r_um"], p["velocity_um_s"], args.velocity_noise_um_s)
+    result = fit(radius, profile, outer_radius_um=args.outer_radius_um)
+    print(result.summary())
+    if args.json:
+        with open(args.json, "w") as f:
+            f.write(result.to_json() + "\n")
+    if args.plot:
+        from .plots import fit_figure
+
+        fit_figure(result, radius, profile, args.plot)
+
+
+def _sweep(args) -> None:
+    from .sweep import sweep
+
+    grid = {"lambda": float_list(args.lam, "--lambda"), "sigma": float_list(args.sigma, "--sigma"),
+            "R_inf": float_list(args.r_inf, "--R-inf")}
+    df = sweep(grid, times=float_list(args.times, "--times"), R0_um=args.R0_um, T_s=args.T_s,
+               scheduler=args.scheduler, processes=args.processes)
+    df.to_csv(args.csv, index=False, float_format="%.17g")
+    if args.parquet:
+        df.to_parquet(args.parquet)
+    if args.plot:
+        from .plots import sweep_figure
+
+        sweep_figure(df, args.plot)
+    print(f"{len(df)} rows -> {args.csv}")
+
+
+def _simulate(args) -> None:
+    from .model import simulate
+
+    times = float_list(args.times, "--times") if args.times else np.linspace(0, args.t_end, args.points)
+    radii = float_list(args.radii_um, "--radii-um") if args.radii_um else None
+    sim = simulate(times, lam=args.lam, sigma=args.sigma, R0_um=args.R0_um, T_s=args.T_s,
+                   outer_radius_um=args.outer_radius_um, edge_stress_pa=args.edge_stress_pa, G_pa=args.G_pa,
+                   radii_um=radii)
+    sim.to_frame().to_csv(args.csv, index=False, float_format="%.17g")
+    if args.plot:
+        from .plots import simulate_figure
+
+        simulate_figure(sim, args.plot)
+    print(f"{len(times)} times -> {args.csv}")
+
+
+def parser() -> argparse.ArgumentParser:
+    top = argparse.ArgumentParser(prog="wound-opening", description=(
+        "Fit laser-ablation experiments, sweep parameters and simulate the wound-opening model "
+        "(docs/fitting.md). Units: um, s, Pa; lambda and sigma dimensionless."))
+    sub = top.add_subparsers(dest="command", required=True)
+
+    f = sub.add_parser("fit", help="fit R0_um, sigma, lambda, T_s to a radius series (and a velocity profile)")
+    f.add_argument("radius_csv", metavar="RADIUS.csv", help="columns time_s,radius_um (time since the cut)")
+    f.add_argument("--profile", metavar="PROFILE.csv",
+                   help="columns time_s,r_um,velocity_um_s (r: current distance from the wound centre)")
+    f.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
+    f.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
+    f.add_argument("--plot", metavar="OUT.png", help="data with the fit, residuals, profile likelihoods")
+    f.add_argument("--radius-noise-um", type=float, help="noise of the radii (default: from the residuals)")
+    f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities (default: from the residuals)")
+    f.set_defaults(run=_fit)
+
+    s = sub.add_parser("sweep", help="outputs over a lambda x sigma x R_inf grid (dimensionless by default)")
+    s.add_argument("--lambda", dest="lam", required=True, metavar="L1,L2,..")
+    s.add_argument("--sigma", required=True, metavar="S1,S2,..")
+    s.add_argument("--R-inf", dest="r_inf", required=True, metavar="R1,R2,..")
+    s.add_argument("--times", required=True, metavar="T1,T2,..", help="in T, or in s with --T-s")
+    s.add_argument("--R0-um", type=float, default=1.0, help="length scale (default 1: dimensionless)")
+    s.add_argument("--T-s", type=float, default=1.0, help="time scale (default 1: dimensionless)")
+    s.add_argument("--csv", required=True, metavar="OUT.csv")
+    s.add_argument("--parquet", metavar="OUT.parquet")
+    s.add_argument("--plot", metavar="OUT.png")
+    s.add_argument("--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:port); default: local processes")
+    s.add_argument("--processes", type=int, help="local processes (default: all cores)")
+    s.set_defaults(run=_sweep)
+
+    m = sub.add_parser("simulate", help="radius, edge velocity (and profiles) in um and s, to CSV")
+    m.add_argument("--lambda", dest="lam", type=float, required=True)
+    m.add_argument("--sigma", type=float, required=True)
+    m.add_argument("--R0-um", type=float, required=True)
+    m.add_argument("--T-s", type=float, required=True)
+    m.add_argument("--outer-radius-um", type=float, required=True)
+    m.add_argument("--times", metavar="T1,T2,..", help="times in s (default: --points from 0 to --t-end)")
+    m.add_argument("--t-end", type=float, default=60.0)
+    m.add_argument("--points", type=int, default=61)
+    m.add_argument("--radii-um", metavar="R1,R2,..", help="current distances from the wound centre (um)")
+    m.add_argument("--edge-stress-pa", type=float)
+    m.add_argument("--G-pa", type=float)
+    m.add_argument("--csv", required=True, metavar="OUT.csv")
+    m.add_argument("--plot", metavar="OUT.png")
+    m.set_defaults(run=_simulate)
+    return top
+
+
+def main(argv=None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        args.run(args)
+    except (InputError, ValueError, OSError, NativeLibraryMissing) as e:
+        message = " ".join(str(e).split())
+        print(f"wound-opening {args.command}: error: {message}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

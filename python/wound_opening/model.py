@@ -1,0 +1,125 @@
+"""`simulate`: the model in the units of an experiment (um, s, Pa).
+
+Scales (README, "Physical units"): lengths in R0 [um], time in T = zeta R0^2 / (4 G) [s],
+stresses in G [Pa]; lambda = 2 sqrt(eta / zeta) / R0 and sigma = tension / G are
+dimensionless, R_inf = outer radius / R0. The wound radius just after the cut is
+R1 = R0 (1 + sigma / 6), not R0, and the wound opens towards
+R_final = R0 (1 + (2 sigma / 3) R_inf^2 / (R_inf^2 - 1)).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _native
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """Outputs at the requested times (in the order given) and radii."""
+
+    times_s: np.ndarray
+    radius_um: np.ndarray
+    edge_velocity_um_s: np.ndarray
+    radii_um: np.ndarray | None = None
+    #: u of the material point at each current radius, shape (len(times), len(radii)).
+    displacement_um: np.ndarray | None = None
+    #: Its velocity (what PIV measures at that radius), same shape.
+    velocity_um_s: np.ndarray | None = None
+
+    def to_frame(self):
+        """Long table: one row per time (and radius, if any)."""
+        import pandas as pd
+
+        if self.radii_um is None:
+            return pd.DataFrame({"time_s": self.times_s, "radius_um": self.radius_um,
+                                 "edge_velocity_um_s": self.edge_velocity_um_s})
+        nt, nr = self.displacement_um.shape
+        return pd.DataFrame({
+            "time_s": np.repeat(self.times_s, nr), "r_um": np.tile(self.radii_um, nt),
+            "radius_um": np.repeat(self.radius_um, nr),
+            "edge_velocity_um_s": np.repeat(self.edge_velocity_um_s, nr),
+            "displacement_um": self.displacement_um.ravel(), "velocity_um_s": self.velocity_um_s.ravel(),
+        })
+
+
+def _positive(name: str, value: float) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} = {value} is invalid: expected a finite value > 0")
+    return value
+
+
+def scales(R0_um: float, T_s: float, outer_radius_um: float) -> float:
+    """Check the scales; return R_inf = outer_radius_um / R0_um."""
+    R0_um, _ = _positive("R0_um", R0_um), _positive("T_s", T_s)
+    r_inf = _positive("outer_radius_um", outer_radius_um) / R0_um
+    if not r_inf > 1:
+        raise ValueError(f"outer_radius_um = {outer_radius_um} is invalid: expected > R0_um = {R0_um}")
+    return r_inf
+
+
+def edge_stress_ratio(edge_stress_pa: float | None, G_pa: float | None) -> float:
+    """The edge stress in G (0 when none is given)."""
+    if edge_stress_pa is None:
+        return 0.0
+    if G_pa is None:
+        raise ValueError("edge_stress_pa needs G_pa (the shear modulus) to be converted to the model's units")
+    return float(edge_stress_pa) / _positive("G_pa", G_pa)
+
+
+def _sorted_times(times_s, T_s: float):
+    t = np.atleast_1d(np.asarray(times_s, dtype=float))
+    if t.ndim != 1 or not np.all(np.isfinite(t)) or np.any(t < 0):
+        raise ValueError("times_s must be a 1-D sequence of finite times >= 0 (seconds since the cut)")
+    order = np.argsort(t, kind="stable")
+    return t, order, t[order] / T_s
+
+
+def edge_series(lam: float, sigma: float, r_inf: float, tau, p: float = 0.0):
+    """R and dR/dt (dimensionless) at ascending dimensionless times `tau`. At lambda = 0 the
+    velocity at t = 0 is infinite in the model (unless p = sigma): returned as +-inf."""
+    tau = np.asarray(tau, dtype=float)
+    if lam == 0 and p != sigma and tau.size and tau[0] == 0:
+        r, _ = _native.series(lam, sigma, r_inf, tau, p, velocity=False)
+        v = np.full(tau.size, math.copysign(math.inf, sigma - p))
+        later = tau > 0
+        if later.any():
+            v[later] = _native.series(lam, sigma, r_inf, tau[later], p)[1]
+        return r, v
+    return _native.series(lam, sigma, r_inf, tau, p)
+
+
+def simulate(times_s, *, lam: float, sigma: float, R0_um: float, T_s: float, outer_radius_um: float,
+             edge_stress_pa: float | None = None, G_pa: float | None = None, radii_um=None,
+             tolerance: float = _native.TOLERANCE) -> Simulation:
+    """Wound radius [um] and edge velocity [um/s] at `times_s` [s since the cut, any order],
+    and, if `radii_um` is given, displacement [um] and velocity [um/s] of the tissue at those
+    CURRENT distances from the wound centre (as PIV measures them).
+
+    lam, sigma: dimensionless (lambda = viscous length / R0, sigma = tension / G).
+    R0_um: radius of the cut (the wound is R1 = R0 (1 + sigma/6) just after it).
+    T_s: time scale zeta R0^2 / (4 G). outer_radius_um: the tissue's outer radius (> R0).
+    edge_stress_pa with G_pa: a constant stress at the wound edge (default none).
+    At lambda = 0 the edge velocity at t = 0 is infinite in the model and returned as inf.
+    Raises ValueError for invalid input (a radius inside the wound or beyond the tissue at
+    some time, with the tissue's span then) and NativeLibraryMissing without the library.
+    """
+    r_inf = scales(R0_um, T_s, outer_radius_um)
+    p = edge_stress_ratio(edge_stress_pa, G_pa)
+    t, order, tau = _sorted_times(times_s, T_s)
+    back = np.empty_like(order)
+    back[order] = np.arange(order.size)
+    try:
+        radius, velocity = edge_series(lam, sigma, r_inf, tau, p)
+        if radii_um is None:
+            return Simulation(t, R0_um * radius[back], R0_um / T_s * velocity[back])
+        radii = np.atleast_1d(np.asarray(radii_um, dtype=float))
+        u, v = _native.profile_series(lam, sigma, r_inf, tau, radii / R0_um, p, tolerance=tolerance)
+    except _native.SolverError as e:
+        raise ValueError(f"{e} (in the model's units: lengths in R0 = {R0_um} um, times in T = {T_s} s)") from None
+    return Simulation(t, R0_um * radius[back], R0_um / T_s * velocity[back], radii,
+                      R0_um * u[back], R0_um / T_s * v[back])

@@ -1,0 +1,140 @@
+"""Profile likelihood: for each parameter, chi^2 minimised over the other three at fixed
+values of it, walked outward from the estimate on both sides until it rises by the
+threshold (3.84, or the F quantile with an estimated noise) or a limit is reached.
+
+```text
+delta(v) = min over the others of chi^2 - chi^2_min,   95 % interval = { v : delta(v) < threshold }
+```
+
+Steps start at the Jacobian's standard error and double; the crossing is refined by two
+secant steps on sqrt(delta), which is close to linear in the parameter near the optimum.
+lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
+and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1 from the
+estimate. An end that reaches such a search limit is open (None): the data do not bound it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .objective import LAMBDA_MAX, NAMES, Objective
+
+
+@dataclass
+class Profile:
+    """One parameter's profile: the interval ends (in the parameter's own units; None where
+    the search limit was reached), whether lambda's lower end is its bound, and the points."""
+
+    lower: float | None
+    upper: float | None
+    at_bound: bool
+    points: list = field(default_factory=list)  # (value, delta chi^2), value in its own units
+
+
+def _limits(i: int, z: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> tuple[float, float]:
+    lo, hi = _limits_around(i, z)
+    return max(lo, lower[i]), min(hi, upper[i])
+
+
+def _limits_around(i: int, z: np.ndarray) -> tuple[float, float]:
+    if i == 0:
+        return z[0] - math.log(3.0), z[0] + math.log(3.0)
+    if i == 1:
+        span = 10 * abs(z[1]) + 1
+        return z[1] - span, z[1] + span
+    if i == 2:
+        return 0.0, LAMBDA_MAX
+    return z[3] - math.log(1e2), z[3] + math.log(1e2)
+
+
+def _own_units(i: int, v: float) -> float:
+    return math.exp(v) if i in (0, 3) else v
+
+
+def _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit, slope):
+    """Walk one side; return (end in z coordinates or None, at limit, points).
+
+    Each constrained fit starts from a prediction of the other parameters: along the
+    Jacobian's regression line `slope` (d z / d z_i) for the first step, then extrapolated
+    from the last two profile points (the profile of lambda at fixed tau = lambda^2 T bends
+    T strongly: a start at the previous point alone can end in a worse local minimum)."""
+    root = math.sqrt(threshold)
+    path = [(z_hat[i], z_hat)]
+
+    def start(v):
+        (v1, z1) = path[-1]
+        if len(path) >= 2 and path[-2][0] != v1:
+            v0, z0 = path[-2]
+            move = (z1 - z0) * (v - v1) / (v1 - v0)
+        else:
+            move = slope * (v - v1)
+        return z1 + np.clip(move, -1.0, 1.0)  # at most a factor e in R0, T; 1 in sigma, lambda
+
+    def constrained(v):
+        """chi^2 at fixed v from the predicted start; where that looks like a crossing, also
+        from the last profile point, keeping the lower (a false crossing would shorten the
+        interval)."""
+        z, chi2, _ = local_fit(obj, start(v), fixed=i, value=v, tol=1e-7, passes=1)
+        if chi2 - chi2_min >= threshold:
+            z2, chi2b, _ = local_fit(obj, path[-1][1], fixed=i, value=v, tol=1e-7, passes=1)
+            if chi2b < chi2:
+                z, chi2 = z2, chi2b
+        return z, max(chi2 - chi2_min, 0.0)
+
+    prev_v, prev_delta = z_hat[i], 0.0
+    points = []
+    for k in range(16):
+        v = prev_v + direction * step * (2.0**k if k else 1.0)
+        v = min(v, limit) if direction > 0 else max(v, limit)
+        z, delta = constrained(v)
+        points.append((v, delta))
+        if delta >= threshold:
+            a, fa, b, fb = prev_v, math.sqrt(prev_delta) - root, v, math.sqrt(delta) - root
+            for _ in range(2):
+                c = a + (b - a) * (-fa) / (fb - fa)
+                _, dc = constrained(c)
+                points.append((c, dc))
+                fc = math.sqrt(dc) - root
+                if fc < 0:
+                    a, fa = c, fc
+                else:
+                    b, fb = c, fc
+            return a + (b - a) * (-fa) / (fb - fa), False, points
+        if v == limit:
+            return None, True, points
+        prev_v, prev_delta = v, delta
+        path.append((v, z))
+    return None, True, points
+
+
+def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray) -> dict:
+    """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z."""
+    from .fit import _bounds, local_fit
+
+    out = {}
+    bounds = _bounds(obj)
+    for i, name in enumerate(NAMES):
+        lo_lim, hi_lim = _limits(i, z_hat, *bounds)
+        default = (0.05, 0.05 * abs(z_hat[1]) + 0.01, 0.1, 0.1)[i]
+        se = math.sqrt(max(cov_z[i, i], 0.0))
+        slope = cov_z[:, i] / cov_z[i, i] if cov_z[i, i] > 0 and np.all(np.isfinite(cov_z[:, i])) else np.zeros(4)
+        slope[i] = 1.0
+        step = float(np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20))
+        ends, points = [], []
+        for direction, limit in ((-1, lo_lim), (1, hi_lim)):
+            if z_hat[i] == limit:
+                ends.append((None, True))
+                continue
+            end, at_limit, pts = _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit, slope)
+            ends.append((end, at_limit))
+            points += pts
+        (lo, lo_open), (hi, _) = ends
+        at_bound = i == 2 and lo_open  # lambda's lower end is its bound 0
+        lower = 0.0 if at_bound else (None if lo is None else _own_units(i, lo))
+        upper = None if hi is None else _own_units(i, hi)
+        pts = sorted([(z_hat[i], 0.0)] + points)
+        out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in pts])
+    return out

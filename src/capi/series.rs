@@ -1,0 +1,185 @@
+//! Whole time series in one call, and profiles at current positions (what PIV measures),
+//! in safe Rust. The shims are in [`super::series_c`].
+//!
+//! ```text
+//! series(problem, p, times)            R(t_i), dR/dt(t_i)  for ascending t_i >= 0, p constant
+//! profile_series(problem, p, times, r) u and u_t of the material point currently at r_j:
+//!                                      X_j solves X + u(X, t_i) = r_j, then u(X_j, t_i), u_t(X_j, t_i)
+//! ```
+//!
+//! The map `X -> X + u(X, t)` is increasing (the tissue does not fold), from the wound edge
+//! `1 + u(1, t)` to the outer edge `R_inf + u(R_inf, t)`; a current radius outside that
+//! interval is refused, naming the interval. `X` is found by the Illinois variant of
+//! regula falsi on `[1, R_inf]` (bracketing, so it converges whatever `u` looks like),
+//! to a few ulps.
+
+use super::error::{Failure, WoStatus};
+use crate::solver::{Params, Settings, Solver, check_edge_stress};
+
+/// One problem of a series call: parameters, accuracy target and the constant edge stress.
+#[derive(Debug, Clone, Copy)]
+pub struct Problem {
+    pub params: Params,
+    pub tolerance: f64,
+    pub edge_stress: f64,
+}
+
+fn start(problem: &Problem) -> Result<Solver, Failure> {
+    problem.params.validate().map_err(|e| Failure::invalid(e.to_string()))?;
+    check_edge_stress(problem.edge_stress).map_err(|e| Failure::invalid(e.to_string()))?;
+    Ok(Solver::new(&problem.params, &Settings::for_tolerance(&problem.params, problem.tolerance)?)?)
+}
+
+/// Times must be finite, >= 0 and ascending (equal neighbours allowed).
+pub fn check_times(times: &[f64]) -> Result<(), Failure> {
+    if let Some(i) = times.iter().position(|t| !(t.is_finite() && *t >= 0.0)) {
+        return Err(Failure::invalid(format!("times[{i}] = {} is invalid: expected a finite time >= 0", times[i])));
+    }
+    if let Some(i) = times.windows(2).position(|w| w[1] < w[0]) {
+        return Err(Failure::invalid(format!(
+            "times[{}] = {} is before times[{i}] = {}: expected ascending times",
+            i + 1,
+            times[i + 1],
+            times[i]
+        )));
+    }
+    Ok(())
+}
+
+/// Advance `solver` to each time in turn and call `visit(i, solver)` there.
+fn walk(
+    solver: &mut Solver,
+    p: f64,
+    times: &[f64],
+    mut visit: impl FnMut(usize, &Solver) -> Result<(), Failure>,
+) -> Result<(), Failure> {
+    for (i, &t) in times.iter().enumerate() {
+        if t > solver.time() {
+            solver.advance(t - solver.time(), p)?;
+        }
+        visit(i, solver)?;
+    }
+    Ok(())
+}
+
+fn undefined(i: usize, t: f64) -> Failure {
+    Failure::new(
+        WoStatus::WoUndefined,
+        format!(
+            "the velocity at times[{i}] = {t} is infinite: at lambda = 0 the velocity at the cut (t = 0) is \
+             unbounded (it decays like t^(-1/2)); ask for t > 0, or for the radius only"
+        ),
+    )
+}
+
+/// Wound radius into `radius` and, when given, edge velocity into `velocity`, at each time.
+pub fn series(problem: &Problem, times: &[f64], radius: &mut [f64], velocity: Option<&mut [f64]>) -> Result<(), Failure> {
+    check_times(times)?;
+    let mut solver = start(problem)?;
+    let p = problem.edge_stress;
+    let mut r = vec![0.0; times.len()];
+    let mut v = vec![0.0; times.len()];
+    let want_velocity = velocity.is_some();
+    walk(&mut solver, p, times, |i, s| {
+        r[i] = s.wound_radius();
+        if want_velocity {
+            if !s.edge_velocity_defined(p) {
+                return Err(undefined(i, times[i]));
+            }
+            v[i] = s.edge_velocity(p);
+        }
+        Ok(())
+    })?;
+    radius.copy_from_slice(&r);
+    if let Some(out) = velocity {
+        out.copy_from_slice(&v);
+    }
+    Ok(())
+}
+
+/// The reference radius `X` in `[1, R_inf]` of the material point at current radius `r`.
+/// `r` must lie within `[lo, hi] = [1 + u(1), R_inf + u(R_inf)]` (checked by the caller).
+pub fn reference_radius(s: &Solver, r: f64, r_inf: f64, (lo, hi): (f64, f64)) -> f64 {
+    let gap = |x: f64| x + s.displacement(&[x])[0] - r;
+    let (mut a, mut fa, mut b, mut fb) = (1.0, lo - r, r_inf, hi - r);
+    if fa == 0.0 {
+        return a;
+    }
+    if fb == 0.0 {
+        return b;
+    }
+    let mut side = 0i8;
+    for _ in 0..200 {
+        let c = (a * fb - b * fa) / (fb - fa);
+        let c = if c > a && c < b { c } else { 0.5 * (a + b) };
+        let fc = gap(c);
+        if fc == 0.0 {
+            return c;
+        }
+        if (fc < 0.0) == (fa < 0.0) {
+            (a, fa) = (c, fc);
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
+        } else {
+            (b, fb) = (c, fc);
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        }
+        if b - a <= 4.0 * f64::EPSILON * b {
+            break;
+        }
+    }
+    if fa.abs() < fb.abs() { a } else { b }
+}
+
+/// Row-major `(times, radii)` outputs of [`profile_series`]; either may be absent.
+pub struct ProfileOut<'a> {
+    pub displacement: Option<&'a mut [f64]>,
+    pub velocity: Option<&'a mut [f64]>,
+}
+
+/// Displacement and velocity, at each time, of the material points at the current radii
+/// `radii` (each strictly inside neither the wound nor beyond the outer edge at that time).
+pub fn profile_series(problem: &Problem, times: &[f64], radii: &[f64], out: ProfileOut<'_>) -> Result<(), Failure> {
+    check_times(times)?;
+    if let Some(j) = radii.iter().position(|r| !r.is_finite()) {
+        return Err(Failure::invalid(format!("radii[{j}] = {} is invalid: expected a finite radius", radii[j])));
+    }
+    let mut solver = start(problem)?;
+    let (p, r_inf) = (problem.edge_stress, problem.params.r_inf);
+    let n = radii.len();
+    let mut u = vec![0.0; times.len() * n];
+    let mut v = vec![0.0; times.len() * n];
+    let want_velocity = out.velocity.is_some();
+    walk(&mut solver, p, times, |i, s| {
+        let ends = s.displacement(&[1.0, r_inf]);
+        let (lo, hi) = (1.0 + ends[0], r_inf + ends[1]);
+        if let Some(j) = radii.iter().position(|r| !(lo..=hi).contains(r)) {
+            let place = if radii[j] < lo { "inside the wound" } else { "outside the tissue" };
+            return Err(Failure::invalid(format!(
+                "radii[{j}] = {} is {place} at times[{i}] = {}: the tissue spans current radii [{lo}, {hi}] then",
+                radii[j], times[i]
+            )));
+        }
+        if want_velocity && !s.edge_velocity_defined(p) {
+            return Err(undefined(i, times[i]));
+        }
+        let x: Vec<f64> = radii.iter().map(|&r| reference_radius(s, r, r_inf, (lo, hi))).collect();
+        u[i * n..(i + 1) * n].copy_from_slice(&s.displacement(&x));
+        if want_velocity {
+            v[i * n..(i + 1) * n].copy_from_slice(&s.velocity(p, &x));
+        }
+        Ok(())
+    })?;
+    if let Some(o) = out.displacement {
+        o.copy_from_slice(&u);
+    }
+    if let Some(o) = out.velocity {
+        o.copy_from_slice(&v);
+    }
+    Ok(())
+}

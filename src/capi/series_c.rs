@@ -1,0 +1,81 @@
+//! The exported series functions: thin `extern "C"` shims over [`super::series`], with the
+//! pointer rules of [`super::solver_c`] (NULL refused unless its count is 0, outputs written
+//! only on success), except that an output marked optional may be NULL to skip it.
+#![allow(clippy::missing_safety_doc)]
+
+use super::error::{Failure, WoStatus, run};
+use super::series::{self, ProfileOut, Problem};
+use super::solver_c::{input, output};
+use crate::solver::Params;
+
+/// One problem of a series call: the parameters (lambda, sigma, R_inf, as in
+/// `wo_solver_new`), the accuracy target `tolerance` (which picks the grid, as there) and
+/// the edge stress (in G) held constant from the cut on.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct WoProblem {
+    pub lambda: f64,
+    pub sigma: f64,
+    pub r_inf: f64,
+    pub tolerance: f64,
+    pub edge_stress: f64,
+}
+
+impl WoProblem {
+    fn problem(self) -> Problem {
+        let WoProblem { lambda, sigma, r_inf, tolerance, edge_stress } = self;
+        Problem { params: Params { lambda, sigma, r_inf }, tolerance, edge_stress }
+    }
+}
+
+/// An optional output array: NULL skips it.
+fn optional<'a>(p: *mut f64, count: usize, what: &str) -> Result<Option<&'a mut [f64]>, Failure> {
+    if p.is_null() { Ok(None) } else { output(p, count, what).map(Some) }
+}
+
+/// The wound radius R(t_i) (in R0) and the edge velocity dR/dt(t_i) (in R0 / T) at
+/// `times[i]` (in T; finite, >= 0, ascending), `i < count`, of one `problem`. `velocity` may be NULL (radius only); at
+/// lambda = 0 a velocity asked for at t = 0 is infinite in the model: `WO_UNDEFINED`, and
+/// nothing is written. One solver is built (O(modes) when the basis of this R_inf is
+/// cached) and advanced from time to time, exactly.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wo_series(
+    problem: WoProblem,
+    times: *const f64,
+    count: usize,
+    radius: *mut f64,
+    velocity: *mut f64,
+) -> WoStatus {
+    run("wo_series", || {
+        let t = input(times, count, "times")?;
+        let r = output(radius, count, "radius")?;
+        series::series(&problem.problem(), &t, r, optional(velocity, count, "velocity")?)
+    })
+}
+
+/// Displacement u and velocity u_t, at each of `times[i]` (`i < n_times`, ascending), of
+/// the material points found at the CURRENT radii `radii[j]` (`j < n_radii`, in R0 from the
+/// wound centre, as PIV measures them): X_j solves X + u(X, t_i) = radii[j]. Row-major
+/// outputs of `n_times * n_radii` values, `u[i * n_radii + j]`; `u` or `v` may be NULL
+/// (not computed). A radius inside the wound or beyond the outer edge at some time is
+/// `WO_INVALID_ARGUMENT`, naming the span of the tissue then. Other rules as `wo_series`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wo_profile_series(
+    problem: WoProblem,
+    times: *const f64,
+    n_times: usize,
+    radii: *const f64,
+    n_radii: usize,
+    u: *mut f64,
+    v: *mut f64,
+) -> WoStatus {
+    run("wo_profile_series", || {
+        let count = n_times.checked_mul(n_radii).ok_or_else(|| {
+            Failure::new(WoStatus::WoInvalidArgument, format!("n_times * n_radii = {n_times} * {n_radii} overflows"))
+        })?;
+        let t = input(times, n_times, "times")?;
+        let r = input(radii, n_radii, "radii")?;
+        let out = ProfileOut { displacement: optional(u, count, "u")?, velocity: optional(v, count, "v")? };
+        series::profile_series(&problem.problem(), &t, &r, out)
+    })
+}
