@@ -185,6 +185,10 @@ def write(path: Path, rows: list[dict], step_cost: list[dict], fmpy: list[dict],
         "time: the whole scenario including set-up (the basis cache emptied before each repeat), best of several repeats; Rust in-process "
         "(`examples/work_precision.rs`), the peers with `time.process_time` (single-threaded BLAS).",
         "",
+        "The Python package's speed (a whole R(t) curve, a fit, a sweep, Dask) is measured side by side "
+        "with the fmpy path in [benchmarks_fitting.md](benchmarks_fitting.md) "
+        "(`python python/bench/fitting_bench.py --out docs`).",
+        "",
         "Peers, written the way a researcher would: `python/bench/scipy_peer.py` (second-order finite "
         "differences on a uniform grid, `solve_ivp` with BDF, LSODA or DOP853, swept over grid size and "
         "rtol) and `python/bench/paper_peer.py` (the paper's appendix scheme in NumPy/SciPy, swept over "
