@@ -70,9 +70,9 @@ def plot(run, free, path: Path) -> None:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fmu-dir", default="target/fmu", help="folder with WoundOpening.fmu and PurseString.fmu")
-    ap.add_argument("--out", default="out")
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--fmu-dir", default="target/fmu", help="folder with WoundOpening.fmu and PurseString.fmu (default: %(default)s)")
+    ap.add_argument("--out", default="out", help="folder for the CSV files and the chart (default: %(default)s)")
     args = ap.parse_args()
     wound = str(Path(args.fmu_dir) / "WoundOpening.fmu")
     purse = str(Path(args.fmu_dir) / "PurseString.fmu")

@@ -88,8 +88,8 @@ def write_data(radius, profile, out: Path):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--out", default="docs")
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default="docs", help="folder for the figures or the CSV files (default: %(default)s)")
     ap.add_argument("--data-only", action="store_true", help="write experiment_radius.csv and _profile.csv only")
     args = ap.parse_args()
     out = Path(args.out)

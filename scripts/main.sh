@@ -6,14 +6,24 @@
 # noise) fitted by `wound-opening fit`, and a lambda x sigma sweep by `wound-opening sweep`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+step() { echo "== $1"; }
+step "Python environment (.venv, created on first use)"
 source scripts/venv.sh
+step "building the library and the four FMUs (cargo, release; a few minutes the first time)"
 cargo run --release --quiet -- fmu
-python python/run_paper_cases.py --fmu target/fmu/WoundOpening.fmu --out out
-python python/coupled_example.py --fmu-dir target/fmu --out out
-python python/coupling/container.py
 cargo build --release --quiet
+step "the paper's cases through fmpy"
+python python/run_paper_cases.py --fmu target/fmu/WoundOpening.fmu --out out
+step "the coupled worked example: opening, then purse-string closure"
+python python/coupled_example.py --fmu-dir target/fmu --out out
+step "the same coupling as a container FMU"
+python python/coupling/container.py
+step "a synthetic experiment, fitted with wound-opening fit"
 python python/fitting_figures.py --data-only --out out
 wound-opening fit out/experiment_radius.csv --profile out/experiment_profile.csv --outer-radius-um 100 \
     --json out/fit.json --plot out/fit.png
+step "a lambda x sigma sweep with wound-opening sweep"
 wound-opening sweep --lambda 0,0.1,0.3,1,3,10 --sigma 0.25,0.5,1,2 --R-inf 10 --times 0,1,10,100 \
     --csv out/sweep.csv --parquet out/sweep.parquet --plot out/sweep.png
+step "wrote:"
+ls -1 out/* target/fmu/*.fmu | sed 's/^/  /'

@@ -16,6 +16,7 @@ import shutil
 import sys
 import tempfile
 import uuid
+import zipfile
 from pathlib import Path
 
 from fmpy import read_model_description
@@ -105,7 +106,9 @@ def build_container(wound_fmu, purse_fmu, out_path, step_size: float,
         fmiVersion="2.0",
         modelName="WoundClosure",
         instantiationToken="{" + str(uuid.uuid4()) + "}",
-        description="WoundOpening and PurseString coupled in an fmpy container FMU",
+        description=("WoundOpening and PurseString coupled in an fmpy container FMU; it steps with a fixed "
+                     f"internal step of {step_size:g} s, so every communication step must be a whole "
+                     f"multiple of {step_size:g} s (others are refused); linux64 only"),
         generationTool="fmpy.container_fmu (python/coupling/container.py)",
         defaultExperiment=DefaultExperiment(startTime="0", stopTime=repr(float(stop_time)),
                                             stepSize=repr(float(step_size))),
@@ -139,10 +142,24 @@ def build_container(wound_fmu, purse_fmu, out_path, step_size: float,
         archive = staging / "container.fmu"
         create_container_fmu(config, work, archive)
         out_path.parent.mkdir(parents=True, exist_ok=True)
-        shutil.move(str(archive), str(out_path))
+        _keep_real_platforms(archive, out_path)
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     return out_path
+
+
+# What fmpy 0.3.32's container template carries that this container does not use: its
+# binaries for platforms whose inner FMUs have none (ours are built for linux64 only), and
+# a stray, empty template archive.
+_UNUSED = ("binaries/win64/", "binaries/darwin64/", "Container.zip")
+
+
+def _keep_real_platforms(archive: Path, out_path: Path) -> None:
+    """Copy `archive` to `out_path` without the entries of _UNUSED."""
+    with zipfile.ZipFile(archive) as src, zipfile.ZipFile(out_path, "w", zipfile.ZIP_DEFLATED) as dst:
+        for item in src.infolist():
+            if not item.filename.startswith(_UNUSED):
+                dst.writestr(item, src.read(item.filename))
 
 
 if __name__ == "__main__":

@@ -98,6 +98,21 @@ def test_container_validates(container):
     assert problems == [], "validate_fmu found problems:\n" + "\n".join(problems)
 
 
+def test_container_lists_only_its_real_platform_and_states_its_step_rule(container):
+    """The inner FMUs carry linux64 binaries only: the container must not claim darwin64 or
+    win64 (fmpy's template brings them), nor carry the template's stray Container.zip; its
+    description says that communication steps are whole multiples of its internal step."""
+    import zipfile
+
+    import fmpy
+
+    assert fmpy.supported_platforms(container) == ["linux64"]
+    assert "Container.zip" not in zipfile.ZipFile(container).namelist()
+    md = read_model_description(container)
+    step = float(md.defaultExperiment.stepSize)
+    assert f"whole multiple of {step:g} s" in md.description, md.description
+
+
 def test_container_model_description(container):
     md = read_model_description(container)
     variables = {v.name: v for v in md.modelVariables}
