@@ -1,8 +1,16 @@
 #!/usr/bin/env bash
-# Every test: Rust unit and integration tests, then the FMU built and driven by fmpy.
+# Every test: Rust unit and integration tests, the C programs under valgrind
+# (scripts/c_tests.sh), then the FMUs driven by fmpy, the Python package (its Dask tests
+# start their own scheduler and workers on 127.0.0.1) and each FMU's documentation page
+# rendered in headless Chromium. Installs what it needs: .venv (scripts/venv.sh), and with
+# apt-get valgrind (in c_tests.sh) and chromium when they are missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/venv.sh
+if ! command -v chromium >/dev/null; then
+    echo "== installing chromium (for tests/python/test_fmu_pages.py)"
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium </dev/null
+fi
 cargo test --release
 cargo build --release  # the library the Python package loads
 cargo run --release --quiet -- fmu

@@ -8,28 +8,55 @@ use wound_opening::fmi::model::{Description, Variable};
 
 type BoxError = Box<dyn std::error::Error>;
 
-/// One output over time.
+/// One output over time, on a logarithmic time axis (the opening spans decades of time)
+/// from the first positive time: 720 x 400 px with 16 px text at 100 % zoom.
 fn plot_svg(results: &Results, column: usize, unit: &str) -> Result<String, BoxError> {
-    let points: Vec<(f64, f64)> = results.rows.iter().map(|r| (r[0], r[column + 1])).collect();
+    let points: Vec<(f64, f64)> = results.rows.iter().filter(|r| r[0] > 0.0).map(|r| (r[0], r[column + 1])).collect();
     let (t0, t1) = (points[0].0, points[points.len() - 1].0);
     let lo = points.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let hi = points.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
     let pad = ((hi - lo) * 0.05).max(1e-12 * hi.abs().max(1.0));
+    let name = &results.names[column];
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (720, 360)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (720, 400)).into_drawing_area();
         root.fill(&WHITE)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(format!("{} (reference results, start values)", results.names[column]), ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(72)
-            .build_cartesian_2d(t0..t1, (lo - pad)..(hi + pad))?;
-        chart.configure_mesh().x_desc("time [s]").y_desc(format!("{} [{unit}]", results.names[column])).draw()?;
-        chart.draw_series(LineSeries::new(points, BLUE.stroke_width(2)))?;
+            .caption(format!("{name}, reference results (start values)"), ("sans-serif", 20))
+            .margin(14)
+            .x_label_area_size(56)
+            .y_label_area_size(96)
+            .build_cartesian_2d((t0..t1).log_scale(), (lo - pad)..(hi + pad))?;
+        chart
+            .configure_mesh()
+            .x_desc("time since the cut [s] (logarithmic)")
+            .y_desc(format!("{name} [{unit}]"))
+            .label_style(("sans-serif", 16))
+            .axis_desc_style(("sans-serif", 16))
+            .x_label_formatter(&|t| format!("{t}"))
+            .draw()?;
+        chart.draw_series(LineSeries::new(points, RGBColor(0, 114, 178).stroke_width(3)))?;
         root.present()?;
     }
     Ok(svg)
+}
+
+/// How to run this FMU with fmpy, for its outputs.
+fn usage(d: &Description, file: &str) -> String {
+    let outputs: Vec<String> = d
+        .variables
+        .iter()
+        .filter(|v| v.causality.as_str() == "output")
+        .map(|v| format!("'{}'", v.name))
+        .collect();
+    let e = d.default_experiment;
+    format!(
+        "<h2>Usage with fmpy</h2>\n<pre>from fmpy import simulate_fmu\n\nresult = simulate_fmu('{file}', stop_time={stop}, output_interval={step},\n                      output=[{outputs}])\nprint(result['time'][-1], result[{first}][-1])</pre>\n",
+        stop = e.stop,
+        step = e.step,
+        outputs = outputs.join(", "),
+        first = outputs.first().cloned().unwrap_or_default(),
+    )
 }
 
 fn escape(s: &str) -> String {
@@ -41,7 +68,7 @@ fn variable_rows(variables: &[Variable]) -> String {
     variables
         .iter()
         .map(|v| {
-            let start = v.start.map_or("".into(), |s| s.to_string());
+            let start = v.start.map_or("".into(), |s| if s != 0.0 && s.abs() < 1e-3 { format!("{s:e}") } else { s.to_string() });
             format!(
                 "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                 v.name,
@@ -55,12 +82,12 @@ fn variable_rows(variables: &[Variable]) -> String {
         .collect()
 }
 
-const STYLE: &str = "body{font-family:sans-serif;max-width:60em;margin:2em auto}td,th{padding:.2em .6em;border-bottom:1px solid #ccc}pre{background:#f4f4f4;padding:.6em}";
+const STYLE: &str = "body{font-family:sans-serif;font-size:16px;max-width:60em;margin:2em auto}td,th{padding:.2em .6em;border-bottom:1px solid #ccc}pre{background:#f4f4f4;padding:.6em;overflow-x:auto}svg{max-width:100%;height:auto}";
 const TABLE_HEAD: &str =
     "<tr><th>name</th><th>value reference</th><th>causality</th><th>start</th><th>unit</th><th>description</th></tr>";
 
 /// The page of one archive; `interfaces` says which FMI version and interface types it has.
-pub fn index_html(d: &Description, interfaces: &str, results: &Results) -> Result<String, BoxError> {
+pub fn index_html(d: &Description, interfaces: &str, file: &str, results: &Results) -> Result<String, BoxError> {
     let mut plots = String::new();
     for (i, name) in results.names.iter().enumerate() {
         let unit = d.variables.iter().find(|v| v.name == *name).map_or("", |v| v.unit);
@@ -77,15 +104,17 @@ pub fn index_html(d: &Description, interfaces: &str, results: &Results) -> Resul
 <h1>{id}</h1>
 <p>{interfaces}.</p>
 {about}
-<h2>Variables</h2>
+{usage}<h2>Variables</h2>
 <table>{TABLE_HEAD}
 {rows}</table>
 <h2>Reference results</h2>
 <p>The default experiment (start {start} s, stop {stop} s, step {step} s, tolerance {tol:e}) with the start values,
-computed by this FMU's own code: <code>extra/org.fmi-standard.fmi-ls-ref/{id}_out.csv</code>.</p>
+computed by this FMU's own code: <code>extra/org.fmi-standard.fmi-ls-ref/{id}_out.csv</code>
+(plotted from the first output time after the start, on a logarithmic time axis).</p>
 {plots}</body></html>
 "#,
         about = d.about,
+        usage = usage(d, file),
         rows = variable_rows(d.variables),
         start = e.start,
         stop = e.stop,

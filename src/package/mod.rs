@@ -61,8 +61,9 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
             ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, xml3::fmi3(description)),
         ];
         for (suffix, interfaces, platform, model_description) in versions {
-            let docs = docs::index_html(description, interfaces, &results)?;
-            let path = out_dir.join(format!("{id}{suffix}.fmu"));
+            let file = format!("{id}{suffix}.fmu");
+            let docs = docs::index_html(description, interfaces, &file, &results)?;
+            let path = out_dir.join(&file);
             let so_name = format!("binaries/{platform}/{id}{}", std::env::consts::DLL_SUFFIX);
             let entries: Vec<(String, Vec<u8>)> = vec![
                 ("modelDescription.xml".into(), model_description.into_bytes()),
