@@ -6,8 +6,8 @@ is the master.  Writes
 
     OUT/paper_cases.csv     lambda, time, wound_radius, edge_velocity,
                             wound_radius_exact, edge_velocity_exact
-    OUT/wound_radius.png    R(t), log time axis, exact dashed
-    OUT/edge_velocity.png   dR/dt, log-log, exact dashed
+    OUT/wound_radius.png    R(t), log time axis, exact dashed; below, the error
+    OUT/edge_velocity.png   dR/dt, log-log, exact dashed; below, the relative error
 
 and prints the largest error per lambda at t >= 0.01: radius relative to the opening
 R_final - R1, velocity relative to max(|v_exact|, (R_final - R1) / 100).  At t = 0 the
@@ -128,23 +128,41 @@ def main() -> None:
             for t, *values in zip(times, *columns):
                 writer.writerow([f"{lam:g}", repr(float(t))] + [repr(float(x)) for x in values])
 
+    # Okabe-Ito colours (distinguishable with the common colour-vision deficiencies).
+    palette = ["#0072B2", "#D55E00", "#009E73"]
     for index, name, label, logy in ((0, "wound_radius", "wound radius R / R0", False),
                                      (1, "edge_velocity", "edge velocity dR/dt (R0 / T)", True)):
-        fig, ax = plt.subplots(figsize=(7, 4.5))
+        fig, (ax, err_ax) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True,
+                                         gridspec_kw={"height_ratios": [2, 1]})
         for k, (lam, columns) in enumerate(results.items()):
-            color = f"C{k}"
-            ax.plot(times[1:], columns[index][1:], color=color, lw=2, alpha=0.6, label=f"FMU, λ = {lam:g}")
-            ax.plot(times[1:], columns[index + 2][1:], color="k", lw=0.8, ls="--",
+            color = palette[k % len(palette)]
+            fmu, exact_values = columns[index][1:], columns[index + 2][1:]
+            ax.plot(times[1:], fmu, color=color, lw=2.5, alpha=0.7, label=f"FMU, λ = {lam:g}")
+            ax.plot(times[1:], exact_values, color="k", lw=0.8, ls="--",
                     label="exact" if k == len(results) - 1 else None)
+            # Error as in the printed summary: radius over the opening, velocity relative
+            # (with the floor), from t = T_MIN where the accuracy promise starts.
+            scale = amplitude if index == 0 else np.maximum(np.abs(exact_values), amplitude / 100)
+            err = np.abs(fmu - exact_values) / scale
+            keep = times[1:] >= T_MIN
+            err_ax.plot(times[1:][keep], np.maximum(err[keep], 1e-17), color=color, lw=1.5, label=f"λ = {lam:g}")
         ax.set_xscale("log")
         if logy:
             ax.set_yscale("log")
             ax.set_ylim(1e-8, None)
-        ax.set_xlabel("time t / T   (T = ζ R0² / 4G)")
         ax.set_ylabel(label)
-        ax.set_title(f"Wound opening, R_inf = {R_INF:g} R0, σ = {SIGMA:g} G")
+        ax.set_title(f"Wound opening, R_inf = {R_INF:g} R0, σ = {SIGMA:g} G: FMU against the exact solution")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend()
+        ax.legend(loc="best", framealpha=0.9)
+        err_ax.set_yscale("log")
+        err_ax.set_ylim(1e-16, 1e-8)
+        if index == 0:
+            err_ax.axhline(1e-10, color="0.4", lw=1, ls=":")
+            err_ax.text(times[1], 1.4e-10, "default tolerance 1e-10", fontsize=8, color="0.3")
+        err_ax.set_ylabel("error: " + ("|R − R_exact| / (R_final − R1)" if index == 0
+                                        else "relative (floor (R_final − R1) / 100)"))
+        err_ax.set_xlabel("time t / T   (T = ζ R0² / 4G; errors from t = 0.01)")
+        err_ax.grid(True, which="both", alpha=0.3)
         fig.tight_layout()
         fig.savefig(args.out / f"{name}.png", dpi=130)
         plt.close(fig)
