@@ -1,4 +1,4 @@
-//! The README's variable tables against the Rust tables the code and the generated
+//! The variable tables of docs/fmi.md against the Rust tables the code and the generated
 //! modelDescription.xml use (issue 11, section 3: "the README's variable tables come from
 //! the same source or are checked against it"): every row names a variable of its model with
 //! the table's value reference, causality, start value and unit, and every parameter, input
@@ -50,7 +50,7 @@ fn check(description: &Description, rows: &[Vec<String>], start_col: usize, unit
 
 #[test]
 fn readme_variable_tables_match_the_models() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README.md");
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/fmi.md")).expect("docs/fmi.md");
     let wound_rows = table(&readme, "| name | value ref. | causality | variability | start | unit | meaning |");
     check(&wound::variables::DESCRIPTION, &wound_rows, 4, 5);
     let purse_rows = table(&readme, "| name | value ref. | causality | start | unit |");
