@@ -16,7 +16,11 @@ LAMBDAS = [0, 1e-3, 1e-2, 0.03, 0.1, 0.3, 1, 3, 10, 100, 1000]
 RADII = [1.5, 2, 10, 100, 1000]
 
 if __name__ == "__main__":
-    out = Path(sys.argv[1])
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("dir", type=Path, help="folder for the ref_{lambda}_{R_inf}.csv tables")
+    out = parser.parse_args().dir
     out.mkdir(parents=True, exist_ok=True)
     t = np.unique(np.concatenate([np.arange(1, 101) * 0.01, 0.01 * 10 ** (np.arange(0, 201) / 20)]))
     for lam in LAMBDAS:

@@ -163,12 +163,22 @@ def _keep_real_platforms(archive: Path, out_path: Path) -> None:
 
 
 if __name__ == "__main__":
+    import argparse
+
     import numpy as np
     from fmpy import simulate_fmu
 
     root = Path(__file__).resolve().parents[2]
-    fmu_dir = root / "target" / "fmu"
-    step = 0.5
+    parser = argparse.ArgumentParser(
+        description="Build WoundClosure.fmu, an fmpy container of WoundOpening.fmu and PurseString.fmu "
+                    "coupled by wound_radius and edge_stress, then simulate it for 300 s and print a table.")
+    parser.add_argument("--fmu-dir", type=Path, default=root / "target" / "fmu",
+                        help="folder with the two FMUs; the container is written there (default: %(default)s)")
+    parser.add_argument("--step", type=float, default=0.5,
+                        help="the container's fixed internal step in s; communication steps must be whole "
+                             "multiples of it (default: %(default)s)")
+    args = parser.parse_args()
+    fmu_dir, step = args.fmu_dir, args.step
     path = build_container(fmu_dir / "WoundOpening.fmu", fmu_dir / "PurseString.fmu",
                            fmu_dir / "WoundClosure.fmu", step)
     print(f"wrote {path}")
