@@ -49,18 +49,21 @@ def equilibrium_radius() -> float:
 
 def plot(run, free, path: Path) -> None:
     fig, (ax, bx) = plt.subplots(2, 1, figsize=(7.5, 6.5), sharex=True, height_ratios=[3, 2])
-    ax.plot(run.time, run.wound_radius, "C0", lw=2, label="with purse-string (coupled FMUs)")
-    ax.plot(free.time, free.wound_radius, "C7--", lw=1.5, label="free opening (edge_stress = 0)")
-    ax.axhline(equilibrium_radius(), color="C3", lw=0.8, ls=":", label="equilibrium with T_c = T_max")
+    # Okabe-Ito colours (distinguishable with the common colour-vision deficiencies).
+    blue, grey, vermillion, green, orange = "#0072B2", "#7f7f7f", "#D55E00", "#009E73", "#E69F00"
+    ax.plot(run.time, run.wound_radius, color=blue, lw=2, label="with purse-string (coupled FMUs)")
+    ax.plot(free.time, free.wound_radius, color=grey, ls="--", lw=1.5, label="free opening (edge_stress = 0)")
+    ax.axhline(equilibrium_radius(), color=vermillion, lw=1, ls=":", label="equilibrium with T_c = T_max")
     ax.axhline(WOUND_EXAMPLE["R0"], color="k", lw=0.6)
-    ax.set_ylabel("wound radius [um]")
-    ax.legend(loc="upper right", fontsize=9)
-    ax.set_title("Wound R0 = 10 um, tau = eta/G = 10 s (lambda = 1): opening, then purse-string closure", fontsize=10)
-    bx.plot(run.time, run.line_tension / 1000.0, "C2", lw=2, label="line tension T_c [nN]")
+    ax.set_ylabel("wound radius [µm]")
+    # Centre right: between the free opening (above 16 µm there) and the closing wound (below 12).
+    ax.legend(loc="center right", fontsize=9, framealpha=0.9)
+    ax.set_title("Wound R0 = 10 µm, τ = η/G = 10 s (λ = 1): opening, then purse-string closure", fontsize=10)
+    bx.plot(run.time, run.line_tension / 1000.0, color=green, lw=2, label="line tension T_c [nN]")
     bx.set_ylabel("T_c [nN]")
     bx.set_xlabel("time since the cut [s]")
     cx = bx.twinx()
-    cx.plot(run.time, run.edge_stress, "C1", lw=1.5, label="edge stress p = T_c/(h R) [Pa]")
+    cx.plot(run.time, run.edge_stress, color=orange, lw=1.5, ls="--", label="edge stress p = T_c/(h R) [Pa]")
     cx.set_ylabel("p [Pa]")
     lines = bx.get_lines() + cx.get_lines()
     bx.legend(lines, [line.get_label() for line in lines], loc="center right", fontsize=9)
