@@ -30,7 +30,7 @@ fn plot_svg(results: &Results, column: usize, unit: &str) -> Result<String, BoxE
         chart
             .configure_mesh()
             .x_desc("time since the cut [s] (logarithmic)")
-            .y_desc(format!("{name} [{unit}]"))
+            .y_desc(format!("{name} [{}]", shown_unit(unit)))
             .label_style(("sans-serif", 16))
             .axis_desc_style(("sans-serif", 16))
             .x_label_formatter(&|t| format!("{t}"))
@@ -59,6 +59,11 @@ fn usage(d: &Description, file: &str) -> String {
     )
 }
 
+/// A unit as a person reads it: the micro sign for the declared "um" (FMI unit names stay ASCII).
+fn shown_unit(unit: &str) -> String {
+    unit.replace("um", "µm")
+}
+
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
@@ -75,7 +80,7 @@ fn variable_rows(variables: &[Variable]) -> String {
                 v.value_reference,
                 v.causality.as_str(),
                 start,
-                escape(v.unit),
+                escape(&shown_unit(v.unit)),
                 escape(v.description)
             )
         })
