@@ -15,16 +15,18 @@ import matplotlib.pyplot as plt
 from bench import common
 
 #: scheme -> (label, colour, marker); schemes not listed get matplotlib's next colour.
+# Okabe-Ito colours (distinguishable with the common colour-vision deficiencies), and a
+# distinct marker per method so that no series depends on its colour alone.
 STYLE = {
-    "modal": ("modal, degree 8, exact in time (default)", "tab:blue", "o"),
-    "modal_linear": ("modal, linear elements", "tab:cyan", "v"),
-    "trbdf2": ("TR-BDF2 on the Galerkin system", "tab:green", "s"),
-    "paper": ("paper's scheme (Rust)", "tab:red", "D"),
-    "explicit": ("explicit (Rust)", "tab:gray", "x"),
-    "paper_peer": ("paper's scheme, NumPy/SciPy peer", "darkred", "d"),
-    "scipy_BDF": ("SciPy peer: FD + solve_ivp BDF", "tab:purple", "^"),
-    "scipy_LSODA": ("SciPy peer: FD + solve_ivp LSODA", "tab:pink", "<"),
-    "scipy_DOP853": ("SciPy peer: FD + solve_ivp DOP853", "tab:orange", ">"),
+    "modal": ("modal, degree 8, exact in time (default)", "#0072B2", "o"),
+    "modal_linear": ("modal, linear elements", "#56B4E9", "v"),
+    "trbdf2": ("TR-BDF2 on the Galerkin system", "#009E73", "s"),
+    "paper": ("paper's scheme (Rust)", "#D55E00", "D"),
+    "explicit": ("explicit (Rust)", "#7f7f7f", "x"),
+    "paper_peer": ("paper's scheme, NumPy/SciPy peer", "#8c3a00", "d"),
+    "scipy_BDF": ("SciPy peer: FD + solve_ivp BDF", "#CC79A7", "^"),
+    "scipy_LSODA": ("SciPy peer: FD + solve_ivp LSODA", "#F0E442", "<"),
+    "scipy_DOP853": ("SciPy peer: FD + solve_ivp DOP853", "#E69F00", ">"),
     "fmpy": ("modal through fmpy (FMU, default settings)", "black", "*"),
 }
 ERROR_TARGET, TIME_TARGET = 1e-9, 1e-3
