@@ -13,6 +13,29 @@ pub fn cpu_seconds() -> f64 {
     ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
 }
 
+/// CPU seconds of one `fmi2DoStep` (a step of 1e-4 from the instance's time `t`) and one
+/// `fmi2GetReal` of both WoundOpening outputs, through the exported functions: best of
+/// repeats of `steps` each.
+///
+/// # Safety
+/// `c` is a live, initialized WoundOpening instance at time `t`.
+pub unsafe fn exported_step_seconds(c: wound_opening::fmi::types::fmi2Component, mut t: f64, steps: usize) -> f64 {
+    use wound_opening::fmi::ffi::{fmi2DoStep, fmi2GetReal};
+    let (outputs, mut out) = ([4u32, 5u32], [0.0f64; 2]);
+    let (cpu, _) = best_cpu(|| {
+        for _ in 0..steps {
+            // SAFETY: as promised by the caller; `outputs` and `out` hold two elements.
+            unsafe {
+                assert_eq!(fmi2DoStep(c, t, 1e-4, 1), 0);
+                assert_eq!(fmi2GetReal(c, outputs.as_ptr(), 2, out.as_mut_ptr()), 0);
+            }
+            t += 1e-4;
+        }
+        out[0]
+    });
+    cpu / steps as f64
+}
+
 /// Best CPU time of `f` over repeats (at least 3, until 0.3 s are spent, at most 50).
 pub fn best_cpu<T>(mut f: impl FnMut() -> T) -> (f64, T) {
     let (mut best, mut spent, mut out) = (f64::INFINITY, 0.0, None);
