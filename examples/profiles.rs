@@ -1,4 +1,4 @@
-//! Displacement and velocity profiles for the paper's four panels (model.md section 5):
+//! Displacement and velocity profiles for the paper's four panels (docs/model.md, "The paper's figures"):
 //! R_inf = 10, sigma = 1, lambda = 0.1, 1, 10, from the default solver.
 //!
 //! Usage: `cargo run --release --example profiles -- DIR`; writes DIR/profiles.csv with

@@ -54,7 +54,7 @@ def time_grid() -> np.ndarray:
 
 
 def initial_velocity(lam: float) -> float:
-    """u_t(1, 0+) for lambda > 0 (docs/model.md section 3): w = A I1(r/l) + B K1(r/l) with
+    """u_t(1, 0+) for lambda > 0 (docs/model.md, "Exact results"): w = A I1(r/l) + B K1(r/l) with
     lambda^2 D w(1) = p - sigma (p = 0) and D w(R_inf) = 0."""
     k = 1.0 / lam
     d_i = lambda r: 2 * (2 * k * sp.i0(k * r) - sp.i1(k * r) / r)  # noqa: E731

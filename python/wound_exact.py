@@ -1,6 +1,6 @@
 """Exact wound-opening solution, computed independently of the Rust solver.
 
-Implements section 3 of the shared model notes (docs/model.md): the Laplace-domain
+Implements docs/model.md, "Exact results": the Laplace-domain
 solution of the dimensionless problem, with no spatial or temporal discretization,
 
     k(s)^2 = s / (1 + lambda^2 s)

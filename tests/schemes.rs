@@ -1,5 +1,5 @@
 //! The comparison schemes against the exact solution: the paper's scheme reproduces the
-//! first-order errors that docs/model.md section 4 reports; TR-BDF2 converges at second
+//! first-order errors that docs/model.md ("The paper's own scheme") reports; TR-BDF2 converges at second
 //! order in time; linear elements with exact time at second order in space.
 
 use wound_opening::solver::{MeshSpec, Params, Scheme, Settings, Solver, exact};
@@ -24,9 +24,9 @@ fn max_error(lambda: f64, scheme: &Scheme, reference: &[f64; 9]) -> f64 {
     })
 }
 
-/// model.md: "about 13 to 20 percent of the opening amplitude with N = 101 points and about
-/// 1.3 to 1.8 percent with N = 1001, whatever dt" (there measured as the maximum over
-/// time; here at nine times, so a little lower: the bounds allow 10-22 % and 1-2 %).
+/// The paper's scheme is first order: 10-22 % of the opening amplitude with N = 101 points
+/// and 1-2 % with N = 1001, whatever dt, at nine times from 0.1 to 100 (docs/model.md,
+/// "The paper's own scheme").
 #[test]
 fn paper_scheme_reproduces_its_known_first_order_error() {
     for (lambda, reference) in EXACT {

@@ -1,4 +1,4 @@
-//! The solver against the exact results of docs/model.md section 3, the observed order of
+//! The solver against the exact results of docs/model.md ("Exact results"), the observed order of
 //! convergence under grid refinement, and independence of the step size (exact in time).
 
 use wound_opening::solver::{MeshSpec, Params, Settings, Solver, exact};
@@ -13,7 +13,7 @@ fn amplitude(r_inf: f64) -> f64 {
 }
 
 /// Exact `(lambda, t, R(t), dR/dt)` for `sigma = 1`, `R_inf = 10`, `p = 0`: the inverse
-/// Laplace transform of model.md section 3 by mpmath's fixed Talbot method at 30
+/// Laplace transform of docs/model.md ("Exact results") by mpmath's fixed Talbot method at 30
 /// significant digits (`python/wound_exact.py`, `edge_mp`), rounded to double.
 const LAPLACE_REFERENCE: [(f64, f64, f64, f64); 9] = [
     (0.0, 0.01, 1.1948100659958139, 1.4007729175076447),

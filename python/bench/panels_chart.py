@@ -1,4 +1,4 @@
-"""The paper's four panels per lambda (model.md section 5) from the Rust `profiles.csv`.
+"""The paper's four panels per lambda (docs/model.md, "The paper's figures") from the Rust `profiles.csv`.
 
 Columns lambda,t,r,u,v: u(r, t) and v = u_t(r, t) on an r grid of [1, R_inf] at the
 times the file holds, t = 0 being the state just after the cut (u = sigma r / 6, v the

@@ -1,6 +1,7 @@
 """Peer: the paper's appendix scheme, written in NumPy/SciPy the way a researcher would.
 
-Source: ../shared/seed/wound_opening_paper.tex, section "Numerical integration". Uniform
+Source: the numerical appendix of Carvalho, Araujo and Patricio, "Wound opening in a thin
+incompressible viscoelastic tissue" (docs/model.md, "The paper's own scheme"). Uniform
 grid r_i = 1 + (i - 1) dr, i = 1 .. N, dr = (R_inf - 1)/(N - 1); t_n = n dt.
 
 ```text

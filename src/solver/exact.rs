@@ -1,4 +1,4 @@
-//! Closed-form results of the continuous model (docs/model.md, section 3), used by the
+//! Closed-form results of the continuous model (docs/model.md, "Exact results"), used by the
 //! tests and the documentation. Nothing here is discretised.
 
 use super::bessel::{ive, kve};
@@ -56,7 +56,7 @@ pub fn no_friction_radius(sigma: f64, r_inf: f64, t_tau: f64) -> f64 {
 /// (pulling the edge in reduces its velocity) and falls like `-1 / (4 lambda)` as
 /// `lambda -> 0`: the response of the edge is infinite at `lambda = 0`.
 /// At the cut (uniform tension, which is at rest under `p = sigma`) the velocity field is
-/// `(p - sigma) w(r)`: the initial velocity of model.md section 3.
+/// `(p - sigma) w(r)`: the velocity just after the cut of docs/model.md, "Exact results".
 pub fn velocity_response(lambda: f64, r_inf: f64, r: f64) -> f64 {
     let x = 1.0 / lambda;
     let at = |n: u32, y: f64| (ive(n, y), kve(n, y));

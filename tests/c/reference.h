@@ -5,7 +5,7 @@
  *   python -c "import sys; sys.path.insert(0, 'python'); import numpy as np, wound_exact as w;
  *              print(w.edge(1.0, 1.0, 10.0, np.array([0.01, 0.1, 1, 10, 100])))"
  *
- * (python/wound_exact.py: the Laplace-domain solution of docs/model.md section 3, inverted
+ * (python/wound_exact.py: the Laplace-domain solution of docs/model.md ("Exact results"), inverted
  * on Weideman's Talbot contour, itself checked against mpmath at 30 digits to 1e-13 by
  * tests/python/test_reference.py).
  *

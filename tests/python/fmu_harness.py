@@ -78,7 +78,7 @@ def exact(lam, t, p=0.0, sigma=SIGMA, r_inf=R_INF):
 
 
 def initial_velocity(lam, p=0.0, sigma=SIGMA, r_inf=R_INF):
-    """dR/dt at t = 0+ for lambda > 0 (docs/model.md section 3, finite R_inf):
+    """dR/dt at t = 0+ for lambda > 0 (docs/model.md, "Exact results", finite R_inf):
     w = A I1(r/lambda) + B K1(r/lambda) with lambda^2 D w(1) = p - sigma, D w(R_inf) = 0.
 
     Written with SciPy's exponentially scaled functions, I1(kr) = ive(1, kr) e^(kr) and

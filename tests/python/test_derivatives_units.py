@@ -1,5 +1,5 @@
 """fmi2GetDirectionalDerivative of both FMUs: WoundOpening's against the closed form of the
-instantaneous velocity response (docs/model.md section 3, evaluated with SciPy's Bessel
+instantaneous velocity response (docs/model.md, "Exact results", evaluated with SciPy's Bessel
 functions in fmu_harness.initial_velocity, independently of the Rust code) and refused at
 lambda = 0 where it is infinite; consistency with difference quotients of the outputs;
 WoundOpening's physical units against its dimensionless behaviour; the PurseString FMU's

@@ -2,7 +2,7 @@
 
 The FMU tests measure the FMU against `wound_exact.edge`; this file makes sure that
 reference deserves the trust: against mpmath's 30-digit fixed-Talbot inversion (3 points,
-~15 s in total), and against closed-form limits from docs/model.md section 3.
+~15 s in total), and against closed-form limits from docs/model.md ("Exact results").
 No FMU needed.
 """
 
