@@ -1,4 +1,4 @@
-//! Work-precision data of every scheme on the scenario of issue 3 (R_inf = 10, sigma = 1,
+//! Work-precision data of every scheme on the benchmark scenario (R_inf = 10, sigma = 1,
 //! 1000 steps of 0.1), in-process.
 //!
 //! Usage: `cargo run --release --example work_precision -- DIR`; reads DIR/reference_{lambda}.csv

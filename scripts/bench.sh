@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Benchmarks of issue 3, one command: build the FMU, write the exact references, run the
+# The benchmarks, one command: build the FMU, write the exact references, run the
 # Rust benchmark examples, the two Python peers and the fmpy timing (CSVs in target/bench/),
 # then every chart and docs/benchmarks.md (docs/). About 10 minutes on 2 cores.
 set -euo pipefail

@@ -131,8 +131,8 @@ fn status_names_match_the_enum() {
 }
 
 /// At lambda = 0 the edge velocity at the cut is infinite in the model (it decays like
-/// t^(-1/2)): refused with WO_UNDEFINED and nothing written, where 90e9375 returned WO_OK
-/// with a mesh artefact (588). After the first advance it is finite and returned.
+/// t^(-1/2)): refused with WO_UNDEFINED and nothing written, not a finite mesh value with
+/// WO_OK. After the first advance it is finite and returned.
 #[test]
 fn an_infinite_velocity_is_refused_not_returned() {
     let mut s = std::ptr::null_mut();

@@ -1,6 +1,6 @@
 //! The variable tables of docs/fmi.md against the Rust tables the code and the generated
-//! modelDescription.xml use (issue 11, section 3: "the README's variable tables come from
-//! the same source or are checked against it"): every row names a variable of its model with
+//! modelDescription.xml use, so that the documented tables cannot drift from the code: every
+//! row names a variable of its model with
 //! the table's value reference, causality, start value and unit, and every parameter, input
 //! and output of the model has a row. Model Exchange states (causality local) and the FMI 3.0
 //! arrays are described in prose, not in these tables.

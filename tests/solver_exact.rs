@@ -43,9 +43,9 @@ const EDGE_REFERENCE: [(f64, f64, f64, f64, f64); 9] = [
 ];
 
 /// The tolerance contract at the edges of the domain, at the default tolerance 1e-10: the
-/// radius within 1e-10 of the opening amplitude (measured: at most 3.4e-12 here). At
-/// 90e9375 the QR eigensolver gave 1e-6 at R_inf = 1e6, t = 0.01, and R_inf = 1.001 was
-/// off by 3e-8 at late times.
+/// radius within 1e-10 of the opening amplitude (measured: at most 3.4e-12 here). These are
+/// the places where a QR eigensolver (1e-6 at R_inf = 1e6, t = 0.01) and a basis without the
+/// constant first (3e-8 at R_inf = 1.001, late times) lose the contract.
 #[test]
 fn edges_of_the_domain_match_the_laplace_solution_at_the_default_tolerance() {
     for (lambda, r_inf, t, radius, velocity) in EDGE_REFERENCE {
@@ -146,8 +146,8 @@ fn velocity_response_matches_the_bessel_solution() {
 /// Where the mesh resolves the viscous layer (lambda >= 0.1), the mesh's own velocity just
 /// after the cut (a step of 1e-12, so the state has not moved) agrees with the closed form
 /// that the solver applies to changes of the edge stress: two independent routes to the
-/// same number (measured within 5.1e-11 relative; asserted at 1e-9). At 90e9375 the FMU's
-/// derivative was the mesh's, off by 29 % at lambda = 0.01.
+/// same number (measured within 5.1e-11 relative; asserted at 1e-9). The mesh's own
+/// response is off by 29 % at lambda = 0.01, where it cannot resolve the boundary layer.
 #[test]
 fn mesh_velocity_agrees_with_the_closed_form_response_where_it_resolves_the_layer() {
     for lambda in [0.1, 1.0, 10.0] {
@@ -278,7 +278,7 @@ fn runaway_steps_are_refused_and_change_nothing() {
     assert!(matches!(paper.advance(1.0, 0.0), Err(SolverError::TooManySteps(..))));
     assert_eq!(paper.time(), 0.0);
     // lambda = 1 is far above the explicit limit dr / 2 = 0.045 of a 101-point grid: refused
-    // before any step (at 90e9375 it returned values growing to 1e171 first).
+    // before any step, not after values have grown to 1e171.
     let mut explicit = Solver::with_scheme(&params, &Scheme::Explicit { points: 101, max_step: 1e-3 }).unwrap();
     let before = explicit.state();
     let err = explicit.advance(0.1, 0.0).unwrap_err();
@@ -314,8 +314,7 @@ fn very_large_domains_work_up_to_the_limit_and_are_refused_beyond() {
 
 /// The process-wide basis cache returns exactly what a fresh build gives, on both
 /// eigensolver paths (QR at R_inf = 10, Jacobi at 1e4), so a cache hit cannot change an
-/// answer; and solvers of different lambda at one R_inf share it (item 8 of the issue
-/// "Every promise holds").
+/// answer; and solvers of different lambda at one R_inf share it.
 #[test]
 fn a_cached_basis_is_bit_identical_to_a_fresh_one() {
     use wound_opening::solver::basis;

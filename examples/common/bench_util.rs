@@ -1,5 +1,5 @@
 //! Shared by the benchmark examples (included with `#[path]`): CPU time, CSV reading, the
-//! scenario of issue 3 and its error measure.
+//! benchmark scenario and its error measure.
 #![allow(dead_code)]
 
 use std::path::Path;

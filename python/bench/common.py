@@ -1,4 +1,4 @@
-"""The benchmark scenario of issue 3, shared by the peers, the fmpy timing and the charts.
+"""The benchmark scenario, shared by the peers, the fmpy timing and the charts.
 
     R_inf = 10, sigma = 1, edge stress 0, lambda in {0.1, 1, 10}
     t in [0, 100], 1000 communication steps of 0.1 (points t = 0.1, 0.2, ..., 100)

@@ -7,7 +7,7 @@
 //! `eps * max|mu|`. The relaxation times of the wound problem span 17 decades at
 //! `R_inf = 1e6` (from ~1e-5 T at the wound edge to ~1e12 T), so the fast modes that shape
 //! the opening at `t ~ 0.01` came out with relative errors of 1e-2 and the wound radius with
-//! errors of 1e-5 of the opening (measured; the issue "Every promise holds", item 7).
+//! errors of 1e-5 of the opening.
 //!
 //! A plane rotation annihilates `h_pq` when
 //!
