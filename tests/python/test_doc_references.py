@@ -1,0 +1,99 @@
+"""The repository stands alone: every path that a document, comment or docstring names
+exists in the repository, every section of docs/model.md that one cites exists, nothing
+points outside the repository, and no code or doc narrates history (commit hashes, issue
+numbers).
+
+Paths are recognised by their top-level folder (src/, docs/, python/, tests/, scripts/,
+examples/, include/, .ci/); a `*` is a glob. Build outputs (target/, out/, .venv/) are not
+names of the repository and are not checked.
+"""
+
+from __future__ import annotations
+
+import glob
+import re
+import subprocess
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+TEXT = (".md", ".rs", ".py", ".sh", ".h", ".c", ".toml", ".txt", ".html", ".supp")
+PATH = re.compile(r"(?<![\w./-])((?:src|docs|python|tests|scripts|examples|include|\.ci)/[\w.*/{},-]*[\w*/}])")
+SECTION = re.compile(r'docs/model\.md(?:\)|`)?[,(]?\s*\(?"([^"]+)"')
+HISTORY = re.compile(r"\b(?:[Ii]ssues? \d+|the issue's|[Aa]t [0-9a-f]{7,40}\b|[Oo]n [0-9a-f]{7,40}\b)")
+#: Another repository whose paths a comment may cite (with its name on the same line).
+EXTERNAL = ("Reference-FMUs",)
+
+
+def tracked_files() -> list[Path]:
+    names = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True, check=True).stdout
+    this = Path(__file__).resolve()
+    return [ROOT / n for n in names.split()
+            if (n.endswith(TEXT) or n == ".ci/run") and (ROOT / n).resolve() != this]
+
+
+def references(text: str):
+    for line_no, line in enumerate(text.splitlines(), 1):
+        if any(repo in line for repo in EXTERNAL):
+            continue
+        for m in PATH.finditer(line):
+            yield line_no, m.group(1).rstrip(".")
+
+
+def expand(name: str) -> list[str]:
+    """Shell brace expansion of one `{a,b}` group (recursively)."""
+    m = re.search(r"\{([^{}]*)\}", name)
+    if not m:
+        return [name]
+    return [x for alt in m.group(1).split(",") for x in expand(name[: m.start()] + alt + name[m.end():])]
+
+
+def exists(name: str) -> bool:
+    return all(glob.glob(str(ROOT / n)) if "*" in n else (ROOT / n).exists() for n in expand(name))
+
+
+def headings(path: Path) -> set[str]:
+    return {line.lstrip("#").strip() for line in path.read_text().splitlines() if line.startswith("#")}
+
+
+def test_every_named_path_exists():
+    missing = []
+    for f in tracked_files():
+        for line_no, name in references(f.read_text(errors="replace")):
+            if not exists(name):
+                missing.append(f"{f.relative_to(ROOT)}:{line_no}: {name}")
+    assert not missing, "paths named but not in the repository:\n" + "\n".join(missing)
+
+
+def test_every_cited_section_of_the_model_page_exists():
+    sections = headings(ROOT / "docs/model.md")
+    missing, cited = [], 0
+    for f in tracked_files():
+        for line_no, line in enumerate(f.read_text(errors="replace").splitlines(), 1):
+            for m in SECTION.finditer(line):
+                cited += 1
+                if m.group(1) not in sections:
+                    missing.append(f"{f.relative_to(ROOT)}:{line_no}: {m.group(1)!r}")
+    assert cited >= 5, f"only {cited} citations of docs/model.md sections found: is the pattern broken?"
+    assert not missing, "sections of docs/model.md cited but missing:\n" + "\n".join(missing)
+
+
+def test_nothing_points_outside_the_repository():
+    outside = [f"{f.relative_to(ROOT)}:{i}" for f in tracked_files()
+               for i, line in enumerate(f.read_text(errors="replace").splitlines(), 1) if "../shared" in line]
+    assert not outside, "references outside the repository: " + ", ".join(outside)
+
+
+def test_no_history_narration():
+    found = [f"{f.relative_to(ROOT)}:{i}: {line.strip()[:100]}" for f in tracked_files()
+             for i, line in enumerate(f.read_text(errors="replace").splitlines(), 1) if HISTORY.search(line)]
+    assert not found, "comments or docs that narrate history:\n" + "\n".join(found)
+
+
+def test_the_patterns_find_what_they_look_for():
+    """The checks above cannot pass vacuously: their patterns match the forms they look for."""
+    assert list(references("see `docs/fmi.md` and src/solver/mod.rs.")) == [(1, "docs/fmi.md"), (1, "src/solver/mod.rs")]
+    assert not exists("docs/no_such_page.md") and not exists("docs/{model,no_such_page}.md")
+    assert exists("docs/{model,fmi}.md")
+    assert SECTION.search('docs/model.md, "Exact results"').group(1) == "Exact results"
+    assert SECTION.search('(docs/model.md ("Exact results"),').group(1) == "Exact results"
+    assert HISTORY.search("at 90e9375 it returned") and HISTORY.search("issue 3") and not HISTORY.search("tissue 3")
