@@ -6,6 +6,7 @@
 pub mod boundary;
 pub mod solver;
 pub mod units;
-pub mod closure;
+pub mod purse_string;
+pub mod models;
 pub mod fmi;
 pub mod capi;

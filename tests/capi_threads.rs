@@ -8,7 +8,7 @@ use wound_opening::capi::error::WoStatus;
 use wound_opening::capi::solver_c::*;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::wound::variables::{GUID, Vr};
+use wound_opening::models::wound::variables::{GUID, Vr};
 
 const INSTANCES: usize = 64;
 const THREADS: usize = 8;

@@ -15,7 +15,7 @@ use wound_opening::fmi::ffi3_exchange::*;
 use wound_opening::fmi::ffi3_other::*;
 use wound_opening::fmi::types::fmi2Component;
 use wound_opening::fmi::types3::*;
-use wound_opening::fmi::wound::variables::{MODEL_EXCHANGE_STATES, Vr};
+use wound_opening::models::wound::variables::{MODEL_EXCHANGE_STATES, Vr};
 
 fn cs(token: &str, event_mode: u8) -> fmi3Instance {
     let (name, token) = (CString::new("cs3").unwrap(), CString::new(token).unwrap());

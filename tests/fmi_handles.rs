@@ -8,7 +8,7 @@ mod fmi_support;
 use fmi_support::*;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::wound::variables::Vr;
+use wound_opening::models::wound::variables::Vr;
 
 /// Guards against a use-after-free (a call on a freed instance read freed memory) and an
 /// abort on a second `fmi2FreeInstance` of the same instance (a double free); also that

@@ -3,10 +3,10 @@
 //! tests/python.)
 
 use std::sync::{Arc, Mutex};
-use wound_opening::fmi::wound::WoundModel;
+use wound_opening::models::wound::WoundModel;
 use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
 use wound_opening::fmi::machine::Machine;
-use wound_opening::fmi::wound::variables::Vr;
+use wound_opening::models::wound::variables::Vr;
 
 #[derive(Clone, Default)]
 struct Collect(Arc<Mutex<Vec<(Status, String, String)>>>);

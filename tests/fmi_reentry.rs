@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::frame::{self, BUSY};
-use wound_opening::fmi::wound::WoundModel;
+use wound_opening::models::wound::WoundModel;
 use wound_opening::fmi::instance::{Instance, Logger, Status};
 use wound_opening::fmi::types::*;
 

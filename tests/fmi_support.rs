@@ -14,8 +14,8 @@ pub const WARNING: fmi2Status = 1;
 pub const DISCARD: fmi2Status = 2;
 pub const ERROR: fmi2Status = 3;
 
-pub const WOUND: &str = wound_opening::fmi::wound::variables::GUID;
-pub const PURSE: &str = wound_opening::fmi::purse::variables::GUID;
+pub const WOUND: &str = wound_opening::models::wound::variables::GUID;
+pub const PURSE: &str = wound_opening::models::purse_string::variables::GUID;
 
 /// A new instance of the model with this GUID (asserted non-NULL).
 pub fn instantiate(guid: &str, name: &str) -> fmi2Component {

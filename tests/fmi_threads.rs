@@ -11,7 +11,7 @@ use fmi_support::*;
 use std::sync::{Arc, Barrier};
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::wound::variables::Vr;
+use wound_opening::models::wound::variables::Vr;
 
 const THREADS: usize = 4;
 const ROUNDS: usize = 20_000;

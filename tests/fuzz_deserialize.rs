@@ -16,7 +16,7 @@ use std::ffi::CString;
 use wound_opening::boundary::caught_panics;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::wound::variables::GUID;
+use wound_opening::models::wound::variables::GUID;
 
 /// Restore `h` into `c`, step from its time, read the outputs; the statuses, by call.
 fn use_state(rng: &mut Rng, c: fmi2Component, h: fmi2FMUstate, stats: &mut BTreeMap<&'static str, [u64; 5]>) {

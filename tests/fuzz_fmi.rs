@@ -19,7 +19,7 @@ use wound_opening::boundary::caught_panics;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::ffi_exchange::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::MODELS;
+use wound_opening::models::MODELS;
 
 /// One live instance and the FMU-state handles it gave out (and freed).
 struct Live {

@@ -9,7 +9,7 @@ mod fmi_support;
 use fmi_support::*;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::wound::variables::Vr;
+use wound_opening::models::wound::variables::Vr;
 use wound_opening::solver::{Params, Settings, Solver};
 
 fn solver(lambda: f64) -> Solver {

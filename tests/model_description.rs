@@ -5,7 +5,7 @@
 use quick_xml::Reader;
 use quick_xml::events::Event;
 use std::collections::BTreeMap;
-use wound_opening::fmi::MODELS;
+use wound_opening::models::MODELS;
 use wound_opening::fmi::model::{Causality, Description, LOG_CATEGORIES};
 use wound_opening::fmi::xml;
 
@@ -244,5 +244,27 @@ fn descriptions_state_the_declared_unit() {
     for name in ["edge_stress", "edge_velocity", "internal_step"] {
         let v = wound.variables.iter().find(|v| v.name == name).unwrap();
         assert!(v.description.contains(&format!("[{}]", v.unit)), "{name} ({}): {}", v.unit, v.description);
+    }
+}
+
+/// Each model declares every unit its variables, states and arrays use, once: a unit left
+/// out would be missing from `<UnitDefinitions>` while a variable names it.
+#[test]
+fn every_model_declares_the_units_it_uses() {
+    for (d, _) in &MODELS {
+        let mut used: Vec<&str> = d.variables.iter().map(|v| v.unit).filter(|u| !u.is_empty()).collect();
+        if let Some(s) = d.states {
+            used.extend([s.unit, s.derivative_unit]);
+        }
+        if let Some(a) = d.arrays {
+            used.extend(a.arrays.iter().map(|v| v.unit));
+        }
+        let declared: Vec<&str> = d.units.iter().map(|(name, _)| *name).collect();
+        for unit in used {
+            assert!(declared.contains(&unit), "{}: unit {unit} is used but not declared", d.model_identifier);
+        }
+        let mut unique = declared.clone();
+        unique.dedup();
+        assert_eq!(unique, declared, "{}: a unit declared twice", d.model_identifier);
     }
 }

@@ -10,7 +10,7 @@ use std::ffi::CString;
 use wound_opening::fmi::ffi::*;
 use wound_opening::fmi::ffi_exchange::*;
 use wound_opening::fmi::types::*;
-use wound_opening::fmi::wound::variables::{MODEL_EXCHANGE_STATES as NX, Vr};
+use wound_opening::models::wound::variables::{MODEL_EXCHANGE_STATES as NX, Vr};
 use wound_opening::solver::{Params, Settings, Solver};
 
 fn instantiate_me(guid: &str) -> fmi2Component {

@@ -7,7 +7,7 @@ mod fmi_support;
 
 use fmi_support::*;
 use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::purse::variables::Vr;
+use wound_opening::models::purse_string::variables::Vr;
 
 /// `edge_stress`, `line_tension` and d edge_stress / d wound_radius after one step past
 /// the delay, for these values (set before initialization; the radius after it).
@@ -77,7 +77,7 @@ impl wound_opening::fmi::instance::Logger for Collect {
 fn a_refusal_names_the_accepted_range() {
     use wound_opening::fmi::instance::{Call, Instance};
     let log = std::sync::Arc::new(Collect::default());
-    let mut i = Instance::new(wound_opening::fmi::purse::PurseModel::fresh, "purse", log.clone(), false);
+    let mut i = Instance::new(wound_opening::models::purse_string::PurseModel::fresh, "purse", log.clone(), false);
     let cases = [
         (Vr::Thickness, 1e-7, "thickness = 0.0000001 is invalid: it must be in [1e-6, 1e6] um"),
         (Vr::MaxTension, 2e9, "T_max = 2000000000 is invalid: it must be in [0, 1e9] pN"),

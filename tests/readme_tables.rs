@@ -6,7 +6,7 @@
 //! arrays are described in prose, not in these tables.
 
 use wound_opening::fmi::model::{Causality, Description};
-use wound_opening::fmi::{purse, wound};
+use wound_opening::models::{purse_string as purse, wound};
 
 /// Rows of the markdown table whose header starts with `header`, as trimmed cells.
 fn table(readme: &str, header: &str) -> Vec<Vec<String>> {

@@ -8,7 +8,6 @@ use super::frame::{CallbackLogger, register, slice, slice_mut, text, unregister,
 use crate::boundary::guard;
 use super::instance::{Call, Instance, Interface, Status};
 use super::types::*;
-use super::MODELS;
 use std::ffi::{c_char, CString};
 use std::sync::Arc;
 
@@ -65,9 +64,9 @@ pub unsafe extern "C" fn fmi2Instantiate(
             other => return fail(format!("fmuType = {other}: this FMU supports Model Exchange (0) and co-simulation (1)")),
         };
         let guid = unsafe { text(fmuGUID) };
-        let Some(fresh) = guid.as_deref().and_then(super::model_for_guid) else {
-            let known: Vec<String> = MODELS.iter().map(|(d, _)| format!("{} ({})", d.guid, d.model_identifier)).collect();
-            return fail(format!("Expected GUID {} but was {}", known.join(" or "), guid.as_deref().unwrap_or("NULL")));
+        let fresh = match super::model_for_guid(guid.as_deref(), "GUID") {
+            Ok(fresh) => fresh,
+            Err(msg) => return fail(msg),
         };
         let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
         Some(register(Instance::of_interface(interface, fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))

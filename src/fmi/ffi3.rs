@@ -12,7 +12,6 @@ use super::ffi as fmi2;
 use super::frame::{register, slice, slice_mut, text, unregister, with_instance};
 use super::instance::{Call, Instance, Interface, Logger, Status};
 use super::types3::*;
-use super::MODELS;
 use crate::boundary::guard;
 use std::ffi::{CString, c_char};
 use std::sync::Arc;
@@ -68,9 +67,9 @@ fn instantiate(
             return fail(why);
         }
         let token = unsafe { text(instantiationToken) };
-        let Some(fresh) = token.as_deref().and_then(super::model_for_guid) else {
-            let known: Vec<String> = MODELS.iter().map(|(d, _)| format!("{} ({})", d.guid, d.model_identifier)).collect();
-            return fail(format!("Expected instantiationToken {} but was {}", known.join(" or "), token.as_deref().unwrap_or("NULL")));
+        let fresh = match super::model_for_guid(token.as_deref(), "instantiationToken") {
+            Ok(fresh) => fresh,
+            Err(msg) => return fail(msg),
         };
         let instance = Instance::of_interface(interface, fresh, &name, Arc::new(sink), loggingOn != FMI3_FALSE).fmi3();
         Some(register(instance))

@@ -4,7 +4,6 @@
 //!
 //! ```text
 //! model.rs                  what the glue knows of a model: FmuModel and its Description table
-//! wound/, purse/            the models (each: variables.rs table, mod.rs, about.html)
 //! instance.rs               one instance in safe Rust: calls, variables, FMU states, logging
 //! machine.rs, call.rs       the state machines and which call is allowed where
 //! exchange.rs, arrays.rs    Model Exchange; FMI 3.0 time, arrays and Configuration Mode
@@ -16,8 +15,8 @@
 //!
 //! One shared object serves every model and version: `fmi2Instantiate` and
 //! `fmi3Instantiate*` pick the model by the GUID / instantiation token the master passes
-//! (each `.fmu` carries a copy named after its `modelIdentifier`). A new model is a folder
-//! like `wound/` and one line in [`MODELS`].
+//! (each `.fmu` carries a copy named after its `modelIdentifier`), from the list of
+//! [`crate::models`]. The glue names no model.
 
 pub mod arrays;
 pub mod call;
@@ -33,21 +32,22 @@ pub mod intermediate;
 pub mod log;
 pub mod machine;
 pub mod model;
-pub mod purse;
 pub mod state;
 pub mod types;
 pub mod types3;
-pub mod wound;
 pub mod xml;
 pub mod xml3;
 
-use model::{Description, FmuModel};
+use crate::models::MODELS;
+use model::FmuModel;
 
-/// The models of this library: description and a constructor of a fresh model.
-pub static MODELS: [(&Description, fn() -> Box<dyn FmuModel>); 2] =
-    [(&wound::variables::DESCRIPTION, wound::WoundModel::fresh), (&purse::variables::DESCRIPTION, purse::PurseModel::fresh)];
-
-/// The model whose `modelDescription.xml` has this GUID.
-pub fn model_for_guid(guid: &str) -> Option<fn() -> Box<dyn FmuModel>> {
-    MODELS.iter().find(|(d, _)| d.guid == guid).map(|(_, fresh)| *fresh)
+/// The model whose `modelDescription.xml` has this GUID (FMI 2.0) or instantiation token
+/// (FMI 3.0, `what` names which); otherwise the message for the importer's log, naming
+/// every model's.
+pub fn model_for_guid(guid: Option<&str>, what: &str) -> Result<fn() -> Box<dyn FmuModel>, String> {
+    if let Some((_, fresh)) = MODELS.iter().find(|(d, _)| Some(d.guid) == guid) {
+        return Ok(*fresh);
+    }
+    let known: Vec<String> = MODELS.iter().map(|(d, _)| format!("{} ({})", d.guid, d.model_identifier)).collect();
+    Err(format!("Expected {what} {} but was {}", known.join(" or "), guid.unwrap_or("NULL")))
 }

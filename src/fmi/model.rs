@@ -121,17 +121,9 @@ impl Variable {
     }
 }
 
-/// SI base units of every unit a variable may declare (`<UnitDefinitions>`): name, then
-/// `(attribute, value)` of its `<BaseUnit>` (none for "1").
-pub const UNITS: [(&str, &[(&str, &str)]); 7] = [
-    ("1", &[]),
-    ("1/s", &[("s", "-1")]),
-    ("Pa", &[("kg", "1"), ("m", "-1"), ("s", "-2")]),
-    ("pN", &[("kg", "1"), ("m", "1"), ("s", "-2"), ("factor", "1e-12")]),
-    ("s", &[("s", "1")]),
-    ("um", &[("m", "1"), ("factor", "1e-6")]),
-    ("um/s", &[("m", "1"), ("s", "-1"), ("factor", "1e-6")]),
-];
+/// A unit a model's variables declare (`<UnitDefinitions>`): its name, then `(attribute,
+/// value)` of its `<BaseUnit>` (none for "1").
+pub type Unit = (&'static str, &'static [(&'static str, &'static str)]);
 
 /// `<DefaultExperiment>`: what a master runs when told nothing, and what the reference
 /// results of the archive are computed with.
@@ -165,6 +157,8 @@ pub struct Description {
     /// Flags of `<CoSimulation>`.
     pub capabilities: &'static [(&'static str, &'static str)],
     pub default_experiment: Experiment,
+    /// The units its variables use, in the order of `<UnitDefinitions>`.
+    pub units: &'static [Unit],
     /// Continuous states for Model Exchange, if any (see [`States`]).
     pub states: Option<States>,
     /// FMI 3.0 only: array variables sized by a structural parameter (see [`Arrays`]).

@@ -6,7 +6,7 @@
 //! reference = position, checked by [`fmi2`]). One archive declares both interfaces:
 //! `<ModelExchange>` and `<CoSimulation>` with the same `modelIdentifier`.
 
-use super::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, States, UNITS, Variable};
+use super::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, States, Variable};
 use std::fmt::Write;
 
 pub(super) const GENERATION_TOOL: &str = "wound_opening (Rust)";
@@ -22,12 +22,12 @@ pub fn number(x: f64) -> String {
     if x.fract() == 0.0 && x.abs() < 1e15 { format!("{}", x as i64) } else { format!("{x:e}") }
 }
 
-/// `<UnitDefinitions>` of the units the variables use, in [`UNITS`] order.
+/// `<UnitDefinitions>` of the units the variables use, in the order the model lists them.
 fn unit_definitions(d: &Description) -> String {
     let mut out = String::from("  <UnitDefinitions>\n");
     let state_units = d.states.map_or([""; 2], |s| [s.unit, s.derivative_unit]);
     let used = |n: &str| d.variables.iter().any(|v| v.unit == n) || state_units.contains(&n);
-    for (name, base) in UNITS.iter().filter(|(n, _)| used(n)) {
+    for (name, base) in d.units.iter().filter(|(n, _)| used(n)) {
         if base.is_empty() {
             let _ = writeln!(out, "    <Unit name=\"{}\"/>", escape(name));
         } else {

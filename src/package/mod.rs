@@ -9,7 +9,7 @@
 //! WoundOpening-fmi3.fmu                (FMI 3.0: the same, binaries/x86_64-linux/WoundOpening.so)
 //! PurseString.fmu, PurseString-fmi3.fmu (the same cdylib: it picks the model by GUID)
 //!
-//! Nothing here names a model: every archive comes from the table of models (fmi::MODELS).
+//! Nothing here names a model: every archive comes from the table of models (models::MODELS).
 //! ```
 
 mod docs;
@@ -17,7 +17,8 @@ mod reference;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use wound_opening::fmi::{MODELS, xml, xml3};
+use wound_opening::fmi::{xml, xml3};
+use wound_opening::models::MODELS;
 
 type BoxError = Box<dyn std::error::Error>;
 

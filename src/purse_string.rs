@@ -17,7 +17,7 @@
 //!
 //! which is the wound component's `edge_stress` input. Units: `T_c` in piconewtons,
 //! `h` and `R` in micrometres, so `p` is in pN / um^2 = pascals. Plain safe Rust: the FMU
-//! boundary for it lives in `fmi::purse`.
+//! boundary for it lives in `models::purse_string`.
 //!
 //! The domain ([`MAX_TENSION`], [`THICKNESS`], [`RADIUS`]; the times only finite and
 //! >= 0) keeps every output and derivative finite, far from overflow:

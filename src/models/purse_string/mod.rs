@@ -1,12 +1,12 @@
-//! The purse-string closure model ([`crate::closure`]) behind the FMI glue: no state
+//! The purse-string closure model ([`crate::purse_string`]) behind the FMI glue: no state
 //! but the clock and the input, so a step only moves time (and the input along its rate,
 //! after `fmi2SetRealInputDerivatives`).
 
 pub mod variables;
 
-use super::model::{Description, FmuModel, Rejected};
-use super::state::{Reader, Writer, same_parameters};
-use crate::closure::{MAX_TENSION, PurseString, THICKNESS, check_radius, check_time};
+use crate::fmi::model::{Description, FmuModel, Rejected};
+use crate::fmi::state::{Reader, Writer, same_parameters};
+use crate::purse_string::{MAX_TENSION, PurseString, THICKNESS, check_radius, check_time};
 use variables::{DESCRIPTION, Vr};
 
 #[derive(Debug, Clone)]

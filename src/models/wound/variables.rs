@@ -2,7 +2,7 @@
 //! from ([`crate::fmi::xml`]), and that the code uses.
 
 pub use crate::fmi::model::{
-    ArrayVariable, Arrays, CAPABILITIES, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Variability, Variable,
+    ArrayVariable, Arrays, CAPABILITIES, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Unit, Variability, Variable,
 };
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
@@ -100,6 +100,16 @@ const INITIAL_RATE_DEPENDENCIES: [u32; 11] = [
 ];
 
 /// The table in the form the shared glue reads.
+/// The units of the variables (SI base units for `<UnitDefinitions>`).
+pub const UNITS: [Unit; 6] = [
+    ("1", &[]),
+    ("1/s", &[("s", "-1")]),
+    ("Pa", &[("kg", "1"), ("m", "-1"), ("s", "-2")]),
+    ("s", &[("s", "1")]),
+    ("um", &[("m", "1"), ("factor", "1e-6")]),
+    ("um/s", &[("m", "1"), ("s", "-1"), ("factor", "1e-6")]),
+];
+
 pub static DESCRIPTION: Description = Description {
     model_identifier: MODEL_IDENTIFIER,
     guid: GUID,
@@ -115,6 +125,7 @@ pub static DESCRIPTION: Description = Description {
         (Vr::EdgeVelocity as u32, &INITIAL_RATE_DEPENDENCIES),
     ],
     capabilities: &CAPABILITIES,
+    units: &UNITS,
     default_experiment: Experiment { start: 0.0, stop: 100.0, step: 0.01, tolerance: 1e-10 },
     states: Some(States {
         count: MODEL_EXCHANGE_STATES,

@@ -1,7 +1,7 @@
 //! The purse-string FMU's variables: the one table that `modelDescription.xml` is
 //! generated from ([`crate::fmi::xml`]), and that the code uses.
 
-pub use crate::fmi::model::{CAPABILITIES, Experiment, Description, Variable};
+pub use crate::fmi::model::{CAPABILITIES, Description, Experiment, Unit, Variable};
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
 pub const MODEL_IDENTIFIER: &str = "PurseString";
@@ -48,6 +48,14 @@ pub const VARIABLES: [Variable; 7] = [
 ];
 
 /// The table in the form the shared glue reads.
+/// The units of the variables (SI base units for `<UnitDefinitions>`).
+pub const UNITS: [Unit; 4] = [
+    ("Pa", &[("kg", "1"), ("m", "-1"), ("s", "-2")]),
+    ("pN", &[("kg", "1"), ("m", "1"), ("s", "-2"), ("factor", "1e-12")]),
+    ("s", &[("s", "1")]),
+    ("um", &[("m", "1"), ("factor", "1e-6")]),
+];
+
 pub static DESCRIPTION: Description = Description {
     model_identifier: MODEL_IDENTIFIER,
     guid: GUID,
@@ -64,6 +72,7 @@ pub static DESCRIPTION: Description = Description {
         (Vr::LineTension as u32, &[Vr::MaxTension as u32, Vr::AssemblyTime as u32, Vr::Delay as u32]),
     ],
     capabilities: &CAPABILITIES,
+    units: &UNITS,
     default_experiment: Experiment { start: 0.0, stop: 300.0, step: 0.5, tolerance: 1e-10 },
     // A closed form in time: nothing to integrate.
     states: None,
