@@ -23,11 +23,11 @@ use bench_util::{best_cpu, exported_step_seconds};
 use std::ffi::{CString, c_void};
 use std::io::Write;
 use std::sync::Arc;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
-use wound_opening::fmi::types::*;
-use wound_opening::fmi::wound::WoundModel;
-use wound_opening::fmi::wound::variables::GUID;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::common::instance::{Call, Instance, Logger, Status};
+use wound_opening::fmi::fmi2::types::*;
+use wound_opening::models::wound::WoundModel;
+use wound_opening::models::wound::variables::GUID;
 
 const LAMBDA: u32 = 0;
 const R_INF: u32 = 2;

@@ -10,9 +10,9 @@ mod bench_util;
 use bench_util::*;
 use std::ffi::CString;
 use std::io::Write;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::types::*;
-use wound_opening::fmi::wound::variables::GUID;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::types::*;
+use wound_opening::models::wound::variables::GUID;
 use wound_opening::solver::{Params, Scheme, Settings, Solver};
 
 const STEPS_TIMED: usize = 100_000;

@@ -6,8 +6,8 @@
 use std::sync::{Arc, Barrier};
 use wound_opening::capi::error::WoStatus;
 use wound_opening::capi::solver_c::*;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::types::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::{GUID, Vr};
 
 const INSTANCES: usize = 64;

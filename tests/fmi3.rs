@@ -1,4 +1,4 @@
-//! The FMI 3.0 functions (src/fmi/ffi3*.rs) through their C signatures: instantiation
+//! The FMI 3.0 functions (src/fmi/fmi3/) through their C signatures: instantiation
 //! checks, co-simulation and Model Exchange on the same instances and models as FMI 2.0
 //! (bit-identical results), `nValues` checks, FMU states that move between the FMI 2.0 and
 //! 3.0 interfaces, and every function on NULL, made-up and freed instances (an error, never
@@ -9,12 +9,12 @@ mod fmi_support;
 use fmi_support::{OK, ERROR, WOUND, PURSE};
 use std::ffi::CString;
 use wound_opening::boundary::caught_panics;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::ffi3::*;
-use wound_opening::fmi::ffi3_exchange::*;
-use wound_opening::fmi::ffi3_other::*;
-use wound_opening::fmi::types::fmi2Component;
-use wound_opening::fmi::types3::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi3::functions::*;
+use wound_opening::fmi::fmi3::exchange::*;
+use wound_opening::fmi::fmi3::unsupported::*;
+use wound_opening::fmi::fmi2::types::fmi2Component;
+use wound_opening::fmi::fmi3::types::*;
 use wound_opening::models::wound::variables::{MODEL_EXCHANGE_STATES, Vr};
 
 fn cs(token: &str, event_mode: u8) -> fmi3Instance {

@@ -6,8 +6,8 @@
 mod fmi_support;
 
 use fmi_support::*;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::types::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::Vr;
 
 /// Guards against a use-after-free (a call on a freed instance read freed memory) and an

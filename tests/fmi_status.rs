@@ -7,8 +7,8 @@
 mod fmi_support;
 
 use fmi_support::*;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::types::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::types::*;
 
 const DO_STEP_STATUS: fmi2StatusKind = 0;
 const PENDING_STATUS: fmi2StatusKind = 1;

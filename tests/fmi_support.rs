@@ -5,9 +5,9 @@
 #![allow(dead_code)]
 
 use std::ffi::CString;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::ffi_exchange::*;
-use wound_opening::fmi::types::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::exchange::*;
+use wound_opening::fmi::fmi2::types::*;
 
 pub const OK: fmi2Status = 0;
 pub const WARNING: fmi2Status = 1;

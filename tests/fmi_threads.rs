@@ -9,8 +9,8 @@ mod fmi_support;
 
 use fmi_support::*;
 use std::sync::{Arc, Barrier};
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::types::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::Vr;
 
 const THREADS: usize = 4;

@@ -8,10 +8,10 @@ mod fmi_support;
 
 use fmi_support::*;
 use std::sync::{Arc, Mutex};
-use wound_opening::fmi::ffi::*;
+use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::frame;
-use wound_opening::fmi::instance::{Call, Instance, Logger, Status};
-use wound_opening::fmi::model::{Description, Experiment, FmuModel, Rejected, Variable};
+use wound_opening::fmi::common::instance::{Call, Instance, Logger, Status};
+use wound_opening::fmi::common::model::{Description, Experiment, FmuModel, Rejected, Variable};
 
 static VARIABLES: [Variable; 1] = [Variable::output("steps", 0, "1", "Steps taken")];
 static DESCRIPTION: Description = Description {
@@ -23,6 +23,7 @@ static DESCRIPTION: Description = Description {
     outputs: &[(0, &[])],
     initial_unknowns: &[],
     capabilities: &[],
+    units: &[("1", &[])],
     default_experiment: Experiment { start: 0.0, stop: 1.0, step: 0.1, tolerance: 1e-10 },
     states: None,
     arrays: None,

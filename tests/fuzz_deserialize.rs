@@ -14,8 +14,8 @@ use fuzz_support::{Budget, NULL_CALLBACKS, MESH_FIELDS, Rng, mutated, reseal_crc
 use std::collections::BTreeMap;
 use std::ffi::CString;
 use wound_opening::boundary::caught_panics;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::types::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::GUID;
 
 /// Restore `h` into `c`, step from its time, read the outputs; the statuses, by call.

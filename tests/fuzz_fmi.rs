@@ -16,9 +16,9 @@ use fuzz_support::{Budget, NULL_CALLBACKS, Rng, mutated};
 use std::collections::BTreeMap;
 use std::ffi::{CString, c_char};
 use wound_opening::boundary::caught_panics;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::ffi_exchange::*;
-use wound_opening::fmi::types::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::exchange::*;
+use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::MODELS;
 
 /// One live instance and the FMU-state handles it gave out (and freed).
@@ -151,9 +151,9 @@ impl World {
     /// calls whose arguments differ from FMI 2.0's, with random counts and values, and an
     /// FMI 3.0 instantiation now and then.
     fn fmi3(&mut self) {
-        use wound_opening::fmi::ffi3::*;
-        use wound_opening::fmi::ffi3_exchange::*;
-        use wound_opening::fmi::ffi3_other::*;
+        use wound_opening::fmi::fmi3::functions::*;
+        use wound_opening::fmi::fmi3::exchange::*;
+        use wound_opening::fmi::fmi3::unsupported::*;
         if self.rng.chance(0.1) && self.live.len() < 6 {
             let guid = CString::new(MODELS[self.rng.below(MODELS.len())].0.guid).unwrap();
             let c = if self.rng.chance(0.5) {

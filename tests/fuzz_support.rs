@@ -13,7 +13,7 @@
 #![allow(dead_code)]
 
 use std::time::{Duration, Instant};
-use wound_opening::fmi::types::fmi2CallbackFunctions;
+use wound_opening::fmi::fmi2::types::fmi2CallbackFunctions;
 
 /// Callbacks without a logger: a Rust test cannot define the variadic C logger (the C
 /// programs in tests/c check the logged messages).

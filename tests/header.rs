@@ -8,7 +8,7 @@
 use std::path::Path;
 
 const HEADER: &str = "include/wound_opening.h";
-const SOURCES: [&str; 5] = ["src/fmi/ffi.rs", "src/fmi/ffi_exchange.rs", "src/capi/error.rs", "src/capi/solver_c.rs", "src/capi/series_c.rs"];
+const SOURCES: [&str; 5] = ["src/fmi/fmi2/functions.rs", "src/fmi/fmi2/exchange.rs", "src/capi/error.rs", "src/capi/solver_c.rs", "src/capi/series_c.rs"];
 
 fn generate() -> String {
     let root = env!("CARGO_MANIFEST_DIR");

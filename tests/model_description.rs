@@ -1,4 +1,4 @@
-//! The generated `modelDescription.xml` of each model ([`wound_opening::fmi::xml`]) parsed
+//! The generated `modelDescription.xml` of each model ([`wound_opening::fmi::fmi2::xml`]) parsed
 //! back and compared with the model's table: the generator writes what the code uses
 //! (fmpy's validation of the archives is in tests/python/test_model_description.py).
 
@@ -6,8 +6,8 @@ use quick_xml::Reader;
 use quick_xml::events::Event;
 use std::collections::BTreeMap;
 use wound_opening::models::MODELS;
-use wound_opening::fmi::model::{Causality, Description, LOG_CATEGORIES};
-use wound_opening::fmi::xml;
+use wound_opening::fmi::common::model::{Causality, Description, LOG_CATEGORIES};
+use wound_opening::fmi::fmi2::xml;
 
 type Elements = Vec<(String, BTreeMap<String, String>)>;
 

@@ -7,9 +7,9 @@ mod fmi_support;
 
 use fmi_support::*;
 use std::ffi::CString;
-use wound_opening::fmi::ffi::*;
-use wound_opening::fmi::ffi_exchange::*;
-use wound_opening::fmi::types::*;
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::exchange::*;
+use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::{MODEL_EXCHANGE_STATES as NX, Vr};
 use wound_opening::solver::{Params, Settings, Solver};
 

@@ -6,7 +6,7 @@
 mod fmi_support;
 
 use fmi_support::*;
-use wound_opening::fmi::ffi::*;
+use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::models::purse_string::variables::Vr;
 
 /// `edge_stress`, `line_tension` and d edge_stress / d wound_radius after one step past
@@ -65,8 +65,8 @@ fn values_outside_the_bounds_are_refused() {
 #[derive(Default)]
 struct Collect(std::sync::Mutex<Vec<String>>);
 
-impl wound_opening::fmi::instance::Logger for Collect {
-    fn log(&self, _status: wound_opening::fmi::instance::Status, _category: &str, message: &str) {
+impl wound_opening::fmi::common::instance::Logger for Collect {
+    fn log(&self, _status: wound_opening::fmi::common::instance::Status, _category: &str, message: &str) {
         self.0.lock().unwrap().push(message.into());
     }
 }
@@ -75,7 +75,7 @@ impl wound_opening::fmi::instance::Logger for Collect {
 /// variable, the value, and the range with its unit.
 #[test]
 fn a_refusal_names_the_accepted_range() {
-    use wound_opening::fmi::instance::{Call, Instance};
+    use wound_opening::fmi::common::instance::{Call, Instance};
     let log = std::sync::Arc::new(Collect::default());
     let mut i = Instance::new(wound_opening::models::purse_string::PurseModel::fresh, "purse", log.clone(), false);
     let cases = [

@@ -5,7 +5,7 @@
 //! and output of the model has a row. Model Exchange states (causality local) and the FMI 3.0
 //! arrays are described in prose, not in these tables.
 
-use wound_opening::fmi::model::{Causality, Description};
+use wound_opening::fmi::common::model::{Causality, Description};
 use wound_opening::models::{purse_string as purse, wound};
 
 /// Rows of the markdown table whose header starts with `header`, as trimmed cells.

@@ -19,8 +19,8 @@ pub fn cpu_seconds() -> f64 {
 ///
 /// # Safety
 /// `c` is a live, initialized WoundOpening instance at time `t`.
-pub unsafe fn exported_step_seconds(c: wound_opening::fmi::types::fmi2Component, mut t: f64, steps: usize) -> f64 {
-    use wound_opening::fmi::ffi::{fmi2DoStep, fmi2GetReal};
+pub unsafe fn exported_step_seconds(c: wound_opening::fmi::fmi2::types::fmi2Component, mut t: f64, steps: usize) -> f64 {
+    use wound_opening::fmi::fmi2::functions::{fmi2DoStep, fmi2GetReal};
     let (outputs, mut out) = ([4u32, 5u32], [0.0f64; 2]);
     let (cpu, _) = best_cpu(|| {
         for _ in 0..steps {

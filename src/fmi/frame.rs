@@ -19,8 +19,8 @@
 //! never under it. A second `fmi2FreeInstance` of the same handle finds nothing and is
 //! ignored.
 
-use super::instance::{Call, Instance, Logger, Rejected, Status};
-use super::types::*;
+use crate::fmi::common::instance::{Call, Instance, Logger, Rejected, Status};
+use crate::fmi::fmi2::types::*;
 use crate::boundary::guard;
 use crate::boundary::registry::Table;
 use std::ffi::{CStr, CString};

@@ -3,14 +3,13 @@
 //! Reference-FMUs do in C with `fmi2Functions.c` and `fmi3Functions.c` over `model.h`.
 //!
 //! ```text
-//! model.rs                  what the glue knows of a model: FmuModel and its Description table
-//! instance.rs               one instance in safe Rust: calls, variables, FMU states, logging
-//! machine.rs, call.rs       the state machines and which call is allowed where
-//! exchange.rs, arrays.rs    Model Exchange; FMI 3.0 time, arrays and Configuration Mode
-//! state.rs, log.rs          serialized FMU states; logging and categories
-//! xml.rs, xml3.rs           modelDescription.xml generated from the tables (FMI 2.0, 3.0)
-//! frame.rs                  the `unsafe` frame of every call: handle table, lock, panic boundary
-//! ffi*.rs, types*.rs        the exported C functions and C types (ffi3*: FMI 3.0)
+//! common/   the version-independent core in safe Rust (no `unsafe`, enforced): the model
+//!           interface, one instance's calls, state machine, FMU states, Model Exchange,
+//!           arrays, logging
+//! fmi2/     FMI 2.0: C types, exported functions, modelDescription.xml
+//! fmi3/     FMI 3.0: the same
+//! frame.rs  what every exported function of both versions runs in: the instance table,
+//!           the instance's lock, the panic boundary, C strings and the importer's logger
 //! ```
 //!
 //! One shared object serves every model and version: `fmi2Instantiate` and
@@ -18,28 +17,13 @@
 //! (each `.fmu` carries a copy named after its `modelIdentifier`), from the list of
 //! [`crate::models`]. The glue names no model.
 
-pub mod arrays;
-pub mod call;
-pub mod exchange;
-pub mod ffi;
-pub mod ffi_exchange;
-pub mod ffi3;
-pub mod ffi3_exchange;
-pub mod ffi3_other;
+pub mod common;
+pub mod fmi2;
+pub mod fmi3;
 pub mod frame;
-pub mod instance;
-pub mod intermediate;
-pub mod log;
-pub mod machine;
-pub mod model;
-pub mod state;
-pub mod types;
-pub mod types3;
-pub mod xml;
-pub mod xml3;
 
 use crate::models::MODELS;
-use model::FmuModel;
+use common::model::FmuModel;
 
 /// The model whose `modelDescription.xml` has this GUID (FMI 2.0) or instantiation token
 /// (FMI 3.0, `what` names which); otherwise the message for the importer's log, naming

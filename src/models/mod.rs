@@ -13,7 +13,7 @@
 pub mod purse_string;
 pub mod wound;
 
-use crate::fmi::model::{Description, FmuModel};
+use crate::fmi::common::model::{Description, FmuModel};
 
 /// The models of this library: description and a constructor of a fresh model.
 pub static MODELS: [(&Description, fn() -> Box<dyn FmuModel>); 2] = [

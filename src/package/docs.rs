@@ -4,7 +4,7 @@
 
 use super::reference::Results;
 use plotters::prelude::*;
-use wound_opening::fmi::model::{Description, Variable};
+use wound_opening::fmi::common::model::{Description, Variable};
 
 type BoxError = Box<dyn std::error::Error>;
 

@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! WoundOpening.fmu
-//! ├── modelDescription.xml             (generated from the model's table: fmi::xml)
+//! ├── modelDescription.xml             (generated from the model's table: fmi::fmi2::xml)
 //! ├── binaries/linux64/WoundOpening.so (the cdylib built beside this executable)
 //! ├── documentation/index.html         (generated: model, variables, plots of the results)
 //! └── extra/org.fmi-standard.fmi-ls-ref/fmi-ls-manifest.xml, WoundOpening_out.csv
@@ -17,7 +17,7 @@ mod reference;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use wound_opening::fmi::{xml, xml3};
+use wound_opening::fmi::{fmi2, fmi3};
 use wound_opening::models::MODELS;
 
 type BoxError = Box<dyn std::error::Error>;
@@ -58,8 +58,8 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
         let results = reference::simulate(description, *fresh)?;
         let csv_name = format!("{id}_out.csv");
         let versions = [
-            ("", "FMI 2.0: co-simulation and Model Exchange, from one library", platform_dir()?, xml::fmi2(description)),
-            ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, xml3::fmi3(description)),
+            ("", "FMI 2.0: co-simulation and Model Exchange, from one library", platform_dir()?, fmi2::xml::fmi2(description)),
+            ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, fmi3::xml::fmi3(description)),
         ];
         for (suffix, interfaces, platform, model_description) in versions {
             let file = format!("{id}{suffix}.fmu");

@@ -9,9 +9,9 @@
 //! ```
 
 use std::sync::Arc;
-use wound_opening::fmi::xml;
-use wound_opening::fmi::instance::{Instance, Logger, Status};
-use wound_opening::fmi::model::{Causality, Description, FmuModel};
+use wound_opening::fmi::fmi2::xml;
+use wound_opening::fmi::common::instance::{Instance, Logger, Status};
+use wound_opening::fmi::common::model::{Causality, Description, FmuModel};
 
 pub const FOLDER: &str = "extra/org.fmi-standard.fmi-ls-ref";
 

@@ -4,8 +4,8 @@
 
 pub mod variables;
 
-use crate::fmi::model::{Description, FmuModel, Rejected};
-use crate::fmi::state::{Reader, Writer, same_parameters};
+use crate::fmi::common::model::{Description, FmuModel, Rejected};
+use crate::fmi::common::serialized::{Reader, Writer, same_parameters};
 use crate::purse_string::{MAX_TENSION, PurseString, THICKNESS, check_radius, check_time};
 use variables::{DESCRIPTION, Vr};
 

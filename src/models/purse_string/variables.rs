@@ -1,7 +1,7 @@
 //! The purse-string FMU's variables: the one table that `modelDescription.xml` is
-//! generated from ([`crate::fmi::xml`]), and that the code uses.
+//! generated from ([`crate::fmi::fmi2::xml`]), and that the code uses.
 
-pub use crate::fmi::model::{CAPABILITIES, Description, Experiment, Unit, Variable};
+pub use crate::fmi::common::model::{CAPABILITIES, Description, Experiment, Unit, Variable};
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
 pub const MODEL_IDENTIFIER: &str = "PurseString";

@@ -1,5 +1,5 @@
 //! The wound model's part of a serialized FMU state (inside the envelope of
-//! [`crate::fmi::state`]).
+//! [`crate::fmi::common::serialized`]).
 //!
 //! ```text
 //! lambda, sigma, R_inf, R0, T, G (f64 LE), mesh degree, elements (u32), edge scale,
@@ -12,7 +12,7 @@
 //! the trajectory is; a restored state reads at the instance's own radii.)
 //! ```
 
-use crate::fmi::state::{Reader, Writer};
+use crate::fmi::common::serialized::{Reader, Writer};
 use crate::solver::{MeshSpec, Params, Scheme, Settings, SolverState};
 use crate::units::Scales;
 

@@ -15,8 +15,8 @@ pub mod variables;
 
 pub use codec::SchemeChoice;
 
-use crate::fmi::model::{Description, FmuModel, Rejected};
-use crate::fmi::state::same_parameters;
+use crate::fmi::common::model::{Description, FmuModel, Rejected};
+use crate::fmi::common::serialized::same_parameters;
 use crate::solver::{EDGE_STRESS_MAX, Params, Settings, Solver, check_edge_stress, delivered_accuracy, check_lambda, check_r_inf, check_sigma};
 use crate::units::{Scales, check_scale};
 use std::cell::RefCell;

@@ -1,7 +1,7 @@
 //! The wound FMU's variables: the one table that `modelDescription.xml` is generated
-//! from ([`crate::fmi::xml`]), and that the code uses.
+//! from ([`crate::fmi::fmi2::xml`]), and that the code uses.
 
-pub use crate::fmi::model::{
+pub use crate::fmi::common::model::{
     ArrayVariable, Arrays, CAPABILITIES, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Unit, Variability, Variable,
 };
 

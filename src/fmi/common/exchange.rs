@@ -1,5 +1,5 @@
 //! Model Exchange (FMI 2.0, chapter 3) on the shared [`Instance`]: the master integrates
-//! the model's continuous states ([`crate::fmi::model::States`]) with its own solver.
+//! the model's continuous states ([`crate::fmi::common::model::States`]) with its own solver.
 //! None of the models has events: no event indicators, no discrete states, no time
 //! events, and `fmi2CompletedIntegratorStep` never asks for event mode.
 //!
@@ -12,8 +12,8 @@
 //! fmi2GetDerivatives              dx/dt per second of master time
 //! ```
 
-use super::instance::{Instance, Rejected};
-use super::machine::Machine;
+use crate::fmi::common::instance::{Instance, Rejected};
+use crate::fmi::common::machine::Machine;
 
 /// The flags `fmi2NewDiscreteStates` returns in `fmi2EventInfo`, all false.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -1,8 +1,8 @@
 //! The byte format of serialized FMU states (`fmi2SerializeFMUstate` /
 //! `fmi2DeSerializeFMUstate`): an envelope that the glue writes for every model around the
-//! model's own bytes ([`super::model::FmuModel::encode`]), holding what an FMU state has
+//! model's own bytes ([`crate::fmi::common::model::FmuModel::encode`]), holding what an FMU state has
 //! besides the model: the state machine's state ([`Machine`]) and the master's clock
-//! ([`Clock`]), both of [`super::machine`].
+//! ([`Clock`]), both of [`crate::fmi::common::machine`].
 //!
 //! ```text
 //! offset  size  field
@@ -21,7 +21,7 @@
 //! every value, so truncated, corrupted or foreign bytes are rejected with a reason,
 //! never read past. The model checks its own bytes the same way, with [`Reader`].
 
-use super::machine::{Clock, Machine};
+use crate::fmi::common::machine::{Clock, Machine};
 
 const MAGIC: &[u8; 8] = b"WOUNDFMU";
 pub const FORMAT_VERSION: u32 = 3;

@@ -6,9 +6,9 @@
 //! framed like every other function and refused with the reason under `logStatusError`.
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use super::frame::{slice, with_instance};
-use super::instance::{Call, Status};
-use super::types3::*;
+use crate::fmi::frame::{slice, with_instance};
+use crate::fmi::common::instance::{Call, Status};
+use crate::fmi::fmi3::types::*;
 
 /// A getter or setter of a type this FMU has no variables of.
 ///
@@ -182,8 +182,8 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
     _lockPreemption: fmi3LockPreemptionCallback,
     _unlockPreemption: fmi3UnlockPreemptionCallback,
 ) -> fmi3Instance {
-    use super::instance::Logger;
-    let sink = super::ffi3::LogMessage { callback: logMessage, env: instanceEnvironment };
+    use crate::fmi::common::instance::Logger;
+    let sink = crate::fmi::fmi3::functions::LogMessage { callback: logMessage, env: instanceEnvironment };
     if crate::boundary::guard(|| sink.log(Status::Error, "logStatusError", "fmi3InstantiateScheduledExecution: this FMU does not provide scheduled execution")).is_err() {}
     std::ptr::null_mut()
 }

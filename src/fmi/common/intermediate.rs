@@ -14,9 +14,9 @@
 //!
 //! An importer that sets nothing holds the inputs, as without the callback.
 
-use super::instance::{Instance, Rejected};
-use super::machine::Machine;
-use super::model::{Causality, Kind, Variability};
+use crate::fmi::common::instance::{Instance, Rejected};
+use crate::fmi::common::machine::Machine;
+use crate::fmi::common::model::{Causality, Kind, Variability};
 
 /// The importer's `intermediateUpdate` callback: asked for the inputs at `time`.
 pub trait Requester: Send + Sync {
@@ -51,7 +51,7 @@ impl Instance {
 
     /// Whether `vr` may be set now: anything outside Intermediate Update Mode, only the
     /// required intermediate inputs inside it.
-    pub(super) fn settable_now(&self, vr: u32) -> Result<(), Rejected> {
+    pub(in crate::fmi) fn settable_now(&self, vr: u32) -> Result<(), Rejected> {
         match (&self.intermediate, self.machine) {
             (Some((_, vrs)), Machine::IntermediateUpdate) if !vrs.contains(&vr) => {
                 Err(format!("value reference {vr} is not a required intermediate variable: it cannot be set in Intermediate Update Mode"))

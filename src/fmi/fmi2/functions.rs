@@ -4,10 +4,10 @@
 //! instance, by [`guard`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use super::frame::{CallbackLogger, register, slice, slice_mut, text, unregister, with_instance};
+use crate::fmi::frame::{CallbackLogger, register, slice, slice_mut, text, unregister, with_instance};
 use crate::boundary::guard;
-use super::instance::{Call, Instance, Interface, Status};
-use super::types::*;
+use crate::fmi::common::instance::{Call, Instance, Interface, Status};
+use crate::fmi::fmi2::types::*;
 use std::ffi::{c_char, CString};
 use std::sync::Arc;
 
@@ -64,7 +64,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
             other => return fail(format!("fmuType = {other}: this FMU supports Model Exchange (0) and co-simulation (1)")),
         };
         let guid = unsafe { text(fmuGUID) };
-        let fresh = match super::model_for_guid(guid.as_deref(), "GUID") {
+        let fresh = match crate::fmi::model_for_guid(guid.as_deref(), "GUID") {
             Ok(fresh) => fresh,
             Err(msg) => return fail(msg),
         };

@@ -1,7 +1,7 @@
 //! Logging of an instance: the FMI status, the importer's logger behind a trait, and the
 //! log categories of `modelDescription.xml` ([`LOG_CATEGORIES`]) with the ones switched on.
 
-use super::model::{LOG_CATEGORIES, Rejected};
+use crate::fmi::common::model::{LOG_CATEGORIES, Rejected};
 use std::sync::Arc;
 
 /// `fmi2Status`.

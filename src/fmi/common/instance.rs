@@ -1,5 +1,5 @@
 //! One FMU instance in safe Rust: the FMI 2.0 state machine (co-simulation here, Model
-//! Exchange in [`super::exchange`]), the variables, FMU states and logging. It knows
+//! Exchange in [`crate::fmi::common::exchange`]), the variables, FMU states and logging. It knows
 //! nothing of C: the `ffi` layer converts pointers.
 //!
 //! Every call goes through [`Instance::call`]: log the call (category `logCalls`), check
@@ -8,13 +8,13 @@
 //! [`Status::Error`], and changes nothing: every check runs before any mutation, so the
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
-pub use super::call::Call;
-pub use super::log::{Logger, Status};
-pub use super::model::Rejected;
-use super::log::Log;
-use super::model::{Causality, Description, FmuModel, Kind, Named, Variability};
-pub use super::machine::{Clock, Interface, Machine, time_slack};
-use super::state;
+pub use crate::fmi::common::call::Call;
+pub use crate::fmi::common::log::{Logger, Status};
+pub use crate::fmi::common::model::Rejected;
+use crate::fmi::common::log::Log;
+use crate::fmi::common::model::{Causality, Description, FmuModel, Kind, Named, Variability};
+pub use crate::fmi::common::machine::{Clock, Interface, Machine, time_slack};
+use crate::fmi::common::serialized;
 use crate::boundary::registry::fresh_handle;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -36,12 +36,12 @@ impl Clone for Snapshot {
 pub struct Instance {
     name: String,
     log: Log,
-    pub(super) interface: Interface,
+    pub(in crate::fmi) interface: Interface,
     /// FMI 3.0 (its function names in messages), else FMI 2.0.
     fmi3: bool,
-    pub(super) machine: Machine,
-    pub(super) clock: Clock,
-    pub(super) model: Box<dyn FmuModel>,
+    pub(in crate::fmi) machine: Machine,
+    pub(in crate::fmi) clock: Clock,
+    pub(in crate::fmi) model: Box<dyn FmuModel>,
     /// A fresh model, for `fmi2Reset`.
     fresh: fn() -> Box<dyn FmuModel>,
     /// FMU states handed to the master, by handle. Handles come from the process-wide
@@ -49,8 +49,8 @@ pub struct Instance {
     /// model), of a freed instance, or a made-up one is never in this table.
     states: HashMap<u64, Snapshot>,
     /// FMI 3.0 co-simulation: the importer's `intermediateUpdate` callback and the inputs
-    /// it may set in Intermediate Update Mode (see [`super::intermediate`]).
-    pub(super) intermediate: Option<(Arc<dyn super::intermediate::Requester>, Vec<u32>)>,
+    /// it may set in Intermediate Update Mode (see [`crate::fmi::common::intermediate`]).
+    pub(in crate::fmi) intermediate: Option<(Arc<dyn crate::fmi::common::intermediate::Requester>, Vec<u32>)>,
 }
 
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
@@ -108,7 +108,7 @@ impl Instance {
     }
 
     /// Whether the FMU has no computed values yet: only start values can be read.
-    pub(super) fn before_initialization(&self) -> bool {
+    pub(in crate::fmi) fn before_initialization(&self) -> bool {
         matches!(self.machine, Machine::Instantiated | Machine::ConfigurationMode)
     }
 
@@ -230,7 +230,7 @@ impl Instance {
         Ok(())
     }
 
-    pub(super) fn prepare(&mut self) -> Result<(), Rejected> {
+    pub(in crate::fmi) fn prepare(&mut self) -> Result<(), Rejected> {
         if let Some(text) = self.model.prepare()? {
             self.log.call(&text);
         }
@@ -396,7 +396,7 @@ impl Instance {
     }
 
     /// The checks of [`Instance::do_step`], before anything moves: the end of the step.
-    pub(super) fn check_step(&self, t: f64, h: f64) -> Result<f64, Rejected> {
+    pub(in crate::fmi) fn check_step(&self, t: f64, h: f64) -> Result<f64, Rejected> {
         if !(h.is_finite() && h > 0.0) {
             return Err(format!("communicationStepSize = {h} is invalid: it must be finite and > 0"));
         }
@@ -470,7 +470,7 @@ impl Instance {
     pub fn serialize_fmu_state(&self, handle: u64) -> Result<Vec<u8>, Rejected> {
         let snap = self.snapshot(handle)?;
         let model = snap.model.encode()?;
-        Ok(state::encode(self.description().model_identifier, snap.machine, &snap.clock, &model))
+        Ok(serialized::encode(self.description().model_identifier, snap.machine, &snap.clock, &model))
     }
 
     /// `fmi2DeSerializeFMUstate`: the bytes must come from an instance of the same model
@@ -480,7 +480,7 @@ impl Instance {
         if let Some(h) = target {
             self.snapshot(h)?;
         }
-        let (machine, clock, payload) = state::decode(self.description().model_identifier, bytes)?;
+        let (machine, clock, payload) = serialized::decode(self.description().model_identifier, bytes)?;
         // Intermediate Update Mode exists only inside an fmi3DoStep (no state is saved there),
         // Configuration Mode only in FMI 3.0.
         let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && !self.fmi3);

@@ -1,6 +1,6 @@
 //! The state machine of an instance ([`Machine`]) and the master's clock ([`Clock`], with
 //! the tolerance on communication points, [`time_slack`]): what the glue keeps for every
-//! model besides the model itself. Which call is allowed in which state is [`super::call`].
+//! model besides the model itself. Which call is allowed in which state is [`crate::fmi::common::call`].
 
 /// The interface type an instance was made for (`fmi2Instantiate`'s `fmuType`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -3,7 +3,7 @@
 //! Reference-FMUs' masks in `fmi2Functions.c` read it), for which interface type, and its
 //! name for messages.
 
-use super::machine::{Interface, Machine};
+use crate::fmi::common::machine::{Interface, Machine};
 
 /// The FMI calls, for the state-machine check and the call log.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,15 +1,15 @@
 //! The exported FMI 3.0 Model Exchange functions. Where the C signature is FMI 2.0's (an
 //! instance handle, reals and counts), the shim is the FMI 2.0 one of
-//! [`super::ffi_exchange`] (the instance names its calls `fmi3*` in messages); the others
+//! [`crate::fmi::fmi2::exchange`] (the instance names its calls `fmi3*` in messages); the others
 //! (booleans are one byte in FMI 3.0, `fmi3UpdateDiscreteStates` has out-arguments instead
 //! of `fmi2EventInfo`, the counts) are written here.
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use super::exchange::EventInfo;
-use super::ffi_exchange as fmi2;
-use super::frame::with_instance;
-use super::instance::{Call, Status};
-use super::types3::*;
+use crate::fmi::common::exchange::EventInfo;
+use crate::fmi::fmi2::exchange as fmi2;
+use crate::fmi::frame::with_instance;
+use crate::fmi::common::instance::{Call, Status};
+use crate::fmi::fmi3::types::*;
 
 fn flag(b: bool) -> fmi3Boolean {
     if b { FMI3_TRUE } else { FMI3_FALSE }

@@ -6,10 +6,10 @@
 //! reference = position, checked by [`fmi2`]). One archive declares both interfaces:
 //! `<ModelExchange>` and `<CoSimulation>` with the same `modelIdentifier`.
 
-use super::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, States, Variable};
+use crate::fmi::common::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, States, Variable};
 use std::fmt::Write;
 
-pub(super) const GENERATION_TOOL: &str = "wound_opening (Rust)";
+pub(in crate::fmi) const GENERATION_TOOL: &str = "wound_opening (Rust)";
 
 /// An attribute value with `& < > "` escaped.
 pub fn escape(s: &str) -> String {
@@ -41,7 +41,7 @@ fn unit_definitions(d: &Description) -> String {
 
 /// `start`, `min`/`max` and `unit` of a table variable, as attributes (the same in FMI 2.0's
 /// type element and FMI 3.0's variable element).
-pub(super) fn value_attributes(v: &Variable) -> String {
+pub(in crate::fmi) fn value_attributes(v: &Variable) -> String {
     let mut attrs = String::new();
     if let Some(s) = v.start {
         let _ = write!(attrs, " start=\"{}\"", number(s));
@@ -56,7 +56,7 @@ pub(super) fn value_attributes(v: &Variable) -> String {
 }
 
 /// `<UnitDefinitions>`, `<LogCategories>` and `<DefaultExperiment>`, in schema order.
-pub(super) fn units_categories_experiment(d: &Description) -> String {
+pub(in crate::fmi) fn units_categories_experiment(d: &Description) -> String {
     format!("{}\n{}\n{}", unit_definitions(d), log_categories(), default_experiment(d))
 }
 
@@ -82,7 +82,7 @@ fn default_experiment(d: &Description) -> String {
 
 /// `ModelStructure` in value references, the same for FMI 2.0 (which writes indices,
 /// `value reference + 1`) and FMI 3.0.
-pub(super) struct Structure {
+pub(in crate::fmi) struct Structure {
     /// Each output on its inputs, then (Model Exchange) on every state.
     pub outputs: Vec<(u32, Vec<(u32, &'static str)>)>,
     /// Each derivative on the model's inputs and its own state (the modes are uncoupled).
@@ -93,7 +93,7 @@ pub(super) struct Structure {
 }
 
 impl Structure {
-    pub(super) fn of(d: &Description) -> Self {
+    pub(in crate::fmi) fn of(d: &Description) -> Self {
         let table = d.variables.len() as u32;
         let states: Vec<u32> = (0..d.state_count() as u32).map(|k| table + k).collect();
         let outputs = d

@@ -5,10 +5,10 @@
 //! only in Configuration Mode (FMI 3.0, section 2.3); parameter arrays then have its
 //! length.
 
-use super::instance::{Instance, Rejected};
-use super::machine::Machine;
-use super::model::{Arrays, Causality, Kind, Named};
-use super::xml3::time_reference;
+use crate::fmi::common::instance::{Instance, Rejected};
+use crate::fmi::common::machine::Machine;
+use crate::fmi::common::model::{Arrays, Causality, Kind, Named};
+use crate::fmi::fmi3::xml::time_reference;
 
 /// What an FMI 3.0-only value reference names.
 #[derive(Debug, Clone, Copy, PartialEq)]

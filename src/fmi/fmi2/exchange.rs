@@ -1,10 +1,10 @@
 //! The exported FMI 2.0 Model Exchange functions (chapter 3): thin `extern "C"` shims over
-//! [`super::exchange`], framed like every other function by [`with_instance`].
+//! [`crate::fmi::common::exchange`], framed like every other function by [`with_instance`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use super::frame::{slice, slice_mut, with_instance};
-use super::instance::{Call, Instance, Status};
-use super::types::*;
+use crate::fmi::frame::{slice, slice_mut, with_instance};
+use crate::fmi::common::instance::{Call, Instance, Status};
+use crate::fmi::fmi2::types::*;
 
 const OK: Result<Status, String> = Ok(Status::Ok);
 

@@ -1,6 +1,6 @@
 //! What the shared FMI glue knows of a model: its description (identity, variables,
 //! dependencies, capabilities, the XML) and the [`FmuModel`] trait. The glue
-//! ([`super::instance`], [`super::ffi`]) runs the state machine, the clock, logging and
+//! ([`crate::fmi::common::instance`], [`crate::fmi::fmi2::functions`]) runs the state machine, the clock, logging and
 //! FMU states for any model; a model sees plain values only.
 
 /// Log categories of every model's `modelDescription.xml`, with their descriptions.
@@ -135,7 +135,7 @@ pub struct Experiment {
     pub tolerance: f64,
 }
 
-/// A model as the glue, the description generator ([`super::xml`]) and the packaging see
+/// A model as the glue, the description generator ([`crate::fmi::fmi2::xml`]) and the packaging see
 /// it: every `modelDescription.xml` is generated from this table, so the XML and the code
 /// cannot disagree.
 #[derive(Debug)]

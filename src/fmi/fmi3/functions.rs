@@ -5,13 +5,13 @@
 //! `fmi3EnterInitializationMode` carrying the experiment, `nValues` beside every array,
 //! `fmi3DoStep`'s out-arguments, a logger without format string. The functions this FMU
 //! does not provide (clocks, configuration mode, scheduled execution, adjoint derivatives,
-//! the other variable types) are in [`super::ffi3_other`].
+//! the other variable types) are in [`crate::fmi::fmi3::unsupported`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use super::ffi as fmi2;
-use super::frame::{register, slice, slice_mut, text, unregister, with_instance};
-use super::instance::{Call, Instance, Interface, Logger, Status};
-use super::types3::*;
+use crate::fmi::fmi2::functions as fmi2;
+use crate::fmi::frame::{register, slice, slice_mut, text, unregister, with_instance};
+use crate::fmi::common::instance::{Call, Instance, Interface, Logger, Status};
+use crate::fmi::fmi3::types::*;
 use crate::boundary::guard;
 use std::ffi::{CString, c_char};
 use std::sync::Arc;
@@ -67,7 +67,7 @@ fn instantiate(
             return fail(why);
         }
         let token = unsafe { text(instantiationToken) };
-        let fresh = match super::model_for_guid(token.as_deref(), "instantiationToken") {
+        let fresh = match crate::fmi::model_for_guid(token.as_deref(), "instantiationToken") {
             Ok(fresh) => fresh,
             Err(msg) => return fail(msg),
         };
@@ -91,7 +91,7 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
 }
 
 /// The importer's `intermediateUpdate` callback, asked for the inputs at the end of each
-/// step (see [`super::intermediate`]).
+/// step (see [`crate::fmi::common::intermediate`]).
 struct IntermediateUpdate {
     callback: unsafe extern "C" fn(fmi3InstanceEnvironment, f64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut f64),
     env: fmi3InstanceEnvironment,
@@ -102,7 +102,7 @@ struct IntermediateUpdate {
 unsafe impl Send for IntermediateUpdate {}
 unsafe impl Sync for IntermediateUpdate {}
 
-impl super::intermediate::Requester for IntermediateUpdate {
+impl crate::fmi::common::intermediate::Requester for IntermediateUpdate {
     fn request_inputs(&self, time: f64) {
         let (mut early, mut early_time) = (FMI3_FALSE, time);
         // SAFETY: the importer promised a valid callback; the out-arguments are ours.
@@ -367,7 +367,7 @@ pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
 /// One step; never early, no event handling (no event mode), `lastSuccessfulTime` the end
 /// of an accepted step (else the time before it), `terminateSimulation` at the stop time.
 /// With required intermediate variables, the importer is asked for them at the end of the
-/// step, the instance unlocked meanwhile ([`super::intermediate`]).
+/// step, the instance unlocked meanwhile ([`crate::fmi::common::intermediate`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3DoStep(
     instance: fmi3Instance,

@@ -1,0 +1,26 @@
+//! The version-independent glue: everything an FMU instance is, in safe Rust, for any model
+//! and for FMI 2.0 and 3.0 alike. It knows nothing of C: the shims of [`super::fmi2`] and
+//! [`super::fmi3`] convert pointers, and the compiler holds every `unsafe` to them.
+//!
+//! ```text
+//! model.rs          what the glue knows of a model: the FmuModel trait and its Description table
+//! instance.rs       one instance: calls, variables, FMU states, logging
+//! machine.rs        the state machine's states and the master's clock
+//! call.rs           the calls, and in which state each is allowed
+//! exchange.rs       Model Exchange on an instance
+//! arrays.rs         FMI 3.0 time, arrays and Configuration Mode on an instance
+//! intermediate.rs   FMI 3.0 Intermediate Update Mode inside a step
+//! serialized.rs     the byte format of serialized FMU states
+//! log.rs            status, logger trait, log categories
+//! ```
+#![forbid(unsafe_code)]
+
+pub mod arrays;
+pub mod call;
+pub mod exchange;
+pub mod instance;
+pub mod intermediate;
+pub mod log;
+pub mod machine;
+pub mod model;
+pub mod serialized;

@@ -1,0 +1,17 @@
+//! FMI 3.0: its C types, the exported `fmi3*` functions (co-simulation and Model
+//! Exchange) as thin shims over [`super::common`], the functions every FMU exports but
+//! this one does not provide, and its `modelDescription.xml`.
+//!
+//! ```text
+//! types.rs         fmi3PlatformTypes.h, fmi3FunctionTypes.h as Rust declarations
+//! functions.rs     the common and co-simulation functions
+//! exchange.rs      the Model Exchange functions
+//! unsupported.rs   clocks, scheduled execution, adjoints, other variable types: refused
+//! xml.rs           modelDescription.xml (fmi3ModelDescription.xsd)
+//! ```
+
+pub mod exchange;
+pub mod functions;
+pub mod types;
+pub mod unsupported;
+pub mod xml;
