@@ -6,7 +6,7 @@
 //! and DIR/explicit_limits.csv.
 //!
 //! Status of a run of 200 steps of size dt from the cut (p = 0, R_inf = 10): see
-//! `bench_util::classify`.
+//! `wound_opening::solver::stability`.
 
 #[path = "common/bench_util.rs"]
 mod bench_util;

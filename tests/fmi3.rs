@@ -4,9 +4,9 @@
 //! 3.0 interfaces, and every function on NULL, made-up and freed instances (an error, never
 //! a crash: the handle table of fmi/frame.rs). fmpy runs the archives: tests/python/test_fmi3.py.
 
-mod fmi_support;
+mod common;
 
-use fmi_support::{OK, ERROR, WOUND, PURSE};
+use common::fmi::{OK, ERROR, WOUND, PURSE};
 use std::ffi::CString;
 use wound_opening::boundary::caught_panics;
 use wound_opening::fmi::fmi2::functions::*;
@@ -60,7 +60,7 @@ fn instantiation_checks_the_token_and_refuses_event_mode() {
 #[test]
 fn co_simulation_is_the_fmi2_co_simulation() {
     let i = cs(WOUND, 0);
-    let c2 = fmi_support::initialized(WOUND, 0.0, &[(Vr::Lambda as u32, 0.3)]);
+    let c2 = common::fmi::initialized(WOUND, 0.0, &[(Vr::Lambda as u32, 0.3)]);
     unsafe {
         let (vr, lambda) = (Vr::Lambda as u32, 0.3);
         assert_eq!(fmi3SetFloat64(i, &vr, 1, &lambda, 1), OK);
@@ -77,7 +77,7 @@ fn co_simulation_is_the_fmi2_co_simulation() {
         }
         assert_eq!(fmi3DoStep(i, 10.0, 1.0, 0, &mut ev, &mut term, &mut early, &mut last), ERROR, "past stopTime");
         assert_eq!(last, 10.0);
-        assert_eq!(get(i, Vr::WoundRadius as u32), (OK, fmi_support::get_real(c2, Vr::WoundRadius as u32).1));
+        assert_eq!(get(i, Vr::WoundRadius as u32), (OK, common::fmi::get_real(c2, Vr::WoundRadius as u32).1));
         let mut method = -1;
         assert_eq!(fmi3GetInt32(i, &(Vr::Method as u32), 1, &mut method, 1), OK);
         assert_eq!(method, 0);
@@ -213,12 +213,12 @@ fn every_call3(i: fmi2Component) -> Vec<(&'static str, fmi3Status)> {
 #[test]
 fn start_values_are_readable_before_initialization() {
     let i = cs(WOUND, 0);
-    let c2 = fmi_support::instantiate(WOUND, "fmi2");
+    let c2 = common::fmi::instantiate(WOUND, "fmi2");
     assert_eq!(get(i, Vr::Lambda as u32), (OK, 1.0));
     assert_eq!(get(i, Vr::EdgeStress as u32), (OK, 0.0));
     assert_eq!(get(i, Vr::WoundRadius as u32).0, ERROR, "an output has no start value");
     assert_eq!(get(i, 13).0, ERROR, "nor a state");
-    assert_eq!(fmi_support::get_real(c2, Vr::Lambda as u32).0, ERROR, "FMI 2.0: not in Instantiated");
+    assert_eq!(common::fmi::get_real(c2, Vr::Lambda as u32).0, ERROR, "FMI 2.0: not in Instantiated");
     unsafe {
         fmi3FreeInstance(i);
         fmi2FreeInstance(c2);
@@ -264,14 +264,14 @@ mod intermediate {
         assert!(!i.is_null());
         INSTANCE.store(i as usize, Ordering::SeqCst);
         let lambda = Vr::Lambda as u32;
-        let c2 = fmi_support::initialized(WOUND, 0.0, &[(lambda, 0.3)]);
+        let c2 = common::fmi::initialized(WOUND, 0.0, &[(lambda, 0.3)]);
         unsafe {
             assert_eq!(fmi3SetFloat64(i, &lambda, 1, &0.3, 1), OK);
             assert_eq!(fmi3SetFloat64(i, &es, 1, &P0, 1), OK);
             assert_eq!(fmi3EnterInitializationMode(i, 0, 0.0, 0.0, 0, 0.0), OK);
             assert_eq!(fmi3ExitInitializationMode(i), OK);
             // FMI 2.0 with the input derivative, for comparison.
-            assert_eq!(fmi_support::set_real(c2, es, P0), OK);
+            assert_eq!(common::fmi::set_real(c2, es, P0), OK);
             let one = 1;
             assert_eq!(fmi2SetRealInputDerivatives(c2, &es, 1, &one, &RATE), OK);
             let (mut a, mut b, mut e, mut last) = (0u8, 0u8, 0u8, 0.0);
@@ -288,7 +288,7 @@ mod intermediate {
             assert_eq!(time, 0.5 * (k + 1) as f64, "asked at the end of the step");
             assert_eq!((set, other, get), (OK, ERROR, ERROR), "only the required input may be set, nothing read");
         }
-        let (r3, r2) = (get(i, Vr::WoundRadius as u32).1, fmi_support::get_real(c2, Vr::WoundRadius as u32).1);
+        let (r3, r2) = (get(i, Vr::WoundRadius as u32).1, common::fmi::get_real(c2, Vr::WoundRadius as u32).1);
         assert!((r3 - r2).abs() < 1e-14, "{r3} vs {r2}: the same ramp as fmi2SetRealInputDerivatives");
         assert_eq!(get(i, es), (OK, P0 + RATE * 1.5));
         unsafe {

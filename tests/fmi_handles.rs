@@ -2,10 +2,9 @@
 //! not (or no longer) a live instance of ours, or not this instance's state, is refused
 //! with `fmi2Error`, and nothing is read through it.
 
-#[path = "fmi_support.rs"]
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::Vr;

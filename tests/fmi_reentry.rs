@@ -3,10 +3,9 @@
 //! instances here are put in the table with a Rust logger ([`frame::register`]), since
 //! Rust cannot define the variadic C logger that `fmi2Instantiate` takes.
 
-#[path = "fmi_support.rs"]
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use wound_opening::fmi::fmi2::functions::*;

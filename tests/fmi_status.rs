@@ -3,10 +3,9 @@
 //! section 2.1.3 defines ("fmi2Discard is returned also if the slave is not able to return
 //! the required status information") and the Reference-FMUs do.
 
-#[path = "fmi_support.rs"]
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::types::*;
 

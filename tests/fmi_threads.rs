@@ -4,10 +4,9 @@
 //! steps it accepted. (Many instances on many threads: tests/capi_threads.rs. The logged
 //! reason of a refusal: tests/fmi_reentry.rs.)
 
-#[path = "fmi_support.rs"]
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use std::sync::{Arc, Barrier};
 use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::types::*;

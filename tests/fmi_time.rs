@@ -3,10 +3,9 @@
 //! time is checked with the same tolerance, and every model counts its time from
 //! `startTime` (the cut). Release mode: `cargo test --release --test fmi_time`.
 
-#[path = "fmi_support.rs"]
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::models::purse_string::variables::Vr as P;
 use wound_opening::fmi::fmi2::types::*;

@@ -3,10 +3,9 @@
 //! returns `fmi2Warning` and the warning is logged under `logStatusWarning`; a worse status
 //! of the call wins; a call without a warning is OK.
 
-#[path = "fmi_support.rs"]
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use std::sync::{Arc, Mutex};
 use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::frame;

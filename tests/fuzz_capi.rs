@@ -9,10 +9,9 @@
 //! changes nothing (a solver's time and radius are the same before and after it); and once
 //! everything is freed the handle tables are empty.
 
-#[path = "fuzz_support.rs"]
-mod fuzz_support;
+mod common;
 
-use fuzz_support::{Budget, Rng};
+use common::fuzz::{Budget, Rng};
 use std::collections::BTreeMap;
 use std::ffi::CStr;
 use wound_opening::capi::error::WoStatus;
@@ -234,4 +233,15 @@ fn random_direct_api_call_sequences_are_refused_cleanly_or_succeed() {
     let advanced = world.stats.get("wo_solver_advance").map_or(0, |c| c[0]);
     let restored = world.stats.get("wo_solver_restore_state").map_or(0, |c| c[0]);
     assert!(iterations < 2000 || (advanced > 0 && restored > 0), "the fuzzer should reach advances and restores");
+}
+
+#[test]
+fn the_generator_is_deterministic_and_spreads() {
+    let (mut a, mut b) = (common::fuzz::Rng::new(7), common::fuzz::Rng::new(7));
+    let xs: Vec<u64> = (0..1000).map(|_| a.next_u64()).collect();
+    assert!(xs.iter().all(|&x| x == b.next_u64()), "same seed, same sequence");
+    let mut counts = [0usize; 10];
+    (0..10_000).for_each(|_| counts[a.below(10)] += 1);
+    // 10 000 draws in 10 bins: each near 1000 (5 standard deviations is about 150).
+    assert!(counts.iter().all(|&c| (850..1150).contains(&c)), "{counts:?}");
 }

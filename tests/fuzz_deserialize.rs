@@ -7,10 +7,9 @@
 //! What must hold: bytes without a valid checksum are never accepted; an accepted state can
 //! be restored, stepped from and read; no call reaches the panic boundary.
 
-#[path = "fuzz_support.rs"]
-mod fuzz_support;
+mod common;
 
-use fuzz_support::{Budget, NULL_CALLBACKS, MESH_FIELDS, Rng, mutated, reseal_crc};
+use common::fuzz::{Budget, NULL_CALLBACKS, MESH_FIELDS, Rng, mutated, reseal_crc};
 use std::collections::BTreeMap;
 use std::ffi::CString;
 use wound_opening::boundary::caught_panics;

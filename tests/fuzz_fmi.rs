@@ -9,10 +9,9 @@
 //! ever reaches the panic boundary (`caught_panics()` stays 0). Only valid memory is ever
 //! passed: the standard makes the caller responsible for that, not the FMU.
 
-#[path = "fuzz_support.rs"]
-mod fuzz_support;
+mod common;
 
-use fuzz_support::{Budget, NULL_CALLBACKS, Rng, mutated};
+use common::fuzz::{Budget, NULL_CALLBACKS, Rng, mutated};
 use std::collections::BTreeMap;
 use std::ffi::{CString, c_char};
 use wound_opening::boundary::caught_panics;

@@ -4,9 +4,9 @@
 //! small held steps converge to it; through FMI the input ends the step at its value
 //! there; refusals and FMU states. The coupling order it buys: tests/python/test_coupling.py.
 
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::Vr;

@@ -3,9 +3,9 @@
 //! ODE exactly, refusals, FMU states, and the stiffness an integrator faces.
 //! (fmpy's CVode against the exact solution: tests/python/test_model_exchange.py.)
 
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use std::ffi::CString;
 use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::exchange::*;

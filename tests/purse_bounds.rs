@@ -2,10 +2,9 @@
 //! and derivatives (`edge_stress = T_c / (h R)` and `-T_c / (h R^2)`); values outside it
 //! are refused at `fmi2SetReal`. The edges of the domain are probed, not only its centre.
 
-#[path = "fmi_support.rs"]
-mod fmi_support;
+mod common;
 
-use fmi_support::*;
+use common::fmi::*;
 use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::models::purse_string::variables::Vr;
 

@@ -2,11 +2,16 @@
 //! its von Neumann theory (src/solver/explicit.rs); and the shipped scheme, bounded and
 //! monotone over the whole map of lambda and step size.
 
-#[path = "../examples/common/bench_util.rs"]
-mod bench_util;
 
-use bench_util::{R_INF, Status, classify};
+use wound_opening::solver::stability::{self, RunStatus as Status};
 use wound_opening::solver::{Params, Scheme, Settings, explicit_stability_limits};
+
+const R_INF: f64 = 10.0;
+
+/// The stability status of `steps` steps of `dt` from the cut, sigma = 1, R_inf = 10.
+fn classify(lambda: f64, scheme: &Scheme, dt: f64, steps: usize) -> Status {
+    stability::classify(&Params { lambda, sigma: 1.0, r_inf: R_INF }, scheme, dt, steps)
+}
 
 /// 4000 steps: near the limit the unstable mode grows slowly, so the verdict needs many steps.
 const LONG: usize = 4000;

@@ -3,7 +3,8 @@
 #![allow(dead_code)]
 
 use std::path::Path;
-use wound_opening::solver::{Params, Scheme, Solver, exact, explicit_unchecked_trajectory};
+pub use wound_opening::solver::stability::{self, RunStatus as Status};
+use wound_opening::solver::{Params, Scheme, Solver, exact};
 
 /// CPU time of this process, in seconds (CLOCK_PROCESS_CPUTIME_ID).
 pub fn cpu_seconds() -> f64 {
@@ -97,44 +98,8 @@ pub fn error(radius: &[f64], reference: &[f64]) -> f64 {
     })
 }
 
-/// Stability status of a run from the cut (p = 0, sigma = 1, R_inf = 10).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Status {
-    Bounded,
-    Oscillating,
-    Unbounded,
-}
-
-/// Classify `steps` steps of size `dt`, judged by the wound radius, whose exact value rises
-/// monotonically from R1 to R_final: `Unbounded` (non-finite, or further than 10
-/// amplitudes from R1), `Oscillating` (it ever decreases by more than 1e-9 amplitude),
-/// else `Bounded`. (Overshooting the exact R_final is an accuracy matter, not counted.)
-///
-/// The explicit scheme runs unchecked (the solver refuses its steps beyond the von Neumann
-/// limits before taking them; here we measure where it really fails).
+/// Stability status of `steps` steps of size `dt` on the scenario's problem
+/// ([`wound_opening::solver::stability::classify`]).
 pub fn classify(lambda: f64, scheme: &Scheme, dt: f64, steps: usize) -> Status {
-    let params = Params { lambda, sigma: SIGMA, r_inf: R_INF };
-    let radii: Box<dyn Iterator<Item = Option<f64>>> = match *scheme {
-        Scheme::Explicit { points, .. } => {
-            Box::new(explicit_unchecked_trajectory(points, R_INF, lambda, SIGMA, dt, steps).into_iter().map(Some))
-        }
-        _ => {
-            let mut s = Solver::with_scheme(&params, scheme).expect("valid scheme");
-            Box::new((0..steps).map(move |_| s.advance(dt, 0.0).ok().map(|_| s.wound_radius())))
-        }
-    };
-    let (r1, amp) = (exact::initial_radius(SIGMA), amplitude(R_INF));
-    let mut last = r1;
-    let mut status = Status::Bounded;
-    for r in radii {
-        let Some(r) = r else { return Status::Unbounded };
-        if !r.is_finite() || (r - r1).abs() > 10.0 * amp {
-            return Status::Unbounded;
-        }
-        if r < last - 1e-9 * amp {
-            status = Status::Oscillating;
-        }
-        last = r;
-    }
-    status
+    stability::classify(&Params { lambda, sigma: SIGMA, r_inf: R_INF }, scheme, dt, steps)
 }

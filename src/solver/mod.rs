@@ -22,6 +22,7 @@ mod modal;
 mod paper;
 mod params;
 mod quadrature;
+pub mod stability;
 mod tolerance;
 mod trbdf2;
 
@@ -33,7 +34,7 @@ pub use params::{
     check_r_inf, check_sigma,
 };
 
-pub use explicit::{stability_limits as explicit_stability_limits, unchecked_trajectory as explicit_unchecked_trajectory};
+pub use explicit::stability_limits as explicit_stability_limits;
 
 pub use engine::Ode;
 use engine::Engine;

@@ -1,5 +1,5 @@
 //! Helpers for the tests that drive the exported FMI functions from Rust, as a C master
-//! would (included with `#[path]`). Rust cannot define the variadic C logger, so these
+//! would. Rust cannot define the variadic C logger, so these
 //! instances have no logger: what is logged is checked through the safe API
 //! (`tests/fmi_instance.rs`) and from C (`tests/c`).
 #![allow(dead_code)]
