@@ -3,7 +3,7 @@
  *
  * Two C interfaces to one library (libwound_opening.so, or the FMU's WoundOpening.so):
  *   - the FMI 2.0 functions fmi2* (co-simulation and Model Exchange), for FMI masters;
- *   - a direct API wo_* for programs without an FMI master: see "C API" in README.md.
+ *   - a direct API wo_* for programs without an FMI master: see docs/c_api.md.
  */
 
 #ifndef WOUND_OPENING_H

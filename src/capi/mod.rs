@@ -19,6 +19,8 @@
 //! both run behind the panic boundary of [`crate::boundary`], as the FMI functions do.
 
 pub mod error;
+#[cfg(test)]
+mod panic_tests;
 pub mod series;
 pub mod series_c;
 pub mod solver;

@@ -281,8 +281,8 @@ pub fn free_state(state: u64) -> Result<(), Failure> {
 
 /// Run `f` on the solver's data while holding its lock (for tests of the panic
 /// boundary: a panic in `f` must leave the solver refusing use until restored).
-#[doc(hidden)]
-pub fn with_solver_for_tests(solver: u64, f: impl FnOnce()) -> Result<(), Failure> {
+#[cfg(test)]
+pub(crate) fn with_solver_for_tests(solver: u64, f: impl FnOnce()) -> Result<(), Failure> {
     with_solver(solver, false, |_| {
         f();
         Ok(())

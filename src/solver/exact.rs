@@ -82,13 +82,6 @@ pub fn edge_velocity_slope(lambda: f64, r_inf: f64) -> f64 {
     velocity_response(lambda, r_inf, 1.0)
 }
 
-/// Edge velocity `u_t(1, 0+)` just after the cut, for `lambda > 0`:
-/// `(p - sigma) w(1)` (see [`velocity_response`]). For `R_inf -> infinity` it is
-/// `(sigma - p) K1 / (2 lambda^2 [K1 + (2 / lambda) K0])`, Bessel functions at `1/lambda`.
-pub fn initial_edge_velocity(lambda: f64, sigma: f64, r_inf: f64, p: f64) -> f64 {
-    (p - sigma) * edge_velocity_slope(lambda, r_inf)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -108,7 +108,8 @@ impl Call {
             Call::Set => m != Terminated,
             Call::SetRealInputDerivatives => matches!(m, Instantiated | InitializationMode | StepComplete),
             Call::GetStatus | Call::GetRealOutputDerivatives => matches!(m, StepComplete | Terminated),
-            Call::CancelStep => false,
+            // Refused by its body: steps are never asynchronous, so there is nothing to cancel.
+            Call::CancelStep => true,
         }
     }
 
