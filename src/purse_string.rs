@@ -30,6 +30,7 @@
 //!
 //! (A thickness or radius of 5e-324 gave p = inf.) 1e9 pN is a millinewton, 1e-6 um a
 //! femtometre, 1e9 um a kilometre: far beyond any cell sheet, so no real case is refused.
+#![forbid(unsafe_code)]
 
 /// Parameters of the purse-string.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -19,6 +19,7 @@
 //! lambda = 2 sqrt(eta / zeta) / R0      sigma = sigma_t / G
 //! T      = zeta R0^2 / (4 G)            tau = eta / G = lambda^2 T  (the viscous relaxation time)
 //! ```
+#![forbid(unsafe_code)]
 
 use std::fmt;
 

@@ -9,6 +9,7 @@
 //!
 //! A new model is a folder like these and one line in [`MODELS`]; the FMI glue
 //! ([`crate::fmi`]) knows none of them.
+#![forbid(unsafe_code)]
 
 pub mod purse_string;
 pub mod wound;

@@ -7,6 +7,7 @@
 //! polynomial degree. The other schemes are there to be compared with it: the same
 //! Galerkin system stepped by TR-BDF2 ([`trbdf2`]), the paper's own scheme ([`paper`]) and
 //! an explicit scheme ([`explicit`]) on the paper's finite-difference grid ([`fd`]).
+#![forbid(unsafe_code)]
 
 pub mod basis;
 mod bessel;

@@ -1,6 +1,6 @@
 //! Model Exchange (FMI 2.0, chapter 3) on the shared [`Instance`]: the master integrates
 //! the model's continuous states ([`crate::fmi::common::model::States`]) with its own solver.
-//! None of the models has events: no event indicators, no discrete states, no time
+//! The glue supports models without events: no event indicators, no discrete states, no time
 //! events, and `fmi2CompletedIntegratorStep` never asks for event mode.
 //!
 //! ```text
@@ -46,7 +46,7 @@ impl Instance {
         Ok(())
     }
 
-    /// `(enterEventMode, terminateSimulation)`: never, since the models have no events.
+    /// `(enterEventMode, terminateSimulation)`: never: the glue supports models without events only.
     pub fn completed_integrator_step(&mut self) -> Result<(bool, bool), Rejected> {
         Ok((false, false))
     }

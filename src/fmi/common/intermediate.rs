@@ -9,7 +9,8 @@
 //! 2. intermediateUpdate(t + h, set requested)   -> the importer may fmi3SetFloat64 the
 //!    required inputs to its extrapolation p1 at t + h                        (lock released)
 //! 3. the inputs are p0 + (p1 - p0) (s - t) / h over the step: the model's linear-in-time
-//!    step (exact for WoundOpening), then held again (rate 0) at p1          (instance locked)
+//!    step (exact for a model linear in its inputs), then held again (rate 0) at p1
+//!                                                                            (instance locked)
 //! ```
 //!
 //! An importer that sets nothing holds the inputs, as without the callback.

@@ -125,7 +125,7 @@ pub fn decode<'a>(model_identifier: &str, bytes: &'a [u8]) -> Result<(Machine, C
         return Err(format!("serialized FMU state is {} bytes, shorter than its header", bytes.len()));
     }
     if &bytes[..8] != MAGIC {
-        return Err("serialized FMU state does not start with \"WOUNDFMU\": not a WoundOpening state".into());
+        return Err("serialized FMU state does not start with \"WOUNDFMU\": not a state of this library".into());
     }
     let mut r = Reader { bytes: &bytes[..bytes.len().saturating_sub(4)], at: 8 };
     let version = r.u32()?;
@@ -173,28 +173,28 @@ mod tests {
     const MODEL: &[u8] = &[1, 2, 3, 4, 5];
 
     fn sample() -> Vec<u8> {
-        encode("WoundOpening", Machine::StepComplete, &CLOCK, MODEL)
+        encode("ModelA", Machine::StepComplete, &CLOCK, MODEL)
     }
 
     #[test]
     fn round_trips() {
-        assert_eq!(decode("WoundOpening", &sample()).unwrap(), (Machine::StepComplete, CLOCK, MODEL));
+        assert_eq!(decode("ModelA", &sample()).unwrap(), (Machine::StepComplete, CLOCK, MODEL));
         let open = Clock { stop: None, ..CLOCK };
-        let bytes = encode("PurseString", Machine::Terminated, &open, &[]);
-        assert_eq!(decode("PurseString", &bytes).unwrap(), (Machine::Terminated, open, &[][..]));
+        let bytes = encode("ModelB", Machine::Terminated, &open, &[]);
+        assert_eq!(decode("ModelB", &bytes).unwrap(), (Machine::Terminated, open, &[][..]));
     }
 
     #[test]
     fn rejects_every_truncation_and_every_single_bit_flip() {
         let bytes = sample();
         for n in 0..bytes.len() {
-            assert!(decode("WoundOpening", &bytes[..n]).is_err(), "truncated to {n}");
+            assert!(decode("ModelA", &bytes[..n]).is_err(), "truncated to {n}");
         }
         for i in 0..bytes.len() {
             for bit in 0..8 {
                 let mut b = bytes.clone();
                 b[i] ^= 1 << bit;
-                assert!(decode("WoundOpening", &b).is_err(), "bit {bit} of byte {i}");
+                assert!(decode("ModelA", &b).is_err(), "bit {bit} of byte {i}");
             }
         }
     }
@@ -206,8 +206,8 @@ mod tests {
         let n = bytes.len() - 4;
         let crc = crc32fast::hash(&bytes[..n]);
         bytes[n..].copy_from_slice(&crc.to_le_bytes());
-        assert!(decode("WoundOpening", &bytes).unwrap_err().contains("format version 1"));
-        let err = decode("PurseString", &sample()).unwrap_err();
-        assert!(err.contains("of model \"WoundOpening\" but this instance is \"PurseString\""), "{err}");
+        assert!(decode("ModelA", &bytes).unwrap_err().contains("format version 1"));
+        let err = decode("ModelB", &sample()).unwrap_err();
+        assert!(err.contains("of model \"ModelA\" but this instance is \"ModelB\""), "{err}");
     }
 }

@@ -1,0 +1,89 @@
+//! The architecture, checked: the FMI glue (src/fmi) names no model, none of a model's
+//! variables and no unit, so a new model is a folder under src/models and one line in
+//! `models::MODELS`; and `unsafe` code lives only in the C boundary (the FMI shims and
+//! their frame, the direct API's shims, the panic boundary), which every other module
+//! forbids with `#![forbid(unsafe_code)]`.
+
+use std::path::{Path, PathBuf};
+use wound_opening::models::MODELS;
+
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).expect("readable source folder") {
+        let path = entry.expect("entry").path();
+        if path.is_dir() {
+            out.extend(rust_files(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+    out.sort();
+    out
+}
+
+fn src(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src").join(rel)
+}
+
+/// Whole-word occurrences of `word` in `text` (identifier characters delimit words).
+fn has_word(text: &str, word: &str) -> bool {
+    let is_ident = |c: char| c.is_alphanumeric() || c == '_';
+    text.match_indices(word).any(|(i, _)| {
+        let before = text[..i].chars().next_back().is_none_or(|c| !is_ident(c));
+        let after = text[i + word.len()..].chars().next().is_none_or(|c| !is_ident(c));
+        before && after
+    })
+}
+
+/// Words of the FMI standard that a model's variables may also be called.
+const GENERIC: [&str; 3] = ["tolerance", "method", "time"];
+
+#[test]
+fn the_glue_names_no_model_no_variable_and_no_unit() {
+    let mut words: Vec<String> = Vec::new();
+    for (d, _) in &MODELS {
+        words.push(d.model_identifier.to_string());
+        // Variable names, except the words FMI itself uses (the tolerance of an experiment,
+        // a generic parameter `T`).
+        words.extend(d.variables.iter().map(|v| v.name.to_string()).filter(|n| n.len() > 2 && !GENERIC.contains(&n.as_str())));
+        words.extend(d.units.iter().map(|(u, _)| format!("\"{u}\"")).filter(|u| u != "\"1\""));
+    }
+    words.extend(["wound".into(), "purse".into(), "purse_string".into(), "models::".into()]);
+    let mut found = Vec::new();
+    for file in rust_files(&src("fmi")) {
+        let text = std::fs::read_to_string(&file).expect("readable");
+        for w in &words {
+            let hit = if w.starts_with('"') || w.ends_with("::") { text.contains(w.as_str()) } else { has_word(&text, w) };
+            if hit {
+                found.push(format!("{}: {w}", file.display()));
+            }
+        }
+    }
+    // The model list itself is the one name the glue needs (fmi2Instantiate picks from it).
+    found.retain(|f| !(f.ends_with(": models::") && f.contains("src/fmi/mod.rs")));
+    assert!(found.is_empty(), "the FMI glue names model specifics:\n{}", found.join("\n"));
+    assert!(!words.is_empty() && has_word("a lambda here", "lambda") && !has_word("lambdas", "lambda"));
+}
+
+#[test]
+fn unsafe_code_is_confined_to_the_c_boundary() {
+    const BOUNDARY: [&str; 4] = ["fmi/fmi2/", "fmi/fmi3/", "fmi/frame.rs", "boundary/"];
+    const SHIMS: [&str; 2] = ["capi/solver_c.rs", "capi/series_c.rs"];
+    let root = src("");
+    let mut outside = Vec::new();
+    for file in rust_files(&root) {
+        let rel = file.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
+        let text = std::fs::read_to_string(&file).expect("readable");
+        let code: String = text.lines().filter(|l| !l.trim_start().starts_with("//")).collect::<Vec<_>>().join("\n");
+        let allowed = BOUNDARY.iter().any(|b| rel.starts_with(b)) || SHIMS.contains(&rel.as_str())
+            || rel == "main.rs" || rel == "lib.rs" || rel.starts_with("capi/panic_tests");
+        if has_word(&code, "unsafe") && !allowed {
+            outside.push(rel);
+        }
+    }
+    assert!(outside.is_empty(), "unsafe code outside the C boundary: {outside:?}");
+    for module in ["fmi/common/mod.rs", "solver/mod.rs", "models/mod.rs", "units.rs", "purse_string.rs"] {
+        let text = std::fs::read_to_string(src(module)).expect("readable");
+        assert!(text.contains("#![forbid(unsafe_code)]"), "{module} does not forbid unsafe code");
+    }
+}
