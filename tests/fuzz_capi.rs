@@ -2,7 +2,7 @@
 //! with random arguments (special doubles, grids in and out of range including sizes whose
 //! product overflows, NULL outputs and arrays, radii inside and outside the tissue, and
 //! handles that are live, freed, made up, NULL or of the other kind). Time-bounded: see
-//! tests/fuzz_support.rs.
+//! tests/common/fuzz.rs.
 //!
 //! What must hold: no crash or hang; every status is a `wo_status`; the thread's last error
 //! is empty exactly after a success; no call reaches the panic boundary; a refused call

@@ -2,7 +2,7 @@
 //! (and of an instance with other parameters), random bytes, and those states truncated,
 //! bit-flipped, overwritten, lengthened or mutated in any field and then re-sealed with a
 //! valid CRC-32 so that the decoder's field checks are reached. Time-bounded: see
-//! tests/fuzz_support.rs.
+//! tests/common/fuzz.rs.
 //!
 //! What must hold: bytes without a valid checksum are never accepted; an accepted state can
 //! be restored, stepped from and read; no call reaches the panic boundary.
@@ -120,7 +120,7 @@ fn corrupted_serialized_states_are_refused_and_resealed_ones_are_refused_or_usab
     }
 }
 
-/// Found by this harness and fixed in src/fmi (now src/fmi/wound/mod.rs): the mesh stored in a serialized
+/// Found by this harness and fixed in src/fmi (now src/models/wound/mod.rs): the mesh stored in a serialized
 /// state was not checked, so bytes re-sealed with another mesh were accepted (and, by an
 /// instance without a solver, first built: 1 x 2000 took 12 s).
 #[test]

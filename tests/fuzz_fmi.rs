@@ -3,7 +3,7 @@
 //! doubles, unknown value references, forged and freed FMU-state handles, wrong
 //! communication points, freed instances), and random or mutated bytes into `fmi2DeSerializeFMUstate`
 //! (truncated, bit-flipped, and mutated then re-sealed with a valid checksum so that the
-//! decoder's checks of every field are reached). Time-bounded: see tests/fuzz_support.rs.
+//! decoder's checks of every field are reached). Time-bounded: see tests/common/fuzz.rs.
 //!
 //! What must hold: no crash or hang; every status is one of fmi2OK..fmi2Fatal; no call
 //! ever reaches the panic boundary (`caught_panics()` stays 0). Only valid memory is ever
