@@ -1,8 +1,10 @@
 //! What every exported C function of the crate shares, for the FMI functions
 //! ([`crate::fmi`]) and the direct C API ([`crate::capi`]) alike: the panic boundary
-//! ([`guard`]: no unwinding ever crosses into C) and the handle tables ([`registry`]: what
-//! C holds are numbers looked up in a table, never addresses).
+//! ([`guard`]: no unwinding ever crosses into C), the handle tables ([`registry`]: what
+//! C holds are numbers looked up in a table, never addresses) and the conversion of C
+//! arguments ([`pointers`]).
 
+pub mod pointers;
 pub mod registry;
 mod unload;
 

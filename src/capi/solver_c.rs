@@ -7,6 +7,7 @@
 //! same array (the input is copied first).
 #![allow(clippy::missing_safety_doc)]
 
+use crate::boundary::pointers::{self, NullArray};
 use super::error::{Failure, WoStatus, last_error_ptr, run};
 use super::solver;
 use crate::solver::{MeshSpec, Params};
@@ -35,26 +36,22 @@ fn as_ptr<T>(handle: u64) -> *mut T {
 /// Write `value` through an output pointer (checked for NULL by the caller's `slot`).
 fn slot<'a, T>(p: *mut T, what: &str) -> Result<&'a mut T, Failure> {
     // SAFETY: the C caller passes NULL or a valid, writable pointer.
-    unsafe { p.as_mut() }.ok_or_else(|| Failure::null(what))
+    unsafe { pointers::slot(p) }.ok_or_else(|| Failure::null(what))
+}
+
+fn null_array(what: &str, e: NullArray) -> Failure {
+    Failure::null(&format!("{what} (with count = {})", e.count))
 }
 
 /// An input array as an owned copy (so that it may alias an output array).
 pub(super) fn input(p: *const f64, count: usize, what: &str) -> Result<Vec<f64>, Failure> {
-    match (p.is_null(), count) {
-        (_, 0) => Ok(Vec::new()),
-        (true, _) => Err(Failure::null(&format!("{what} (with count = {count})"))),
-        // SAFETY: the C caller passes `count` readable values.
-        (false, _) => Ok(unsafe { std::slice::from_raw_parts(p, count) }.to_vec()),
-    }
+    // SAFETY: the C caller passes NULL or `count` readable values.
+    unsafe { pointers::slice(p, count) }.map(<[f64]>::to_vec).map_err(|e| null_array(what, e))
 }
 
 pub(super) fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mut [f64], Failure> {
-    match (p.is_null(), count) {
-        (_, 0) => Ok(&mut []),
-        (true, _) => Err(Failure::null(&format!("{what} (with count = {count})"))),
-        // SAFETY: the C caller passes `count` writable values.
-        (false, _) => Ok(unsafe { std::slice::from_raw_parts_mut(p, count) }),
-    }
+    // SAFETY: the C caller passes NULL or `count` writable values.
+    unsafe { pointers::slice_mut(p, count) }.map_err(|e| null_array(what, e))
 }
 
 /// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda >= 0,

@@ -19,11 +19,12 @@
 //! never under it. A second `fmi2FreeInstance` of the same handle finds nothing and is
 //! ignored.
 
+use crate::boundary::pointers::{self, NullArray};
 use crate::fmi::common::instance::{Call, Instance, Logger, Rejected, Status};
 use crate::fmi::fmi2::types::*;
 use crate::boundary::guard;
 use crate::boundary::registry::Table;
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 use std::sync::{Arc, Mutex, TryLockError};
 
 /// A live instance as the table holds it: the logger next to the lock, so that a call
@@ -144,7 +145,7 @@ impl CallbackLogger {
 /// # Safety
 /// `s` is null or a NUL-terminated string.
 pub unsafe fn text(s: fmi2String) -> Option<String> {
-    (!s.is_null()).then(|| unsafe { CStr::from_ptr(s) }.to_string_lossy().into_owned())
+    unsafe { pointers::text(s) }
 }
 
 /// A C array argument as a slice; `Err` when it is null but `n > 0`.
@@ -152,11 +153,7 @@ pub unsafe fn text(s: fmi2String) -> Option<String> {
 /// # Safety
 /// `p` is null or points to `n` valid elements.
 pub unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Result<&'a [T], Rejected> {
-    match (p.is_null(), n) {
-        (_, 0) => Ok(&[]),
-        (true, _) => Err(format!("{what} is NULL but {n} elements were announced")),
-        (false, _) => Ok(unsafe { std::slice::from_raw_parts(p, n) }),
-    }
+    unsafe { pointers::slice(p, n) }.map_err(|e| null_array(what, e))
 }
 
 /// Mutable counterpart of [`slice`].
@@ -164,9 +161,9 @@ pub unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Result<&'a [T],
 /// # Safety
 /// `p` is null or points to `n` valid elements not aliased elsewhere.
 pub unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Result<&'a mut [T], Rejected> {
-    match (p.is_null(), n) {
-        (_, 0) => Ok(&mut []),
-        (true, _) => Err(format!("{what} is NULL but {n} elements were announced")),
-        (false, _) => Ok(unsafe { std::slice::from_raw_parts_mut(p, n) }),
-    }
+    unsafe { pointers::slice_mut(p, n) }.map_err(|e| null_array(what, e))
+}
+
+fn null_array(what: &str, e: NullArray) -> Rejected {
+    format!("{what} is NULL but {} elements were announced", e.count)
 }
