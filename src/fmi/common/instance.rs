@@ -32,6 +32,12 @@ impl Clone for Snapshot {
     }
 }
 
+/// The importer's `intermediateUpdate` callback (FMI 3.0): asked for the inputs at `time`
+/// inside a step ([`crate::fmi::common::intermediate`]).
+pub trait Requester: Send + Sync {
+    fn request_inputs(&self, time: f64);
+}
+
 /// An FMU instance.
 pub struct Instance {
     name: String,
@@ -50,7 +56,7 @@ pub struct Instance {
     states: HashMap<u64, Snapshot>,
     /// FMI 3.0 co-simulation: the importer's `intermediateUpdate` callback and the inputs
     /// it may set in Intermediate Update Mode (see [`crate::fmi::common::intermediate`]).
-    pub(in crate::fmi) intermediate: Option<(Arc<dyn crate::fmi::common::intermediate::Requester>, Vec<u32>)>,
+    pub(in crate::fmi) intermediate: Option<(Arc<dyn Requester>, Vec<u32>)>,
 }
 
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };

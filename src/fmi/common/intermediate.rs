@@ -15,14 +15,9 @@
 //!
 //! An importer that sets nothing holds the inputs, as without the callback.
 
-use crate::fmi::common::instance::{Instance, Rejected};
+use crate::fmi::common::instance::{Instance, Rejected, Requester};
 use crate::fmi::common::machine::Machine;
 use crate::fmi::common::model::{Causality, Kind, Variability};
-
-/// The importer's `intermediateUpdate` callback: asked for the inputs at `time`.
-pub trait Requester: Send + Sync {
-    fn request_inputs(&self, time: f64);
-}
 
 impl Instance {
     /// Use `requester` for the inputs `vrs` (each a continuous Real input) in every step.

@@ -102,7 +102,7 @@ struct IntermediateUpdate {
 unsafe impl Send for IntermediateUpdate {}
 unsafe impl Sync for IntermediateUpdate {}
 
-impl crate::fmi::common::intermediate::Requester for IntermediateUpdate {
+impl crate::fmi::common::instance::Requester for IntermediateUpdate {
     fn request_inputs(&self, time: f64) {
         let (mut early, mut early_time) = (FMI3_FALSE, time);
         // SAFETY: the importer promised a valid callback; the out-arguments are ours.
