@@ -260,8 +260,8 @@ fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real *x, size_t nx);
 
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real *x_nominal, size_t nx);
 
-// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda >= 0,
-// finite sigma and R_inf > 1, on the cheapest grid whose wound radius stays within
+// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda = 0 or in
+// [1e-150, 1e6], sigma in (-6, 1e6] and R_inf in [1.001, 1e6], on the cheapest grid whose wound radius stays within
 // `tolerance` (> 0) of the exact solution, relative to the opening amplitude, for
 // t >= 0.01. On success `*solver` is the new solver; on failure it is set to NULL.
 wo_status wo_solver_new(double lambda,

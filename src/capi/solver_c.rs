@@ -57,8 +57,8 @@ pub(super) fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mu
     }
 }
 
-/// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda >= 0,
-/// finite sigma and R_inf > 1, on the cheapest grid whose wound radius stays within
+/// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda = 0 or in
+/// [1e-150, 1e6], sigma in (-6, 1e6] and R_inf in [1.001, 1e6], on the cheapest grid whose wound radius stays within
 /// `tolerance` (> 0) of the exact solution, relative to the opening amplitude, for
 /// t >= 0.01. On success `*solver` is the new solver; on failure it is set to NULL.
 #[unsafe(no_mangle)]

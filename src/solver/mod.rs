@@ -29,7 +29,7 @@ pub use mesh::{Mesh, MeshSpec};
 pub use modal::ModalError;
 pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy};
 pub use params::{
-    EDGE_STRESS_MAX, LAMBDA_MAX, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, check_edge_stress, check_lambda,
+    EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, SIGMA_MIN, check_edge_stress, check_lambda,
     check_r_inf, check_sigma,
 };
 
