@@ -27,19 +27,28 @@ pub enum ParamError {
     EdgeStress(f64),
 }
 
+/// A value as a message shows it: plain (`-1`, `0.5`, `2000000`), but in exponent form far
+/// from 1 (`1e-300`, not 300 zeros).
+fn shown(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e16).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
+}
+
 impl std::fmt::Display for ParamError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = match *self {
+            Self::Lambda(x) | Self::Sigma(x) | Self::RInf(x) | Self::EdgeStress(x) => shown(x),
+        };
         match *self {
-            Self::Lambda(v) => {
+            Self::Lambda(_) => {
                 write!(f, "lambda = {v} is outside the accepted range: 0 or [{LAMBDA_MIN:e}, {LAMBDA_MAX:e}]")
             }
-            Self::Sigma(v) => write!(
+            Self::Sigma(_) => write!(
                 f,
                 "sigma = {v} is outside the accepted range ({SIGMA_MIN}, {SIGMA_MAX:e}] \
                  (the wound radius just after the cut, R1 = R0 (1 + sigma/6), must be > 0)"
             ),
-            Self::RInf(v) => write!(f, "R_inf = {v} is outside the accepted range [{R_INF_MIN}, {R_INF_MAX:e}]"),
-            Self::EdgeStress(v) => {
+            Self::RInf(_) => write!(f, "R_inf = {v} is outside the accepted range [{R_INF_MIN}, {R_INF_MAX:e}]"),
+            Self::EdgeStress(_) => {
                 write!(f, "edge stress {v} (in units of G) is outside the accepted range [-{EDGE_STRESS_MAX:e}, {EDGE_STRESS_MAX:e}]")
             }
         }
