@@ -32,6 +32,11 @@ pub enum WoStatus {
     /// The value asked for is infinite in the model: the velocity at lambda = 0 at the cut,
     /// before the first advance (it decays like t^(-1/2) afterwards). Nothing is written.
     WoUndefined = 7,
+    /// A warning, not an error: `wo_solver_advance` did advance (the solver is at `t_end`),
+    /// but there the state left the linear model's validity (the wound radius <= 0, the ring
+    /// folded, or a strain at the wound edge beyond 1); `wo_last_error()` gives the reason and
+    /// the time. Returned once, by the advance that leaves it.
+    WoOutsideValidity = 8,
 }
 
 /// A refused call: its status and the reason.

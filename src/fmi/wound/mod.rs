@@ -245,12 +245,21 @@ impl FmuModel for WoundModel {
 
     /// Held (`advance`) or, after `fmi2SetRealInputDerivatives`, linear in time over the
     /// step (`advance_linear`, exact); the input then ends the step at its value there.
-    fn step(&mut self, _time: f64, h: f64) -> Result<(), Rejected> {
+    ///
+    /// A step that takes the state out of the model's validity (wound radius <= 0, a folded
+    /// ring, strains beyond what the linear model claims: [`crate::solver::validity`]) is
+    /// answered with a warning naming the reason and the time; O(modes) per step.
+    fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected> {
+        let r_inf = self.params.r_inf;
+        let was_valid = self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
         let (dt, p, rate) = (h / self.scales.time, self.p(), self.edge_stress_rate);
         let p1 = rate * self.scales.time / self.scales.stress;
         let solver = self.solver.as_mut().expect("prepare() builds the solver before a step");
         solver.advance_linear(dt, p, p1).map_err(|e| e.to_string())?;
         self.edge_stress += rate * h;
+        if let Some(why) = self.solver().validity_violation(r_inf).filter(|_| was_valid) {
+            self.warn(format!("at t = {} s the run leaves the model's validity: {why}", time + h));
+        }
         Ok(())
     }
 
