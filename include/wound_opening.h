@@ -85,6 +85,11 @@ typedef enum {
     // The value asked for is infinite in the model: the velocity at lambda = 0 at the cut,
     // before the first advance (it decays like t^(-1/2) afterwards). Nothing is written.
     WO_UNDEFINED = 7,
+    // A warning, not an error: `wo_solver_advance` did advance (the solver is at `t_end`),
+    // but there the state left the linear model's validity (the wound radius <= 0, the ring
+    // folded, or a strain at the wound edge beyond 1); `wo_last_error()` gives the reason and
+    // the time. Returned once, by the advance that leaves it.
+    WO_OUTSIDE_VALIDITY = 8,
 } wo_status;
 
 // A solver, as seen from C: an opaque handle (never an address), created by
@@ -260,8 +265,8 @@ fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real *x, size_t nx);
 
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real *x_nominal, size_t nx);
 
-// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda >= 0,
-// finite sigma and R_inf > 1, on the cheapest grid whose wound radius stays within
+// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda = 0 or in
+// [1e-150, 1e6], sigma in (-6, 1e6] and R_inf in [1.001, 1e6], on the cheapest grid whose wound radius stays within
 // `tolerance` (> 0) of the exact solution, relative to the opening amplitude, for
 // t >= 0.01. On success `*solver` is the new solver; on failure it is set to NULL.
 wo_status wo_solver_new(double lambda,
@@ -288,6 +293,8 @@ wo_status wo_solver_free(wo_solver *solver);
 
 // Advance to the time `t_end` (>= the solver's time; equal is a no-op) with the edge
 // stress `edge_stress` held constant over the interval. Exact in time, for any interval.
+// `WO_OUTSIDE_VALIDITY` (a warning: the advance was done) when the state there has left
+// the model's validity.
 wo_status wo_solver_advance(wo_solver *solver, double t_end, double edge_stress);
 
 // The solver's time (in T = zeta R0^2 / 4G).

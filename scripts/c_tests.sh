@@ -12,6 +12,9 @@
 #   fmu3_master      an FMI 3.0 master, dlopen of WoundOpening-fmi3.fmu's .so: all 75
 #                    functions exported, co-simulation and Model Exchange against the exact
 #                    solution, every function it uses on NULL, made-up and freed instances
+#   two_libraries    WoundOpening and PurseString (FMI 2.0 and 3.0), two copies of the
+#                    library in one process: each copy's instances, FMU states and wo_*
+#                    solvers and states are unknown to the other
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -42,12 +45,21 @@ else
     python3 -m zipfile -e target/fmu/WoundOpening-fmi3.fmu "$out/fmu3"
 fi
 
+# Extract target/fmu/$1.fmu into $out/$1 (for the programs that load several FMUs).
+extract() {
+    rm -rf "${out:?}/$1"
+    mkdir -p "$out/$1"
+    python3 -m zipfile -e "target/fmu/$1.fmu" "$out/$1"
+}
+for name in WoundOpening PurseString WoundOpening-fmi3 PurseString-fmi3; do extract "$name"; done
+
 lib="$PWD/target/release"
 "$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/fmi2_signatures.c -L"$lib" -lwound_opening -Wl,-rpath,"$lib" -o "$out/fmi2_signatures"
 "$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/direct_api.c -L"$lib" -lwound_opening -lm -Wl,-rpath,"$lib" -o "$out/direct_api"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_master.c -ldl -lm -o "$out/fmu_master"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_misuse.c -ldl -lm -o "$out/fmu_misuse"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu3_master.c -ldl -lm -o "$out/fmu3_master"
+"$CC" "${CFLAGS[@]}" -Itests/c tests/c/two_libraries.c -ldl -lm -o "$out/two_libraries"
 
 memcheck=(valgrind -q --error-exitcode=1 --leak-check=full --show-leak-kinds=all --errors-for-leak-kinds=all
           --suppressions=tests/c/valgrind.supp)
@@ -64,4 +76,5 @@ run "$out/direct_api"
 run "$out/fmu_master" "$out/fmu"
 run "$out/fmu_misuse" "$out/fmu"
 run "$out/fmu3_master" "$out/fmu3"
+run "$out/two_libraries" "$out/WoundOpening" "$out/PurseString" "$out/WoundOpening-fmi3" "$out/PurseString-fmi3"
 exit "$failed"

@@ -236,8 +236,8 @@ mod intermediate {
     /// The instance the callback talks to, the ramp it follows, and what it saw.
     static INSTANCE: AtomicUsize = AtomicUsize::new(0);
     static SEEN: Mutex<Vec<(f64, fmi3Status, fmi3Status, fmi3Status)>> = Mutex::new(Vec::new());
-    const P0: f64 = 10.0;
-    const RATE: f64 = 4.0;
+    const P0: f64 = 0.5;
+    const RATE: f64 = 0.25;
 
     unsafe extern "C" fn update(_: fmi3InstanceEnvironment, time: f64, set: u8, _: u8, _: u8, _: u8, _: *mut u8, _: *mut f64) {
         let i = INSTANCE.load(Ordering::SeqCst) as fmi3Instance;

@@ -52,11 +52,11 @@ fn outputs(i: &mut Instance) -> [f64; 2] {
 #[test]
 fn invalid_parameters_are_rejected_by_name_and_change_nothing() {
     let cases: [(Vr, f64, &str); 6] = [
-        (Vr::Lambda, -1.0, "lambda = -1 is outside the accepted range [0, 1e6]"),
+        (Vr::Lambda, -1.0, "lambda = -1 is outside the accepted range: 0 or [1e-150, 1e6]"),
         (Vr::Lambda, f64::NAN, "lambda = NaN is outside"),
         (Vr::RInf, 1.0, "R_inf = 1 is outside the accepted range [1.001, 1e6]"),
         (Vr::RInf, 0.5, "R_inf = 0.5 is outside"),
-        (Vr::Sigma, f64::INFINITY, "sigma = inf is outside the accepted range [-1e6, 1e6]"),
+        (Vr::Sigma, f64::INFINITY, "sigma = inf is outside the accepted range (-6, 1e6]"),
         (Vr::EdgeStress, f64::NEG_INFINITY, "edge_stress = -inf Pa is outside the accepted range"),
     ];
     for (vr, value, message) in cases {

@@ -79,18 +79,20 @@ def _sorted_times(times_s, T_s: float):
     return t, order, t[order] / T_s
 
 
-def edge_series(lam: float, sigma: float, r_inf: float, tau, p: float = 0.0):
-    """R and dR/dt (dimensionless) at ascending dimensionless times `tau`. At lambda = 0 the
-    velocity at t = 0 is infinite in the model (unless p = sigma): returned as +-inf."""
+def edge_series(lam: float, sigma: float, r_inf: float, tau, p: float = 0.0, *,
+                tolerance: float = _native.TOLERANCE):
+    """R and dR/dt (dimensionless) at ascending dimensionless times `tau`, on the grid that
+    meets `tolerance` (relative to the opening R_final - R1). At lambda = 0 the velocity at
+    t = 0 is infinite in the model (unless p = sigma): returned as +-inf."""
     tau = np.asarray(tau, dtype=float)
     if lam == 0 and p != sigma and tau.size and tau[0] == 0:
-        r, _ = _native.series(lam, sigma, r_inf, tau, p, velocity=False)
+        r, _ = _native.series(lam, sigma, r_inf, tau, p, velocity=False, tolerance=tolerance)
         v = np.full(tau.size, math.copysign(math.inf, sigma - p))
         later = tau > 0
         if later.any():
-            v[later] = _native.series(lam, sigma, r_inf, tau[later], p)[1]
+            v[later] = _native.series(lam, sigma, r_inf, tau[later], p, tolerance=tolerance)[1]
         return r, v
-    return _native.series(lam, sigma, r_inf, tau, p)
+    return _native.series(lam, sigma, r_inf, tau, p, tolerance=tolerance)
 
 
 def simulate(times_s, *, lam: float, sigma: float, R0_um: float, T_s: float, outer_radius_um: float,
@@ -104,6 +106,8 @@ def simulate(times_s, *, lam: float, sigma: float, R0_um: float, T_s: float, out
     R0_um: radius of the cut (the wound is R1 = R0 (1 + sigma/6) just after it).
     T_s: time scale zeta R0^2 / (4 G). outer_radius_um: the tissue's outer radius (> R0).
     edge_stress_pa with G_pa: a constant stress at the wound edge (default none).
+    tolerance: the accuracy target of every output, relative to the opening R_final - R1
+    (the grid is the cheapest that meets it; 1e-11 is the finest delivered).
     At lambda = 0 the edge velocity at t = 0 is infinite in the model and returned as inf.
     Raises ValueError for invalid input (a radius inside the wound or beyond the tissue at
     some time, with the tissue's span then) and NativeLibraryMissing without the library.
@@ -114,7 +118,7 @@ def simulate(times_s, *, lam: float, sigma: float, R0_um: float, T_s: float, out
     back = np.empty_like(order)
     back[order] = np.arange(order.size)
     try:
-        radius, velocity = edge_series(lam, sigma, r_inf, tau, p)
+        radius, velocity = edge_series(lam, sigma, r_inf, tau, p, tolerance=tolerance)
         if radii_um is None:
             return Simulation(t, R0_um * radius[back], R0_um / T_s * velocity[back])
         radii = np.atleast_1d(np.asarray(radii_um, dtype=float))

@@ -5,7 +5,7 @@ use crate::boundary::guard;
 use crate::boundary::registry::Unknown;
 use crate::solver::SolverError;
 use std::cell::RefCell;
-use std::ffi::{CString, c_char};
+use std::ffi::c_char;
 
 /// Result of every `wo_*` call. On anything but `WO_OK`, `wo_last_error()` names what was
 /// wrong, with the expected and the actual value.
@@ -32,6 +32,11 @@ pub enum WoStatus {
     /// The value asked for is infinite in the model: the velocity at lambda = 0 at the cut,
     /// before the first advance (it decays like t^(-1/2) afterwards). Nothing is written.
     WoUndefined = 7,
+    /// A warning, not an error: `wo_solver_advance` did advance (the solver is at `t_end`),
+    /// but there the state left the linear model's validity (the wound radius <= 0, the ring
+    /// folded, or a strain at the wound edge beyond 1); `wo_last_error()` gives the reason and
+    /// the time. Returned once, by the advance that leaves it.
+    WoOutsideValidity = 8,
 }
 
 /// A refused call: its status and the reason.
@@ -73,20 +78,34 @@ impl From<SolverError> for Failure {
     }
 }
 
+/// Room for the message, its terminating NUL included; a longer message is cut at a
+/// character boundary.
+const MESSAGE_CAPACITY: usize = 2048;
+
 thread_local! {
-    /// Message of the calling thread's last `wo_*` call ("" after a success).
-    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+    /// Message of the calling thread's last `wo_*` call ("" after a success), NUL-terminated.
+    /// A fixed buffer rather than a heap string: a thread-local without destructor, so a
+    /// program that loads the library with `dlopen` can unload it (glibc keeps a library
+    /// that registered thread-local destructors mapped until the process exits).
+    static LAST_ERROR: RefCell<[u8; MESSAGE_CAPACITY]> = const { RefCell::new([0; MESSAGE_CAPACITY]) };
 }
 
 fn set_last_error(message: &str) {
-    let text = CString::new(message.replace('\0', "\\0")).unwrap_or_default();
-    // Fails only while the thread is being torn down, when no one can read it any more.
-    if LAST_ERROR.try_with(|slot| *slot.borrow_mut() = text).is_err() {}
+    let text = message.replace('\0', "\\0");
+    let mut end = text.len().min(MESSAGE_CAPACITY - 1);
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    LAST_ERROR.with(|slot| {
+        let mut buffer = slot.borrow_mut();
+        buffer[..end].copy_from_slice(&text.as_bytes()[..end]);
+        buffer[end] = 0;
+    });
 }
 
 /// Pointer to the calling thread's last message; valid until this thread's next `wo_*` call.
 pub fn last_error_ptr() -> *const c_char {
-    LAST_ERROR.try_with(|slot| slot.borrow().as_ptr()).unwrap_or(c"".as_ptr())
+    LAST_ERROR.with(|slot| slot.as_ptr().cast::<c_char>().cast_const())
 }
 
 /// Run the body of the exported function `name`: a panic becomes `WO_INTERNAL_ERROR`, a

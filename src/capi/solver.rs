@@ -150,12 +150,20 @@ pub fn advance(solver: u64, t_end: f64, p: f64) -> Result<(), Failure> {
             )));
         }
         check_edge_stress(p).map_err(|e| Failure::invalid(e.to_string()))?;
+        let r_inf = s.params.r_inf;
+        let was_valid = s.time == 0.0 || s.solver.validity_violation(r_inf).is_none();
         if t_end > s.time {
             s.solver.advance(t_end - s.time, p)?;
         }
         s.time = t_end;
         s.edge_stress = p;
-        Ok(())
+        match s.solver.validity_violation(r_inf).filter(|_| was_valid) {
+            Some(why) => Err(Failure::new(
+                WoStatus::WoOutsideValidity,
+                format!("advanced to t = {t_end}, where the run leaves the model's validity: {why}"),
+            )),
+            None => Ok(()),
+        }
     })
 }
 

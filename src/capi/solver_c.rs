@@ -54,8 +54,8 @@ pub(super) fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mu
     unsafe { pointers::slice_mut(p, count) }.map_err(|e| null_array(what, e))
 }
 
-/// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda >= 0,
-/// finite sigma and R_inf > 1, on the cheapest grid whose wound radius stays within
+/// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda = 0 or in
+/// [1e-150, 1e6], sigma in (-6, 1e6] and R_inf in [1.001, 1e6], on the cheapest grid whose wound radius stays within
 /// `tolerance` (> 0) of the exact solution, relative to the opening amplitude, for
 /// t >= 0.01. On success `*solver` is the new solver; on failure it is set to NULL.
 #[unsafe(no_mangle)]
@@ -100,6 +100,8 @@ pub unsafe extern "C" fn wo_solver_free(solver: *mut WoSolver) -> WoStatus {
 
 /// Advance to the time `t_end` (>= the solver's time; equal is a no-op) with the edge
 /// stress `edge_stress` held constant over the interval. Exact in time, for any interval.
+/// `WO_OUTSIDE_VALIDITY` (a warning: the advance was done) when the state there has left
+/// the model's validity.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wo_solver_advance(solver: *mut WoSolver, t_end: f64, edge_stress: f64) -> WoStatus {
     run("wo_solver_advance", || solver::advance(handle(solver, "solver")?, t_end, edge_stress))
@@ -226,6 +228,7 @@ pub extern "C" fn wo_status_name(status: c_int) -> *const c_char {
     let names = [
         c"WO_OK", c"WO_NULL_POINTER", c"WO_INVALID_ARGUMENT", c"WO_UNKNOWN_HANDLE",
         c"WO_INCOMPATIBLE_STATE", c"WO_SOLVER_FAILED", c"WO_INTERNAL_ERROR", c"WO_UNDEFINED",
+        c"WO_OUTSIDE_VALIDITY",
     ];
     usize::try_from(status).ok().and_then(|i| names.get(i)).map_or(c"unknown status".as_ptr(), |n| n.as_ptr())
 }

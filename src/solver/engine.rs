@@ -27,6 +27,13 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     }
     /// `u(r)` at each radius (inside `[1, R_inf]`).
     fn displacement(&self, radii: &[f64]) -> Vec<f64>;
+    /// `[u(1), du/dr(1), u(R_inf)]`. By default from [`Engine::displacement`], the slope a
+    /// one-sided difference over 1e-6 of the ring (the comparison schemes' own accuracy).
+    fn edges(&self, r_inf: f64) -> [f64; 3] {
+        let h = 1e-6 * (r_inf - 1.0);
+        let u = self.displacement(&[1.0, 1.0 + h, r_inf]);
+        [u[0], (u[1] - u[0]) / h, u[2]]
+    }
     /// `u_t(r)` at each radius, with edge stress `p`.
     fn velocity(&self, p: f64, radii: &[f64]) -> Vec<f64>;
     /// Number of spatial unknowns.

@@ -26,12 +26,13 @@ mod quadrature;
 pub mod stability;
 mod tolerance;
 mod trbdf2;
+pub mod validity;
 
 pub use mesh::{Mesh, MeshSpec};
 pub use modal::ModalError;
 pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy};
 pub use params::{
-    EDGE_STRESS_MAX, LAMBDA_MAX, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, check_edge_stress, check_lambda,
+    EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, SIGMA_MIN, check_edge_stress, check_lambda,
     check_r_inf, check_sigma,
 };
 
@@ -304,6 +305,18 @@ impl Solver {
     /// cut), where the exact edge velocity is infinite and the value returned is the mesh's.
     pub fn edge_velocity_defined(&self, p: f64) -> bool {
         self.engine.feedthrough_defined(p)
+    }
+
+    /// `u(1)`, `du/dr(1)` and `u(R_inf)` for the validity check ([`validity`]): O(modes) for
+    /// the default scheme.
+    pub fn edges(&self, r_inf: f64) -> validity::Edges {
+        let [edge, edge_slope, outer] = self.engine.edges(r_inf);
+        validity::Edges { edge, edge_slope, outer }
+    }
+
+    /// Why the current state is outside the model's validity ([`validity::violation`]).
+    pub fn validity_violation(&self, r_inf: f64) -> Option<String> {
+        validity::violation(self.edges(r_inf), r_inf)
     }
 
     /// Displacement `u(r)` at each requested radius (clamped into `[1, R_inf]`).

@@ -27,13 +27,28 @@ pub enum ParamError {
     EdgeStress(f64),
 }
 
+/// A value as a message shows it: plain (`-1`, `0.5`, `2000000`), but in exponent form far
+/// from 1 (`1e-300`, not 300 zeros).
+fn shown(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e16).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
+}
+
 impl std::fmt::Display for ParamError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = match *self {
+            Self::Lambda(x) | Self::Sigma(x) | Self::RInf(x) | Self::EdgeStress(x) => shown(x),
+        };
         match *self {
-            Self::Lambda(v) => write!(f, "lambda = {v} is outside the accepted range [0, {LAMBDA_MAX:e}]"),
-            Self::Sigma(v) => write!(f, "sigma = {v} is outside the accepted range [-{SIGMA_MAX:e}, {SIGMA_MAX:e}]"),
-            Self::RInf(v) => write!(f, "R_inf = {v} is outside the accepted range [{R_INF_MIN}, {R_INF_MAX:e}]"),
-            Self::EdgeStress(v) => {
+            Self::Lambda(_) => {
+                write!(f, "lambda = {v} is outside the accepted range: 0 or [{LAMBDA_MIN:e}, {LAMBDA_MAX:e}]")
+            }
+            Self::Sigma(_) => write!(
+                f,
+                "sigma = {v} is outside the accepted range ({SIGMA_MIN}, {SIGMA_MAX:e}] \
+                 (the wound radius just after the cut, R1 = R0 (1 + sigma/6), must be > 0)"
+            ),
+            Self::RInf(_) => write!(f, "R_inf = {v} is outside the accepted range [{R_INF_MIN}, {R_INF_MAX:e}]"),
+            Self::EdgeStress(_) => {
                 write!(f, "edge stress {v} (in units of G) is outside the accepted range [-{EDGE_STRESS_MAX:e}, {EDGE_STRESS_MAX:e}]")
             }
         }
@@ -48,26 +63,37 @@ impl std::error::Error for ParamError {}
 ///
 /// - `lambda` up to 1e6 (tau = 1e12 T): the relaxation times `mu_k + lambda^2` keep the
 ///   friction part `mu_k` to ~1e-4 relative there, far below its effect on R.
+/// - `lambda = 0` or at least `LAMBDA_MIN = 1e-150`: the edge's response to stress,
+///   [`super::exact::velocity_response`], divides by `lambda^2`, which must be a normal
+///   double (`> 2.2e-308`), and the largest output, the initial edge velocity
+///   `|sigma - p| / (4 lambda)` in `R0 / T` (`<= 2e6 / 4e-150 * 1e24 = 5e179` um/s with the
+///   largest scales `R0 = 1e12`, `T = 1e-12`), stays finite with a margin of 1e128 for
+///   every product the glue forms. Below it the model is `lambda = 0` for all `t > 0`.
 /// - `R_inf` from 1.001 (a thin ring: the constant-first basis keeps the late state to
 ///   ~5e-12; at 1.0001 it is 4e-11, above the tolerance floor) to 1e6 (relaxation times over
 ///   17 decades, resolved by the Jacobi eigensolver; the mesh grows like ln R_inf).
-/// - `|sigma|` and `|p|` (in G) up to 1e6: the model is linear in both, so any finite value
-///   is accurate; the bound keeps every output finite with the largest physical scales
-///   (`R0 = 1e12`, `T = 1e-12`).
+/// - `sigma` above `SIGMA_MIN = -6`: just after the cut the tissue is in uniform tension,
+///   `u = sigma r / 6`, so the wound radius is `R1 = 1 + sigma / 6`, which is a radius only
+///   while `> 0`. Up to `SIGMA_MAX = 1e6`, and `|p|` (in G) up to 1e6: the model is linear
+///   in both, so any finite value is accurate; the bound keeps every output finite with the
+///   largest physical scales (`R0 = 1e12`, `T = 1e-12`, `G = 1e12`: stresses up to 1e18 Pa,
+///   lengths up to 1e18 um, velocities as above).
 pub const LAMBDA_MAX: f64 = 1e6;
+pub const LAMBDA_MIN: f64 = 1e-150;
+pub const SIGMA_MIN: f64 = -6.0;
 pub const R_INF_MIN: f64 = 1.001;
 pub const R_INF_MAX: f64 = 1e6;
 pub const SIGMA_MAX: f64 = 1e6;
 pub const EDGE_STRESS_MAX: f64 = 1e6;
 
-/// `lambda` in `[0, LAMBDA_MAX]`.
+/// `lambda` 0 or in `[LAMBDA_MIN, LAMBDA_MAX]`.
 pub fn check_lambda(v: f64) -> Result<f64, ParamError> {
-    if (0.0..=LAMBDA_MAX).contains(&v) { Ok(v) } else { Err(ParamError::Lambda(v)) }
+    if v == 0.0 || (LAMBDA_MIN..=LAMBDA_MAX).contains(&v) { Ok(v) } else { Err(ParamError::Lambda(v)) }
 }
 
-/// `sigma` in `[-SIGMA_MAX, SIGMA_MAX]`.
+/// `sigma` in `(SIGMA_MIN, SIGMA_MAX]`.
 pub fn check_sigma(v: f64) -> Result<f64, ParamError> {
-    if (-SIGMA_MAX..=SIGMA_MAX).contains(&v) { Ok(v) } else { Err(ParamError::Sigma(v)) }
+    if v > SIGMA_MIN && v <= SIGMA_MAX { Ok(v) } else { Err(ParamError::Sigma(v)) }
 }
 
 /// `R_inf` in `[R_INF_MIN, R_INF_MAX]`.
@@ -103,12 +129,12 @@ mod tests {
             Params { r_inf: f64::NAN, ..Params::default() },
         ];
         let names = ["lambda = -0.5", "lambda = NaN", "sigma = inf", "R_inf = 1 ", "R_inf = NaN"];
-        let bounds = [Params { lambda: 1.0000001e6, ..Params::default() }, Params { sigma: -1.0000001e6, ..Params::default() }, Params { r_inf: 1.000999, ..Params::default() }, Params { r_inf: 1.0000001e6, ..Params::default() }];
+        let bounds = [Params { lambda: 1.0000001e6, ..Params::default() }, Params { sigma: -6.0, ..Params::default() }, Params { lambda: 1e-300, ..Params::default() }, Params { lambda: 0.99e-150, ..Params::default() }, Params { sigma: 1.0000001e6, ..Params::default() }, Params { r_inf: 1.000999, ..Params::default() }, Params { r_inf: 1.0000001e6, ..Params::default() }];
         for p in bounds {
             let msg = p.validate().unwrap_err().to_string();
-            assert!(msg.contains("outside the accepted range ["), "{msg}");
+            assert!(msg.contains("outside the accepted range"), "{msg}");
         }
-        let edges = [(0.0, 1e6, 1.001), (1e6, -1e6, 1e6)];
+        let edges = [(0.0, 1e6, 1.001), (1e6, -5.999, 1e6), (1e-150, -5.999, 1.001), (1e-150, 1e6, 1e6)];
         for (lambda, sigma, r_inf) in edges {
             assert!(Params { lambda, sigma, r_inf }.validate().is_ok());
         }

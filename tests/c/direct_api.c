@@ -122,11 +122,11 @@ static void save_and_restore(void) {
 
 static void bad_creation(void) {
     wo_solver *s = (wo_solver *)&s; /* not NULL: a refused creation must set it to NULL */
-    REFUSED(wo_solver_new(NAN, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = NaN is outside the accepted range [0, 1e6]");
+    REFUSED(wo_solver_new(NAN, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = NaN is outside the accepted range: 0 or [1e-150, 1e6]");
     CHECK(s == NULL, "solver not set to NULL on failure");
-    REFUSED(wo_solver_new(-1, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = -1 is outside the accepted range [0, 1e6]");
+    REFUSED(wo_solver_new(-1, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = -1 is outside the accepted range: 0 or [1e-150, 1e6]");
     REFUSED(wo_solver_new(INFINITY, 1, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "lambda = inf is outside");
-    REFUSED(wo_solver_new(1, INFINITY, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = inf is outside the accepted range [-1e6, 1e6]");
+    REFUSED(wo_solver_new(1, INFINITY, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = inf is outside the accepted range (-6, 1e6]");
     REFUSED(wo_solver_new(1, NAN, 10, 1e-9, &s), WO_INVALID_ARGUMENT, "sigma = NaN is outside");
     REFUSED(wo_solver_new(1, 1, 1.0, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 1 is outside the accepted range [1.001, 1e6]");
     REFUSED(wo_solver_new(1, 1, 0.5, 1e-9, &s), WO_INVALID_ARGUMENT, "R_inf = 0.5 is outside");

@@ -67,10 +67,10 @@ static void before_initialization(fmi2Component c) {
     fmi2Boolean b = 0;
     fmi2String s = "x";
     REFUSED(F.fmi2DoStep(c, 0.0, 0.1, fmi2True), "fmi2DoStep is not allowed in state Instantiated");
-    REFUSED(set1(c, VR_LAMBDA, NAN), "lambda = NaN is outside the accepted range [0, 1e6]");
-    REFUSED(set1(c, VR_LAMBDA, -1.0), "lambda = -1 is outside the accepted range [0, 1e6]");
+    REFUSED(set1(c, VR_LAMBDA, NAN), "lambda = NaN is outside the accepted range: 0 or [1e-150, 1e6]");
+    REFUSED(set1(c, VR_LAMBDA, -1.0), "lambda = -1 is outside the accepted range: 0 or [1e-150, 1e6]");
     REFUSED(set1(c, VR_LAMBDA, INFINITY), "lambda = inf is outside");
-    REFUSED(set1(c, VR_SIGMA, INFINITY), "sigma = inf is outside the accepted range [-1e6, 1e6]");
+    REFUSED(set1(c, VR_SIGMA, INFINITY), "sigma = inf is outside the accepted range (-6, 1e6]");
     REFUSED(set1(c, VR_SIGMA, NAN), "sigma = NaN is outside");
     REFUSED(set1(c, VR_R_INF, 1.0), "R_inf = 1 is outside the accepted range [1.001, 1e6]");
     REFUSED(set1(c, VR_R_INF, 0.5), "R_inf = 0.5 is outside");

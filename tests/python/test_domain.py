@@ -59,27 +59,31 @@ def test_a_negative_tension_is_as_accurate(make_slave):
     assert err <= 1e-10, err
 
 
-def range_pattern(name, lo, hi):
-    return re.compile(rf"{name} = \S+ is outside the accepted range \[{lo}, {hi}\]")
+def range_pattern(name, accepted):
+    return re.compile(rf"{name} = \S+ is outside the accepted range:? {re.escape(accepted)}")
 
 
 @pytest.mark.parametrize(
-    "name, value, lo, hi",
+    "name, value, accepted",
     [
-        ("R_inf", 1.0009, "1.001", "1e6"),
-        ("R_inf", 1 + 1e-11, "1.001", "1e6"),
-        ("R_inf", 1.000001e6, "1.001", "1e6"),
-        ("lambda", 1.000001e6, "0", "1e6"),
-        ("lambda", 1e154, "0", "1e6"),
-        ("lambda", -1e-300, "0", "1e6"),
-        ("sigma", 1e300, "-1e6", "1e6"),
-        ("sigma", -2e6, "-1e6", "1e6"),
+        ("R_inf", 1.0009, "[1.001, 1e6]"),
+        ("R_inf", 1 + 1e-11, "[1.001, 1e6]"),
+        ("R_inf", 1.000001e6, "[1.001, 1e6]"),
+        ("lambda", 1.000001e6, "0 or [1e-150, 1e6]"),
+        ("lambda", 1e154, "0 or [1e-150, 1e6]"),
+        ("lambda", -1e-300, "0 or [1e-150, 1e6]"),
+        ("lambda", 1e-300, "0 or [1e-150, 1e6]"),
+        ("lambda", 9.9e-151, "0 or [1e-150, 1e6]"),
+        ("sigma", 1e300, "(-6, 1e6]"),
+        ("sigma", -2e6, "(-6, 1e6]"),
+        ("sigma", -6.0, "(-6, 1e6]"),
+        ("sigma", -10.0, "(-6, 1e6]"),
     ],
 )
-def test_values_outside_the_domain_are_refused_with_the_range(make_slave, name, value, lo, hi):
+def test_values_outside_the_domain_are_refused_with_the_range(make_slave, name, value, accepted):
     s = make_slave()
     messages = expect_error(s, s.set, {name: value})
-    assert any(range_pattern(name, lo, hi).search(m.message) for m in messages), [str(m) for m in messages]
+    assert any(range_pattern(name, accepted).search(m.message) for m in messages), [str(m) for m in messages]
 
 
 def test_the_edge_stress_is_bounded_in_units_of_g(make_slave):
@@ -148,3 +152,31 @@ def test_the_infinite_edge_velocity_at_lambda_zero_is_a_warning_not_a_number(mak
     s.step_to(0.02)
     s.outputs()
     assert len(warnings(s)) == before + 2
+
+
+CORNER_LAMBDA = [0.0, 1e-150, 1e6]
+CORNER_SIGMA = [-6.0 + 1e-9, 1e6]
+CORNER_R_INF = [1.001, 1e6]
+
+
+@pytest.mark.parametrize("lam", CORNER_LAMBDA)
+@pytest.mark.parametrize("sigma", CORNER_SIGMA)
+@pytest.mark.parametrize("r_inf", CORNER_R_INF)
+def test_every_corner_of_the_domain_has_finite_outputs_at_the_largest_scales(make_slave, lam, sigma, r_inf):
+    """lambda = 1e-300 was accepted and gave edge_velocity = +inf with fmi2OK at R0 = 1e12,
+    T = 1e-12. Now every corner of the accepted domain (lambda 0, 1e-150, 1e6; sigma just above
+    -6 and 1e6; R_inf 1.001 and 1e6; the edge stress at both bounds) with the largest velocity
+    scale R0 / T = 1e24 um/s and both extreme stress scales has finite outputs, read at the cut
+    (lambda > 0; at lambda = 0 the velocity there is infinite in the model and answered with
+    a warning) and after steps from 1e-14 T to 1e6 T."""
+    for g in (1e-12, 1e12):
+        for p in (-1e6 * g, 1e6 * g):
+            s = make_slave()
+            s.initialize({"lambda": lam, "sigma": sigma, "R_inf": r_inf, "R0": 1e12, "T": 1e-12, "G": g})
+            s.set({"edge_stress": p})
+            if lam > 0:
+                assert all(math.isfinite(x) for x in s.outputs()), (g, p)
+            for t in [1e-26, 1e-24, 1e-18, 1e-12, 1e-6]:
+                s.step_to(t)
+                values = s.outputs()
+                assert all(math.isfinite(x) for x in values), (g, p, t, values)

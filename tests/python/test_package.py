@@ -86,3 +86,28 @@ def test_a_missing_native_library_is_a_clear_error():
     done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
     assert done.returncode != 0
     assert "native library not found at /nonexistent/libwound_opening.so; build it with `cargo build --release`" in done.stderr
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_tolerance_sets_the_accuracy_of_the_radius(seed):
+    """simulate(tolerance=...) picks the grid of the radius and edge velocity too: the radius
+    error relative to the opening stays within each tolerance, and grows as it is loosened
+    (with the finest grid whatever was asked, a loose tolerance would change nothing)."""
+    rng = np.random.default_rng(seed)
+    lam, sigma, r_inf = 10 ** rng.uniform(-1, 1), rng.uniform(0.05, 3), 10 ** rng.uniform(0.5, 2)
+    R0_um, T_s = rng.uniform(4, 12), rng.uniform(0.3, 3)
+    times = T_s * np.sort(np.concatenate([10 ** rng.uniform(-2, 0, 8), 10 ** rng.uniform(0, 2.5, 8)]))
+    radius, _ = we.edge(lam, sigma, r_inf, times / T_s)
+    amplitude = we.final_radius(sigma, r_inf) - we.initial_radius(sigma)
+    errors = {}
+    for tolerance in (1e-2, 1e-4, 1e-6, 1e-8, 1e-10):
+        sim = wo.simulate(times, lam=lam, sigma=sigma, R0_um=R0_um, T_s=T_s, outer_radius_um=R0_um * r_inf,
+                          tolerance=tolerance)
+        errors[tolerance] = np.max(np.abs(sim.radius_um / R0_um - radius)) / amplitude
+        assert errors[tolerance] <= tolerance, (tolerance, errors)
+    assert errors[1e-2] > 100 * errors[1e-10], errors
+
+
+def test_a_tolerance_out_of_range_is_refused_for_the_radius_too():
+    with pytest.raises(ValueError, match="tolerance"):
+        wo.simulate([1.0], lam=1.0, sigma=1.0, R0_um=R0, T_s=T, outer_radius_um=OUTER, tolerance=0.0)

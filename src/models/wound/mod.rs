@@ -11,6 +11,7 @@
 //! ```
 
 mod codec;
+mod probes;
 pub mod variables;
 
 pub use codec::SchemeChoice;
@@ -20,6 +21,7 @@ use crate::fmi::common::serialized::same_parameters;
 use crate::solver::{EDGE_STRESS_MAX, Params, Settings, Solver, check_edge_stress, delivered_accuracy, check_lambda, check_r_inf, check_sigma};
 use crate::units::{Scales, check_scale};
 use std::cell::RefCell;
+use probes::Probes;
 use variables::{DESCRIPTION, MODEL_EXCHANGE_STATES, Vr};
 
 /// The instance's model data: what an FMU state saves (with the machine state and clock).
@@ -44,8 +46,8 @@ pub struct WoundModel {
     /// them. They are inert (derivative 0, no effect on any output): an integrator that
     /// perturbs them for a finite-difference Jacobian sees a zero column. Not serialized.
     spare_states: Vec<f64>,
-    /// FMI 3.0: the probe radii in um (master units).
-    probe_radii: Vec<f64>,
+    /// FMI 3.0: the probes (radii in um, master units, or the defaults following the tissue).
+    probe_radii: Probes,
 }
 
 impl WoundModel {
@@ -67,7 +69,7 @@ impl WoundModel {
             solver: None,
             warning: RefCell::new(None),
             spare_states: Vec::new(),
-            probe_radii: variables::PROBE_RADII.to_vec(),
+            probe_radii: Probes::default(),
         })
     }
 
@@ -243,12 +245,21 @@ impl FmuModel for WoundModel {
 
     /// Held (`advance`) or, after `fmi2SetRealInputDerivatives`, linear in time over the
     /// step (`advance_linear`, exact); the input then ends the step at its value there.
-    fn step(&mut self, _time: f64, h: f64) -> Result<(), Rejected> {
+    ///
+    /// A step that takes the state out of the model's validity (wound radius <= 0, a folded
+    /// ring, strains beyond what the linear model claims: [`crate::solver::validity`]) is
+    /// answered with a warning naming the reason and the time; O(modes) per step.
+    fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected> {
+        let r_inf = self.params.r_inf;
+        let was_valid = self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
         let (dt, p, rate) = (h / self.scales.time, self.p(), self.edge_stress_rate);
         let p1 = rate * self.scales.time / self.scales.stress;
         let solver = self.solver.as_mut().expect("prepare() builds the solver before a step");
         solver.advance_linear(dt, p, p1).map_err(|e| e.to_string())?;
         self.edge_stress += rate * h;
+        if let Some(why) = self.solver().validity_violation(r_inf).filter(|_| was_valid) {
+            self.warn(format!("at t = {} s the run leaves the model's validity: {why}", time + h));
+        }
         Ok(())
     }
 
@@ -335,10 +346,9 @@ impl FmuModel for WoundModel {
         self.probe_radii.len() as u64
     }
 
-    /// The default radii as far as they go, then the outer edge of the default tissue.
+    /// The default radii (following R0 and R_inf) as far as they go, then the outer edge.
     fn set_array_length(&mut self, n: u64) {
-        let start = variables::PROBE_RADII;
-        self.probe_radii = (0..n as usize).map(|i| start.get(i).copied().unwrap_or(start[start.len() - 1])).collect();
+        self.probe_radii = Probes::Default(n as usize);
         self.solver = None;
     }
 
@@ -353,7 +363,7 @@ impl FmuModel for WoundModel {
     }
 
     fn set_array(&mut self, _j: usize, values: &[f64]) {
-        self.probe_radii = values.to_vec();
+        self.probe_radii = Probes::Set(values.to_vec());
         self.solver = None;
     }
 
@@ -362,15 +372,16 @@ impl FmuModel for WoundModel {
     /// A radius outside the tissue is refused when the field is read (the probes need not
     /// fit a tissue until then: R_inf may be set after them, and FMI 2.0 has no probes).
     fn get_array(&self, j: usize, _time: f64) -> Result<Vec<f64>, Rejected> {
-        if j == 0 {
-            return Ok(self.probe_radii.clone());
-        }
         let (r0, p) = (self.scales.length, self.p());
+        let probes = self.probe_radii.radii(r0, self.params.r_inf);
+        if j == 0 {
+            return Ok(probes);
+        }
         let (lo, hi) = (r0, r0 * self.params.r_inf);
-        if let Some(r) = self.probe_radii.iter().find(|&&r| !(lo..=hi).contains(&r)) {
+        if let Some(r) = probes.iter().find(|&&r| !(lo..=hi).contains(&r)) {
             return Err(format!("probe radius {r} um is outside the tissue [R0, R0 R_inf] = [{lo}, {hi}] um"));
         }
-        let radii: Vec<f64> = self.probe_radii.iter().map(|r| r / r0).collect();
+        let radii: Vec<f64> = probes.iter().map(|r| r / r0).collect();
         Ok(match j {
             1 => self.solver().displacement(&radii).iter().map(|u| u * r0).collect(),
             _ => {

@@ -59,8 +59,8 @@ impl Vr {
 }
 
 pub const VARIABLES: [Variable; 13] = [
-    Variable::parameter("lambda", 0, 1.0, "1", "Viscous length over the cut radius, 2 sqrt(eta/zeta)/R0, in [0, 1e6]"),
-    Variable::parameter("sigma", 1, 1.0, "1", "Homeostatic tension over shear modulus, in [-1e6, 1e6]"),
+    Variable::parameter("lambda", 0, 1.0, "1", "Viscous length over the cut radius, 2 sqrt(eta/zeta)/R0: 0 or in [1e-150, 1e6]"),
+    Variable::parameter("sigma", 1, 1.0, "1", "Homeostatic tension over shear modulus, in (-6, 1e6] (R1 = R0 (1 + sigma/6) > 0)"),
     Variable::parameter("R_inf", 2, 10.0, "1", "Outer radius of the tissue over the cut radius, in [1.001, 1e6]"),
     Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step or, with fmi2SetRealInputDerivatives, linear in time (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
     Variable::output("wound_radius", 4, "um", "Wound radius R0 (1 + u(1, t)) [um]; R1 = R0 (1 + sigma/6) just after the cut"),
@@ -156,7 +156,7 @@ pub const PROBE_ARRAYS: [ArrayVariable; 3] = [
         causality: Causality::Parameter,
         unit: "um",
         start: &PROBE_RADII,
-        description: "Reference radii of the probes [um], each in [R0, R0 R_inf] (checked when displacement or velocity is read)",
+        description: "Reference (undeformed) radii X of the probed material points [um], each in [R0, R0 R_inf] (checked when displacement or velocity is read); the point is now at X + displacement, where PIV sees it. Until set, they follow the tissue: R0 (1 + f (R_inf - 1)) for f = 0, 1/18, 1/9, 2/9, 4/9, 1 (the start values at R0 = 1 um, R_inf = 10)",
         input_dependencies: &[],
     },
     ArrayVariable {
@@ -164,7 +164,7 @@ pub const PROBE_ARRAYS: [ArrayVariable; 3] = [
         causality: Causality::Output,
         unit: "um",
         start: &[],
-        description: "Radial displacement u(r, t) at the probe radii [um] (sigma r / 6 at the cut)",
+        description: "Radial displacement u(X, t) of the material point at each reference radius X of probe_radii [um] (sigma X / 6 at the cut)",
         input_dependencies: &[],
     },
     ArrayVariable {
@@ -172,7 +172,7 @@ pub const PROBE_ARRAYS: [ArrayVariable; 3] = [
         causality: Causality::Output,
         unit: "um/s",
         start: &[],
-        description: "Radial velocity u_t(r, t) at the probe radii [um/s] under the current edge_stress",
+        description: "Radial velocity u_t(X, t) of the material point at each reference radius X of probe_radii [um/s] under the current edge_stress",
         input_dependencies: &[(Vr::EdgeStress as u32, "fixed")],
     },
 ];
