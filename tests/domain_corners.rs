@@ -25,7 +25,10 @@ fn every_corner_has_finite_outputs() {
                     for t in [0.0, 1e-14, 1e-8, 1e-2, 1.0, 1e6] {
                         let (mut r, mut v, mut u, mut w) = (f64::NAN, f64::NAN, [f64::NAN; 3], [f64::NAN; 3]);
                         unsafe {
-                            assert_eq!(wo_solver_advance(s, t, p), WoStatus::WoOk, "{}", last_error());
+                            // Most corners leave the linear model's validity (a warning, the
+                            // advance done); the outputs must be finite all the same.
+                            let advanced = wo_solver_advance(s, t, p);
+                            assert!(matches!(advanced, WoStatus::WoOk | WoStatus::WoOutsideValidity), "{}", last_error());
                             assert_eq!(wo_solver_wound_radius(s, &mut r), WoStatus::WoOk);
                             assert_eq!(wo_solver_displacement(s, radii.as_ptr(), u.as_mut_ptr(), 3), WoStatus::WoOk);
                             let status = wo_solver_edge_velocity(s, &mut v);

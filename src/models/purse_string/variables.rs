@@ -47,7 +47,6 @@ pub const VARIABLES: [Variable; 7] = [
     Variable::output("line_tension", 6, "pN", "Line tension T_c(t) = T_max (1 - exp(-(t - t_delay) / t_assembly)) after the delay"),
 ];
 
-/// The table in the form the shared glue reads.
 /// The units of the variables (SI base units for `<UnitDefinitions>`).
 pub const UNITS: [Unit; 4] = [
     ("Pa", &[("kg", "1"), ("m", "-1"), ("s", "-2")]),
@@ -56,6 +55,7 @@ pub const UNITS: [Unit; 4] = [
     ("um", &[("m", "1"), ("factor", "1e-6")]),
 ];
 
+/// The table in the form the shared glue reads.
 pub static DESCRIPTION: Description = Description {
     model_identifier: MODEL_IDENTIFIER,
     guid: GUID,

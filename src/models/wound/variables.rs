@@ -99,7 +99,6 @@ const INITIAL_RATE_DEPENDENCIES: [u32; 11] = [
     Vr::StressScale as u32,
 ];
 
-/// The table in the form the shared glue reads.
 /// The units of the variables (SI base units for `<UnitDefinitions>`).
 pub const UNITS: [Unit; 6] = [
     ("1", &[]),
@@ -110,6 +109,7 @@ pub const UNITS: [Unit; 6] = [
     ("um/s", &[("m", "1"), ("s", "-1"), ("factor", "1e-6")]),
 ];
 
+/// The table in the form the shared glue reads.
 pub static DESCRIPTION: Description = Description {
     model_identifier: MODEL_IDENTIFIER,
     guid: GUID,
