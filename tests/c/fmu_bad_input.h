@@ -153,7 +153,7 @@ static void after_initialization(fmi2Component c) {
     REFUSED(F.fmi2SetRealInputDerivatives(c, &VR_EDGE_STRESS, 1, &second, &r), "order = 2 for edge_stress is invalid");
     REFUSED(F.fmi2SetRealInputDerivatives(c, &vr, 1, &order, &r), "wound_radius (value reference 4) is not an input");
     REFUSED(F.fmi2GetRealOutputDerivatives(c, &vr, 1, &order, &r), "is not supported");
-    REFUSED(F.fmi2CancelStep(c), "fmi2CancelStep is not allowed in state StepComplete");
+    REFUSED(F.fmi2CancelStep(c), "fmi2CancelStep is not supported by this FMU");
     REFUSED(F.fmi2GetInteger(c, &vr, 1, &i), "wound_radius (value reference 4) is Real, not Integer");
     REFUSED(F.fmi2GetString(c, &vr, 1, &s), "no String variable has value reference 4");
     REFUSED(F.fmi2GetReal(c, &vr, 1, NULL), "value is NULL but 1 elements were announced");
