@@ -247,4 +247,26 @@ impl Engine for ModalEngine {
         self.p_ref = p;
         true
     }
+
+    /// Each coordinate relaxes towards `g_k = (sigma - p) X[0, k]`, so its size is
+    /// `s |X[0, k]|` with `s = max(|sigma|, |p|)` the edge-stress scale (1 when both are 0,
+    /// where nothing moves):
+    ///
+    /// ```text
+    /// nominal_k = s max(|X[0, k]|, 1e-3 max_j |X[0, j]|)
+    /// ```
+    ///
+    /// An integrator's absolute tolerance `rtol nominal_k` then scales with the opening
+    /// (`R - R1 = sum_k X[0, k] c_k`, of size `s`), so the error relative to the opening
+    /// does not depend on sigma. The floor keeps every nominal `> 0` for modes that do not
+    /// reach the edge (their coordinates stay near 0 and hardly move the radius).
+    fn ode_nominals(&self, p: f64) -> Option<Vec<f64>> {
+        let s = match self.sigma.abs().max(p.abs()) {
+            s if s > 0.0 => s,
+            _ => 1.0,
+        };
+        let edge = &self.op.basis.edge_row;
+        let floor = 1e-3 * edge.amax();
+        Some(edge.iter().map(|x| s * x.abs().max(floor)).collect())
+    }
 }

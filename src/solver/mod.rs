@@ -322,6 +322,12 @@ impl Solver {
         self.engine.ode(p)
     }
 
+    /// Nominal magnitudes of the coordinates of [`Solver::ode`] under the edge stress `p`
+    /// (see the modal engine); `None` for the schemes without an ODE.
+    pub fn ode_nominals(&self, p: f64) -> Option<Vec<f64>> {
+        self.engine.ode_nominals(p)
+    }
+
     /// Set the coordinates of [`Solver::ode`] at time `time`, the state having evolved
     /// under `p`. Refused for a length other than the ODE's, for values that are not
     /// finite, and for schemes without an ODE.

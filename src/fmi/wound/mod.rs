@@ -383,6 +383,16 @@ impl FmuModel for WoundModel {
         })
     }
 
+    /// Nominals of the modal coordinates ([`Solver::ode_nominals`]: the edge-stress scale
+    /// times each mode's edge value), read by integrators for their absolute tolerance;
+    /// the inert spare states take the largest.
+    fn nominals(&self) -> Vec<f64> {
+        let mut n = self.solver.as_ref().and_then(|s| s.ode_nominals(self.p())).unwrap_or_default();
+        let spare = n.iter().copied().fold(0.0, f64::max);
+        n.resize(MODEL_EXCHANGE_STATES, if spare > 0.0 { spare } else { 1.0 });
+        n
+    }
+
     /// `c_k' = (g_k(p) - c_k) / nu_k` per second of master time (`/ T`).
     fn derivatives(&self, _time: f64) -> Vec<f64> {
         let mut dx: Vec<f64> =
