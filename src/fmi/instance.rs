@@ -295,7 +295,7 @@ impl Instance {
             self.settable_now(v)?;
             let var = match d.named(kind, v)? {
                 Named::Table(var) => var,
-                Named::State(k) if matches!(self.machine, Machine::ContinuousTimeMode | Machine::EventMode) => {
+                Named::State(k) if self.machine == Machine::ContinuousTimeMode => {
                     states.push((k, x));
                     continue;
                 }
@@ -324,10 +324,11 @@ impl Instance {
     }
 
     /// Model Exchange: continuous states set one by one with `fmi2SetReal` /
-    /// `fmi3SetFloat64` in Event or Continuous-Time Mode (FMI 3.0 allows it there for
-    /// continuous-time states, FMI 2.0's mathematical description too; integrators use it
-    /// for finite-difference Jacobians): the others keep their values, and the model checks
-    /// the new vector as with `fmi2SetContinuousStates`.
+    /// `fmi3SetFloat64` in Continuous-Time Mode, where `fmi2SetContinuousStates` is allowed
+    /// (FMI 3.0 allows it there for continuous-time states, FMI 2.0's mathematical
+    /// description too; integrators use it for finite-difference Jacobians): the others
+    /// keep their values, and the model checks the new vector as with
+    /// `fmi2SetContinuousStates`.
     fn set_some_states(&mut self, states: &[(usize, f64)]) -> Result<(), Rejected> {
         if states.is_empty() {
             return Ok(());

@@ -41,10 +41,10 @@ def opening_error(lam, sigma, t, r):
 
 @pytest.mark.parametrize("which", ["WoundOpening", "WoundOpening-fmi3"])
 @pytest.mark.parametrize("sigma", [1e-6, 1e-4, 1e-2, 10.0])
-def test_model_exchange_error_relative_to_the_opening_does_not_depend_on_sigma(fmu_path, fmu3_path, which, sigma):
+def test_model_exchange_error_relative_to_the_opening_does_not_depend_on_sigma(fmu_me_path, fmu3_path, which, sigma):
     """docs/fmi.md: with CVode at rtol (absolute rtol x nominal) the radius is within 100 rtol
     of the opening (plus the rounding of R, 2 eps R / opening) whatever sigma."""
-    path = fmu_path if which == "WoundOpening" else fmu3_path
+    path = fmu_me_path if which == "WoundOpening" else fmu3_path
     rtol = 1e-10
     r = simulate_fmu(path, fmi_type="ModelExchange", solver="CVode", relative_tolerance=rtol,
                      start_values={"lambda": 10.0, "sigma": sigma, "R_inf": R_INF}, stop_time=10.0,
@@ -61,12 +61,12 @@ def _vector(get, n):
 
 
 @pytest.mark.parametrize("lam", [1e-4, 1e-3, 0.37])
-def test_initial_edge_velocity_is_a_function_of_the_states_fmi2(fmu_path, lam):
+def test_initial_edge_velocity_is_a_function_of_the_states_fmi2(fmu_me_path, lam):
     """After fmi2SetContinuousStates with the cut's x = 0, edge_velocity at t = 0 is the
     closed-form initial velocity (no stored reference decides it)."""
-    md = read_model_description(fmu_path)
+    md = read_model_description(fmu_me_path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    m = FMU2Model(guid=md.guid, unzipDirectory=extract(fmu_path), modelIdentifier="WoundOpening", instanceName="x0",
+    m = FMU2Model(guid=md.guid, unzipDirectory=extract(fmu_me_path), modelIdentifier="WoundOpening", instanceName="x0",
                   fmiCallLogger=strict)
     m.instantiate()
     m.setupExperiment(startTime=0.0)
@@ -109,16 +109,16 @@ def test_initial_edge_velocity_is_a_function_of_the_states_fmi3(fmu3_path):
     m.freeInstance()
 
 
-INTERFACES = [("WoundOpening", "CoSimulation"), ("WoundOpening", "ModelExchange"),
+INTERFACES = [("WoundOpening", "CoSimulation"), ("WoundOpening-me", "ModelExchange"),
               ("WoundOpening-fmi3", "CoSimulation"), ("WoundOpening-fmi3", "ModelExchange")]
 
 
 @pytest.mark.parametrize("which,interface", INTERFACES)
-def test_lambda_zero_runs_in_a_master_that_aborts_on_warnings(fmu_path, fmu3_path, which, interface):
+def test_lambda_zero_runs_in_a_master_that_aborts_on_warnings(fmu_path, fmu_me_path, fmu3_path, which, interface):
     """lambda = 0: the edge velocity is infinite at the cut; the FMU answers the mean over the
     next 0.01 T with OK (said in the log), finite, and within the tolerance of the exact
     mean (R(0.01) - R1) / 0.01."""
-    path = fmu_path if which == "WoundOpening" else fmu3_path
+    path = {"WoundOpening": fmu_path, "WoundOpening-me": fmu_me_path}.get(which, fmu3_path)
     r = simulate_fmu(path, fmi_type=interface, solver="CVode", relative_tolerance=1e-10,
                      start_values={"lambda": 0.0, "sigma": 1.0, "R_inf": R_INF}, stop_time=0.1,
                      output_interval=0.01, output=["wound_radius", "edge_velocity"], fmi_call_logger=strict)
@@ -130,10 +130,10 @@ def test_lambda_zero_runs_in_a_master_that_aborts_on_warnings(fmu_path, fmu3_pat
 
 
 @pytest.mark.parametrize("which,interface", INTERFACES)
-def test_a_tolerance_below_the_floor_runs_in_a_master_that_aborts_on_warnings(fmu_path, fmu3_path, which, interface):
+def test_a_tolerance_below_the_floor_runs_in_a_master_that_aborts_on_warnings(fmu_path, fmu_me_path, fmu3_path, which, interface):
     """A master handing its integrator's 1e-12 to the FMU gets the floor's accuracy (1e-11
     of the opening in co-simulation) with OK."""
-    path = fmu_path if which == "WoundOpening" else fmu3_path
+    path = {"WoundOpening": fmu_path, "WoundOpening-me": fmu_me_path}.get(which, fmu3_path)
     r = simulate_fmu(path, fmi_type=interface, solver="CVode", relative_tolerance=1e-12,
                      start_values={"lambda": 1.0, "sigma": 1.0, "R_inf": R_INF}, stop_time=1.0,
                      output_interval=0.1, output=["wound_radius"], fmi_call_logger=strict)
@@ -142,14 +142,14 @@ def test_a_tolerance_below_the_floor_runs_in_a_master_that_aborts_on_warnings(fm
     assert err <= (1e-11 if interface == "CoSimulation" else 1e-9) + floor, err
 
 
-def test_model_exchange_states_set_one_by_one_are_accepted(fmu_path):
+def test_model_exchange_states_set_one_by_one_are_accepted(fmu_me_path):
     """fmi2SetReal of a continuous state in Continuous-Time Mode (PyFMI's finite-difference
     Jacobian) sets that state: the derivative follows dx_k/dt = (g_k - x_k) / nu_k."""
-    md = read_model_description(fmu_path)
+    md = read_model_description(fmu_me_path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     states = [d.variable.derivative.valueReference for d in md.derivatives]
     ders = [d.variable.valueReference for d in md.derivatives]
-    m = FMU2Model(guid=md.guid, unzipDirectory=extract(fmu_path), modelIdentifier="WoundOpening", instanceName="fd",
+    m = FMU2Model(guid=md.guid, unzipDirectory=extract(fmu_me_path), modelIdentifier="WoundOpening", instanceName="fd",
                   fmiCallLogger=strict)
     m.instantiate()
     m.setupExperiment(startTime=0.0)
