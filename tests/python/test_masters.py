@@ -167,3 +167,26 @@ def test_model_exchange_states_set_one_by_one_are_accepted(fmu_me_path):
     assert d1[1] < d0[1]
     m.terminate()
     m.freeInstance()
+
+
+def test_model_exchange_states_set_one_by_one_are_accepted_fmi3(fmu3_path):
+    """fmi3SetFloat64 of a continuous state in Continuous-Time Mode (FMI 3.0 allows it there)."""
+    md = read_model_description(fmu3_path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    states = [d.variable.derivative.valueReference for d in md.derivatives]
+    ders = [d.variable.valueReference for d in md.derivatives]
+    m = FMU3Model(guid=md.guid, unzipDirectory=extract(fmu3_path), modelIdentifier="WoundOpening", instanceName="fd",
+                  fmiCallLogger=strict)
+    m.instantiate()
+    m.setFloat64([vr["lambda"]], [1.0])
+    m.enterInitializationMode(startTime=0.0)
+    m.exitInitializationMode()
+    m.enterContinuousTimeMode()
+    m.setTime(0.5)
+    d0 = m.getFloat64(ders[:3])
+    m.setFloat64([states[1]], [1e-3])
+    assert m.getFloat64(states[:3]) == [0.0, 1e-3, 0.0]
+    d1 = m.getFloat64(ders[:3])
+    assert d1[0] == d0[0] and d1[2] == d0[2] and d1[1] < d0[1]
+    m.terminate()
+    m.freeInstance()

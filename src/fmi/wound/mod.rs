@@ -256,7 +256,10 @@ impl FmuModel for WoundModel {
             Vr::EdgeVelocity => {
                 let (solver, p) = (self.solver(), self.p());
                 if !solver.edge_velocity_defined(p) {
-                    let mean = solver.mean_edge_velocity(p, MEAN_WINDOW).map_or(f64::NAN, |v| self.scales.velocity() * v);
+                    let Ok(mean) = solver.mean_edge_velocity(p, MEAN_WINDOW).map(|v| self.scales.velocity() * v) else {
+                        self.warn("edge_velocity is infinite in the model here and its mean over the next 0.01 T could not be computed: the value returned is the mesh's".into());
+                        return self.scales.velocity() * solver.edge_velocity(p);
+                    };
                     self.note(format!(
                         "edge_velocity is infinite in the model at lambda = 0 at the cut and just after a change of edge_stress (it decays like t^(-1/2)); the value returned, {mean:e} um/s, is the mean edge velocity over the next {:e} s ({MEAN_WINDOW} T) with edge_stress held",
                         MEAN_WINDOW * self.scales.time
