@@ -147,8 +147,6 @@ def test_model_exchange_states_set_one_by_one_are_accepted(fmu_me_path):
     Jacobian) sets that state: the derivative follows dx_k/dt = (g_k - x_k) / nu_k."""
     md = read_model_description(fmu_me_path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    states = [d.variable.derivative.valueReference for d in md.derivatives]
-    ders = [d.variable.valueReference for d in md.derivatives]
     m = FMU2Model(guid=md.guid, unzipDirectory=extract(fmu_me_path), modelIdentifier="WoundOpening", instanceName="fd",
                   fmiCallLogger=strict)
     m.instantiate()
@@ -158,13 +156,20 @@ def test_model_exchange_states_set_one_by_one_are_accepted(fmu_me_path):
     m.exitInitializationMode()
     m.newDiscreteStates()
     m.enterContinuousTimeMode()
+    one_state_moves_only_its_derivative(m, md, m.getReal, m.setReal)
+
+
+def one_state_moves_only_its_derivative(m, md, get, set_):
+    """At t = 0.5 in Continuous-Time Mode: set state 2 alone; states 1 and 3 and their
+    derivatives stay, state 2's derivative (g - x) / nu falls."""
+    states = [d.variable.derivative.valueReference for d in md.derivatives]
+    ders = [d.variable.valueReference for d in md.derivatives]
     m.setTime(0.5)
-    d0 = m.getReal(ders[:3])
-    m.setReal([states[1]], [1e-3])
-    assert m.getReal([states[0], states[1], states[2]]) == [0.0, 1e-3, 0.0]
-    d1 = m.getReal(ders[:3])
-    assert d1[0] == d0[0] and d1[2] == d0[2]
-    assert d1[1] < d0[1]
+    d0 = get(ders[:3])
+    set_([states[1]], [1e-3])
+    assert get(states[:3]) == [0.0, 1e-3, 0.0]
+    d1 = get(ders[:3])
+    assert d1[0] == d0[0] and d1[2] == d0[2] and d1[1] < d0[1]
     m.terminate()
     m.freeInstance()
 
@@ -173,8 +178,6 @@ def test_model_exchange_states_set_one_by_one_are_accepted_fmi3(fmu3_path):
     """fmi3SetFloat64 of a continuous state in Continuous-Time Mode (FMI 3.0 allows it there)."""
     md = read_model_description(fmu3_path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    states = [d.variable.derivative.valueReference for d in md.derivatives]
-    ders = [d.variable.valueReference for d in md.derivatives]
     m = FMU3Model(guid=md.guid, unzipDirectory=extract(fmu3_path), modelIdentifier="WoundOpening", instanceName="fd",
                   fmiCallLogger=strict)
     m.instantiate()
@@ -182,11 +185,4 @@ def test_model_exchange_states_set_one_by_one_are_accepted_fmi3(fmu3_path):
     m.enterInitializationMode(startTime=0.0)
     m.exitInitializationMode()
     m.enterContinuousTimeMode()
-    m.setTime(0.5)
-    d0 = m.getFloat64(ders[:3])
-    m.setFloat64([states[1]], [1e-3])
-    assert m.getFloat64(states[:3]) == [0.0, 1e-3, 0.0]
-    d1 = m.getFloat64(ders[:3])
-    assert d1[0] == d0[0] and d1[2] == d0[2] and d1[1] < d0[1]
-    m.terminate()
-    m.freeInstance()
+    one_state_moves_only_its_derivative(m, md, m.getFloat64, m.setFloat64)
