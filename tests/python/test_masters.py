@@ -60,21 +60,36 @@ def _vector(get, n):
     return v
 
 
+def in_continuous_time(path, params, name):
+    """A Model Exchange instance (FMI 2.0 or 3.0, as the archive says) in Continuous-Time
+    Mode at t = 0, aborting on any status but OK, with its model description and value
+    references by name."""
+    md = read_model_description(path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    fmi3 = md.fmiVersion.startswith("3")
+    m = (FMU3Model if fmi3 else FMU2Model)(guid=md.guid, unzipDirectory=extract(path), modelIdentifier="WoundOpening",
+                                           instanceName=name, fmiCallLogger=strict)
+    m.instantiate()
+    if fmi3:
+        m.setFloat64([vr[k] for k in params], list(params.values()))
+        m.enterInitializationMode(startTime=0.0)
+    else:
+        m.setupExperiment(startTime=0.0)
+        m.setReal([vr[k] for k in params], list(params.values()))
+        m.enterInitializationMode()
+    m.exitInitializationMode()
+    if not fmi3:
+        m.newDiscreteStates()
+    m.enterContinuousTimeMode()
+    return m, md, vr
+
+
 @pytest.mark.parametrize("lam", [1e-4, 1e-3, 0.37])
 def test_initial_edge_velocity_is_a_function_of_the_states_fmi2(fmu_me_path, lam):
     """After fmi2SetContinuousStates with the cut's x = 0, edge_velocity at t = 0 is the
     closed-form initial velocity (no stored reference decides it)."""
-    md = read_model_description(fmu_me_path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    m = FMU2Model(guid=md.guid, unzipDirectory=extract(fmu_me_path), modelIdentifier="WoundOpening", instanceName="x0",
-                  fmiCallLogger=strict)
-    m.instantiate()
-    m.setupExperiment(startTime=0.0)
-    m.setReal([vr["lambda"], vr["sigma"], vr["R_inf"], vr["edge_stress"]], [lam, 1.0, R_INF, 0.0])
-    m.enterInitializationMode()
-    m.exitInitializationMode()
-    m.newDiscreteStates()
-    m.enterContinuousTimeMode()
+    params = {"lambda": lam, "sigma": 1.0, "R_inf": R_INF, "edge_stress": 0.0}
+    m, md, vr = in_continuous_time(fmu_me_path, params, "x0")
     nx = md.numberOfContinuousStates
     want = initial_velocity(lam)
     for _ in range(2):
@@ -89,15 +104,8 @@ def test_initial_edge_velocity_is_a_function_of_the_states_fmi2(fmu_me_path, lam
 
 
 def test_initial_edge_velocity_is_a_function_of_the_states_fmi3(fmu3_path):
-    md = read_model_description(fmu3_path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    m = FMU3Model(guid=md.guid, unzipDirectory=extract(fmu3_path), modelIdentifier="WoundOpening", instanceName="x0",
-                  fmiCallLogger=strict)
-    m.instantiate()
-    m.setFloat64([vr["lambda"], vr["sigma"], vr["R_inf"], vr["edge_stress"]], [1e-4, 1.0, R_INF, 0.0])
-    m.enterInitializationMode(startTime=0.0)
-    m.exitInitializationMode()
-    m.enterContinuousTimeMode()
+    params = {"lambda": 1e-4, "sigma": 1.0, "R_inf": R_INF, "edge_stress": 0.0}
+    m, md, vr = in_continuous_time(fmu3_path, params, "x0")
     nx = md.numberOfContinuousStates
     m.setTime(0.0)
     x = np.zeros(nx)
@@ -145,17 +153,7 @@ def test_a_tolerance_below_the_floor_runs_in_a_master_that_aborts_on_warnings(fm
 def test_model_exchange_states_set_one_by_one_are_accepted(fmu_me_path):
     """fmi2SetReal of a continuous state in Continuous-Time Mode (PyFMI's finite-difference
     Jacobian) sets that state: the derivative follows dx_k/dt = (g_k - x_k) / nu_k."""
-    md = read_model_description(fmu_me_path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    m = FMU2Model(guid=md.guid, unzipDirectory=extract(fmu_me_path), modelIdentifier="WoundOpening", instanceName="fd",
-                  fmiCallLogger=strict)
-    m.instantiate()
-    m.setupExperiment(startTime=0.0)
-    m.setReal([vr["lambda"], vr["sigma"], vr["R_inf"]], [1.0, 1.0, R_INF])
-    m.enterInitializationMode()
-    m.exitInitializationMode()
-    m.newDiscreteStates()
-    m.enterContinuousTimeMode()
+    m, md, _ = in_continuous_time(fmu_me_path, {"lambda": 1.0, "sigma": 1.0, "R_inf": R_INF}, "fd")
     one_state_moves_only_its_derivative(m, md, m.getReal, m.setReal)
 
 
@@ -176,13 +174,5 @@ def one_state_moves_only_its_derivative(m, md, get, set_):
 
 def test_model_exchange_states_set_one_by_one_are_accepted_fmi3(fmu3_path):
     """fmi3SetFloat64 of a continuous state in Continuous-Time Mode (FMI 3.0 allows it there)."""
-    md = read_model_description(fmu3_path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    m = FMU3Model(guid=md.guid, unzipDirectory=extract(fmu3_path), modelIdentifier="WoundOpening", instanceName="fd",
-                  fmiCallLogger=strict)
-    m.instantiate()
-    m.setFloat64([vr["lambda"]], [1.0])
-    m.enterInitializationMode(startTime=0.0)
-    m.exitInitializationMode()
-    m.enterContinuousTimeMode()
+    m, md, _ = in_continuous_time(fmu3_path, {"lambda": 1.0}, "fd")
     one_state_moves_only_its_derivative(m, md, m.getFloat64, m.setFloat64)
