@@ -27,6 +27,7 @@ step "paper's scheme, NumPy/SciPy peer"
 python -m bench.paper_peer --out "$data"
 step "FMU through fmpy"
 python -m bench.fmpy_timing --fmu target/fmu/WoundOpening.fmu --out "$data"
+python -m bench.fmpy_whole target/fmu/WoundOpening.fmu --both target/fmu/WoundOpening-me.fmu --out "$data"
 step "charts and docs/benchmarks.md"
 python -m bench.charts --data "$data" --out docs
 step "done"

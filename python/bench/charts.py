@@ -79,7 +79,7 @@ def main() -> None:
         if not rows:
             print(f"charts: no {name} data in {args.data}: skipped what needs it")
     summary.write(args.out / "benchmarks.md", rust + peers, read("step_cost"), fmpy, stability, limits, made,
-                  read("fresh_cost"))
+                  read("fresh_cost"), read("fmpy_whole"))
     print(args.out / "benchmarks.md")
 
 

@@ -170,8 +170,26 @@ def peer_orders(rows: list[dict]) -> list[str]:
     return out
 
 
+def loading_lines(whole: list[dict]) -> list[str]:
+    """The section on loading the FMU through fmpy (`bench.fmpy_whole`), if measured."""
+    if not whole:
+        return []
+    lines = ["## Loading the FMU", "",
+             "fmpy's whole co-simulation scenario per archive: parse the model description, extract the "
+             "archive, load and instantiate, initialize, 1000 steps of 0.1 at lambda = 1 with wound_radius read "
+             "after each (`python -m bench.fmpy_whole target/fmu/WoundOpening.fmu --both "
+             "target/fmu/WoundOpening-me.fmu`; `-both` is one archive declaring both FMI 2.0 interfaces, "
+             "the 217 Model Exchange states and their derivatives included, library deflated).", "",
+             "| archive | variables | parse | whole scenario |", "|---|---|---|---|"]
+    for r in whole:
+        lines.append(f"| {r['archive']} | {r['variables']} | {fmt_s(float(r['parse_seconds']))} "
+                     f"| {fmt_s(float(r['seconds']))} |")
+    return lines + [""]
+
+
 def write(path: Path, rows: list[dict], step_cost: list[dict], fmpy: list[dict],
-          stability: list[dict], limits: list[dict], charts: list[str], fresh: list[dict]) -> None:
+          stability: list[dict], limits: list[dict], charts: list[str], fresh: list[dict],
+          whole: list[dict] = ()) -> None:
     today = datetime.date.today().isoformat()
     lines = [
         "# Benchmarks: accuracy and speed, methods side by side",
@@ -216,7 +234,7 @@ def write(path: Path, rows: list[dict], step_cost: list[dict], fmpy: list[dict],
               "Through the exported FMI functions, side by side in one run (`examples/fresh_cost.rs`, R_inf = 10, "
               "tolerance 1e-10). The modal basis does not depend on lambda and is cached per mesh and outer "
               "radius (`src/solver/basis.rs`), so only a new outer radius pays a decomposition.", "",
-              *fresh_table(fresh), "",
+              *fresh_table(fresh), "", *loading_lines(list(whole)),
               "## Stability map (cells per status)", "", *stability_lines(stability, limits), "",
               "## Charts", "", *charts, ""]
     path.write_text("\n".join(lines))

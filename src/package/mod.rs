@@ -6,7 +6,8 @@
 //! ├── binaries/linux64/WoundOpening.so (the cdylib built beside this executable)
 //! ├── documentation/index.html         (generated: model, variables, plots of the results)
 //! └── extra/org.fmi-standard.fmi-ls-ref/fmi-ls-manifest.xml, WoundOpening_out.csv
-//! WoundOpening-fmi3.fmu                (FMI 3.0: the same, binaries/x86_64-linux/WoundOpening.so)
+//! WoundOpening-me.fmu                  (FMI 2.0 Model Exchange; WoundOpening.fmu is co-simulation)
+//! WoundOpening-fmi3.fmu                (FMI 3.0: both interfaces, binaries/x86_64-linux/WoundOpening.so)
 //! PurseString.fmu, PurseString-fmi3.fmu (the same cdylib: it picks the model by GUID)
 //!
 //! Nothing here names a model: every archive comes from the table of models (models::MODELS).
@@ -17,6 +18,7 @@ mod reference;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use wound_opening::fmi::fmi2::xml::Interfaces;
 use wound_opening::fmi::{fmi2, fmi3};
 use wound_opening::models::MODELS;
 
@@ -45,7 +47,10 @@ fn platform_dir() -> Result<&'static str, BoxError> {
 }
 
 /// Build every archive and return their paths: per model, `<id>.fmu` (FMI 2.0) and
-/// `<id>-fmi3.fmu` (FMI 3.0), each with co-simulation and Model Exchange.
+/// `<id>-fmi3.fmu` (FMI 3.0), each with co-simulation and Model Exchange; a model with
+/// continuous states gets two FMI 2.0 archives instead, `<id>.fmu` (co-simulation) and
+/// `<id>-me.fmu` (Model Exchange), so that a co-simulation importer does not parse the
+/// hundreds of state and derivative variables (FMI 2.0 has no arrays) on every load.
 pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
     let profile = profile_dir()?;
     let so = shared_object(&profile)?;
@@ -57,10 +62,16 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
         let id = description.model_identifier;
         let results = reference::simulate(description, *fresh)?;
         let csv_name = format!("{id}_out.csv");
-        let versions = [
-            ("", "FMI 2.0: co-simulation and Model Exchange, from one library", platform_dir()?, fmi2::xml::fmi2(description)),
-            ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, fmi3::xml::fmi3(description)),
-        ];
+        let fmi3 = ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, fmi3::xml::fmi3(description));
+        let versions = if description.states.is_some() {
+            vec![
+                ("", "FMI 2.0: co-simulation", platform_dir()?, fmi2::xml::fmi2_with(description, Interfaces::CoSimulation)),
+                ("-me", "FMI 2.0: Model Exchange", platform_dir()?, fmi2::xml::fmi2_with(description, Interfaces::ModelExchange)),
+                fmi3,
+            ]
+        } else {
+            vec![("", "FMI 2.0: co-simulation and Model Exchange, from one library", platform_dir()?, fmi2::xml::fmi2(description)), fmi3]
+        };
         for (suffix, interfaces, platform, model_description) in versions {
             let file = format!("{id}{suffix}.fmu");
             let docs = docs::index_html(description, interfaces, &file, &results)?;
@@ -95,9 +106,13 @@ fn platform_tuple() -> Result<&'static str, BoxError> {
 fn write_zip(path: &Path, entries: &[(String, Vec<u8>)]) -> Result<(), BoxError> {
     let file = std::fs::File::create(path)?;
     let mut zip = zip::ZipWriter::new(file);
-    let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    // The shared library is stored, not deflated: importers such as fmpy extract the
+    // archive on every load, and inflating 1.5 MB costs them more than the whole
+    // co-simulation run (see docs/benchmarks.md, "Loading the FMU").
+    let deflated = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    let stored = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
     for (name, bytes) in entries {
-        zip.start_file(name.as_str(), options)?;
+        zip.start_file(name.as_str(), if name.starts_with("binaries/") { stored } else { deflated })?;
         zip.write_all(bytes)?;
     }
     zip.finish()?;

@@ -72,6 +72,12 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     fn set_ode_state(&mut self, _x: &[f64], _p: f64) -> bool {
         false
     }
+    /// Typical magnitudes of the coordinates of [`Engine::ode`] under the edge stresses
+    /// `sigma` and `p` (each `> 0`), for an integrator's absolute tolerance; `None` where
+    /// there is no ODE.
+    fn ode_nominals(&self, _p: f64) -> Option<Vec<f64>> {
+        None
+    }
 }
 
 /// See [`Engine::ode`].

@@ -253,10 +253,31 @@ impl Engine for ModalEngine {
         })
     }
 
+    /// The velocity split follows from the state alone: `x = 0` is the uniform tension,
+    /// at rest under `sigma` (the cut), so `p_ref = sigma` and a different `p` meets the
+    /// closed-form instantaneous response; any other state has evolved, its unresolved
+    /// fast modes relaxed to the edge stress applied, so `p_ref = p` (as after a step).
     fn set_ode_state(&mut self, x: &[f64], p: f64) -> bool {
         self.coeffs.copy_from_slice(x);
-        self.p_ref = p;
+        self.p_ref = if x.iter().all(|c| *c == 0.0) { self.sigma } else { p };
         true
+    }
+
+    /// One nominal for every coordinate: the edge-stress scale `s = max(|sigma|, |p|)`
+    /// (in G; 1 when both are 0, where nothing moves). Each coordinate relaxes towards
+    /// `g_k = (sigma - p) X[0, k]` and the radius is `R - R1 = sum_k X[0, k] c_k`, of size
+    /// `s sum_k X[0, k]^2` (the static opening; about `s / 2` at `R_inf = 10`), so an
+    /// integrator's absolute tolerance `rtol s` on each coordinate bounds the radius error
+    /// per step by `rtol s sum_k |X[0, k]|`: relative to the opening it does not depend on
+    /// sigma. A nominal per mode (`s |X[0, k]|`) would hold the fast modes, which barely
+    /// reach the edge, to a tolerance the radius does not need, and costs an integrator
+    /// twice the steps at `lambda = 0`, where every mode starts at once.
+    fn ode_nominals(&self, p: f64) -> Option<Vec<f64>> {
+        let s = match self.sigma.abs().max(p.abs()) {
+            s if s > 0.0 => s,
+            _ => 1.0,
+        };
+        Some(vec![s; self.coeffs.len()])
     }
 }
 

@@ -319,6 +319,22 @@ impl Solver {
         validity::violation(self.edges(r_inf), r_inf)
     }
 
+    /// Mean edge velocity over the next `window` (in T) with `p` held,
+    /// `(R(t + window) - R(t)) / window`: finite where [`Solver::edge_velocity`] is not.
+    pub fn mean_edge_velocity(&self, p: f64, window: f64) -> Result<f64, SolverError> {
+        let mut ahead = self.clone();
+        ahead.advance(window, p)?;
+        Ok((ahead.wound_radius() - self.wound_radius()) / window)
+    }
+
+    /// Mean velocity at each radius over the next `window` (in T) with `p` held,
+    /// `(u(r, t + window) - u(r, t)) / window`.
+    pub fn mean_velocity(&self, p: f64, radii: &[f64], window: f64) -> Result<Vec<f64>, SolverError> {
+        let mut ahead = self.clone();
+        ahead.advance(window, p)?;
+        Ok(ahead.displacement(radii).iter().zip(self.displacement(radii)).map(|(b, a)| (b - a) / window).collect())
+    }
+
     /// Displacement `u(r)` at each requested radius (clamped into `[1, R_inf]`).
     pub fn displacement(&self, radii: &[f64]) -> Vec<f64> {
         self.engine.displacement(radii)
@@ -335,6 +351,12 @@ impl Solver {
     /// the modal one).
     pub fn ode(&self, p: f64) -> Option<Ode> {
         self.engine.ode(p)
+    }
+
+    /// Nominal magnitudes of the coordinates of [`Solver::ode`] under the edge stress `p`
+    /// (see the modal engine); `None` for the schemes without an ODE.
+    pub fn ode_nominals(&self, p: f64) -> Option<Vec<f64>> {
+        self.engine.ode_nominals(p)
     }
 
     /// Set the coordinates of [`Solver::ode`] at time `time`, the state having evolved

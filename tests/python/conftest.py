@@ -44,6 +44,12 @@ def fmu_path() -> str:
 
 
 @pytest.fixture(scope="session")
+def fmu_me_path() -> str:
+    """WoundOpening's FMI 2.0 Model Exchange archive."""
+    return _built("WoundOpening-me")
+
+
+@pytest.fixture(scope="session")
 def purse_path() -> str:
     return _built("PurseString")
 

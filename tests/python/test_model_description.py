@@ -75,7 +75,14 @@ def test_co_simulation_interface(fmu):
     name, path = fmu
     md = read_model_description(path)
     assert md.fmiVersion == "2.0"
-    assert md.modelExchange is not None and md.modelExchange.modelIdentifier == name, "both interfaces, one library"
+    if name == "WoundOpening":
+        # Co-simulation alone: its Model Exchange (217 states) is WoundOpening-me.fmu.
+        assert md.modelExchange is None and md.numberOfContinuousStates == 0 and len(md.modelVariables) == 13
+        me = read_model_description(path.replace(".fmu", "-me.fmu"))
+        assert me.coSimulation is None and me.modelExchange.modelIdentifier == name and me.guid == md.guid
+        assert [(v.name, v.valueReference) for v in me.modelVariables[:13]] == [(v.name, v.valueReference) for v in md.modelVariables]
+    else:
+        assert md.modelExchange is not None and md.modelExchange.modelIdentifier == name, "both interfaces, one library"
     cs = md.coSimulation
     assert cs is not None and cs.modelIdentifier == name
     assert cs.canHandleVariableCommunicationStepSize

@@ -170,3 +170,30 @@ impl Call {
         }
     }
 }
+
+/// FMI 2.0 names in free text (variable descriptions, log messages) and what an FMI 3.0
+/// importer calls instead; the first that matches wins, then any other `fmi2` prefix
+/// becomes `fmi3`.
+const FMI3_WORDS: [(&str, &str); 12] = [
+    ("fmi2SetRealInputDerivatives", "an intermediate update (requiredIntermediateVariables)"),
+    ("fmi2GetRealOutputDerivatives", "fmi3GetOutputDerivatives"),
+    ("fmi2SetupExperiment", "fmi3EnterInitializationMode"),
+    ("fmi2SetReal", "fmi3SetFloat64"),
+    ("fmi2GetReal", "fmi3GetFloat64"),
+    ("fmi2GetDerivatives", "fmi3GetContinuousStateDerivatives"),
+    ("fmi2NewDiscreteStates", "fmi3UpdateDiscreteStates"),
+    ("fmi2DeSerializeFMUstate", "fmi3DeserializeFMUState"),
+    ("fmi2SerializeFMUstate", "fmi3SerializeFMUState"),
+    ("fmi2GetFMUstate", "fmi3GetFMUState"),
+    ("fmi2SetFMUstate", "fmi3SetFMUState"),
+    ("fmi2FreeFMUstate", "fmi3FreeFMUState"),
+];
+
+/// `text` as an FMI 3.0 importer should read it ([`FMI3_WORDS`]).
+pub fn fmi3_text(text: &str) -> String {
+    let mut out = text.to_string();
+    for (fmi2, fmi3) in FMI3_WORDS {
+        out = out.replace(fmi2, fmi3);
+    }
+    out.replace("fmi2", "fmi3")
+}

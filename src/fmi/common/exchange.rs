@@ -85,8 +85,10 @@ impl Instance {
         }
     }
 
+    /// The model's nominals (after `prepare`: they follow the parameters and the inputs).
     pub fn get_nominals(&mut self, n: usize) -> Result<Vec<f64>, Rejected> {
         self.check_count(n, "nx")?;
+        self.prepare()?;
         Ok(self.model.nominals())
     }
 

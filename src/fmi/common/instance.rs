@@ -119,6 +119,12 @@ impl Instance {
     }
 
     /// The name of `call` in this instance's FMI version.
+    /// A message in the words of the instance's FMI version (FMI 3.0: its own function
+    /// names, [`super::call::fmi3_text`]).
+    fn in_own_words(&self, message: &str) -> String {
+        if self.fmi3 { super::call::fmi3_text(message) } else { message.to_string() }
+    }
+
     pub fn name_of(&self, call: Call) -> String {
         if self.fmi3 { call.fmi3_name().to_string() } else { call.fmi_name().to_string() }
     }
@@ -136,13 +142,13 @@ impl Instance {
 
     /// Log under an error category (always on).
     pub fn log_error(&self, message: &str) {
-        self.log.error(message);
+        self.log.error(&self.in_own_words(message));
     }
 
     /// A call this FMU cannot answer but that leaves it usable: log why (category
     /// `logStatusDiscard`) and return [`Status::Discard`] for the call to return.
     pub fn discard(&self, message: &str) -> Status {
-        self.log.discard(message);
+        self.log.discard(&self.in_own_words(message));
         Status::Discard
     }
 
@@ -175,9 +181,12 @@ impl Instance {
             self.log_error(&format!("{name}: {why}"));
             Status::Error
         })?;
+        if let Some(note) = self.model.take_note() {
+            self.log.note(&self.in_own_words(&format!("{name}: {note}")));
+        }
         match self.model.take_warning() {
             Some(warning) => {
-                self.log.warning(&format!("{name}: {warning}"));
+                self.log.warning(&self.in_own_words(&format!("{name}: {warning}")));
                 Ok((value, Status::Warning))
             }
             None => Ok((value, Status::Ok)),
@@ -287,10 +296,15 @@ impl Instance {
     fn set_values(&mut self, kind: Kind, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
         let d = self.description();
         let mut checked = Vec::with_capacity(vrs.len());
+        let mut states = Vec::new();
         for (&v, &x) in vrs.iter().zip(values) {
             self.settable_now(v)?;
             let var = match d.named(kind, v)? {
                 Named::Table(var) => var,
+                Named::State(k) if self.machine == Machine::ContinuousTimeMode => {
+                    states.push((k, x));
+                    continue;
+                }
                 state => {
                     let name = d.state_name(state);
                     return Err(format!(
@@ -312,7 +326,24 @@ impl Instance {
             checked.push((v, self.model.check(v, x)?));
         }
         checked.into_iter().for_each(|(v, x)| self.model.set(v, x));
-        Ok(())
+        self.set_some_states(&states)
+    }
+
+    /// Model Exchange: continuous states set one by one with `fmi2SetReal` /
+    /// `fmi3SetFloat64` in Continuous-Time Mode, where `fmi2SetContinuousStates` is allowed
+    /// (FMI 3.0 allows it there for continuous-time states, FMI 2.0's mathematical
+    /// description too; integrators use it for finite-difference Jacobians): the others
+    /// keep their values, and the model checks the new vector as with
+    /// `fmi2SetContinuousStates`.
+    fn set_some_states(&mut self, states: &[(usize, f64)]) -> Result<(), Rejected> {
+        if states.is_empty() {
+            return Ok(());
+        }
+        let mut x = self.get_continuous_states(self.description().state_count())?;
+        for &(k, v) in states {
+            x[k] = v;
+        }
+        self.set_continuous_states(&x)
     }
 
     /// `fmi2SetReal`.

@@ -54,6 +54,14 @@ impl Log {
         }
     }
 
+    /// Log under `logStatusWarning`, if on, with status OK: what the master should know
+    /// about a result that is nonetheless the answer to its call.
+    pub fn note(&self, message: &str) {
+        if self.on[WARNING] {
+            self.logger.log(Status::Ok, LOG_CATEGORIES[WARNING].0, message);
+        }
+    }
+
     /// Log under `logStatusDiscard`, if on.
     pub fn discard(&self, message: &str) {
         if self.on[DISCARD] {

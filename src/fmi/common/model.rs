@@ -297,6 +297,13 @@ pub trait FmuModel: Send {
     fn take_warning(&mut self) -> Option<String> {
         None
     }
+    /// A note about the current call: logged under `logStatusWarning` with status OK (the
+    /// call's status stays OK), for what the master should know about a result that is
+    /// the best answer the model has (a tolerance below the floor, an infinite value in
+    /// the model answered by a stated finite one). The default has none.
+    fn take_note(&mut self) -> Option<String> {
+        None
+    }
 
     /// `fmi2SetRealInputDerivatives`: validate `rate`, the first time derivative of the
     /// input `vr` per second of master time, which makes the input linear in time over the

@@ -168,12 +168,29 @@ fn state_variables(d: &Description, s: &States) -> String {
     x
 }
 
+/// The interfaces an FMI 2.0 `modelDescription.xml` declares.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Interfaces {
+    Both,
+    CoSimulation,
+    ModelExchange,
+}
+
 /// The FMI 2.0 `modelDescription.xml` of a model (Model Exchange and co-simulation).
 ///
 /// # Panics
 /// If a value reference is not the variable's position in the table (a table error that
 /// the unit tests of every model catch).
 pub fn fmi2(d: &Description) -> String {
+    fmi2_with(d, Interfaces::Both)
+}
+
+/// The FMI 2.0 `modelDescription.xml` declaring `which` interfaces. Co-simulation alone
+/// declares no continuous states (they are Model Exchange's): the table's variables keep
+/// their value references, so the library serves every archive with one GUID.
+pub fn fmi2_with(d: &Description, which: Interfaces) -> String {
+    let without_states = Description { states: None, ..*d };
+    let d = if which == Interfaces::CoSimulation { &without_states } else { d };
     for (i, v) in d.variables.iter().enumerate() {
         assert_eq!(v.value_reference as usize, i, "{}: value references must be table positions", v.name);
     }
@@ -188,19 +205,23 @@ pub fn fmi2(d: &Description) -> String {
         guid = escape(d.guid),
         summary = escape(d.summary),
     );
-    let _ = write!(x, "  <ModelExchange\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
-    for (flag, value) in ME_CAPABILITIES {
-        let _ = writeln!(x, "    {flag}=\"{value}\"");
+    if which != Interfaces::CoSimulation {
+        let _ = write!(x, "  <ModelExchange\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
+        for (flag, value) in ME_CAPABILITIES {
+            let _ = writeln!(x, "    {flag}=\"{value}\"");
+        }
+        x.truncate(x.len() - 1);
+        x.push_str("/>\n\n");
     }
-    x.truncate(x.len() - 1);
-    x.push_str("/>\n\n");
-    let _ = write!(x, "  <CoSimulation\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
-    x.push_str("    canBeInstantiatedOnlyOncePerProcess=\"false\"\n");
-    for (flag, value) in d.capabilities {
-        let _ = writeln!(x, "    {flag}=\"{value}\"");
+    if which != Interfaces::ModelExchange {
+        let _ = write!(x, "  <CoSimulation\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
+        x.push_str("    canBeInstantiatedOnlyOncePerProcess=\"false\"\n");
+        for (flag, value) in d.capabilities {
+            let _ = writeln!(x, "    {flag}=\"{value}\"");
+        }
+        x.truncate(x.len() - 1);
+        x.push_str("/>\n\n");
     }
-    x.truncate(x.len() - 1);
-    x.push_str("/>\n\n");
     x.push_str(&units_categories_experiment(d));
     x.push_str("\n  <ModelVariables>\n");
     for v in d.variables {

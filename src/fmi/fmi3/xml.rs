@@ -129,7 +129,8 @@ pub fn fmi3(d: &Description) -> String {
         let _ = writeln!(x, "    <InitialUnknown valueReference=\"{vr}\"/>");
     }
     x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
-    x
+    // The tables are shared with FMI 2.0: their descriptions name its functions.
+    crate::fmi::common::call::fmi3_text(&x)
 }
 
 /// The structural parameter, then each array with a `<Dimension>` naming it.

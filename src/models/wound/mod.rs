@@ -24,6 +24,12 @@ use std::cell::RefCell;
 use probes::Probes;
 use variables::{DESCRIPTION, MODEL_EXCHANGE_STATES, Vr};
 
+/// Where the edge velocity is infinite in the model (`lambda = 0`, at the cut and just
+/// after a change of the edge stress), the FMU answers the mean velocity over the next
+/// `MEAN_WINDOW` (in T) with the edge stress held: finite, accurate to the tolerance (the
+/// radius meets it from 0.01 T on), and said so in the log.
+pub const MEAN_WINDOW: f64 = 0.01;
+
 /// The instance's model data: what an FMU state saves (with the machine state and clock).
 #[derive(Debug, Clone)]
 pub struct WoundModel {
@@ -42,6 +48,8 @@ pub struct WoundModel {
     solver: Option<Solver>,
     /// A warning for the glue to log with the current call (see [`WoundModel::warn`]).
     warning: RefCell<Option<String>>,
+    /// A note for the glue to log with the current call, whose status stays OK.
+    note: RefCell<Option<String>>,
     /// Model Exchange: the states beyond the mesh's modes, as the integrator last set
     /// them. They are inert (derivative 0, no effect on any output): an integrator that
     /// perturbs them for a finite-difference Jacobian sees a zero column. Not serialized.
@@ -68,6 +76,7 @@ impl WoundModel {
             edge_stress_rate: 0.0,
             solver: None,
             warning: RefCell::new(None),
+            note: RefCell::new(None),
             spare_states: Vec::new(),
             probe_radii: Probes::default(),
         })
@@ -78,8 +87,24 @@ impl WoundModel {
         self.warning.replace(Some(text));
     }
 
-    /// What the solver just built does not meet: a tolerance below the floor, or a method
-    /// whose accuracy the tolerance does not control.
+    /// Report `text` with the current call, whose status stays OK (category
+    /// logStatusWarning).
+    fn note(&self, text: String) {
+        self.note.replace(Some(text));
+    }
+
+    /// A tolerance below the floor: the run delivers the floor's accuracy, which the
+    /// master is told in the log (a note: masters that hand their integrator's tolerance
+    /// to the FMU must still be able to run).
+    fn setup_note(&self) -> Option<String> {
+        let tol = self.effective_tolerance();
+        let delivered = delivered_accuracy(tol);
+        (self.scheme.method == 0 && delivered > tol).then(|| {
+            format!("tolerance {tol:e} is below what this FMU can deliver: results are accurate to {delivered:e} of the opening (rounding in the modal transform dominates below)")
+        })
+    }
+
+    /// A method whose accuracy the tolerance does not control.
     fn setup_warning(&self) -> Option<String> {
         let tol = self.effective_tolerance();
         if self.scheme.method != 0 {
@@ -89,10 +114,7 @@ impl WoundModel {
                 "{name} is for comparison: its error depends on grid_points and internal_step, not on the tolerance {tol:e} (the paper's scheme is off by 10-20 % of the opening at 101 points); method = 0 meets the tolerance"
             ));
         }
-        let delivered = delivered_accuracy(tol);
-        (delivered > tol).then(|| {
-            format!("tolerance {tol:e} is below what this FMU can deliver: results are accurate to {delivered:e} of the opening (rounding in the modal transform dominates below)")
-        })
+        None
     }
 
     /// The tolerance in force: the experiment's if defined, else the parameter.
@@ -212,6 +234,9 @@ impl FmuModel for WoundModel {
         if let Some(w) = self.setup_warning() {
             self.warn(w);
         }
+        if let Some(n) = self.setup_note() {
+            self.note(n);
+        }
         Ok(Some(text))
     }
 
@@ -233,10 +258,15 @@ impl FmuModel for WoundModel {
             Vr::EdgeVelocity => {
                 let (solver, p) = (self.solver(), self.p());
                 if !solver.edge_velocity_defined(p) {
-                    self.warn(format!(
-                        "edge_velocity is infinite in the model at lambda = 0 at the cut and just after a change of edge_stress (it decays like t^(-1/2)); the value returned is the mesh's ({} unknowns), not the model's",
-                        solver.unknowns()
+                    let Ok(mean) = solver.mean_edge_velocity(p, MEAN_WINDOW).map(|v| self.scales.velocity() * v) else {
+                        self.warn("edge_velocity is infinite in the model here and its mean over the next 0.01 T could not be computed: the value returned is the mesh's".into());
+                        return self.scales.velocity() * solver.edge_velocity(p);
+                    };
+                    self.note(format!(
+                        "edge_velocity is infinite in the model at lambda = 0 at the cut and just after a change of edge_stress (it decays like t^(-1/2)); the value returned, {mean:e} um/s, is the mean edge velocity over the next {:e} s ({MEAN_WINDOW} T) with edge_stress held",
+                        MEAN_WINDOW * self.scales.time
                     ));
+                    return mean;
                 }
                 self.scales.velocity() * solver.edge_velocity(p)
             }
@@ -310,6 +340,10 @@ impl FmuModel for WoundModel {
 
     fn take_warning(&mut self) -> Option<String> {
         self.warning.get_mut().take()
+    }
+
+    fn take_note(&mut self) -> Option<String> {
+        self.note.get_mut().take()
     }
 
     /// Only the modal scheme is an ODE in its coordinates (methods 1 to 3 are stepping
@@ -387,11 +421,23 @@ impl FmuModel for WoundModel {
             _ => {
                 let solver = self.solver();
                 if !solver.edge_velocity_defined(p) {
-                    self.warn("velocity is infinite in the model at the edge at lambda = 0 at the cut and just after a change of edge_stress; the values returned are the mesh's".into());
+                    self.note(format!("velocity is infinite in the model at the edge at lambda = 0 at the cut and just after a change of edge_stress; the values returned are the mean velocities over the next {MEAN_WINDOW} T with edge_stress held"));
+                    let mean = solver.mean_velocity(p, &radii, MEAN_WINDOW).map_err(|e| e.to_string())?;
+                    return Ok(mean.iter().map(|v| v * self.scales.velocity()).collect());
                 }
                 solver.velocity(p, &radii).iter().map(|v| v * self.scales.velocity()).collect()
             }
         })
+    }
+
+    /// Nominals of the modal coordinates ([`Solver::ode_nominals`]: the edge-stress scale
+    /// times each mode's edge value), read by integrators for their absolute tolerance;
+    /// the inert spare states take the largest.
+    fn nominals(&self) -> Vec<f64> {
+        let mut n = self.solver.as_ref().and_then(|s| s.ode_nominals(self.p())).unwrap_or_default();
+        let spare = n.iter().copied().fold(0.0, f64::max);
+        n.resize(MODEL_EXCHANGE_STATES, if spare > 0.0 { spare } else { 1.0 });
+        n
     }
 
     /// `c_k' = (g_k(p) - c_k) / nu_k` per second of master time (`/ T`).
@@ -440,6 +486,7 @@ impl FmuModel for WoundModel {
             edge_stress_rate: saved.edge_stress_rate,
             solver: None,
             warning: RefCell::new(None),
+            note: RefCell::new(None),
             spare_states: Vec::new(),
             probe_radii: self.probe_radii.clone(),
         };
