@@ -268,3 +268,14 @@ fn every_model_declares_the_units_it_uses() {
         assert_eq!(unique, declared, "{}: a unit declared twice", d.model_identifier);
     }
 }
+
+/// The value reference of every variable is its position in its model's table (what
+/// `variable_table!` guarantees, and what the glue's lookups and the XML's indices assume).
+#[test]
+fn value_references_are_table_positions() {
+    for (d, _) in &MODELS {
+        for (i, v) in d.variables.iter().enumerate() {
+            assert_eq!(v.value_reference as usize, i, "{}: {}", d.model_identifier, v.name);
+        }
+    }
+}

@@ -121,6 +121,45 @@ impl Variable {
     }
 }
 
+/// A model's variable table, declared once: each row names its value-reference constant
+/// and the [`Variable`] constructor with its arguments but the value reference, which is the
+/// row's position. Defines `enum Vr` (the constants; `Vr::ALL` in table order, `from_u32`,
+/// `var`) and `VARIABLES`, from which the glue, the XML and the documentation all read.
+///
+/// ```text
+/// variable_table! {
+///     Gain => parameter("gain", 1.0, "1", "What the gain is ..."),
+///     Output => output("y", "m", "What y is ..."),
+/// }
+/// ```
+#[macro_export]
+macro_rules! variable_table {
+    ($($vr:ident => $ctor:ident($name:literal $(, $arg:expr)* $(,)?)),+ $(,)?) => {
+        /// Value references, in the order of the table (index = value reference).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        #[repr(u32)]
+        pub enum Vr {
+            $($vr),+
+        }
+
+        impl Vr {
+            /// Every value reference, in table order.
+            pub const ALL: &'static [Vr] = &[$(Vr::$vr),+];
+
+            pub fn from_u32(vr: u32) -> Option<Self> {
+                Self::ALL.get(vr as usize).copied()
+            }
+
+            pub fn var(self) -> &'static Variable {
+                &VARIABLES[self as usize]
+            }
+        }
+
+        /// The variables, indexed by value reference.
+        pub const VARIABLES: &[Variable] = &[$(Variable::$ctor($name, Vr::$vr as u32 $(, $arg)*)),+];
+    };
+}
+
 /// A unit a model's variables declare (`<UnitDefinitions>`): its name, then `(attribute,
 /// value)` of its `<BaseUnit>` (none for "1").
 pub type Unit = (&'static str, &'static [(&'static str, &'static str)]);

@@ -11,41 +11,15 @@ pub const GUID: &str = "{3f9b2d71-6c4a-4e8f-b5d0-91a7e2c4f6b3}";
 /// `description` of `modelDescription.xml`.
 pub const SUMMARY: &str = "Actin purse-string closing a wound: line tension T_c(t) = T_max (1 - exp(-(t - t_delay) / t_assembly)) after a delay, giving the edge stress p = T_c / (h R) on a wound of radius R. Couples to WoundOpening (wound_radius to wound_radius, edge_stress to edge_stress).";
 
-/// Value references (index = value reference).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(u32)]
-pub enum Vr {
-    MaxTension = 0,
-    AssemblyTime = 1,
-    Delay = 2,
-    Thickness = 3,
-    WoundRadius = 4,
-    EdgeStress = 5,
-    LineTension = 6,
+crate::variable_table! {
+    MaxTension => parameter("T_max", 6500.0, "pN", "Saturated line tension of the actin cable (0 ..= 1e9)"),
+    AssemblyTime => parameter("t_assembly", 30.0, "s", "Assembly time constant t_a of the line tension (>= 0; 0 = a step)"),
+    Delay => parameter("t_delay", 20.0, "s", "Delay after the cut (the master's startTime) before assembly starts (>= 0)"),
+    Thickness => parameter("thickness", 5.0, "um", "Thickness h of the cell sheet (1e-6 ..= 1e6)"),
+    WoundRadius => input("wound_radius", 10.0, "um", "Wound radius R received from the tissue model (1e-6 ..= 1e9)"),
+    EdgeStress => output("edge_stress", "Pa", "Edge stress p = T_c / (h R) pulling the wound edge inwards"),
+    LineTension => output("line_tension", "pN", "Line tension T_c(t) = T_max (1 - exp(-(t - t_delay) / t_assembly)) after the delay"),
 }
-
-impl Vr {
-    pub const ALL: [Vr; 7] =
-        [Vr::MaxTension, Vr::AssemblyTime, Vr::Delay, Vr::Thickness, Vr::WoundRadius, Vr::EdgeStress, Vr::LineTension];
-
-    pub fn from_u32(vr: u32) -> Option<Self> {
-        Self::ALL.get(vr as usize).copied()
-    }
-
-    pub fn var(self) -> &'static Variable {
-        &VARIABLES[self as usize]
-    }
-}
-
-pub const VARIABLES: [Variable; 7] = [
-    Variable::parameter("T_max", 0, 6500.0, "pN", "Saturated line tension of the actin cable (0 ..= 1e9)"),
-    Variable::parameter("t_assembly", 1, 30.0, "s", "Assembly time constant t_a of the line tension (>= 0; 0 = a step)"),
-    Variable::parameter("t_delay", 2, 20.0, "s", "Delay after the cut (the master's startTime) before assembly starts (>= 0)"),
-    Variable::parameter("thickness", 3, 5.0, "um", "Thickness h of the cell sheet (1e-6 ..= 1e6)"),
-    Variable::input("wound_radius", 4, 10.0, "um", "Wound radius R received from the tissue model (1e-6 ..= 1e9)"),
-    Variable::output("edge_stress", 5, "Pa", "Edge stress p = T_c / (h R) pulling the wound edge inwards"),
-    Variable::output("line_tension", 6, "pN", "Line tension T_c(t) = T_max (1 - exp(-(t - t_delay) / t_assembly)) after the delay"),
-];
 
 /// The units of the variables (SI base units for `<UnitDefinitions>`).
 pub const UNITS: [Unit; 4] = [
@@ -61,7 +35,7 @@ pub static DESCRIPTION: Description = Description {
     guid: GUID,
     summary: SUMMARY,
     about: include_str!("about.html"),
-    variables: &VARIABLES,
+    variables: VARIABLES,
     // p = T_c / (h R) is nonlinear in R (`dependent`); T_c depends on time only.
     outputs: &[(Vr::EdgeStress as u32, &[(Vr::WoundRadius as u32, "dependent")]), (Vr::LineTension as u32, &[])],
     initial_unknowns: &[

@@ -13,66 +13,21 @@ pub const GUID: &str = "{8c4e1f0a-3b7d-4e52-9a61-2f0d5c7b9e14}";
 /// `description` of `modelDescription.xml`.
 pub const SUMMARY: &str = "Opening of a circular wound in a thin incompressible Kelvin-Voigt tissue with substrate friction. Lengths scale with R0 (wound radius), stresses with G (shear modulus), time with T = zeta R0^2 / (4 G); with R0 = 1 um, T = 1 s and G = 1 Pa (the defaults) values are dimensionless.";
 
-/// Value references, in the order of the table (index = value reference).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(u32)]
-pub enum Vr {
-    Lambda = 0,
-    Sigma = 1,
-    RInf = 2,
-    EdgeStress = 3,
-    WoundRadius = 4,
-    EdgeVelocity = 5,
-    Tolerance = 6,
-    Method = 7,
-    GridPoints = 8,
-    InternalStep = 9,
-    LengthScale = 10,
-    TimeScale = 11,
-    StressScale = 12,
+crate::variable_table! {
+    Lambda => parameter("lambda", 1.0, "1", "Viscous length over the cut radius, 2 sqrt(eta/zeta)/R0: 0 or in [1e-150, 1e6]"),
+    Sigma => parameter("sigma", 1.0, "1", "Homeostatic tension over shear modulus, in (-6, 1e6] (R1 = R0 (1 + sigma/6) > 0)"),
+    RInf => parameter("R_inf", 10.0, "1", "Outer radius of the tissue over the cut radius, in [1.001, 1e6]"),
+    EdgeStress => input("edge_stress", 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step or, with fmi2SetRealInputDerivatives, linear in time (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
+    WoundRadius => output("wound_radius", "um", "Wound radius R0 (1 + u(1, t)) [um]; R1 = R0 (1 + sigma/6) just after the cut"),
+    EdgeVelocity => output("edge_velocity", "um/s", "Edge velocity dR/dt [um/s] under the current edge_stress; where it is infinite (lambda = 0, at the cut and just after a change of edge_stress) the mean over the next 0.01 T, as the log says"),
+    Tolerance => parameter("tolerance", 1e-10, "1", "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh; below 1e-11 the log (status OK) names the 1e-11 delivered"),
+    Method => integer("method", 0, (0, 3), "0: spectral elements, exact in time (mesh from the tolerance); 1: TR-BDF2 on that mesh; 2: the paper's scheme; 3: explicit scheme"),
+    GridPoints => integer("grid_points", 101, (3, 100000), "Uniform grid points of methods 2 and 3"),
+    InternalStep => parameter("internal_step", 1e-3, "s", "Largest internal time step [s] of methods 1 to 3"),
+    LengthScale => parameter("R0", 1.0, "um", "Length scale: the radius of the cut (1e-12 ..= 1e12; 1 keeps lengths dimensionless)"),
+    TimeScale => parameter("T", 1.0, "s", "Time scale T = zeta R0^2 / (4 G) (1e-12 ..= 1e12; 1 keeps time dimensionless)"),
+    StressScale => parameter("G", 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
 }
-
-impl Vr {
-    pub const ALL: [Vr; 13] = [
-        Vr::Lambda,
-        Vr::Sigma,
-        Vr::RInf,
-        Vr::EdgeStress,
-        Vr::WoundRadius,
-        Vr::EdgeVelocity,
-        Vr::Tolerance,
-        Vr::Method,
-        Vr::GridPoints,
-        Vr::InternalStep,
-        Vr::LengthScale,
-        Vr::TimeScale,
-        Vr::StressScale,
-    ];
-
-    pub fn from_u32(vr: u32) -> Option<Self> {
-        Self::ALL.get(vr as usize).copied()
-    }
-
-    pub fn var(self) -> &'static Variable {
-        &VARIABLES[self as usize]
-    }
-}
-
-pub const VARIABLES: [Variable; 13] = [
-    Variable::parameter("lambda", 0, 1.0, "1", "Viscous length over the cut radius, 2 sqrt(eta/zeta)/R0: 0 or in [1e-150, 1e6]"),
-    Variable::parameter("sigma", 1, 1.0, "1", "Homeostatic tension over shear modulus, in (-6, 1e6] (R1 = R0 (1 + sigma/6) > 0)"),
-    Variable::parameter("R_inf", 2, 10.0, "1", "Outer radius of the tissue over the cut radius, in [1.001, 1e6]"),
-    Variable::input("edge_stress", 3, 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step or, with fmi2SetRealInputDerivatives, linear in time (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
-    Variable::output("wound_radius", 4, "um", "Wound radius R0 (1 + u(1, t)) [um]; R1 = R0 (1 + sigma/6) just after the cut"),
-    Variable::output("edge_velocity", 5, "um/s", "Edge velocity dR/dt [um/s] under the current edge_stress; where it is infinite (lambda = 0, at the cut and just after a change of edge_stress) the mean over the next 0.01 T, as the log says"),
-    Variable::parameter("tolerance", 6, 1e-10, "1", "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh; below 1e-11 the log (status OK) names the 1e-11 delivered"),
-    Variable::integer("method", 7, 0, (0, 3), "0: spectral elements, exact in time (mesh from the tolerance); 1: TR-BDF2 on that mesh; 2: the paper's scheme; 3: explicit scheme"),
-    Variable::integer("grid_points", 8, 101, (3, 100000), "Uniform grid points of methods 2 and 3"),
-    Variable::parameter("internal_step", 9, 1e-3, "s", "Largest internal time step [s] of methods 1 to 3"),
-    Variable::parameter("R0", 10, 1.0, "um", "Length scale: the radius of the cut (1e-12 ..= 1e12; 1 keeps lengths dimensionless)"),
-    Variable::parameter("T", 11, 1.0, "s", "Time scale T = zeta R0^2 / (4 G) (1e-12 ..= 1e12; 1 keeps time dimensionless)"),
-    Variable::parameter("G", 12, 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
-];
 
 /// Continuous states of Model Exchange: the modal coordinates of the spectral-element
 /// mesh. The modes are uncoupled (`c_k' = (g_k(p) - c_k) / nu_k`), so the ODE is the
@@ -115,7 +70,7 @@ pub static DESCRIPTION: Description = Description {
     guid: GUID,
     summary: SUMMARY,
     about: include_str!("about.html"),
-    variables: &VARIABLES,
+    variables: VARIABLES,
     // The edge velocity is linear in the edge stress with a factor set by fixed
     // parameters (`fixed`); the radius has no direct dependence on it.
     outputs: &[(Vr::WoundRadius as u32, &[]), (Vr::EdgeVelocity as u32, &[(Vr::EdgeStress as u32, "fixed")])],
