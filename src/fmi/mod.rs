@@ -10,6 +10,7 @@
 //! fmi3/     FMI 3.0: the same
 //! frame.rs  what every exported function of both versions runs in: the instance table,
 //!           the instance's lock, the panic boundary, C strings and the importer's logger
+//! shims.rs  the bodies of the functions whose C signatures both versions share
 //! ```
 //!
 //! One shared object serves every model and version: `fmi2Instantiate` and
@@ -21,6 +22,7 @@ pub mod common;
 pub mod fmi2;
 pub mod fmi3;
 pub mod frame;
+pub mod shims;
 
 use crate::models::MODELS;
 use common::model::FmuModel;

@@ -5,6 +5,14 @@
 
 use crate::fmi::common::machine::{Interface, Machine};
 
+/// The FMI version an instance was made through: its rules where they differ, and the
+/// names its importer knows the functions by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Version {
+    Fmi2,
+    Fmi3,
+}
+
 /// The FMI calls, for the state-machine check and the call log.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Call {
@@ -62,7 +70,27 @@ impl Call {
         }
     }
 
-    /// States in which FMI 2.0 allows the call.
+    /// States in which `version` allows the call: FMI 2.0's table ([`Call::allowed`]), and
+    /// where FMI 3.0 differs, its rules.
+    pub fn allowed_in(self, m: Machine, version: Version) -> bool {
+        match version {
+            Version::Fmi2 => self.allowed(m),
+            // FMI 3.0, section 2.3.2: fmi3Get* also reads start values in Instantiated and
+            // Configuration Mode (the arrays refuse outputs and states there).
+            Version::Fmi3 => self.allowed(m) || (self == Call::Get && matches!(m, Machine::Instantiated | Machine::ConfigurationMode)),
+        }
+    }
+
+    /// The call's name in `version`.
+    pub fn name(self, version: Version) -> String {
+        match version {
+            Version::Fmi2 => self.fmi_name().to_string(),
+            Version::Fmi3 => self.fmi3_name(),
+        }
+    }
+
+    /// States in which FMI 2.0 allows the call (FMI 3.0's extra states included: an FMI 2.0
+    /// instance never enters them).
     pub fn allowed(self, m: Machine) -> bool {
         use Machine::*;
         if m == IntermediateUpdate {

@@ -8,7 +8,7 @@
 //! [`Status::Error`], and changes nothing: every check runs before any mutation, so the
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
-pub use crate::fmi::common::call::Call;
+pub use crate::fmi::common::call::{Call, Version};
 pub use crate::fmi::common::log::{Logger, Status};
 pub use crate::fmi::common::model::Rejected;
 use crate::fmi::common::log::Log;
@@ -43,8 +43,8 @@ pub struct Instance {
     name: String,
     log: Log,
     pub(in crate::fmi) interface: Interface,
-    /// FMI 3.0 (its function names in messages), else FMI 2.0.
-    fmi3: bool,
+    /// The FMI version it was made through: its rules and its function names in messages.
+    version: Version,
     pub(in crate::fmi) machine: Machine,
     pub(in crate::fmi) clock: Clock,
     pub(in crate::fmi) model: Box<dyn FmuModel>,
@@ -79,7 +79,7 @@ impl Instance {
             name: name.to_owned(),
             log: Log::new(logger, logging_on),
             interface,
-            fmi3: false,
+            version: Version::Fmi2,
             machine: Machine::Instantiated,
             clock: FRESH_CLOCK,
             model: fresh(),
@@ -109,8 +109,12 @@ impl Instance {
     /// An instance made by the FMI 3.0 functions: the same machine and model, its calls
     /// named `fmi3*` in messages.
     pub fn fmi3(mut self) -> Self {
-        self.fmi3 = true;
+        self.version = Version::Fmi3;
         self
+    }
+
+    pub fn version(&self) -> Version {
+        self.version
     }
 
     /// Whether the FMU has no computed values yet: only start values can be read.
@@ -122,11 +126,14 @@ impl Instance {
     /// A message in the words of the instance's FMI version (FMI 3.0: its own function
     /// names, [`super::call::fmi3_text`]).
     fn in_own_words(&self, message: &str) -> String {
-        if self.fmi3 { super::call::fmi3_text(message) } else { message.to_string() }
+        match self.version {
+            Version::Fmi2 => message.to_string(),
+            Version::Fmi3 => super::call::fmi3_text(message),
+        }
     }
 
     pub fn name_of(&self, call: Call) -> String {
-        if self.fmi3 { call.fmi3_name().to_string() } else { call.fmi_name().to_string() }
+        call.name(self.version)
     }
 
     pub fn description(&self) -> &'static Description {
@@ -170,10 +177,7 @@ impl Instance {
             self.log_error(&format!("{name} is a {only:?} function but this instance is {:?}", self.interface));
             return Err(Status::Error);
         }
-        // FMI 3.0 (section 2.3.2) also lets fmi3Get* read start values in Instantiated and
-        // Configuration Mode (fmi3::arrays refuses outputs and states there).
-        let start_values = self.fmi3 && call == Call::Get && matches!(self.machine, Machine::Instantiated | Machine::ConfigurationMode);
-        if !(call.allowed(self.machine) || start_values) {
+        if !call.allowed_in(self.machine, self.version) {
             self.log_error(&format!("{name} is not allowed in state {:?}", self.machine));
             return Err(Status::Error);
         }
@@ -520,7 +524,7 @@ impl Instance {
         let (machine, clock, payload) = serialized::decode(self.description().model_identifier, bytes)?;
         // Intermediate Update Mode exists only inside an fmi3DoStep (no state is saved there),
         // Configuration Mode only in FMI 3.0.
-        let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && !self.fmi3);
+        let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && self.version == Version::Fmi2);
         if transient || !machine.belongs_to(self.interface) {
             return Err(format!("serialized FMU state is in state {machine:?}, which this instance ({:?}) is never saved in", self.interface));
         }

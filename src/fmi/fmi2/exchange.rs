@@ -2,7 +2,8 @@
 //! [`crate::fmi::common::exchange`], framed like every other function by [`with_instance`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use crate::fmi::frame::{slice, slice_mut, with_instance};
+use crate::fmi::frame::with_instance;
+use crate::fmi::shims;
 use crate::fmi::common::instance::{Call, Instance, Status};
 use crate::fmi::fmi2::types::*;
 
@@ -38,9 +39,7 @@ pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: 
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
-    with_instance(c, Call::EnterContinuousTimeMode, || "fmi2EnterContinuousTimeMode".into(), |i| {
-        i.enter_continuous_time_mode().map(|_| Status::Ok)
-    })
+    shims::transition(c, Call::EnterContinuousTimeMode, "fmi2EnterContinuousTimeMode", Instance::enter_continuous_time_mode)
 }
 
 #[unsafe(no_mangle)]
@@ -63,57 +62,32 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, time: fmi2Real) -> fmi2Status {
-    with_instance(c, Call::SetTime, || format!("fmi2SetTime(time={time})"), |i| i.set_time(time).map(|_| Status::Ok))
+    shims::set_time(c, time, "fmi2SetTime")
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetContinuousStates(c: fmi2Component, x: *const fmi2Real, nx: usize) -> fmi2Status {
-    unsafe {
-        with_instance(c, Call::SetContinuousStates, || format!("fmi2SetContinuousStates(nx={nx})"), |i| {
-            i.set_continuous_states(slice(x, nx, "x")?).map(|_| Status::Ok)
-        })
-    }
-}
-
-/// A getter of `n` values into `out`: `fmi2GetDerivatives`, `fmi2GetContinuousStates`,
-/// `fmi2GetNominalsOfContinuousStates`.
-///
-/// # Safety
-/// `out` is NULL or points to `n` writable values.
-unsafe fn get_vector(
-    c: fmi2Component,
-    call: Call,
-    out: *mut fmi2Real,
-    n: usize,
-    method: fn(&mut Instance, usize) -> Result<Vec<f64>, String>,
-) -> fmi2Status {
-    unsafe {
-        with_instance(c, call, || format!("{}(n={n})", call.fmi_name()), |i| {
-            let values = method(i, n)?;
-            slice_mut(out, n, "the output array")?.copy_from_slice(&values);
-            OK
-        })
-    }
+    unsafe { shims::set_continuous_states(c, x, nx, "fmi2SetContinuousStates") }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, derivatives: *mut fmi2Real, nx: usize) -> fmi2Status {
-    unsafe { get_vector(c, Call::GetDerivatives, derivatives, nx, Instance::get_derivatives) }
+    unsafe { shims::get_vector(c, Call::GetDerivatives, derivatives, nx, Instance::get_derivatives, "fmi2GetDerivatives") }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetEventIndicators(c: fmi2Component, _eventIndicators: *mut fmi2Real, ni: usize) -> fmi2Status {
-    with_instance(c, Call::GetEventIndicators, || format!("fmi2GetEventIndicators(ni={ni})"), |i| {
-        i.get_event_indicators(ni).map(|_| Status::Ok)
-    })
+    shims::get_event_indicators(c, ni, "fmi2GetEventIndicators")
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2Real, nx: usize) -> fmi2Status {
-    unsafe { get_vector(c, Call::GetContinuousStates, x, nx, Instance::get_continuous_states) }
+    unsafe { shims::get_vector(c, Call::GetContinuousStates, x, nx, Instance::get_continuous_states, "fmi2GetContinuousStates") }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, x_nominal: *mut fmi2Real, nx: usize) -> fmi2Status {
-    unsafe { get_vector(c, Call::GetNominalsOfContinuousStates, x_nominal, nx, Instance::get_nominals) }
+    unsafe {
+        shims::get_vector(c, Call::GetNominalsOfContinuousStates, x_nominal, nx, Instance::get_nominals, "fmi2GetNominalsOfContinuousStates")
+    }
 }

@@ -4,6 +4,7 @@
 //! instance, by [`guard`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
+use crate::fmi::shims::{self, Names};
 use crate::fmi::frame::{CallbackLogger, register, slice, slice_mut, text, unregister, with_instance};
 use crate::boundary::guard;
 use crate::fmi::common::instance::{Call, Instance, Interface, Status};
@@ -22,10 +23,6 @@ fn no_variables(kind: &str, vr: &[fmi2ValueReference]) -> Result<Status, String>
 
 fn not_supported(what: &str) -> Result<Status, String> {
     Err(format!("{what} is not supported by this FMU (see the capability flags of modelDescription.xml)"))
-}
-
-fn handle(state: fmi2FMUstate) -> Option<u64> {
-    (!state.is_null()).then_some(state as u64)
 }
 
 #[unsafe(no_mangle)]
@@ -212,75 +209,38 @@ pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueRef
     unsafe { no_such_variables(c, Call::Set, "fmi2SetString", "String", vr, nvr) }
 }
 
+fn names(function: &'static str) -> Names {
+    Names { function, state: "FMUstate" }
+}
+
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    unsafe {
-        with_instance(c, Call::GetFmuState, || "fmi2GetFMUstate".into(), |i| {
-            let slot = FMUstate.as_mut().ok_or("FMUstate is NULL")?;
-            *slot = i.get_fmu_state(handle(*slot))? as fmi2FMUstate;
-            OK
-        })
-    }
+    unsafe { shims::get_fmu_state(c, FMUstate, names("fmi2GetFMUstate")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
-    with_instance(c, Call::SetFmuState, || "fmi2SetFMUstate".into(), |i| {
-        i.set_fmu_state(handle(FMUstate).ok_or("FMUstate is NULL")?).map(|_| Status::Ok)
-    })
+    unsafe { shims::set_fmu_state(c, FMUstate, names("fmi2SetFMUstate")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    unsafe {
-        with_instance(c, Call::FreeFmuState, || "fmi2FreeFMUstate".into(), |i| {
-            let slot = FMUstate.as_mut().ok_or("FMUstate is NULL")?;
-            // Freeing NULL is a no-op, as for free().
-            if let Some(h) = handle(*slot) {
-                i.free_fmu_state(h)?;
-                *slot = std::ptr::null_mut();
-            }
-            OK
-        })
-    }
+    unsafe { shims::free_fmu_state(c, FMUstate, false, names("fmi2FreeFMUstate")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: fmi2FMUstate, size: *mut usize) -> fmi2Status {
-    unsafe {
-        with_instance(c, Call::SerializeFmuState, || "fmi2SerializedFMUstateSize".into(), |i| {
-            let out = size.as_mut().ok_or("size is NULL")?;
-            *out = i.serialize_fmu_state(handle(FMUstate).ok_or("FMUstate is NULL")?)?.len();
-            OK
-        })
-    }
+    unsafe { shims::serialized_fmu_state_size(c, FMUstate, size, names("fmi2SerializedFMUstateSize")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate, serializedState: *mut fmi2Byte, size: usize) -> fmi2Status {
-    unsafe {
-        with_instance(c, Call::SerializeFmuState, || format!("fmi2SerializeFMUstate(size={size})"), |i| {
-            let bytes = i.serialize_fmu_state(handle(FMUstate).ok_or("FMUstate is NULL")?)?;
-            if size < bytes.len() {
-                return Err(format!("buffer of {size} bytes is too small: the state needs {}", bytes.len()));
-            }
-            let out = slice_mut(serializedState as *mut u8, bytes.len(), "serializedState")?;
-            out.copy_from_slice(&bytes);
-            OK
-        })
-    }
+    unsafe { shims::serialize_fmu_state(c, FMUstate, serializedState as *mut u8, size, names("fmi2SerializeFMUstate")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2DeSerializeFMUstate(c: fmi2Component, serializedState: *const fmi2Byte, size: usize, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    unsafe {
-        with_instance(c, Call::DeSerializeFmuState, || format!("fmi2DeSerializeFMUstate(size={size})"), |i| {
-            let slot = FMUstate.as_mut().ok_or("FMUstate is NULL")?;
-            let bytes = slice(serializedState as *const u8, size, "serializedState")?;
-            *slot = i.deserialize_fmu_state(bytes, handle(*slot))? as fmi2FMUstate;
-            OK
-        })
-    }
+    unsafe { shims::deserialize_fmu_state(c, serializedState as *const u8, size, FMUstate, names("fmi2DeSerializeFMUstate")) }
 }
 
 #[unsafe(no_mangle)]

@@ -1,14 +1,14 @@
 //! The exported FMI 3.0 Model Exchange functions. Where the C signature is FMI 2.0's (an
-//! instance handle, reals and counts), the shim is the FMI 2.0 one of
-//! [`crate::fmi::fmi2::exchange`] (the instance names its calls `fmi3*` in messages); the others
-//! (booleans are one byte in FMI 3.0, `fmi3UpdateDiscreteStates` has out-arguments instead
-//! of `fmi2EventInfo`, the counts) are written here.
+//! instance handle, reals and counts), the body is the one both versions share
+//! ([`crate::fmi::shims`]) under FMI 3.0's name; the others (booleans are one byte in FMI
+//! 3.0, `fmi3UpdateDiscreteStates` has out-arguments instead of `fmi2EventInfo`, the
+//! counts) are written here.
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
 use crate::fmi::common::exchange::EventInfo;
-use crate::fmi::fmi2::exchange as fmi2;
+use crate::fmi::shims;
 use crate::fmi::frame::with_instance;
-use crate::fmi::common::instance::{Call, Status};
+use crate::fmi::common::instance::{Call, Instance, Status};
 use crate::fmi::fmi3::types::*;
 
 fn flag(b: bool) -> fmi3Boolean {
@@ -17,37 +17,39 @@ fn flag(b: bool) -> fmi3Boolean {
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3EnterContinuousTimeMode(instance: fmi3Instance) -> fmi3Status {
-    unsafe { fmi2::fmi2EnterContinuousTimeMode(instance) }
+    shims::transition(instance, Call::EnterContinuousTimeMode, "fmi3EnterContinuousTimeMode", Instance::enter_continuous_time_mode)
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3SetTime(instance: fmi3Instance, time: fmi3Float64) -> fmi3Status {
-    unsafe { fmi2::fmi2SetTime(instance, time) }
+    shims::set_time(instance, time, "fmi3SetTime")
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3SetContinuousStates(instance: fmi3Instance, continuousStates: *const fmi3Float64, nContinuousStates: usize) -> fmi3Status {
-    unsafe { fmi2::fmi2SetContinuousStates(instance, continuousStates, nContinuousStates) }
+    unsafe { shims::set_continuous_states(instance, continuousStates, nContinuousStates, "fmi3SetContinuousStates") }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetContinuousStateDerivatives(instance: fmi3Instance, derivatives: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
-    unsafe { fmi2::fmi2GetDerivatives(instance, derivatives, nContinuousStates) }
+    unsafe { shims::get_vector(instance, Call::GetDerivatives, derivatives, nContinuousStates, Instance::get_derivatives, "fmi3GetContinuousStateDerivatives") }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetEventIndicators(instance: fmi3Instance, eventIndicators: *mut fmi3Float64, nEventIndicators: usize) -> fmi3Status {
-    unsafe { fmi2::fmi2GetEventIndicators(instance, eventIndicators, nEventIndicators) }
+pub unsafe extern "C" fn fmi3GetEventIndicators(instance: fmi3Instance, _eventIndicators: *mut fmi3Float64, nEventIndicators: usize) -> fmi3Status {
+    shims::get_event_indicators(instance, nEventIndicators, "fmi3GetEventIndicators")
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetContinuousStates(instance: fmi3Instance, continuousStates: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
-    unsafe { fmi2::fmi2GetContinuousStates(instance, continuousStates, nContinuousStates) }
+    unsafe { shims::get_vector(instance, Call::GetContinuousStates, continuousStates, nContinuousStates, Instance::get_continuous_states, "fmi3GetContinuousStates") }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(instance: fmi3Instance, nominals: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
-    unsafe { fmi2::fmi2GetNominalsOfContinuousStates(instance, nominals, nContinuousStates) }
+    unsafe {
+        shims::get_vector(instance, Call::GetNominalsOfContinuousStates, nominals, nContinuousStates, Instance::get_nominals, "fmi3GetNominalsOfContinuousStates")
+    }
 }
 
 #[unsafe(no_mangle)]

@@ -8,7 +8,7 @@
 //! the other variable types) are in [`crate::fmi::fmi3::unsupported`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use crate::fmi::fmi2::functions as fmi2;
+use crate::fmi::shims::{self, Names};
 use crate::fmi::frame::{register, slice, slice_mut, text, unregister, with_instance};
 use crate::fmi::common::instance::{Call, Instance, Interface, Logger, Status};
 use crate::fmi::fmi3::types::*;
@@ -301,40 +301,41 @@ pub unsafe extern "C" fn fmi3SetInt32(instance: fmi3Instance, valueReferences: *
     }
 }
 
-// FMU states: the FMI 2.0 shims (same handles, same checks), but for fmi3FreeFMUState,
-// which ignores a NULL pointer where fmi2FreeFMUstate refuses it.
+// FMU states: the same bodies as FMI 2.0 (same handles, same checks), under FMI 3.0's
+// names; fmi3FreeFMUState also accepts a NULL pointer.
+
+fn names(function: &'static str) -> Names {
+    Names { function, state: "FMUState" }
+}
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetFMUState(instance: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
-    unsafe { fmi2::fmi2GetFMUstate(instance, FMUState) }
+    unsafe { shims::get_fmu_state(instance, FMUState, names("fmi3GetFMUState")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3SetFMUState(instance: fmi3Instance, FMUState: fmi3FMUState) -> fmi3Status {
-    unsafe { fmi2::fmi2SetFMUstate(instance, FMUState) }
+    unsafe { shims::set_fmu_state(instance, FMUState, names("fmi3SetFMUState")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3FreeFMUState(instance: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
-    if FMUState.is_null() {
-        return with_instance(instance, Call::FreeFmuState, || "fmi3FreeFMUState(NULL)".into(), |_| OK);
-    }
-    unsafe { fmi2::fmi2FreeFMUstate(instance, FMUState) }
+    unsafe { shims::free_fmu_state(instance, FMUState, true, names("fmi3FreeFMUState")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3SerializedFMUStateSize(instance: fmi3Instance, FMUState: fmi3FMUState, size: *mut usize) -> fmi3Status {
-    unsafe { fmi2::fmi2SerializedFMUstateSize(instance, FMUState, size) }
+    unsafe { shims::serialized_fmu_state_size(instance, FMUState, size, names("fmi3SerializedFMUStateSize")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3SerializeFMUState(instance: fmi3Instance, FMUState: fmi3FMUState, serializedState: *mut fmi3Byte, size: usize) -> fmi3Status {
-    unsafe { fmi2::fmi2SerializeFMUstate(instance, FMUState, serializedState as *mut c_char, size) }
+    unsafe { shims::serialize_fmu_state(instance, FMUState, serializedState, size, names("fmi3SerializeFMUState")) }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3DeserializeFMUState(instance: fmi3Instance, serializedState: *const fmi3Byte, size: usize, FMUState: *mut fmi3FMUState) -> fmi3Status {
-    unsafe { fmi2::fmi2DeSerializeFMUstate(instance, serializedState as *const c_char, size, FMUState) }
+    unsafe { shims::deserialize_fmu_state(instance, serializedState, size, FMUState, names("fmi3DeserializeFMUState")) }
 }
 
 #[unsafe(no_mangle)]
