@@ -21,7 +21,6 @@ static DESCRIPTION: Description = Description {
     variables: &VARIABLES,
     outputs: &[(0, &[])],
     initial_unknowns: &[],
-    capabilities: &[],
     units: &[("1", &[])],
     default_experiment: Experiment { start: 0.0, stop: 1.0, step: 0.1, tolerance: 1e-10 },
     states: None,

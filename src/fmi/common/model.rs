@@ -1,5 +1,5 @@
 //! What the shared FMI glue knows of a model: its description (identity, variables,
-//! dependencies, capabilities, the XML) and the [`FmuModel`] trait. The glue
+//! dependencies, the XML) and the [`FmuModel`] trait. The glue
 //! ([`crate::fmi::common::instance`], [`crate::fmi::fmi2::functions`]) runs the state machine, the clock, logging and
 //! FMU states for any model; a model sees plain values only.
 
@@ -9,18 +9,6 @@ pub const LOG_CATEGORIES: [(&str, &str); 4] = [
     ("logStatusWarning", "Warnings"),
     ("logStatusDiscard", "Discarded calls: status information this FMU does not provide"),
     ("logCalls", "Every FMI call with its arguments, and solver set-up details"),
-];
-
-/// Flags of `<CoSimulation>`: what the shared glue provides, the same for every model.
-pub const CAPABILITIES: [(&str, &str); 8] = [
-    ("canHandleVariableCommunicationStepSize", "true"),
-    ("canGetAndSetFMUstate", "true"),
-    ("canSerializeFMUstate", "true"),
-    ("providesDirectionalDerivative", "true"),
-    ("canInterpolateInputs", "true"),
-    ("maxOutputDerivativeOrder", "0"),
-    ("canRunAsynchronuously", "false"),
-    ("canNotUseMemoryManagementFunctions", "true"),
 ];
 
 /// A refused call or value: the reason, for the logger.
@@ -193,8 +181,6 @@ pub struct Description {
     pub outputs: &'static [(u32, &'static [(u32, &'static str)])],
     /// `ModelStructure/InitialUnknowns`: value references of the unknown and its knowns.
     pub initial_unknowns: &'static [(u32, &'static [u32])],
-    /// Flags of `<CoSimulation>`.
-    pub capabilities: &'static [(&'static str, &'static str)],
     pub default_experiment: Experiment,
     /// The units its variables use, in the order of `<UnitDefinitions>`.
     pub units: &'static [Unit],

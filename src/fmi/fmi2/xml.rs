@@ -123,7 +123,21 @@ impl Structure {
 
 /// Flags of `<ModelExchange>`: no events, so `fmi2CompletedIntegratorStep` is not needed;
 /// FMU states as in co-simulation; no directional derivatives of the derivatives.
-const ME_CAPABILITIES: [(&str, &str); 6] = [
+/// Flags of `<CoSimulation>`: what the glue provides, the same for every model.
+pub const CO_SIMULATION_FLAGS: [(&str, &str); 9] = [
+    ("canBeInstantiatedOnlyOncePerProcess", "false"),
+    ("canHandleVariableCommunicationStepSize", "true"),
+    ("canGetAndSetFMUstate", "true"),
+    ("canSerializeFMUstate", "true"),
+    ("providesDirectionalDerivative", "true"),
+    ("canInterpolateInputs", "true"),
+    ("maxOutputDerivativeOrder", "0"),
+    ("canRunAsynchronuously", "false"),
+    ("canNotUseMemoryManagementFunctions", "true"),
+];
+
+/// Flags of `<ModelExchange>`: what the glue provides, the same for every model.
+pub const MODEL_EXCHANGE_FLAGS: [(&str, &str); 6] = [
     ("completedIntegratorStepNotNeeded", "true"),
     ("canBeInstantiatedOnlyOncePerProcess", "false"),
     ("canNotUseMemoryManagementFunctions", "true"),
@@ -201,7 +215,7 @@ pub fn fmi2_with(d: &Description, which: Interfaces) -> String {
     );
     if which != Interfaces::CoSimulation {
         let _ = write!(x, "  <ModelExchange\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
-        for (flag, value) in ME_CAPABILITIES {
+        for (flag, value) in MODEL_EXCHANGE_FLAGS {
             let _ = writeln!(x, "    {flag}=\"{value}\"");
         }
         x.truncate(x.len() - 1);
@@ -209,8 +223,7 @@ pub fn fmi2_with(d: &Description, which: Interfaces) -> String {
     }
     if which != Interfaces::ModelExchange {
         let _ = write!(x, "  <CoSimulation\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
-        x.push_str("    canBeInstantiatedOnlyOncePerProcess=\"false\"\n");
-        for (flag, value) in d.capabilities {
+        for (flag, value) in CO_SIMULATION_FLAGS {
             let _ = writeln!(x, "    {flag}=\"{value}\"");
         }
         x.truncate(x.len() - 1);

@@ -54,6 +54,24 @@ fn unknown(element: &str, vr: u32, deps: &[(u32, &str)]) -> String {
     format!("    <{element} valueReference=\"{vr}\" dependencies=\"{}\"{kinds}/>\n", list.join(" "))
 }
 
+/// Flags of `<ModelExchange>`: what the glue provides, the same for every model.
+pub const MODEL_EXCHANGE_FLAGS: [(&str, &str); 4] = [
+    ("needsCompletedIntegratorStep", "false"),
+    ("canGetAndSetFMUState", "true"),
+    ("canSerializeFMUState", "true"),
+    ("providesDirectionalDerivatives", "false"),
+];
+
+/// Flags of `<CoSimulation>`: what the glue provides, the same for every model.
+pub const CO_SIMULATION_FLAGS: [(&str, &str); 6] = [
+    ("canHandleVariableCommunicationStepSize", "true"),
+    ("canGetAndSetFMUState", "true"),
+    ("canSerializeFMUState", "true"),
+    ("providesDirectionalDerivatives", "true"),
+    ("hasEventMode", "false"),
+    ("providesIntermediateUpdate", "true"),
+];
+
 /// The FMI 3.0 `modelDescription.xml` (Model Exchange and co-simulation, no event mode).
 pub fn fmi3(d: &Description) -> String {
     let id = d.model_identifier;
@@ -66,17 +84,13 @@ pub fn fmi3(d: &Description) -> String {
         token = escape(d.guid),
         summary = escape(d.summary),
     );
-    let _ = write!(
-        x,
-        "  <ModelExchange\n    modelIdentifier=\"{id}\"\n    needsCompletedIntegratorStep=\"false\"\n    canGetAndSetFMUState=\"true\"\n    \
-         canSerializeFMUState=\"true\"\n    providesDirectionalDerivatives=\"false\"/>\n\n"
-    );
-    let _ = write!(
-        x,
-        "  <CoSimulation\n    modelIdentifier=\"{id}\"\n    canHandleVariableCommunicationStepSize=\"true\"\n    canGetAndSetFMUState=\"true\"\n    \
-         canSerializeFMUState=\"true\"\n    providesDirectionalDerivatives=\"true\"\n    hasEventMode=\"false\"\n    \
-         providesIntermediateUpdate=\"true\"/>\n\n"
-    );
+    for (element, flags) in [("ModelExchange", &MODEL_EXCHANGE_FLAGS[..]), ("CoSimulation", &CO_SIMULATION_FLAGS[..])] {
+        let _ = write!(x, "  <{element}\n    modelIdentifier=\"{id}\"");
+        for (flag, value) in flags {
+            let _ = write!(x, "\n    {flag}=\"{value}\"");
+        }
+        x.push_str("/>\n\n");
+    }
     x.push_str(&units_categories_experiment(d));
     x.push_str("\n  <ModelVariables>\n");
     for v in d.variables {

@@ -1,7 +1,7 @@
 //! The purse-string FMU's variables: the one table that `modelDescription.xml` is
 //! generated from ([`crate::fmi::fmi2::xml`]), and that the code uses.
 
-pub use crate::fmi::common::model::{CAPABILITIES, Description, Experiment, Unit, Variable};
+pub use crate::fmi::common::model::{Description, Experiment, Unit, Variable};
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
 pub const MODEL_IDENTIFIER: &str = "PurseString";
@@ -45,7 +45,6 @@ pub static DESCRIPTION: Description = Description {
         ),
         (Vr::LineTension as u32, &[Vr::MaxTension as u32, Vr::AssemblyTime as u32, Vr::Delay as u32]),
     ],
-    capabilities: &CAPABILITIES,
     units: &UNITS,
     default_experiment: Experiment { start: 0.0, stop: 300.0, step: 0.5, tolerance: 1e-10 },
     // A closed form in time: nothing to integrate.

@@ -2,7 +2,7 @@
 //! from ([`crate::fmi::fmi2::xml`]), and that the code uses.
 
 pub use crate::fmi::common::model::{
-    ArrayVariable, Arrays, CAPABILITIES, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Unit, Variability, Variable,
+    ArrayVariable, Arrays, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Unit, Variability, Variable,
 };
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
@@ -79,7 +79,6 @@ pub static DESCRIPTION: Description = Description {
         (Vr::WoundRadius as u32, &[Vr::Sigma as u32, Vr::LengthScale as u32]),
         (Vr::EdgeVelocity as u32, &INITIAL_RATE_DEPENDENCIES),
     ],
-    capabilities: &CAPABILITIES,
     units: &UNITS,
     default_experiment: Experiment { start: 0.0, stop: 100.0, step: 0.01, tolerance: 1e-10 },
     states: Some(States {
