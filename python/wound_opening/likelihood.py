@@ -1,4 +1,4 @@
-"""Profile likelihood: for each parameter, chi^2 minimised over the other three at fixed
+"""Likelihood profiles: for each parameter, chi^2 minimised over the other three at fixed
 values of it, walked outward from the estimate on both sides until it rises by the
 threshold (3.84, or the F quantile with an estimated noise) or a limit is reached.
 
@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .local import bounds, local_fit
 from .objective import LAMBDA_MAX, NAMES, Objective
 
 
@@ -54,7 +55,7 @@ def _own_units(i: int, v: float) -> float:
     return math.exp(v) if i in (0, 3) else v
 
 
-def _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit, slope):
+def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, loss):
     """Walk one side; return (end in z coordinates or None, at limit, points).
 
     Each constrained fit starts from a prediction of the other parameters: along the
@@ -77,9 +78,9 @@ def _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit,
         """chi^2 at fixed v from the predicted start; where that looks like a crossing, also
         from the last profile point, keeping the lower (a false crossing would shorten the
         interval)."""
-        z, chi2, _ = local_fit(obj, start(v), fixed=i, value=v, tol=1e-7, passes=1)
+        z, chi2, _ = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-9)
         if chi2 - chi2_min >= threshold:
-            z2, chi2b, _ = local_fit(obj, path[-1][1], fixed=i, value=v, tol=1e-7, passes=1)
+            z2, chi2b, _ = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-9)
             if chi2b < chi2:
                 z, chi2 = z2, chi2b
         return z, max(chi2 - chi2_min, 0.0)
@@ -110,14 +111,13 @@ def _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit,
     return None, True, points
 
 
-def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray) -> dict:
+def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,
+                loss: str = "linear") -> dict:
     """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z."""
-    from .fit import _bounds, local_fit
-
     out = {}
-    bounds = _bounds(obj)
+    lims = bounds(obj)
     for i, name in enumerate(NAMES):
-        lo_lim, hi_lim = _limits(i, z_hat, *bounds)
+        lo_lim, hi_lim = _limits(i, z_hat, *lims)
         default = (0.05, 0.05 * abs(z_hat[1]) + 0.01, 0.1, 0.1)[i]
         se = math.sqrt(max(cov_z[i, i], 0.0))
         slope = cov_z[:, i] / cov_z[i, i] if cov_z[i, i] > 0 and np.all(np.isfinite(cov_z[:, i])) else np.zeros(4)
@@ -128,7 +128,7 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
             if z_hat[i] == limit:
                 ends.append((None, True))
                 continue
-            end, at_limit, pts = _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit, slope)
+            end, at_limit, pts = _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, loss)
             ends.append((end, at_limit))
             points += pts
         (lo, lo_open), (hi, _) = ends
