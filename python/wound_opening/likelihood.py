@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .local import bounds, local_fit
 from .objective import LAMBDA_MAX, NAMES, Objective
 
 
@@ -62,6 +61,8 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
     Jacobian's regression line `slope` (d z / d z_i) for the first step, then extrapolated
     from the last two profile points (the profile of lambda at fixed tau = lambda^2 T bends
     T strongly: a start at the previous point alone can end in a worse local minimum)."""
+    from .local import local_fit
+
     root = math.sqrt(threshold)
     path = [(z_hat[i], z_hat)]
 
@@ -114,6 +115,8 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
 def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,
                 loss: str = "linear") -> dict:
     """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z."""
+    from .local import bounds
+
     out = {}
     lims = bounds(obj)
     for i, name in enumerate(NAMES):
