@@ -125,12 +125,14 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     if p_value is not None and p_value < P_FAIL:
         reasons.append(f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
                        "the model does not describe the data with the given noise")
-    s = np.linalg.svd(jac, compute_uv=False)
-    if not (s.size == 4 and s[-1] > 1e-12 * s[0]):
+    # lambda on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
+    free = [i for i in range(4) if not (i == 2 and z[2] <= 1e-8)]
+    sv = np.linalg.svd(jac[:, free], compute_uv=False)
+    cov_z = np.full((4, 4), np.nan)
+    if not (sv.size == len(free) and sv[-1] > 1e-12 * sv[0]):
         reasons.append("the Jacobian at the best point is singular: the data do not determine the four parameters")
-        cov_z = np.full((4, 4), np.nan)
     else:
-        cov_z = np.linalg.inv(jac.T @ jac)
+        cov_z[np.ix_(free, free)] = np.linalg.inv(jac[:, free].T @ jac[:, free])
     theta = from_z(z)
     scale = np.array([theta[0], 1.0, 1.0, theta[3]])  # d theta / d z
     cov = cov_z * np.outer(scale, scale)

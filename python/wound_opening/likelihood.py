@@ -123,7 +123,7 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
         lo_lim, hi_lim = _limits(i, z_hat, *lims)
         default = (0.05, 0.05 * abs(z_hat[1]) + 0.01, 0.1, 0.1)[i]
         se = math.sqrt(max(cov_z[i, i], 0.0))
-        slope = cov_z[:, i] / cov_z[i, i] if cov_z[i, i] > 0 and np.all(np.isfinite(cov_z[:, i])) else np.zeros(4)
+        slope = np.nan_to_num(cov_z[:, i] / cov_z[i, i]) if cov_z[i, i] > 0 else np.zeros(4)
         slope[i] = 1.0
         step = float(np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20))
         ends, points = [], []
