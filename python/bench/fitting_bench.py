@@ -7,6 +7,7 @@ one run (issue 10, section 5). Writes OUT/benchmarks_fitting.csv and prints a ma
     curve_fmpy_simulate fmpy.simulate_fmu of the same 40 output points (extracts the FMU each call)
     fit_4_parameters    fit() of R0, sigma, lambda, T to 40 radii without intervals
     fit_with_intervals  the same with the four profile likelihoods
+    fit_radius_piv_intervals  40 radii + a PIV profile (bench/fit_designs.py "piv"), intervals
     sweep_1e5_grid      1e5 rows on one process: 100 lambda x 100 sigma x 10 times
     sweep_1e5_pairs     1e5 rows on one process: 10^4 lambda (distinct solves) x 10 times
     dask_1_worker, dask_2_workers   a 4e5-pair sweep on a LocalCluster of 1 and 2 single-thread workers
@@ -109,6 +110,12 @@ def main() -> None:
            "40 radii, 0.05 um noise (~2 % of the opening), global stage + 2 starts")
     record("fit_with_intervals", median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER), 10),
            "the same with 4 profile likelihoods")
+    from bench.fit_designs import clean as design_data, draw
+
+    piv = design_data("piv", 0.5)
+    piv_draws = [draw("piv", 0.5, 1e-2, 50 + k, piv) for k in range(10)]
+    record("fit_radius_piv_intervals", median_time(lambda k: wo.fit(*piv_draws[k], outer_radius_um=OUTER), 10),
+           "40 radii + 24 PIV vectors (edge ones included), noise 1 % given, 4 profile likelihoods")
 
     times10 = np.array([0.0, 0.1, 0.3, 1, 3, 10, 30, 100, 300, 1000])
     grid = {"lambda": np.linspace(0, 10, 100), "sigma": np.linspace(0.1, 2, 100), "R_inf": [10.0]}

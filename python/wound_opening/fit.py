@@ -109,7 +109,7 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     if any(estimated):
         for _ in range(2):  # noise from the residuals, then refit with those weights
             _estimate_noise(obj, z, estimated, loss != "linear")
-            best, _ = _best(obj, [z] + grid_starts(obj, objective_cost, 2), loss)
+            best, _ = _best(obj, [z], loss)
             z = best[0]
     z, chi2_cost, res = best
     n, dof = obj.size, max(obj.size - 4, 1)
