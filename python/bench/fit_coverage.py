@@ -34,6 +34,7 @@ def cell(design, lam, noise, draws):
         result = fit(radius, profile, outer_radius_um=100.0)
         if not result.converged:
             failed += 1
+            print(f"{design} lambda {lam:g} noise {noise:g} draw {k}: not converged: {result.reasons}", flush=True)
             continue
         for n in NAMES:
             rep = result.reports[n]
@@ -53,7 +54,7 @@ def main() -> None:
     rows = []
     with open(f"{out}.csv", "w") as f:
         f.write("design,lambda,noise,draws,failed," + ",".join(f"{n}_identified,{n}_covered" for n in NAMES) + ",seconds\n")
-        for design, lam, noise in itertools.product(DESIGNS, LAMBDAS, NOISES):
+        for lam, noise, design in itertools.product(LAMBDAS, NOISES, DESIGNS):
             start = time.process_time()
             failed, ident, cover = cell(design, lam, noise, args.draws)
             row = [design, lam, noise, args.draws, failed]

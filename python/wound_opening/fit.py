@@ -9,7 +9,8 @@ profile, for R0_um, sigma, lambda (>= 0) and T_s, with profile-likelihood interv
    (degrees of freedom shared in proportion to the points; 1.4826 x the median absolute
    residual with a robust loss); with an estimated noise the intervals use the F(1, n - 4)
    quantile instead of chi^2(1) (3.84).
-4. Intervals: profile likelihood (likelihood.py); standard errors from the Jacobian.
+4. Intervals: profile likelihood (likelihood.py), also of tau, zeta/G and the viscous length
+   (derived.py); standard errors from the Jacobian.
 5. Verdict: converged only if the optimiser reports convergence, the Jacobian has full rank
    and, with the noise given, chi^2 is consistent with its degrees of freedom (p >= 1e-6).
 """
@@ -140,10 +141,14 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
     profiles = profile_all(obj, z, chi2_cost, threshold, cov_z, loss) if intervals and not reasons else {}
+    if profiles:
+        from .derived import derived_profiles
+
+        profiles |= derived_profiles(obj, z, chi2_cost, threshold, loss)
     reports = {name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name)) for i, name in enumerate(NAMES)}
+    derived = {name: p for name, p in profiles.items() if name not in NAMES}
     obj.residuals(z)  # inside_edge at the optimum
     radius_res = obj.split(residuals * obj.sd)[0]
-    order_back = np.argsort(obj.order, kind="stable")
     return FitResult(theta=theta, reports=reports, correlation=corr, chi2=chi2, threshold=threshold,
                      outer_radius_um=obj.outer, residual_rms_um=float(np.sqrt(np.mean(radius_res**2))),
                      noise=(float(np.median(obj.sd[:obj.n_radius])),
@@ -152,10 +157,11 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                      evaluations=obj.evaluations, converged=not reasons, reasons=reasons,
                      optimizer={"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)},
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
-                     outliers=_outliers(obj, flagged, order_back), piv_at_edge=obj.inside_edge)
+                     outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
+                     derived_profiles=derived)
 
 
-def _outliers(obj: Objective, flagged, order_back) -> dict:
+def _outliers(obj: Objective, flagged) -> dict:
     """Flagged points as rows of the input (1 = first row)."""
     rows = {"radius": [], "profile": []}
     for k in flagged:

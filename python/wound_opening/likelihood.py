@@ -79,9 +79,9 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
         """chi^2 at fixed v from the predicted start; where that looks like a crossing, also
         from the last profile point, keeping the lower (a false crossing would shorten the
         interval)."""
-        z, chi2, _ = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-9)
+        z, chi2, _ = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7)
         if chi2 - chi2_min >= threshold:
-            z2, chi2b, _ = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-9)
+            z2, chi2b, _ = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7)
             if chi2b < chi2:
                 z, chi2 = z2, chi2b
         return z, max(chi2 - chi2_min, 0.0)

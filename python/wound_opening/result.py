@@ -58,6 +58,7 @@ class FitResult:
     loss: str = "linear"
     outliers: dict = field(default_factory=dict)
     piv_at_edge: int = 0
+    derived_profiles: dict = field(default_factory=dict)
 
     @property
     def warnings(self) -> list:
@@ -71,18 +72,34 @@ class FitResult:
             out.append(f"{n_out} points down-weighted by the {self.loss} loss (|residual| > 3 noise): rows {self.outliers}")
         return out
 
-    @property
-    def derived(self) -> dict:
-        """Derived values whose parameters are all identified (None otherwise): tau = eta/G
-        [s], zeta/G = 4 T / R0^2 [s/um^2], tension/G = sigma, the viscous length, R1, R_final."""
+    def _derived_all(self) -> dict:
+        """name -> (value, (lower, upper), identified). tau, zeta/G and the viscous length have
+        their own profile intervals (derived.py); tension/G is sigma; R1 and R_final count as
+        identified when R0 and sigma are."""
         R0, sigma, lam, T = self.theta
         r_inf = self.outer_radius_um / R0
-        known = {n: self.reports[n].identifiable for n in NAMES}
-        values = {"tau_s": (lam**2 * T, ("lambda", "T_s")), "zeta_over_G_s_per_um2": (4 * T / R0**2, ("R0_um", "T_s")),
-                  "tension_over_G": (sigma, ("sigma",)), "viscous_length_um": (lam * R0, ("lambda", "R0_um")),
-                  "R1_um": (R0 * (1 + sigma / 6), ("R0_um", "sigma")),
-                  "R_final_um": (R0 * (1 + 2 * sigma / 3 * r_inf**2 / (r_inf**2 - 1)), ("R0_um", "sigma"))}
-        return {k: (v if all(known[n] for n in need) else None) for k, (v, need) in values.items()}
+        out = {}
+        for name, value in (("tau_s", lam**2 * T), ("zeta_over_G_s_per_um2", 4 * T / R0**2),
+                            ("viscous_length_um", lam * R0)):
+            p = self.derived_profiles.get(name)
+            ok = p is not None and p.lower is not None and p.upper is not None and not p.at_bound
+            out[name] = (value, (None, None) if p is None else (p.lower, p.upper), ok)
+        s = self.reports["sigma"]
+        out["tension_over_G"] = (sigma, s.ci95, s.identifiable)
+        both = self.reports["R0_um"].identifiable and s.identifiable
+        out["R1_um"] = (R0 * (1 + sigma / 6), (None, None), both)
+        out["R_final_um"] = (R0 * (1 + 2 * sigma / 3 * r_inf**2 / (r_inf**2 - 1)), (None, None), both)
+        return out
+
+    @property
+    def derived(self) -> dict:
+        """Derived values, None where not identified: tau = eta/G [s], zeta/G = 4 T / R0^2
+        [s/um^2], tension/G = sigma, the viscous length lambda R0 [um], R1 and R_final [um]."""
+        return {k: (v if ok else None) for k, (v, _, ok) in self._derived_all().items()}
+
+    @property
+    def derived_ci95(self) -> dict:
+        return {k: list(ci) for k, (_, ci, _) in self._derived_all().items() if ci != (None, None)}
 
     def advice(self, name: str) -> str:
         """Why a parameter is not identified and which data would identify it ("" if it is)."""
@@ -115,7 +132,7 @@ class FitResult:
                             "ci95": list(rep.ci95), "identifiable": rep.identifiable}
             if self.advice(name):
                 params[name]["advice"] = self.advice(name)
-        return status | {"parameters": params, "derived": self.derived, "residual_rms_um": self.residual_rms_um,
+        return status | {"parameters": params, "derived": self.derived, "derived_ci95": self.derived_ci95, "residual_rms_um": self.residual_rms_um,
                 "correlation": {"order": list(NAMES), "matrix": np.nan_to_num(self.correlation).tolist()},
                 "outer_radius_um": self.outer_radius_um, "delta_chi2_95": self.threshold,
                 "noise": {"radius_um": self.noise[0], "velocity_um_s": self.noise[1] if self.has_profile else None}}
@@ -133,8 +150,9 @@ class FitResult:
             lines.append(f"{name:<10} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   "
                          f"[{_fmt(lo):>9}, {_fmt(hi):>9}]        {'yes' if rep.identifiable else 'no'}")
         lines += [f"  {self.advice(n)}" for n in NAMES if self.advice(n)]
-        lines.append("derived: " + ", ".join(f"{k} = {_fmt(v) if v is not None else 'not identified'}"
-                                             for k, v in self.derived.items()))
+        lines.append("derived: " + ", ".join(
+            f"{k} = {_fmt(v)} [{_fmt(ci[0])}, {_fmt(ci[1])}]" if ok and ci != (None, None) else
+            f"{k} = {_fmt(v)}" if ok else f"{k} not identified" for k, (v, ci, ok) in self._derived_all().items()))
         fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (f", p = {self.p_value:.3g}" if self.p_value is not None else
                                                                " (noise estimated from the residuals)")
         lines.append(f"residual rms {self.residual_rms_um:.3g} um; {fit}; optimiser: {self.optimizer.get('message', '')}")

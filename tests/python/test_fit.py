@@ -76,6 +76,11 @@ def test_piv_vectors_at_the_edge_and_just_outside_fit_without_a_penalty():
         rep = result.reports[name]
         assert rep.identifiable and covers(rep.ci95, value), (name, rep.estimate, rep.ci95)
     assert 0 <= result.piv_at_edge <= 2  # the vector at the edge may sit on either side of the model's edge
+    R0, _, lam, T = truth(0.5).values()
+    derived = {"tau_s": lam**2 * T, "zeta_over_G_s_per_um2": 4 * T / R0**2, "viscous_length_um": lam * R0}
+    for name, value in derived.items():  # their own profile intervals
+        lo, hi = result.derived_ci95[name]
+        assert lo < value < hi and result.derived[name] is not None, (name, lo, value, hi)
     assert "piv_vectors_at_edge" in result.to_dict()
 
 
