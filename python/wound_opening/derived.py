@@ -78,23 +78,27 @@ class Reparametrised:
         return lower, upper
 
 
-def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = "linear") -> dict:
-    """Profile (interval in the quantity's units) of tau, zeta/G and the viscous length."""
+def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = "linear", alternates=()) -> dict:
+    """Profile (interval in the quantity's units) of tau, zeta/G and the viscous length;
+    with other optima below the threshold (`alternates`: (z, delta chi^2)), the hull of the
+    intervals walked from each (as likelihood.profile_all does)."""
     out = {}
+    centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for kind in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um"):
-        if kind != "zeta_over_G_s_per_um2" and z_hat[2] <= 1e-6:
+        if kind != "zeta_over_G_s_per_um2" and any(c[2] <= 1e-6 for c, _ in centres):
             out[kind] = Profile(0.0, None, True)
             continue
         rep = Reparametrised(obj, kind)
-        w = rep.to_w(z_hat)
         k = rep.k
-        ends, points = [], []
-        for direction in (-1, 1):
-            limit = w[k] + direction * math.log(100.0)
-            end, _, pts = _side(rep, k, w, chi2_min, threshold, 0.05, direction, limit, np.eye(4)[k], loss)
-            ends.append(end)
-            points += pts
-        lo, hi = ends
-        out[kind] = Profile(None if lo is None else math.exp(lo), None if hi is None else math.exp(hi), False,
-                            sorted((math.exp(v), d) for v, d in points))
+        lows, highs, points = [], [], []
+        for centre, delta0 in centres:
+            w = rep.to_w(centre)
+            for direction, ends in ((-1, lows), (1, highs)):
+                limit = w[k] + direction * math.log(100.0)
+                end, _, pts = _side(rep, k, w, chi2_min, threshold, 0.05, direction, limit, np.eye(4)[k], loss, delta0)
+                ends.append(end)
+                points += pts
+        lo = None if None in lows else math.exp(min(lows))
+        hi = None if None in highs else math.exp(max(highs))
+        out[kind] = Profile(lo, hi, False, sorted((math.exp(v), d) for v, d in points))
     return out

@@ -29,6 +29,9 @@ from .result import FitResult, ParameterReport
 #: chi^2 p-value below which the model is said not to describe the data (fit failed), and
 #: below which a warning is given.
 P_FAIL, P_WARN = 1e-6, 1e-3
+#: A cost drop this small (chi^2 units) moves a 95 % interval end (chi^2 + 3.84) negligibly:
+#: a fit that ran out of evaluations on a flat valley is converged if a restart drops less.
+FLAT = 0.01
 #: |residual| / noise above which a point is flagged as down-weighted by a robust loss.
 OUTLIER = 3.0
 
@@ -70,16 +73,17 @@ def _estimate_noise(obj: Objective, z, estimated, robust: bool) -> None:
 def _best(obj: Objective, starts, loss):
     from .local import local_fit
 
-    best, failures = None, []
+    best, failures, ends = None, [], []
     for z0 in starts:
         try:
             z, c, res = local_fit(obj, z0, loss=loss)
         except SolverError as e:
             failures.append(str(e))
             continue
+        ends.append((z, c))
         if best is None or c < best[1]:
             best = (z, c, res)
-    return best, failures
+    return best, failures, ends
 
 
 def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_radius_um: float,
@@ -103,14 +107,14 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     def objective_cost(z):
         return cost(obj.residuals(z), loss)
 
-    best, failures = _best(obj, grid_starts(obj, objective_cost), loss)
+    best, failures, ends = _best(obj, grid_starts(obj, objective_cost), loss)
     if best is None:
         raise ValueError("fit: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
     z = best[0]
     if any(estimated):
         for _ in range(2):  # noise from the residuals, then refit with those weights
             _estimate_noise(obj, z, estimated, loss != "linear")
-            best, _ = _best(obj, [z], loss)
+            best, _, _ = _best(obj, [z], loss)
             z = best[0]
     z, chi2_cost, res = best
     n, dof = obj.size, max(obj.size - 4, 1)
@@ -118,6 +122,24 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     residuals = obj.residuals(z)
     jac = obj.jacobian(z)
     reasons = []
+    optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
+    if res.status == 0:  # evaluations exhausted: restart (up to 4 times) until the cost drops by < FLAT
+        from .local import local_fit
+
+        for _ in range(4):
+            z2, c2, res2 = local_fit(obj, z, loss=loss, max_nfev=400)
+            drop = chi2_cost - c2
+            if c2 < chi2_cost:
+                z, chi2_cost = z2, c2
+            if res2.status > 0 or drop < FLAT:
+                break
+        if res2.status > 0:
+            res = res2
+        elif drop < FLAT:
+            res.status = 1
+            res.message += (f" The last restart lowered the cost by {max(drop, 0):.2g} (< {FLAT}): at its minimum "
+                            "for the intervals, the parameters moving along a flat valley.")
+        optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
     if res.status <= 0:
         reasons.append(f"optimiser stopped without converging ({res.message})")
     flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
@@ -140,11 +162,13 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     se = np.sqrt(np.diag(cov))
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
-    profiles = profile_all(obj, z, chi2_cost, threshold, cov_z, loss) if intervals and not reasons else {}
+    # other local optima (refitted at the final noise) that a profile may reach
+    alternates = [(e, cost(obj.residuals(e), loss) - chi2_cost) for e, _ in ends if np.max(np.abs(e - z)) > 1e-3]
+    profiles = profile_all(obj, z, chi2_cost, threshold, cov_z, loss, alternates) if intervals and not reasons else {}
     if profiles:
         from .derived import derived_profiles
 
-        profiles |= derived_profiles(obj, z, chi2_cost, threshold, loss)
+        profiles |= derived_profiles(obj, z, chi2_cost, threshold, loss, alternates)
     reports = {name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name)) for i, name in enumerate(NAMES)}
     derived = {name: p for name, p in profiles.items() if name not in NAMES}
     obj.residuals(z)  # inside_edge at the optimum
@@ -155,7 +179,7 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                             float(np.median(obj.sd[obj.n_radius:])) if obj.n_profile else None),
                      n_points=(obj.n_radius, obj.n_profile), has_profile=profile is not None,
                      evaluations=obj.evaluations, converged=not reasons, reasons=reasons,
-                     optimizer={"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)},
+                     optimizer=optimizer,
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
                      outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
                      derived_profiles=derived)
