@@ -94,6 +94,8 @@ def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = 
         for centre, delta0 in centres:
             w = rep.to_w(centre)
             for direction, ends in ((-1, lows), (1, highs)):
+                if ends and (ends[0] is None or direction * (w[k] - ends[0]) <= 0):
+                    continue  # an optimum inside the interval found (or an open end)
                 limit = w[k] + direction * math.log(100.0)
                 end, _, pts = _side(rep, k, w, chi2_min, threshold, 0.05, direction, limit, np.eye(4)[k], loss, delta0)
                 ends.append(end)

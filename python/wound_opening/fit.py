@@ -163,7 +163,10 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
     # other local optima (refitted at the final noise) that a profile may reach
-    alternates = [(e, cost(obj.residuals(e), loss) - chi2_cost) for e, _ in ends if np.max(np.abs(e - z)) > 1e-3]
+    alternates = []
+    for e, _ in ends:
+        if all(np.max(np.abs(e - other)) > 1e-2 for other in [z] + [a for a, _ in alternates]):
+            alternates.append((e, cost(obj.residuals(e), loss) - chi2_cost))
     profiles = profile_all(obj, z, chi2_cost, threshold, cov_z, loss, alternates) if intervals and not reasons else {}
     if profiles:
         from .derived import derived_profiles

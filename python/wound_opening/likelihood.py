@@ -140,6 +140,8 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
         for centre, delta0 in centres:
             lo_lim, hi_lim = _limits(i, centre, *lims)
             for direction, limit, ends in ((-1, lo_lim, lows), (1, hi_lim, highs)):
+                if ends and (ends[0][0] is None or direction * (centre[i] - ends[0][0]) <= 0):
+                    continue  # an optimum inside the interval found (or an open end): nothing to add
                 if centre[i] == limit:
                     ends.append((None, True))
                     continue
