@@ -31,7 +31,7 @@ def cell(design, lam, noise, draws):
     failed = 0
     for k in range(draws):
         radius, profile = draw(design, lam, noise, 1000 + k, data)
-        result = fit(radius, profile, outer_radius_um=100.0)
+        result = fit(radius, profile, outer_radius_um=100.0, derived=False)
         if not result.converged:
             failed += 1
             print(f"{design} lambda {lam:g} noise {noise:g} draw {k}: not converged: {result.reasons}", flush=True)

@@ -87,9 +87,11 @@ def _best(obj: Objective, starts, loss):
 
 
 def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_radius_um: float,
-        intervals: bool = True, loss: str = "linear") -> FitResult:
+        intervals: bool = True, loss: str = "linear", derived: bool = True) -> FitResult:
     """Fit R0_um, sigma, lambda and T_s; see the module docstring and docs/fitting.md.
-    `loss`: "linear" (least squares), or "soft_l1" / "cauchy" (robust to outliers)."""
+    `loss`: "linear" (least squares), or "soft_l1" / "cauchy" (robust to outliers).
+    `intervals`: the parameters' profile likelihoods; `derived`: also those of tau, zeta/G
+    and the viscous length (without them these are reported not identified)."""
     from scipy import stats
 
     from .likelihood import profile_all
@@ -168,12 +170,12 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
         if all(np.max(np.abs(e - other)) > 1e-2 for other in [z] + [a for a, _ in alternates]):
             alternates.append((e, cost(obj.residuals(e), loss) - chi2_cost))
     profiles = profile_all(obj, z, chi2_cost, threshold, cov_z, loss, alternates) if intervals and not reasons else {}
-    if profiles:
+    if profiles and derived:
         from .derived import derived_profiles
 
         profiles |= derived_profiles(obj, z, chi2_cost, threshold, loss, alternates)
     reports = {name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name)) for i, name in enumerate(NAMES)}
-    derived = {name: p for name, p in profiles.items() if name not in NAMES}
+    derived_p = {name: p for name, p in profiles.items() if name not in NAMES}
     obj.residuals(z)  # inside_edge at the optimum
     radius_res = obj.split(residuals * obj.sd)[0]
     return FitResult(theta=theta, reports=reports, correlation=corr, chi2=chi2, threshold=threshold,
@@ -185,7 +187,7 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                      optimizer=optimizer,
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
                      outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
-                     derived_profiles=derived)
+                     derived_profiles=derived_p)
 
 
 def _outliers(obj: Objective, flagged) -> dict:
