@@ -15,7 +15,7 @@ h(t) = R(t; sigma = 1) - 1 (dimensionless, lambda and R_inf given)
 
 dh/dR_inf and dh/dlambda are central differences of solves at TOLERANCE_FD (1e-11 of the
 opening) with steps STEP (1e-4 relative): rounding error ~1e-11 / 1e-4 = 1e-7, truncation
-~STEP^2 = 1e-8, both relative to the column (test_fit_jacobian checks 1e-6 against the
+~STEP^2 = 1e-8, both relative to the column (tests/python/test_fit.py checks 1e-6 against the
 exact Laplace-domain solution). The solution depends on lambda only through lambda^2, so
 h(-lambda) = h(lambda) and the central difference at lambda = 0 gives the exact 0.
 
