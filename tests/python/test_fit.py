@@ -104,3 +104,5 @@ def test_small_coverage_sample(design, lam, noise):
         if identified[n]:
             assert identified[n] - covered[n] <= 2, (n, covered, identified)  # at most 2 misses of 6
     assert identified["R0_um"] == identified["sigma"] == 6, identified
+    if design == "radius":  # lambda's profile reaches its bound 0: flat, not identified
+        assert identified["lambda"] <= 2, identified
