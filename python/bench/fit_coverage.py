@@ -48,13 +48,14 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--draws", type=int, default=200)
     ap.add_argument("--out", default="out/fit_coverage")
+    ap.add_argument("--skip", type=int, default=0, help="leave out the first SKIP cells (to resume a run)")
     args = ap.parse_args()
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     rows = []
     with open(f"{out}.csv", "w") as f:
         f.write("design,lambda,noise,draws,failed," + ",".join(f"{n}_identified,{n}_covered" for n in NAMES) + ",seconds\n")
-        for lam, noise, design in itertools.product(LAMBDAS, NOISES, DESIGNS):
+        for lam, noise, design in list(itertools.product(LAMBDAS, NOISES, DESIGNS))[args.skip:]:
             start = time.process_time()
             failed, ident, cover = cell(design, lam, noise, args.draws)
             row = [design, lam, noise, args.draws, failed]

@@ -161,7 +161,8 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     theta = from_z(z)
     scale = np.array([theta[0], 1.0, 1.0, theta[3]])  # d theta / d z
     cov = cov_z * np.outer(scale, scale)
-    se = np.sqrt(np.diag(cov))
+    with np.errstate(invalid="ignore"):
+        se = np.sqrt(np.diag(cov))
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
     # other local optima (refitted at the final noise) that a profile may reach

@@ -89,6 +89,16 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
             unsure = res.status == 0
         return z, max(chi2 - chi2_min, 0.0), unsure
 
+    from ._native import SolverError
+
+    plain = constrained
+
+    def constrained(v):  # noqa: F811  (a point the solver refuses ends the walk, open)
+        try:
+            return plain(v)
+        except SolverError:
+            return path[-1][1], math.inf, True
+
     prev_v, prev_delta = z_hat[i], delta0
     points = []
     for k in range(16):

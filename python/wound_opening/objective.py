@@ -43,6 +43,8 @@ LAMBDA_MAX = 50.0
 TOLERANCE_FD = 1e-11
 #: Relative step of the central differences.
 STEP = 1e-4
+#: Smallest R_inf the solver accepts (the fits bound R0 by outer / R_INF_MIN).
+R_INF_MIN = 1.001
 
 
 def to_z(theta) -> np.ndarray:
@@ -130,7 +132,8 @@ class Objective:
         t = self.t_sorted
         h, dh = self._h(lam, r_inf, t / T)
         dr = STEP * r_inf
-        dh_dr = (self._h(lam, r_inf + dr, t / T)[0] - self._h(lam, r_inf - dr, t / T)[0]) / (2 * dr)
+        rc = max(r_inf, R_INF_MIN + dr)  # centred inside the solver's range at its edge
+        dh_dr = (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr)
         dl = STEP * max(lam, 0.01)
         dh_dl = (self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
         with np.errstate(invalid="ignore"):
