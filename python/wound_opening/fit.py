@@ -154,10 +154,14 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     free = [i for i in range(4) if not (i == 2 and z[2] <= 1e-8)]
     sv = np.linalg.svd(jac[:, free], compute_uv=False)
     cov_z = np.full((4, 4), np.nan)
-    if not (sv.size == len(free) and sv[-1] > 1e-12 * sv[0]):
+    singular = not (sv.size == len(free) and sv[-1] > 1e-12 * sv[0])
+    if not singular:
+        try:
+            cov_z[np.ix_(free, free)] = np.linalg.inv(jac[:, free].T @ jac[:, free])
+        except np.linalg.LinAlgError:
+            singular = True
+    if singular:
         reasons.append("the Jacobian at the best point is singular: the data do not determine the four parameters")
-    else:
-        cov_z[np.ix_(free, free)] = np.linalg.inv(jac[:, free].T @ jac[:, free])
     theta = from_z(z)
     scale = np.array([theta[0], 1.0, 1.0, theta[3]])  # d theta / d z
     cov = cov_z * np.outer(scale, scale)
