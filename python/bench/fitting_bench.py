@@ -7,6 +7,7 @@ one run (issue 10, section 5). Writes OUT/benchmarks_fitting.csv and prints a ma
     curve_fmpy_simulate fmpy.simulate_fmu of the same 40 output points (extracts the FMU each call)
     fit_4_parameters    fit() of R0, sigma, lambda, T to 40 radii without intervals
     fit_with_intervals  the same with the four profile likelihoods
+    fit_radius_piv_intervals  40 radii + a PIV profile (bench/fit_designs.py "piv"), intervals
     sweep_1e5_grid      1e5 rows on one process: 100 lambda x 100 sigma x 10 times
     sweep_1e5_pairs     1e5 rows on one process: 10^4 lambda (distinct solves) x 10 times
     dask_1_worker, dask_2_workers   a 4e5-pair sweep on a LocalCluster of 1 and 2 single-thread workers
@@ -39,12 +40,12 @@ R0, T, OUTER = 10.0, 10.0, 100.0
 TIMES = np.linspace(1.5, 60.0, 40)
 
 
-def median_time(f, repeats):
+def median_time(f, repeats, clock=time.perf_counter):
     samples = []
     for k in range(repeats):
-        start = time.perf_counter()
+        start = clock()
         f(k)
-        samples.append(time.perf_counter() - start)
+        samples.append(clock() - start)
     return statistics.median(samples)
 
 
@@ -81,10 +82,31 @@ def fmpy_paths(fmu: str):
     return instance, simulate
 
 
+def fit_rows(record) -> None:
+    """Fits: 40 radii (noise estimated), with and without intervals; 40 radii + PIV. Medians
+    of the CPU time of this process (time.process_time: one core, insensitive to other jobs)."""
+    cpu = time.process_time
+    rng = np.random.default_rng(5)
+    clean = R0 * we.edge(0.5, 0.5, OUTER / R0, TIMES / T)[0]
+    draws = [wo.RadiusSeries(TIMES, clean + 0.05 * rng.standard_normal(TIMES.size)) for _ in range(20)]
+    record("fit_4_parameters", median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER, intervals=False), 10, cpu),
+           "CPU: 40 radii, 0.05 um noise (~2 % of the opening, estimated), grid + 4 local starts")
+    record("fit_with_intervals", median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER), 5, cpu),
+           "CPU: the same with the 4 profile likelihoods and 3 of derived values")
+    from bench.fit_designs import clean as design_data, draw
+
+    piv = design_data("piv", 0.5)
+    piv_draws = [draw("piv", 0.5, 1e-2, 50 + k, piv) for k in range(10)]
+    record("fit_radius_piv_intervals", median_time(lambda k: wo.fit(*piv_draws[k], outer_radius_um=OUTER), 5, cpu),
+           "CPU: 40 radii + 24 PIV vectors (edge ones included), noise 1 % given, all profiles")
+
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--fmu", default=str(ROOT / "target" / "fmu" / "WoundOpening.fmu"))
     ap.add_argument("--out", default=str(ROOT / "docs"))
+    ap.add_argument("--only-fit", action="store_true", help="only the fit rows, printed (nothing written)")
     args = ap.parse_args()
     rows = []
 
@@ -92,6 +114,8 @@ def main() -> None:
         rows.append((what, seconds, note))
         print(f"{what:<22} {seconds * 1e3:12.4f} ms  {note}", flush=True)
 
+    if args.only_fit:
+        return fit_rows(record)
     wo.simulate(TIMES, lam=0.5, sigma=0.5, R0_um=R0, T_s=T, outer_radius_um=OUTER)  # basis of R_inf = 10 cached
     record("curve_package", median_time(lambda k: wo.simulate(TIMES, lam=0.5 + 1e-6 * k, sigma=0.5 + 1e-6 * k, R0_um=R0,
                                                              T_s=T + 1e-6 * k, outer_radius_um=OUTER), 2000),
@@ -102,13 +126,7 @@ def main() -> None:
     record("curve_fmpy_instance", median_time(instance, 200), "FMU2Slave reused unzip, 40 doStep")
     record("curve_fmpy_simulate", median_time(simulate, 20), "fmpy.simulate_fmu, 40 output points")
 
-    rng = np.random.default_rng(5)
-    clean = R0 * we.edge(0.5, 0.5, OUTER / R0, TIMES / T)[0]
-    draws = [wo.RadiusSeries(TIMES, clean + 0.05 * rng.standard_normal(TIMES.size)) for _ in range(20)]
-    record("fit_4_parameters", median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER, intervals=False), 20),
-           "40 radii, 0.05 um noise (~2 % of the opening), global stage + 2 starts")
-    record("fit_with_intervals", median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER), 10),
-           "the same with 4 profile likelihoods")
+    fit_rows(record)
 
     times10 = np.array([0.0, 0.1, 0.3, 1, 3, 10, 30, 100, 300, 1000])
     grid = {"lambda": np.linspace(0, 10, 100), "sigma": np.linspace(0.1, 2, 100), "R_inf": [10.0]}

@@ -10,12 +10,21 @@ units of a laser-ablation experiment (um, s, Pa), through the project's native l
 See docs/fitting.md.
 """
 
-from ._native import NativeLibraryMissing, SolverError, library_path
-from .data import RadiusSeries, VelocityProfile
-from .fit import fit
-from .model import Simulation, simulate
-from .result import FitResult
-from .sweep import sweep
+import importlib
+
+#: Where each public name lives; imported on first use, so that `wound-opening --help`
+#: starts without numpy, scipy or pandas.
+_HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
+         "RadiusSeries": "data", "VelocityProfile": "data", "fit": "fit", "Simulation": "model",
+         "simulate": "model", "FitResult": "result", "sweep": "sweep"}
+
+
+def __getattr__(name):
+    if name in _HOME:
+        value = getattr(importlib.import_module(f".{_HOME[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
            "fit", "library_path", "simulate", "sweep"]

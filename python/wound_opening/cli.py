@@ -1,40 +1,43 @@
 """The command line `wound-opening`: fit, sweep, simulate. Bad input ends with one line
-naming the file, the row and the problem, and exit code 2 (no traceback)."""
+naming the file, the row and the problem, and exit code 2 (no traceback); a fit that did
+not converge prints why, writes its JSON ("converged": false) and exits with 1."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-import numpy as np
-
-from ._native import NativeLibraryMissing
-from .tables import InputError, float_list, read_columns
-
 
 def _fit(args) -> None:
     from .data import RadiusSeries, VelocityProfile
     from .fit import fit
 
-    cols = read_columns(args.radius_csv, ("time_s", "radius_um"))
-    radius = RadiusSeries(cols["time_s"], cols["radius_um"], args.radius_noise_um)
+    from .tables import read_columns
+
+    cols = read_columns(args.radius_csv, ("time_s", "radius_um"), optional=("radius_sd_um",))
+    radius = RadiusSeries(cols["time_s"], cols["radius_um"], args.radius_noise_um, cols.get("radius_sd_um"))
     profile = None
     if args.profile:
-        p = read_columns(args.profile, ("time_s", "r_um", "velocity_um_s"), min_rows=1)
-        profile = VelocityProfile(p["time_s"], p["r_um"], p["velocity_um_s"], args.velocity_noise_um_s)
-    result = fit(radius, profile, outer_radius_um=args.outer_radius_um)
+        p = read_columns(args.profile, ("time_s", "r_um", "velocity_um_s"), min_rows=1, optional=("velocity_sd_um_s",))
+        profile = VelocityProfile(p["time_s"], p["r_um"], p["velocity_um_s"], args.velocity_noise_um_s,
+                                  p.get("velocity_sd_um_s"))
+    result = fit(radius, profile, outer_radius_um=args.outer_radius_um, loss=args.loss)
     print(result.summary())
     if args.json:
         with open(args.json, "w") as f:
             f.write(result.to_json() + "\n")
+    if not result.converged:
+        return 1
     if args.plot:
         from .plots import fit_figure
 
         fit_figure(result, radius, profile, args.plot)
+    return 0
 
 
 def _sweep(args) -> None:
     from .sweep import sweep
+    from .tables import float_list
 
     grid = {"lambda": float_list(args.lam, "--lambda"), "sigma": float_list(args.sigma, "--sigma"),
             "R_inf": float_list(args.r_inf, "--R-inf")}
@@ -51,7 +54,10 @@ def _sweep(args) -> None:
 
 
 def _simulate(args) -> None:
+    import numpy as np
+
     from .model import simulate
+    from .tables import float_list
 
     times = float_list(args.times, "--times") if args.times else np.linspace(0, args.t_end, args.points)
     radii = float_list(args.radii_um, "--radii-um") if args.radii_um else None
@@ -79,8 +85,12 @@ def parser() -> argparse.ArgumentParser:
     f.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
     f.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
     f.add_argument("--plot", metavar="OUT.png", help="data with the fit, residuals, profile likelihoods")
-    f.add_argument("--radius-noise-um", type=float, help="noise of the radii (default: from the residuals)")
-    f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities (default: from the residuals)")
+    f.add_argument("--radius-noise-um", type=float, help="noise of the radii (default: column radius_sd_um if "
+                   "present, else from the residuals)")
+    f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities (default: column "
+                   "velocity_sd_um_s if present, else from the residuals)")
+    f.add_argument("--loss", choices=("linear", "soft_l1", "cauchy"), default="linear",
+                   help="linear: least squares; soft_l1, cauchy: robust to outliers (flagged in the output)")
     f.set_defaults(run=_fit)
 
     s = sub.add_parser("sweep", help="outputs over a lambda x sigma x R_inf grid (dimensionless by default)")
@@ -117,13 +127,16 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
+    from ._native import NativeLibraryMissing
+    from .tables import InputError
+
     try:
-        args.run(args)
+        code = args.run(args) or 0
     except (InputError, ValueError, OSError, NativeLibraryMissing) as e:
         message = " ".join(str(e).split())
         print(f"wound-opening {args.command}: error: {message}", file=sys.stderr)
         return 2
-    return 0
+    return code
 
 
 if __name__ == "__main__":

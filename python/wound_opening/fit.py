@@ -1,15 +1,18 @@
 """`fit`: weighted least squares of the model on a wound radius series and/or a PIV velocity
 profile, for R0_um, sigma, lambda (>= 0) and T_s, with profile-likelihood intervals.
 
-1. Global stage: chi^2 on a grid of (lambda, T) around the data's time scale, with R0 and
-   sigma from the first and last radii; the three best distinct points start local fits.
-2. Local fits: scipy.optimize.least_squares (trust region, lambda >= 0 as a bound) in
-   z = (ln R0, sigma, lambda, ln T); see objective.py for how R_inf = outer / R0 is handled.
-3. Noise: given, or estimated per data set from its residuals (degrees of freedom shared
-   in proportion to the points); with an estimated noise the intervals use the F(1, n - 4)
+1. Global stage (start.py): a lambda x time-scale grid with R0 and sigma solved linearly at
+   each point; the four best distinct points start local fits.
+2. Local fits (local.py): scipy.optimize.least_squares with the objective's Jacobian
+   (objective.py), tolerances 1e-12; the best of the starts is kept.
+3. Noise: given (one level or per point), or estimated per data set from its residuals
+   (degrees of freedom shared in proportion to the points; 1.4826 x the median absolute
+   residual with a robust loss); with an estimated noise the intervals use the F(1, n - 4)
    quantile instead of chi^2(1) (3.84).
-4. Intervals: profile likelihood (profile.py); standard errors and correlations from the
-   Jacobian at the optimum.
+4. Intervals: profile likelihood (likelihood.py), also of tau, zeta/G and the viscous length
+   (derived.py); standard errors from the Jacobian.
+5. Verdict: converged only if the optimiser reports convergence, the Jacobian has full rank
+   and, with the noise given, chi^2 is consistent with its degrees of freedom (p >= 1e-6).
 """
 
 from __future__ import annotations
@@ -17,137 +20,192 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import optimize, stats
 
-from .data import RadiusSeries, VelocityProfile
-from .objective import LAMBDA_MAX, NAMES, Objective, from_z, to_z
-from .profile import profile_all
+from ._native import SolverError
+from .data import RadiusSeries, VelocityProfile, check_against
+from .objective import NAMES, Objective, from_z
 from .result import FitResult, ParameterReport
 
+#: chi^2 p-value below which the model is said not to describe the data (fit failed), and
+#: below which a warning is given.
+P_FAIL, P_WARN = 1e-6, 1e-3
+#: A cost drop this small (chi^2 units) moves a 95 % interval end (chi^2 + 3.84) negligibly:
+#: a fit that ran out of evaluations on a flat valley is converged if a restart drops less.
+FLAT = 0.01
+#: |residual| / noise above which a point is flagged as down-weighted by a robust loss.
+OUTLIER = 3.0
 
 
-def _bounds(obj: Objective) -> tuple[np.ndarray, np.ndarray]:
-    """Bounds in z: R0 between 1 % of the first radius and the outer radius / 1.001 (R_inf
-    >= 1.001), sigma free, 0 <= lambda <= LAMBDA_MAX, T within 1e-6 .. 1e6 of the last time."""
-    t_max = float(obj.t_sorted[-1]) if obj.t_sorted[-1] > 0 else 1.0
-    lower = np.array([math.log(0.01 * obj.radius[0]), -np.inf, 0.0, math.log(1e-6 * t_max)])
-    upper = np.array([math.log(obj.outer / 1.001), np.inf, LAMBDA_MAX, math.log(1e6 * t_max)])
-    return lower, upper
+def _uncertainties(obj: Objective, radius: RadiusSeries, profile: VelocityProfile | None):
+    """Initial per-point uncertainties and which data sets have theirs estimated."""
+    r_sd = radius.sd_um if radius.sd_um is not None else np.full(obj.n_radius, radius.noise_um or 1.0)
+    sd = [np.asarray(r_sd, float)[obj.order]]
+    estimated = [radius.noise_um is None and radius.sd_um is None, False]
+    if profile is not None:
+        p_sd = profile.sd_um_s if profile.sd_um_s is not None else np.full(obj.n_profile, profile.noise_um_s or 1.0)
+        sd.append(np.concatenate([np.asarray(p_sd, float)[g[3]] for g in obj.groups]))
+        estimated[1] = profile.noise_um_s is None and profile.sd_um_s is None
+        if estimated[1]:
+            sd[1][:] = max(float(np.std(np.concatenate([g[2] for g in obj.groups]))), 1e-12) * 0.1
+    if estimated[0]:
+        sd[0][:] = 0.01 * float(np.mean(obj.radius))
+    obj.sd = np.concatenate(sd)
+    return estimated
 
 
-def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None = None, exact: bool = False,
-              tol: float = 1e-10, passes: int = 6):
-    """Minimise chi^2 from z0, with coordinate `fixed` held at `value` if given. R_inf is
-    frozen at the current R0 per run and updated until R0 settles (at most `passes` runs);
-    `exact` polishes with R_inf following R0. The chi^2 returned is always the exact one
-    at the point returned (R_inf = outer / R0). Returns (z, chi2, least_squares result)."""
-    free = [i for i in range(4) if i != fixed]
-    lower, upper = _bounds(obj)
-    z = np.clip(np.array(z0, dtype=float), lower, upper)
-    if fixed is not None:
-        z[fixed] = value
-
-    def run(r_inf):
-        def fun(x):
-            full = z.copy()
-            full[free] = x
-            return obj.residuals(full, r_inf)
-        return optimize.least_squares(fun, z[free], bounds=(lower[free], upper[free]), method="trf",
-                                      x_scale=1.0, xtol=tol, ftol=tol, max_nfev=400)
-
-    for _ in range(passes):
-        r_inf = obj.r_inf(math.exp(z[0]))
-        res = run(r_inf)
-        moved = abs(res.x[0] - z[0]) if fixed != 0 else 0.0
-        z[free] = res.x
-        if fixed == 0 or moved < 10 * tol:
-            break
-    if exact and fixed != 0:
-        res = run(None)
-        z[free] = res.x
-    return z, float(np.sum(obj.residuals(z) ** 2)), res
-
-
-def _starts(obj: Objective, radius: RadiusSeries) -> list[np.ndarray]:
-    """The global stage: a (lambda, T) grid with R0, sigma from the first and last radii."""
-    t, r = obj.t_sorted, obj.radius
-    r1, rf = float(r[0]), float(max(r[-1], r[0] * 1.001))
-    r_inf = obj.outer / r1
-    k = r_inf**2 / (r_inf**2 - 1)
-    q = rf / r1
-    sigma = float(np.clip((q - 1) / (2 * k / 3 - q / 6), 1e-3, 50.0))
-    R0 = r1 / (1 + sigma / 6)
-    half = float(np.interp(0.5 * (r1 + rf), np.maximum.accumulate(r), t)) if r[-1] > r[0] else float(t[-1])
-    half = max(half, float(t[t > 0][0]) if np.any(t > 0) else 1.0)
-    grid = []
-    for lam in (0.03, 0.3, 1.0, 3.0, 10.0):
-        for factor in (0.03, 0.1, 0.3, 1.0, 3.0, 10.0):
-            T = half * factor / max(1.0, lam**2)
-            z = to_z((R0, sigma, lam, T))
-            grid.append((float(np.sum(obj.residuals(z) ** 2)), z))
-    grid.sort(key=lambda g: g[0])
-    chosen = []
-    for _, z in grid:
-        if all(abs(z[2] - c[2]) > 0.2 or abs(z[3] - c[3]) > 0.5 for c in chosen):
-            chosen.append(z)
-        if len(chosen) == 3:
-            break
-    return chosen
-
-
-def _estimate_noise(obj: Objective, z) -> None:
+def _estimate_noise(obj: Objective, z, estimated, robust: bool) -> None:
     res = obj.residuals(z)
-    n = obj.size
-    for k, part in enumerate(obj.split(res)):
-        if part.size:
-            dof = max(part.size - 4 * part.size / n, 1.0)
-            obj.noise[k] *= math.sqrt(float(np.sum(part**2)) / dof)
+    parts = obj.split(res)
+    scale = []
+    for k, part in enumerate(parts):
+        if not (estimated[k] and part.size):
+            scale.append(np.ones(part.size))
+            continue
+        if robust:
+            factor = 1.4826 * float(np.median(np.abs(part)))
+        else:
+            dof = max(part.size - 4 * part.size / obj.size, 1.0)
+            factor = math.sqrt(float(np.sum(part**2)) / dof)
+        scale.append(np.full(part.size, max(factor, 1e-300)))
+    obj.sd = obj.sd * np.concatenate(scale)
 
 
-def _covariance(jac: np.ndarray) -> np.ndarray:
-    return np.linalg.pinv(jac.T @ jac, rcond=1e-12)
+def _best(obj: Objective, starts, loss):
+    from .local import local_fit
+
+    best, failures, ends = None, [], []
+    for z0 in starts:
+        try:
+            z, c, res = local_fit(obj, z0, loss=loss)
+        except SolverError as e:
+            failures.append(str(e))
+            continue
+        ends.append((z, c))
+        if best is None or c < best[1]:
+            best = (z, c, res)
+    return best, failures, ends
 
 
 def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_radius_um: float,
-        starts: int = 2, intervals: bool = True) -> FitResult:
-    """Fit R0_um, sigma, lambda and T_s; see the module docstring and docs/fitting.md."""
+        intervals: bool = True, loss: str = "linear", derived: bool = True) -> FitResult:
+    """Fit R0_um, sigma, lambda and T_s; see the module docstring and docs/fitting.md.
+    `loss`: "linear" (least squares), or "soft_l1" / "cauchy" (robust to outliers).
+    `intervals`: the parameters' profile likelihoods; `derived`: also those of tau, zeta/G
+    and the viscous length (without them these are reported not identified)."""
+    from scipy import stats
+
+    from .likelihood import profile_all
+    from .local import cost
+    from .start import grid_starts
+
+    if loss not in ("linear", "soft_l1", "cauchy"):
+        raise ValueError(f"loss = {loss!r}: expected linear, soft_l1 or cauchy")
+    check_against(radius, profile, outer_radius_um)
     obj = Objective(radius, profile, outer_radius_um)
-    if obj.n_radius + obj.n_profile < 5:
+    if obj.size < 5:
         raise ValueError(f"fit: {obj.size} data points for 4 parameters: need at least 5")
-    known = [radius.noise_um, profile.noise_um_s if profile is not None else None]
-    obj.noise = [known[0] or 0.01 * float(np.mean(obj.radius)), known[1] or 1.0]
-    if profile is not None and known[1] is None:
-        obj.noise[1] = max(float(np.std(np.concatenate([g[2] for g in obj.groups]))), 1e-12) * 0.1
-    best = None
-    for z0 in _starts(obj, radius)[:starts]:
-        z, chi2, res = local_fit(obj, z0)
-        if best is None or chi2 < best[1]:
-            best = (z, chi2, res)
+    estimated = _uncertainties(obj, radius, profile)
+
+    def objective_cost(z):
+        return cost(obj.residuals(z), loss)
+
+    best, failures, ends = _best(obj, grid_starts(obj, objective_cost), loss)
+    if best is None:
+        raise ValueError("fit: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
     z = best[0]
-    estimated = [known[0] is None, profile is not None and known[1] is None]
     if any(estimated):
         for _ in range(2):  # noise from the residuals, then refit with those weights
-            saved = list(obj.noise)
-            _estimate_noise(obj, z)
-            obj.noise = [obj.noise[k] if estimated[k] else saved[k] for k in range(2)]
-            z, chi2, res = local_fit(obj, z)
-    z, chi2, res = local_fit(obj, z, exact=True)
-    dof = max(obj.size - 4, 1)
+            _estimate_noise(obj, z, estimated, loss != "linear")
+            best, _, _ = _best(obj, [z], loss)
+            z = best[0]
+    z, chi2_cost, res = best
+    n, dof = obj.size, max(obj.size - 4, 1)
     threshold = float(stats.f.ppf(0.95, 1, dof)) if any(estimated) else float(stats.chi2.ppf(0.95, 1))
-    cov_z = _covariance(res.jac)
+    residuals = obj.residuals(z)
+    jac = obj.jacobian(z)
+    reasons = []
+    optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
+    if res.status == 0:  # evaluations exhausted: restart (up to 4 times) until the cost drops by < FLAT
+        from .local import local_fit
+
+        for _ in range(4):
+            z2, c2, res2 = local_fit(obj, z, loss=loss, max_nfev=400)
+            drop = chi2_cost - c2
+            if c2 < chi2_cost:
+                z, chi2_cost = z2, c2
+            if res2.status > 0 or drop < FLAT:
+                break
+        if res2.status > 0:
+            res = res2
+        elif drop < FLAT:
+            res.status = 1
+            res.message += (f" The last restart lowered the cost by {max(drop, 0):.2g} (< {FLAT}): at its minimum "
+                            "for the intervals, the parameters moving along a flat valley.")
+        optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
+    if res.status <= 0:
+        reasons.append(f"optimiser stopped without converging ({res.message})")
+    flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
+    chi2 = float(np.sum(np.delete(residuals, flagged) ** 2))
+    p_value = None if any(estimated) else float(stats.chi2.sf(chi2, max(dof - flagged.size, 1)))
+    if p_value is not None and p_value < P_FAIL:
+        reasons.append(f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
+                       "the model does not describe the data with the given noise")
+    # lambda on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
+    free = [i for i in range(4) if not (i == 2 and z[2] <= 1e-8)]
+    sv = np.linalg.svd(jac[:, free], compute_uv=False)
+    cov_z = np.full((4, 4), np.nan)
+    singular = not (sv.size == len(free) and sv[-1] > 1e-12 * sv[0])
+    if not singular:
+        try:
+            cov_z[np.ix_(free, free)] = np.linalg.inv(jac[:, free].T @ jac[:, free])
+        except np.linalg.LinAlgError:
+            singular = True
+    if singular:
+        reasons.append("the Jacobian at the best point is singular: the data do not determine the four parameters")
     theta = from_z(z)
     scale = np.array([theta[0], 1.0, 1.0, theta[3]])  # d theta / d z
     cov = cov_z * np.outer(scale, scale)
-    se = np.sqrt(np.clip(np.diag(cov), 0, None))
+    with np.errstate(invalid="ignore"):
+        se = np.sqrt(np.diag(cov))
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
-    profiles = profile_all(obj, z, chi2, threshold, cov_z) if intervals else {}
-    reports = {}
-    for i, name in enumerate(NAMES):
-        p = profiles.get(name)
-        reports[name] = ParameterReport(name, theta[i], float(se[i]), p)
-    radius_res = obj.split(obj.residuals(z))[0] * obj.noise[0]
+    # other local optima (refitted at the final noise) that a profile may reach
+    alternates = []
+    for e, _ in ends:
+        if all(np.max(np.abs(e - other)) > 1e-2 for other in [z] + [a for a, _ in alternates]):
+            alternates.append((e, cost(obj.residuals(e), loss) - chi2_cost))
+    profiles = profile_all(obj, z, chi2_cost, threshold, cov_z, loss, alternates) if intervals and not reasons else {}
+    if profiles and derived:
+        from .derived import derived_profiles
+
+        profiles |= derived_profiles(obj, z, chi2_cost, threshold, loss, alternates)
+    reports = {name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name)) for i, name in enumerate(NAMES)}
+    derived_p = {name: p for name, p in profiles.items() if name not in NAMES}
+    obj.residuals(z)  # inside_edge at the optimum
+    radius_res = obj.split(residuals * obj.sd)[0]
     return FitResult(theta=theta, reports=reports, correlation=corr, chi2=chi2, threshold=threshold,
                      outer_radius_um=obj.outer, residual_rms_um=float(np.sqrt(np.mean(radius_res**2))),
-                     noise=tuple(obj.noise), n_points=(obj.n_radius, obj.n_profile), has_profile=profile is not None,
-                     evaluations=obj.evaluations)
+                     noise=(float(np.median(obj.sd[:obj.n_radius])),
+                            float(np.median(obj.sd[obj.n_radius:])) if obj.n_profile else None),
+                     n_points=(obj.n_radius, obj.n_profile), has_profile=profile is not None,
+                     evaluations=obj.evaluations, converged=not reasons, reasons=reasons,
+                     optimizer=optimizer,
+                     dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
+                     outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
+                     derived_profiles=derived_p)
+
+
+def _outliers(obj: Objective, flagged) -> dict:
+    """Flagged points as rows of the input (1 = first row)."""
+    rows = {"radius": [], "profile": []}
+    for k in flagged:
+        if k < obj.n_radius:
+            rows["radius"].append(int(obj.order[k]) + 1)
+        else:
+            j = k - obj.n_radius
+            for _, r, _, idx in obj.groups:
+                if j < r.size:
+                    rows["profile"].append(int(idx[j]) + 1)
+                    break
+                j -= r.size
+    return {k: sorted(v) for k, v in rows.items()}

@@ -1,10 +1,30 @@
-"""Weighted residuals of the model against a radius series and a velocity profile.
+"""Weighted residuals of the model against a radius series and a velocity profile, and
+their Jacobian.
 
-Coordinates of the optimiser: z = (ln R0, sigma, lambda, ln T), lambda >= 0. The outer
-radius is fixed in um, so R_inf = outer / R0 moves with R0; each R_inf needs its own modal
-basis (~0.2 ms), every other parameter change costs O(modes) (~25 us a curve). The fits
-therefore hold R_inf at the current R0 during a least-squares run and repeat the run with
-the updated R_inf until R0 settles (`frozen`), then polish with R_inf following R0 exactly.
+Coordinates of the optimiser: z = (ln R0, sigma, lambda, ln T), lambda >= 0; the outer
+radius is fixed in um, so R_inf = outer / R0 moves with R0.
+
+Wound radius. With no edge stress the displacement is proportional to sigma, so with
+h(t) = R(t; sigma = 1) - 1 (dimensionless, lambda and R_inf given)
+
+    R_um(t) = R0 (1 + sigma h(t / T))
+    d R_um / d sigma = R0 h                          (exact)
+    d R_um / d ln T  = -t dR_um/dt = -(t / T) R0 sigma h'(t / T)   (exact: the edge velocity)
+    d R_um / d ln R0 = R_um - R0 sigma R_inf dh/dR_inf
+    d R_um / d lambda = R0 sigma dh/dlambda
+
+dh/dR_inf and dh/dlambda are central differences of solves at TOLERANCE_FD (1e-11 of the
+opening) with steps STEP (1e-4 relative): rounding error ~1e-11 / 1e-4 = 1e-7, truncation
+~STEP^2 = 1e-8, both relative to the column (tests/python/test_fit.py checks 1e-6 against the
+exact Laplace-domain solution). The solution depends on lambda only through lambda^2, so
+h(-lambda) = h(lambda) and the central difference at lambda = 0 gives the exact 0.
+
+Velocity profile (PIV). A vector at current distance r from the centre at time t is
+compared with the velocity of the tissue at r. Where r is at or inside the model's wound
+edge R(t) (possible for vectors measured at the edge, for some parameter values), the
+window holds the edge itself: the model value is the edge velocity dR/dt. The model is
+then continuous in the parameters (no penalty branch); such vectors are counted
+(`inside_edge`). Profile columns of the Jacobian are central differences of the same kind.
 """
 
 from __future__ import annotations
@@ -14,16 +34,17 @@ import math
 import numpy as np
 
 from . import _native
-from .data import RadiusSeries, VelocityProfile
 
 NAMES = ("R0_um", "sigma", "lambda", "T_s")
 #: Largest lambda searched: a viscous length of 50 R0, beyond which the tissues of these
 #: experiments (outer radius ~10 R0) move as one and R(t) depends on tau = lambda^2 T only.
 LAMBDA_MAX = 50.0
-#: Accuracy of the curves inside fits: far below any measurement noise, coarser grids.
-FIT_TOLERANCE = 1e-8
-#: Residual given to a data point the model cannot produce (a PIV radius inside the wound).
-PENALTY = 1e3
+#: Accuracy of the curves inside fits (relative to the opening): the solver's finest.
+TOLERANCE_FD = 1e-11
+#: Relative step of the central differences.
+STEP = 1e-4
+#: Smallest R_inf the solver accepts (the fits bound R0 by outer / R_INF_MIN).
+R_INF_MIN = 1.001
 
 
 def to_z(theta) -> np.ndarray:
@@ -32,59 +53,105 @@ def to_z(theta) -> np.ndarray:
 
 
 def from_z(z) -> tuple[float, float, float, float]:
-    return math.exp(z[0]), float(z[1]), max(float(z[2]), 0.0), math.exp(z[3])
+    return math.exp(z[0]), float(z[1]), abs(float(z[2])), math.exp(z[3])
 
 
 class Objective:
-    """Residuals (model - data) / noise, radius points first, then profile points."""
+    """Residuals (model - data) / uncertainty, radius points first, then profile points.
+    `sd` holds the per-point uncertainties (None where estimated: see `scale`)."""
 
-    def __init__(self, radius: RadiusSeries, profile: VelocityProfile | None, outer_radius_um: float):
+    def __init__(self, radius, profile, outer_radius_um: float):
         self.outer = float(outer_radius_um)
         t = np.asarray(radius.times_s, dtype=float)
         self.order = np.argsort(t, kind="stable")
         self.t_sorted = t[self.order]
         self.radius = np.asarray(radius.radius_um, dtype=float)[self.order]
-        self.groups = []
+        self.groups = []  # (time, r_um, velocity_um_s, indices in the profile's rows)
         if profile is not None:
             pt = np.asarray(profile.times_s, dtype=float)
             for time in np.unique(pt):
                 idx = np.flatnonzero(pt == time)
-                self.groups.append((time, np.asarray(profile.r_um, float)[idx],
-                                    np.asarray(profile.velocity_um_s, float)[idx]))
+                self.groups.append((float(time), np.asarray(profile.r_um, float)[idx],
+                                    np.asarray(profile.velocity_um_s, float)[idx], idx))
         self.n_radius = self.radius.size
         self.n_profile = sum(g[1].size for g in self.groups)
-        self.noise = [1.0, 1.0]  # radius [um], velocity [um/s]
+        self.group_times = np.array([g[0] for g in self.groups])
+        self.sd = np.ones(self.size)  # per-point uncertainty [um or um/s]
         self.evaluations = 0
+        self.inside_edge = 0
 
     @property
     def size(self) -> int:
         return self.n_radius + self.n_profile
 
-    def r_inf(self, R0: float) -> float:
-        return self.outer / R0
+    def data(self) -> np.ndarray:
+        return np.concatenate([self.radius] + [g[2] for g in self.groups])
 
-    def model(self, theta, r_inf: float | None = None):
-        """Radius [um] at the (sorted) radius times, and velocities [um/s] per profile group."""
+    def _h(self, lam: float, r_inf: float, times):
+        """h = R(sigma = 1) - 1 and h' at ascending dimensionless times."""
+        r, v = _native.series(abs(lam), 1.0, r_inf, times, tolerance=TOLERANCE_FD)
+        return r - 1.0, v
+
+    def _profile(self, theta, r_inf: float) -> np.ndarray:
+        """Model velocities [um/s] of the profile rows (group order), the edge velocity for
+        rows at or inside the model's wound edge; sets `inside_edge`."""
         R0, sigma, lam, T = theta
-        r_inf = self.r_inf(R0) if r_inf is None else r_inf
-        self.evaluations += 1
-        radius, _ = _native.series(lam, sigma, r_inf, self.t_sorted / T, velocity=False, tolerance=FIT_TOLERANCE)
-        velocities = []
-        for time, r, _ in self.groups:
-            _, v = _native.profile_series(lam, sigma, r_inf, [time / T], r / R0, tolerance=FIT_TOLERANCE)
-            velocities.append(R0 / T * v[0])
-        return R0 * radius, velocities
+        if not self.groups:
+            return np.empty(0)
+        tau = self.group_times / T
+        h, dh = self._h(lam, r_inf, tau)
+        edge_r, edge_v = 1.0 + sigma * h, sigma * dh
+        out, inside = [], 0
+        for k, (_, r, _, _) in enumerate(self.groups):
+            x = r / R0
+            v = np.full(x.size, edge_v[k])
+            tissue = x > edge_r[k] * (1 + 1e-12)
+            if np.any(tissue):
+                _, vt = _native.profile_series(abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=TOLERANCE_FD)
+                v[tissue] = vt[0]
+            inside += int(np.sum(~tissue))
+            out.append(R0 / T * v)
+        self.inside_edge = inside
+        return np.concatenate(out)
 
-    def residuals(self, z, r_inf: float | None = None) -> np.ndarray:
-        theta = from_z(z)
-        try:
-            radius, velocities = self.model(theta, r_inf)
-        except _native.SolverError:
-            return np.full(self.size, PENALTY)
-        parts = [(radius - self.radius) / self.noise[0]]
-        parts += [(v - data) / self.noise[1] for v, (_, _, data) in zip(velocities, self.groups)]
-        return np.concatenate(parts)
+    def model(self, z) -> np.ndarray:
+        """Model values at the data points (radius [um], then velocities [um/s])."""
+        R0, sigma, lam, T = theta = from_z(z)
+        r_inf = self.outer / R0
+        self.evaluations += 1
+        h, _ = self._h(lam, r_inf, self.t_sorted / T)
+        return np.concatenate([R0 * (1 + sigma * h), self._profile(theta, r_inf)])
+
+    def residuals(self, z) -> np.ndarray:
+        return (self.model(z) - self.data()) / self.sd
+
+    def jacobian(self, z) -> np.ndarray:
+        """d residuals / d z, (size, 4): see the module docstring."""
+        R0, sigma, lam, T = theta = from_z(z)
+        r_inf = self.outer / R0
+        t = self.t_sorted
+        h, dh = self._h(lam, r_inf, t / T)
+        dr = STEP * r_inf
+        rc = max(r_inf, R_INF_MIN + dr)  # centred inside the solver's range at its edge
+        dh_dr = (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr)
+        dl = STEP * max(lam, 0.01)
+        dh_dl = (self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
+        with np.errstate(invalid="ignore"):
+            dlnT = np.where(t > 0, -(t / T) * R0 * sigma * dh, 0.0)
+        jr = np.column_stack([R0 * (1 + sigma * h) - R0 * sigma * r_inf * dh_dr, R0 * h, R0 * sigma * dh_dl, dlnT])
+        if self.groups:
+            steps = np.array([STEP, STEP * max(1.0, abs(sigma)), dl, STEP])
+            cols = []
+            for i in range(4):
+                e = np.zeros(4)
+                e[i] = steps[i]
+                up = self._profile(from_z(z + e), self.outer / math.exp(z[0] + e[0]))
+                down = self._profile(from_z(z - e), self.outer / math.exp(z[0] - e[0]))
+                cols.append((up - down) / (2 * steps[i]))
+            self._profile(theta, r_inf)  # inside_edge at z
+            jr = np.vstack([jr, np.column_stack(cols)])
+        return jr / self.sd[:, None]
 
     def split(self, res: np.ndarray):
-        """(radius residuals, profile residuals) of a residual vector."""
+        """(radius part, profile part) of a vector over the data points."""
         return res[: self.n_radius], res[self.n_radius:]

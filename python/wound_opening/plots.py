@@ -25,7 +25,7 @@ def fit_figure(result, radius, profile, path):
     sim = simulate(fine, lam=lam, sigma=sigma, R0_um=R0, T_s=T, outer_radius_um=result.outer_radius_um)
     ax.plot(t, radius.radius_um, "o", ms=4, label="data")
     ax.plot(fine, sim.radius_um, "-", label="fit")
-    ax.axhline(result.derived["R1_um"], ls=":", c="gray", label="R₁ = R₀(1 + σ/6)")
+    ax.axhline(R0 * (1 + sigma / 6), ls=":", c="gray", label="R₁ = R₀(1 + σ/6)")
     ax.set(xlabel="time since the cut (s)", ylabel="wound radius (µm)")
     ax.legend(loc="lower right")
     ax = fig.add_subplot(grid[0, 2])

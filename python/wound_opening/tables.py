@@ -16,9 +16,10 @@ class InputError(ValueError):
 
 
 def read_columns(path: str, columns: tuple[str, ...], *, time_column: str = "time_s",
-                 ascending: bool = True, min_rows: int = MIN_POINTS) -> dict[str, np.ndarray]:
+                 ascending: bool = True, min_rows: int = MIN_POINTS, optional: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
     """The named columns of a CSV file as float arrays, checked: every cell a finite number,
-    times >= 0 and (if `ascending`) non-decreasing, at least `min_rows` rows."""
+    times >= 0 and (if `ascending`) non-decreasing, at least `min_rows` rows. Columns in
+    `optional` are read too when the header has them."""
     try:
         with open(path, newline="") as f:
             rows = list(csv.reader(f))
@@ -32,6 +33,7 @@ def read_columns(path: str, columns: tuple[str, ...], *, time_column: str = "tim
     for name in columns:
         if name not in header:
             raise InputError(f"{path}: missing column {name!r} (header is {','.join(header)!r}; expected {','.join(columns)!r})")
+    columns = tuple(columns) + tuple(name for name in optional if name in header)
     index = [header.index(name) for name in columns]
     data = {name: [] for name in columns}
     body = [(n, r) for n, r in enumerate(rows[1:], start=1) if any(cell.strip() for cell in r)]

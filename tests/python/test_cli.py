@@ -50,7 +50,9 @@ def test_fit_writes_the_json_of_the_issue_and_a_figure(tmp_path):
         assert p["identifiable"] is True, (name, p)
         # 7 standard errors: a draw this far off would be a bug, not noise.
         assert abs(p["estimate"] - truth) < 7 * p["stderr"], (name, p)
-    assert set(out["derived"]) == {"tau_s", "viscous_length_um", "R1_um", "R_final_um"}
+    assert {"tau_s", "viscous_length_um", "zeta_over_G_s_per_um2", "tension_over_G", "R1_um", "R_final_um"} <= set(out["derived"])
+    tau_lo, tau_hi = out["derived_ci95"]["tau_s"]
+    assert tau_lo < LAM**2 * T < tau_hi, out["derived_ci95"]
     assert out["derived"]["tau_s"] == pytest.approx(out["parameters"]["lambda"]["estimate"] ** 2
                                                     * out["parameters"]["T_s"]["estimate"])
     assert 0.02 < out["residual_rms_um"] < 0.1  # the noise is 0.05 um
@@ -63,7 +65,7 @@ def test_fit_of_the_radius_alone_says_lambda_is_not_identified_and_what_would(tm
     assert done.returncode == 0, done.stderr
     lam = json.loads((tmp_path / "fit.json").read_text())["parameters"]["lambda"]
     assert lam["identifiable"] is False
-    assert "profile likelihood flat over [0, " in lam["advice"] and "add a velocity profile within" in lam["advice"]
+    assert "not identified (95 % interval [0, " in lam["advice"] and "add a velocity profile within" in lam["advice"]
 
 
 def test_sweep_and_simulate_write_their_tables(tmp_path):

@@ -1,4 +1,4 @@
-"""Profile likelihood: for each parameter, chi^2 minimised over the other three at fixed
+"""Likelihood profiles: for each parameter, chi^2 minimised over the other three at fixed
 values of it, walked outward from the estimate on both sides until it rises by the
 threshold (3.84, or the F quantile with an estimated noise) or a limit is reached.
 
@@ -54,13 +54,15 @@ def _own_units(i: int, v: float) -> float:
     return math.exp(v) if i in (0, 3) else v
 
 
-def _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit, slope):
+def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, loss, delta0=0.0):
     """Walk one side; return (end in z coordinates or None, at limit, points).
 
     Each constrained fit starts from a prediction of the other parameters: along the
     Jacobian's regression line `slope` (d z / d z_i) for the first step, then extrapolated
     from the last two profile points (the profile of lambda at fixed tau = lambda^2 T bends
     T strongly: a start at the previous point alone can end in a worse local minimum)."""
+    from .local import local_fit
+
     root = math.sqrt(threshold)
     path = [(z_hat[i], z_hat)]
 
@@ -76,26 +78,43 @@ def _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit,
     def constrained(v):
         """chi^2 at fixed v from the predicted start; where that looks like a crossing, also
         from the last profile point, keeping the lower (a false crossing would shorten the
-        interval)."""
-        z, chi2, _ = local_fit(obj, start(v), fixed=i, value=v, tol=1e-7, passes=1)
+        interval). A crossing found by fits that ran out of evaluations (a flat, curved
+        valley they crawl along) is not trusted: `unsure` ends the walk with an open end."""
+        z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7)
+        unsure = False
         if chi2 - chi2_min >= threshold:
-            z2, chi2b, _ = local_fit(obj, path[-1][1], fixed=i, value=v, tol=1e-7, passes=1)
+            z2, chi2b, res2 = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7)
             if chi2b < chi2:
-                z, chi2 = z2, chi2b
-        return z, max(chi2 - chi2_min, 0.0)
+                z, chi2, res = z2, chi2b, res2
+            unsure = res.status == 0
+        return z, max(chi2 - chi2_min, 0.0), unsure
 
-    prev_v, prev_delta = z_hat[i], 0.0
+    from ._native import SolverError
+
+    plain = constrained
+
+    def constrained(v):  # noqa: F811  (a point the solver refuses ends the walk, open)
+        try:
+            return plain(v)
+        except SolverError:
+            return path[-1][1], math.inf, True
+
+    prev_v, prev_delta = z_hat[i], delta0
     points = []
     for k in range(16):
         v = prev_v + direction * step * (2.0**k if k else 1.0)
         v = min(v, limit) if direction > 0 else max(v, limit)
-        z, delta = constrained(v)
+        z, delta, unsure = constrained(v)
         points.append((v, delta))
+        if unsure:
+            return None, True, points
         if delta >= threshold:
             a, fa, b, fb = prev_v, math.sqrt(prev_delta) - root, v, math.sqrt(delta) - root
             for _ in range(2):
                 c = a + (b - a) * (-fa) / (fb - fa)
-                _, dc = constrained(c)
+                _, dc, unsure = constrained(c)
+                if unsure:
+                    return None, True, points
                 points.append((c, dc))
                 fc = math.sqrt(dc) - root
                 if fc < 0:
@@ -110,31 +129,41 @@ def _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit,
     return None, True, points
 
 
-def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray) -> dict:
-    """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z."""
-    from .fit import _bounds, local_fit
+def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,
+                loss: str = "linear", alternates=()) -> dict:
+    """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z.
+    `alternates`: other local optima (z, delta chi^2) below the threshold. The confidence
+    set of a parameter may then be two intervals (a barrier between the valleys rises above
+    the threshold): each is walked from its own optimum and the hull is reported."""
+    from .local import bounds
 
     out = {}
-    bounds = _bounds(obj)
+    lims = bounds(obj)
+    centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for i, name in enumerate(NAMES):
-        lo_lim, hi_lim = _limits(i, z_hat, *bounds)
         default = (0.05, 0.05 * abs(z_hat[1]) + 0.01, 0.1, 0.1)[i]
         se = math.sqrt(max(cov_z[i, i], 0.0))
-        slope = cov_z[:, i] / cov_z[i, i] if cov_z[i, i] > 0 and np.all(np.isfinite(cov_z[:, i])) else np.zeros(4)
+        slope = np.nan_to_num(cov_z[:, i] / cov_z[i, i]) if cov_z[i, i] > 0 else np.zeros(4)
         slope[i] = 1.0
         step = float(np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20))
-        ends, points = [], []
-        for direction, limit in ((-1, lo_lim), (1, hi_lim)):
-            if z_hat[i] == limit:
-                ends.append((None, True))
-                continue
-            end, at_limit, pts = _side(obj, local_fit, i, z_hat, chi2_min, threshold, step, direction, limit, slope)
-            ends.append((end, at_limit))
-            points += pts
-        (lo, lo_open), (hi, _) = ends
+        lows, highs, points = [], [], [(z_hat[i], 0.0)]
+        for centre, delta0 in centres:
+            lo_lim, hi_lim = _limits(i, centre, *lims)
+            for direction, limit, ends in ((-1, lo_lim, lows), (1, hi_lim, highs)):
+                if ends and (ends[0][0] is None or direction * (centre[i] - ends[0][0]) <= 0):
+                    continue  # an optimum inside the interval found (or an open end): nothing to add
+                if centre[i] == limit:
+                    ends.append((None, True))
+                    continue
+                end, at_limit, pts = _side(obj, i, centre, chi2_min, threshold, step, direction, limit, slope, loss,
+                                           delta0)
+                ends.append((end, at_limit))
+                points += pts
+        lo_open = any(e is None for e, _ in lows)
+        lo = None if lo_open else min(e for e, _ in lows)
+        hi = None if any(e is None for e, _ in highs) else max(e for e, _ in highs)
         at_bound = i == 2 and lo_open  # lambda's lower end is its bound 0
         lower = 0.0 if at_bound else (None if lo is None else _own_units(i, lo))
         upper = None if hi is None else _own_units(i, hi)
-        pts = sorted([(z_hat[i], 0.0)] + points)
-        out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in pts])
+        out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)])
     return out

@@ -1,0 +1,78 @@
+"""The global stage of `fit`: a dense grid that cannot miss the basin of the optimum.
+
+With no edge stress the radius is linear in (R0, R0 sigma) at fixed lambda, T and R_inf:
+R_um(t) = R0 + R0 sigma h(t / T; lambda, R_inf) (objective.py). On a grid of lambda
+(0 and 0.02 .. 50, 14 values) x s = T (1 + lambda^2) (the time scale of the opening, 5 per
+decade from below the first sampled time, and below the diffusive time t_last / R_inf^2, to
+10 times the last time), R0 and sigma are the weighted linear least squares solution of the
+radii (variable projection, R_inf held at its value for R0 = the smallest radius / 1.05);
+with a profile, the RESCORED best are scored again by the full cost (radius and profile,
+exact R_inf). The best distinct points start the local fits.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import _native
+from .objective import Objective, to_z
+
+#: Accuracy of the grid's curves (relative to the opening): far below any noise that matters
+#: for finding the basin; the local fits use the finest.
+GRID_TOLERANCE = 1e-8
+#: Grid points re-scored with the full cost (radius and profile, exact R_inf).
+RESCORED = 24
+LAMBDAS = (0.0, 0.02, 0.05, 0.1, 0.2, 0.35, 0.6, 1.0, 1.7, 3.0, 5.0, 10.0, 20.0, 50.0)
+
+
+def _linear(obj: Objective, lam: float, T: float, r_inf: float, w: np.ndarray):
+    """(R0, sigma, weighted residual sum of squares) of the linear fit at (lambda, T), R_inf
+    held (the grid only has to find the basin), or None."""
+    h, _ = _native.series(lam, 1.0, r_inf, obj.t_sorted / T, velocity=False, tolerance=GRID_TOLERANCE)
+    h = h - 1.0
+    a = np.column_stack([np.ones_like(h), h]) * w[:, None]
+    (c0, c1), *_ = np.linalg.lstsq(a, obj.radius * w, rcond=None)
+    if not (c0 > 0 and math.isfinite(c1)):
+        return None
+    return float(c0), float(c1) / float(c0), float(np.sum((a @ (c0, c1) - obj.radius * w) ** 2))
+
+
+def grid_starts(obj: Objective, cost, count: int = 4) -> list[np.ndarray]:
+    """The `count` best distinct grid points (not neighbours on the grid) by `cost(z)`."""
+    t = obj.t_sorted
+    positive = t[t > 0]
+    t_last = float(t[-1]) if t[-1] > 0 else 1.0
+    r_inf = obj.outer / float(np.min(obj.radius))
+    low = min(float(positive[0]) if positive.size else t_last, t_last / r_inf**2) / 10
+    s_grid = np.logspace(math.log10(low), math.log10(10 * t_last), int(5 * math.log10(100 * t_last / low)) + 1)
+    w = 1.0 / obj.sd[: obj.n_radius]
+    r_inf0 = obj.outer / (float(np.min(obj.radius)) / 1.05)
+    ranked = []
+    for i, lam in enumerate(LAMBDAS):
+        for j, s in enumerate(s_grid):
+            T = s / (1 + lam**2)
+            try:
+                lin = _linear(obj, lam, T, r_inf0, w)
+            except _native.SolverError:
+                continue
+            if lin is not None and obj.outer / lin[0] > 1.001:
+                ranked.append((lin[2], i, j, to_z((lin[0], lin[1], lam, T))))
+    ranked.sort(key=lambda s: s[0])
+    scored = []
+    for _, i, j, z in ranked[:RESCORED] if obj.n_profile else ranked:
+        try:
+            scored.append((cost(z) if obj.n_profile else _, i, j, z))
+        except _native.SolverError:
+            continue
+    scored.sort(key=lambda s: s[0])
+    chosen = []
+    for c, i, j, z in scored:
+        if not math.isfinite(c):
+            continue
+        if all(abs(i - ci) > 1 or abs(j - cj) > 2 for _, ci, cj, _ in chosen):
+            chosen.append((c, i, j, z))
+        if len(chosen) == count:
+            break
+    return [z for *_, z in chosen]
