@@ -4,7 +4,7 @@
     fitting_example.png         wound-opening fit of 30 radii (0.05 um noise) and a PIV profile
                                 at 1 s and 3 s (5 % noise): data, fit, residuals, profiles
     fitting_identifiability.png lambda's profile likelihood from the radius alone (2 % noise,
-                                the issue's case) and with the velocity profile added; and
+                                a typical case) and with the velocity profile added; and
                                 R(t) for scaled (G, eta, zeta): identical curves
 
     python python/fitting_figures.py --out docs

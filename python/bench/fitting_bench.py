@@ -1,5 +1,5 @@
 """Speed of the wound_opening package against the fmpy FMU path, measured side by side in
-one run (issue 10, section 5). Writes OUT/benchmarks_fitting.csv and prints a markdown table.
+one run. Writes OUT/benchmarks_fitting.csv and prints a markdown table.
 
     curve_package       simulate(): 40 times of a new (lambda, sigma, T) at a fixed outer radius
     curve_native        the same through wo_series alone (one ctypes call)

@@ -128,7 +128,7 @@ def test_simulate_fmu_edge_stress_step(fmu_path, lam):
 def test_initial_velocity(make_slave, lam, p):
     """Right after initialization the output edge_velocity is u_t(1, 0+) = (p - sigma) w(1),
     the closed form in Bessel functions for lambda > 0, which the FMU evaluates itself
-    (measured within 1.1e-15 of SciPy's; asserted at 1e-12; at 90e9375 it was the mesh's,
+    (measured within 1.1e-15 of SciPy's; asserted at 1e-12; the mesh's own value is
     2.4e-12 off at lambda = 1). At lambda = 0 it is infinite: see test_errors. The formula
     is also checked against the Laplace reference at t = 1e-9 (where the velocity has moved
     by < 1e-7 relative from its t = 0+ value)."""

@@ -1,4 +1,4 @@
-"""The command line `wound-opening` through subprocess: fit (JSON in the issue's format, a
+"""The command line `wound-opening` through subprocess: fit (JSON in its documented format, a
 figure), sweep (CSV and Parquet), simulate, and bad input: one line naming the file, the
 row and the problem, exit code 2, no traceback."""
 
@@ -60,7 +60,7 @@ def test_fit_writes_the_json_of_the_issue_and_a_figure(tmp_path):
 
 
 def test_fit_of_the_radius_alone_says_lambda_is_not_identified_and_what_would(tmp_path):
-    write_radius(tmp_path / "radius.csv", noise=0.2)  # the issue's case: 2 % noise on the radius
+    write_radius(tmp_path / "radius.csv", noise=0.2)  # 2 % noise on the radius
     done = run("fit", tmp_path / "radius.csv", "--outer-radius-um", OUTER, "--json", tmp_path / "fit.json")
     assert done.returncode == 0, done.stderr
     lam = json.loads((tmp_path / "fit.json").read_text())["parameters"]["lambda"]

@@ -34,9 +34,8 @@ def exact_slope(lam, r_inf=R_INF):
 @pytest.mark.parametrize("scales", [None, PHYSICAL], ids=["dimensionless", "physical"])
 def test_wound_derivative_is_the_closed_form(make_slave, lam, scales):
     """d edge_velocity / d edge_stress = (R0/T)/G w(1) with w the exact response. Measured
-    within 1.2e-15 relative of SciPy's evaluation; asserted at 1e-12. At 90e9375 the FMU
-    returned its mesh's value instead: 17.8 against an exact 25.0 at lambda = 0.01,
-    tolerance 1e-3."""
+    within 1.2e-15 relative of SciPy's evaluation; asserted at 1e-12. The mesh's own value
+    is 17.8 against an exact 25.0 at lambda = 0.01, tolerance 1e-3."""
     k = scales or {"R0": 1.0, "T": 1.0, "G": 1.0}
     s = make_slave()
     s.fmu.setupExperiment(tolerance=1e-3, startTime=0.0)
@@ -51,8 +50,8 @@ def test_wound_derivative_is_the_closed_form(make_slave, lam, scales):
 
 @pytest.mark.parametrize("scales", [None, PHYSICAL], ids=["dimensionless", "physical"])
 def test_wound_derivative_is_refused_at_lambda_zero(make_slave, scales):
-    """The exact derivative is infinite at lambda = 0: refused with the reason, where
-    90e9375 returned a mesh artefact (22.5 to 264 depending on the tolerance)."""
+    """The exact derivative is infinite at lambda = 0: refused with the reason, not a
+    mesh artefact (the mesh gives 22.5 to 264 depending on the tolerance)."""
     s = wound_at(make_slave, 0.0, 0.5, 0.2, scales)
     messages = expect_error(s, s.fmu.getDirectionalDerivative, [s.vr["edge_velocity"]], [s.vr["edge_stress"]], [1.0])
     assert_logged(messages, re.compile(r"infinite at lambda = 0"), s)

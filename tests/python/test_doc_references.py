@@ -19,7 +19,7 @@ ROOT = Path(__file__).resolve().parents[2]
 TEXT = (".md", ".rs", ".py", ".sh", ".h", ".c", ".toml", ".txt", ".html", ".supp")
 PATH = re.compile(r"(?<![\w./-])((?:src|docs|python|tests|scripts|examples|include|\.ci)/[\w.*/{},-]*[\w*/}])")
 SECTION = re.compile(r'docs/model\.md(?:\)|`)?[,(]?\s*\(?"([^"]+)"')
-HISTORY = re.compile(r"\b(?:[Ii]ssues? \d+|the issue's|[Aa]t [0-9a-f]{7,40}\b|[Oo]n [0-9a-f]{7,40}\b)")
+HISTORY = re.compile(r"\b(?:[Ii]ssues? \d+|the issue's|[Aa]t [0-9a-f]{7,40}\b|[Oo]n [0-9a-f]{7,40}\b|[0-9a-f]{7,40} (?:returned|gave|was|had)\b)")
 #: Another repository whose paths a comment may cite (with its name on the same line).
 EXTERNAL = ("Reference-FMUs",)
 
@@ -97,3 +97,4 @@ def test_the_patterns_find_what_they_look_for():
     assert SECTION.search('docs/model.md, "Exact results"').group(1) == "Exact results"
     assert SECTION.search('(docs/model.md ("Exact results"),').group(1) == "Exact results"
     assert HISTORY.search("at 90e9375 it returned") and HISTORY.search("issue 3") and not HISTORY.search("tissue 3")
+    assert HISTORY.search("90e9375 returned a mesh artefact")

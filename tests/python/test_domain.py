@@ -7,9 +7,10 @@ wound radius relative to the opening amplitude R_final - R1. The accepted domain
 lambda in [0, 1e6], R_inf in [1.001, 1e6], |sigma| and |edge_stress / G| up to 1e6; the
 tolerance floor is 1e-11.
 
-At 90e9375 (the issue "Every promise holds", item 7): R_inf = 1e6 gave 1.0e-6 at t = 0.01 for
-tolerance 1e-10 (QR eigensolver), R_inf = 1.001 5.7e-8 at any tolerance, 1 + 1e-11 was
-accepted with a final state of 257 instead of 3.3e10, and lambda = 1e154 failed with a NaN.
+These are the places where a solver loses its contract: R_inf = 1e6 with a QR eigensolver
+(1.0e-6 at t = 0.01 for tolerance 1e-10), R_inf = 1.001 without the constant as first basis
+function (5.7e-8 at any tolerance), R_inf = 1 + 1e-11 (a final state of 3.3e10 that a mesh
+cannot reach), and lambda = 1e154 (a NaN).
 """
 
 import math
@@ -97,8 +98,8 @@ def test_the_edge_stress_is_bounded_in_units_of_g(make_slave):
 
 
 def test_largest_values_with_the_largest_scales_stay_finite(make_slave):
-    """sigma = 1e6 with R0 = 1e12 um, T = 1e-12 s: at 90e9375 sigma = 1e300 gave
-    wound_radius = inf with fmi2OK. Now every accepted combination has finite outputs."""
+    """sigma = 1e6 with R0 = 1e12 um, T = 1e-12 s: an unbounded sigma (1e300) would give
+    wound_radius = inf. Now every accepted combination has finite outputs."""
     s = make_slave()
     s.initialize({"lambda": 0.0, "sigma": 1e6, "R_inf": 1.001, "R0": 1e12, "T": 1e-12, "G": 1e12})
     s.set({"edge_stress": -1e18})
