@@ -54,7 +54,7 @@ fn null_and_forged_components_are_errors() {
 
 /// Guards against per-instance state counters: instance B accepted A's first state handle
 /// (its own handle had the same number) and silently restored or freed its own state.
-/// States of another instance, of a freed instance, of another model, and made-up
+/// FMU states of another instance, of a freed instance, of another model, and made-up
 /// handles are refused, and B's own state is untouched by every refused call.
 #[test]
 fn fmu_states_of_another_instance_are_refused() {

@@ -1,5 +1,5 @@
 //! Model Exchange (FMI 2.0, chapter 3) on the shared [`Instance`]: the master integrates
-//! the model's continuous states ([`crate::fmi::common::model::States`]) with its own solver.
+//! the model's continuous states ([`crate::fmi::common::model::ContinuousStates`]) with its own solver.
 //! The glue supports models without events: no event indicators, no discrete states, no time
 //! events, and `fmi2CompletedIntegratorStep` never asks for event mode.
 //!

@@ -184,8 +184,8 @@ pub struct Description {
     pub default_experiment: Experiment,
     /// The units its variables use, in the order of `<UnitDefinitions>`.
     pub units: &'static [Unit],
-    /// Continuous states for Model Exchange, if any (see [`States`]).
-    pub states: Option<States>,
+    /// Continuous states for Model Exchange, if any (see [`ContinuousStates`]).
+    pub states: Option<ContinuousStates>,
     /// FMI 3.0 only: array variables sized by a structural parameter (see [`Arrays`]).
     pub arrays: Option<Arrays>,
 }
@@ -230,7 +230,7 @@ pub struct ArrayVariable {
 ///                  table.len() + count + k    der(name[k+1])
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct States {
+pub struct ContinuousStates {
     pub count: usize,
     pub name: &'static str,
     pub unit: &'static str,

@@ -1,12 +1,12 @@
 //! `modelDescription.xml` generated from a model's [`Description`]: the variable table
 //! the code uses is the only source, so the XML cannot drift from it (as rust-fmi's
 //! exporter does it). FMI 2.0 (fmi2ModelDescription.xsd): `ScalarVariable`s in table
-//! order, then the continuous states and their derivatives ([`States`]), so the 1-based
+//! order, then the continuous states and their derivatives ([`ContinuousStates`]), so the 1-based
 //! index that `ModelStructure` uses is `value reference + 1` (the tables have value
 //! reference = position, checked by [`fmi2`]). One archive declares both interfaces:
 //! `<ModelExchange>` and `<CoSimulation>` with the same `modelIdentifier`.
 
-use crate::fmi::common::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, States, Variable};
+use crate::fmi::common::model::{Causality, Description, Kind, LOG_CATEGORIES, Named, ContinuousStates, Variable};
 use std::fmt::Write;
 
 pub(in crate::fmi) const GENERATION_TOOL: &str = "wound_opening (Rust)";
@@ -155,7 +155,7 @@ fn unknown(vr: u32, deps: &[(u32, &str)]) -> String {
 }
 
 /// The states (local, continuous, calculated: 0 at the cut) and their derivatives.
-fn state_variables(d: &Description, s: &States) -> String {
+fn state_variables(d: &Description, s: &ContinuousStates) -> String {
     let table = d.variables.len();
     let mut x = String::new();
     for k in 0..s.count {

@@ -4,7 +4,7 @@
 //! references `table + k` and `table + count + k`, as in FMI 2.0), then the independent
 //! variable `time` (FMI 3.0 wants exactly one). `ModelStructure` names value references.
 
-use crate::fmi::common::model::{Arrays, Causality, Description, Kind, Named, States, Variability};
+use crate::fmi::common::model::{Arrays, Causality, Description, Kind, Named, ContinuousStates, Variability};
 use crate::fmi::fmi2::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 
@@ -20,7 +20,7 @@ fn kind3(kind: Kind) -> &'static str {
     }
 }
 
-fn states(d: &Description, s: &States) -> String {
+fn states(d: &Description, s: &ContinuousStates) -> String {
     let table = d.variables.len();
     let mut x = String::new();
     for k in 0..s.count {

@@ -2,7 +2,7 @@
 //! from ([`crate::fmi::fmi2::xml`]), and that the code uses.
 
 pub use crate::fmi::common::model::{
-    ArrayVariable, Arrays, Causality, Description, Experiment, Kind, LOG_CATEGORIES, States, Unit, Variability, Variable,
+    ArrayVariable, Arrays, Causality, Description, Experiment, Kind, LOG_CATEGORIES, ContinuousStates, Unit, Variability, Variable,
 };
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
@@ -81,7 +81,7 @@ pub static DESCRIPTION: Description = Description {
     ],
     units: &UNITS,
     default_experiment: Experiment { start: 0.0, stop: 100.0, step: 0.01, tolerance: 1e-10 },
-    states: Some(States {
+    states: Some(ContinuousStates {
         count: MODEL_EXCHANGE_STATES,
         name: "modal_coordinate",
         unit: "1",
