@@ -9,7 +9,7 @@
 //! ```
 
 use std::sync::Arc;
-use wound_opening::fmi::fmi2::xml;
+use wound_opening::fmi::common::xml;
 use wound_opening::fmi::common::instance::{Instance, Logger, Status};
 use wound_opening::fmi::common::model::{Causality, Description, FmuModel};
 

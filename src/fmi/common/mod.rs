@@ -12,6 +12,7 @@
 //! intermediate.rs   FMI 3.0 Intermediate Update Mode inside a step
 //! serialized.rs     the byte format of serialized FMU states
 //! log.rs            status, logger trait, log categories
+//! xml.rs            what both modelDescription.xml writers share
 //! ```
 #![forbid(unsafe_code)]
 
@@ -24,3 +25,4 @@ pub mod log;
 pub mod machine;
 pub mod model;
 pub mod serialized;
+pub mod xml;

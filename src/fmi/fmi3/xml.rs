@@ -1,11 +1,11 @@
 //! The FMI 3.0 `modelDescription.xml` (fmi3ModelDescription.xsd) of a model, from the same
-//! [`Description`] as the FMI 2.0 one ([`crate::fmi::fmi2::xml`]): `Float64` and `Int32` variables
+//! [`Description`] as the FMI 2.0 one, with the pieces both share ([`crate::fmi::common::xml`]): `Float64` and `Int32` variables
 //! with the same value references, the states and derivatives as scalars (value
 //! references `table + k` and `table + count + k`, as in FMI 2.0), then the independent
 //! variable `time` (FMI 3.0 wants exactly one). `ModelStructure` names value references.
 
 use crate::fmi::common::model::{Arrays, Causality, Description, Kind, Named, ContinuousStates, Variability};
-use crate::fmi::fmi2::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
+use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 
 /// Value reference of the independent variable `time`.
