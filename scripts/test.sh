@@ -15,4 +15,5 @@ cargo test --release
 cargo build --release  # the library the Python package loads
 cargo run --release --quiet -- fmu
 bash scripts/c_tests.sh
-python -m pytest -q tests/python
+# Two worker processes (pytest-xdist): the Python tests are independent of each other.
+python -m pytest -q -n 2 tests/python

@@ -10,8 +10,11 @@
 
 from __future__ import annotations
 
+import json
+import os
 import shutil
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -117,7 +120,35 @@ def make_purse(purse_unzipdir, purse_path):
     yield from _slaves(purse_unzipdir, read_model_description(purse_path), instance_name="purse")
 
 
-def pytest_terminal_summary(terminalreporter):
+# With pytest-xdist each worker process measures its own tests: a worker leaves its figures
+# in a folder the controlling process made (inherited through the environment), and the
+# controller reports them all.
+_MEASURED_DIR = "WOUND_OPENING_MEASURED_DIR"
+
+
+def pytest_configure(config):
+    if not hasattr(config, "workerinput") and _MEASURED_DIR not in os.environ:
+        os.environ[_MEASURED_DIR] = tempfile.mkdtemp(prefix="wound-opening-measured-")
+
+
+def pytest_runtest_teardown(item):
+    """A worker's figures so far, after each of its tests (the controller may report before
+    a worker's own session end)."""
+    folder = os.environ.get(_MEASURED_DIR)
+    worker = getattr(item.config, "workerinput", {}).get("workerid")
+    if folder and worker and fmu_harness.MEASURED and Path(folder).is_dir():
+        (Path(folder) / f"{worker}.json").write_text(json.dumps(fmu_harness.MEASURED))
+
+
+def pytest_terminal_summary(terminalreporter, config):
+    if hasattr(config, "workerinput"):
+        return
+    folder = os.environ.get(_MEASURED_DIR)
+    if folder and Path(folder).is_dir():
+        for part in sorted(Path(folder).glob("*.json")):
+            for key, value in json.loads(part.read_text()).items():
+                fmu_harness.MEASURED[key] = max(value, fmu_harness.MEASURED.get(key, 0.0))
+        shutil.rmtree(folder, ignore_errors=True)
     if not fmu_harness.MEASURED:
         return
     terminalreporter.section("measured errors (maxima; tolerances are in the tests)")

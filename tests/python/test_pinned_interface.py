@@ -15,6 +15,7 @@ import json
 import struct
 import subprocess
 import sys
+import tempfile
 import zipfile
 from pathlib import Path
 from xml.etree import ElementTree
@@ -36,9 +37,10 @@ def exported_symbols(fmu: Path) -> list[str]:
     with zipfile.ZipFile(fmu) as z:
         name = next(n for n in z.namelist() if n.startswith("binaries/") and n.endswith(".so"))
         data = z.read(name)
-    so = Path("/tmp") / f"pinned-{fmu.stem}.so"
-    so.write_bytes(data)
-    out = subprocess.run(["nm", "-D", "--defined-only", str(so)], capture_output=True, text=True, check=True).stdout
+    with tempfile.TemporaryDirectory() as tmp:
+        so = Path(tmp) / f"{fmu.stem}.so"
+        so.write_bytes(data)
+        out = subprocess.run(["nm", "-D", "--defined-only", str(so)], capture_output=True, text=True, check=True).stdout
     return sorted(line.split()[-1] for line in out.splitlines() if line.strip())
 
 
