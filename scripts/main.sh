@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 step() { echo "== $1"; }
 step "Python environment (.venv, created on first use)"
 source scripts/venv.sh
-step "building the library and the four FMUs (cargo, release; a few minutes the first time)"
+step "building the library and the five FMU archives (cargo, release; a few minutes the first time)"
 cargo run --release --quiet -- fmu
 cargo build --release --quiet
 step "the paper's cases through fmpy"
