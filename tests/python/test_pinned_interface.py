@@ -62,7 +62,9 @@ def variables(fmu: Path) -> dict:
     return {"token": token, "model_identifier": root.get("modelName"), "variables": rows}
 
 
-def saved_state(fmu: Path) -> bytes:
+def initialized(fmu: Path):
+    """An fmpy co-simulation instance of `fmu` at t = 0 with STATE_CASE set, and its value
+    references by name."""
     from fmpy import extract, read_model_description
     from fmpy.fmi2 import FMU2Slave
 
@@ -74,6 +76,11 @@ def saved_state(fmu: Path) -> bytes:
     slave.setReal([vr[k] for k in STATE_CASE], list(STATE_CASE.values()))
     slave.enterInitializationMode()
     slave.exitInitializationMode()
+    return slave, vr
+
+
+def saved_state(fmu: Path) -> bytes:
+    slave, _ = initialized(fmu)
     slave.doStep(0.0, STATE_TIME)
     blob = bytes(slave.serializeFMUstate(slave.getFMUstate()))
     slave.terminate()
@@ -116,18 +123,7 @@ def test_tokens_and_value_references_are_the_pinned_ones(pinned, fmu_dir, archiv
 
 
 def test_a_state_saved_by_the_pinned_build_restores_and_continues_exactly(pinned, fmu_dir):
-    from fmpy import extract, read_model_description
-    from fmpy.fmi2 import FMU2Slave
-
-    fmu = fmu_dir / "WoundOpening.fmu"
-    md = read_model_description(str(fmu))
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    slave = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)), modelIdentifier=md.coSimulation.modelIdentifier)
-    slave.instantiate()
-    slave.setupExperiment(startTime=0.0)
-    slave.setReal([vr[k] for k in STATE_CASE], list(STATE_CASE.values()))
-    slave.enterInitializationMode()
-    slave.exitInitializationMode()
+    slave, vr = initialized(fmu_dir / "WoundOpening.fmu")
     blob = bytes.fromhex(pinned["state"])
     slave.setFMUstate(slave.deSerializeFMUstate(blob))
     lam, sigma, r_inf = STATE_CASE.values()
