@@ -26,9 +26,6 @@ pub(crate) struct Operator {
     /// Exact `d u_t(1) / d p` of the continuous model ([`exact::edge_velocity_slope`]);
     /// `-inf` at `lambda = 0`.
     slope: f64,
-    /// Rows of the mode shapes for `dv/dr` at the wound edge and `v` at the outer edge
-    /// (the validity check, O(modes) per step).
-    edge_rows: EdgeRows,
 }
 
 impl Operator {
@@ -39,8 +36,7 @@ impl Operator {
         let basis = basis::basis(spec, r_inf).map_err(SolverError::Modal)?;
         let nu = basis.relaxation_times(lambda);
         let slope = if lambda > 0.0 { exact::edge_velocity_slope(lambda, r_inf) } else { f64::NEG_INFINITY };
-        let edge_rows = EdgeRows::new(&basis);
-        Ok(Self { lambda, r_inf, basis, nu, slope, edge_rows })
+        Ok(Self { lambda, r_inf, basis, nu, slope })
     }
 
     pub(crate) fn check_mesh(spec: MeshSpec) -> Result<(), SolverError> {
@@ -176,11 +172,12 @@ impl Engine for ModalEngine {
         radii.iter().zip(v).map(|(r, v)| self.sigma * r.clamp(1.0, self.op.r_inf) / 6.0 + v).collect()
     }
 
-    /// `u = sigma r / 6 + v`, each term a dot product with a precomputed row.
+    /// `u = sigma r / 6 + v`, each term a dot product with a row the basis keeps (the
+    /// validity check, O(modes) per step).
     fn edges(&self, _r_inf: f64) -> [f64; 3] {
-        let (s, rows) = (self.sigma / 6.0, &self.op.edge_rows);
+        let (s, b) = (self.sigma / 6.0, &self.op.basis);
         let v = |row: &DVector<f64>| row.dot(&self.coeffs);
-        [s + v(&self.op.basis.edge_row), s + v(&rows.slope), s * self.op.r_inf + v(&rows.outer)]
+        [s + v(&b.edge_row), s + v(&b.edge_slope_row), s * self.op.r_inf + v(&b.outer_row)]
     }
 
     fn velocity(&self, p: f64, radii: &[f64]) -> Vec<f64> {
@@ -278,29 +275,5 @@ impl Engine for ModalEngine {
             _ => 1.0,
         };
         Some(vec![s; self.coeffs.len()])
-    }
-}
-
-/// `dv/dr` at the wound edge and `v` at the outer edge as rows over the modes.
-#[derive(Debug)]
-struct EdgeRows {
-    slope: DVector<f64>,
-    outer: DVector<f64>,
-}
-
-impl EdgeRows {
-    /// The first element spans `[b0, b1]` with reference coordinate `x = -1` at `r = 1`, so
-    /// `dv/dr(1) = (2 / (b1 - b0)) sum_i l_i'(-1) v_i` over its nodes; the outer edge is the
-    /// last node.
-    fn new(basis: &Basis) -> Self {
-        let mesh = &basis.mesh;
-        let (_, der) = LagrangeBasis::new(&mesh.reference_nodes).eval(-1.0);
-        let scale = 2.0 / (mesh.breaks[1] - mesh.breaks[0]);
-        let mut slope = DVector::zeros(basis.shapes.ncols());
-        for (i, d) in der.iter().enumerate() {
-            slope += (scale * d) * basis.shapes.row(mesh.global(0, i)).transpose();
-        }
-        let outer = basis.shapes.row(basis.shapes.nrows() - 1).transpose();
-        Self { slope, outer }
     }
 }

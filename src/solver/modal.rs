@@ -36,6 +36,7 @@
 use super::galerkin::{self, Functions};
 use super::jacobi;
 use super::mesh::Mesh;
+use super::quadrature::LagrangeBasis;
 use nalgebra::{DMatrix, DVector};
 
 /// The lambda-independent modal decomposition of one mesh on `[1, R_inf]`.
@@ -48,6 +49,12 @@ pub(crate) struct Basis {
     pub(crate) shapes: DMatrix<f64>,
     /// Row of the mode shapes at the wound edge, `X[0, :]`.
     pub(crate) edge_row: DVector<f64>,
+    /// Row of their radial derivative at the wound edge, `dX/dr[0, :]`: the first element
+    /// spans `[b0, b1]` with reference coordinate `x = -1` at `r = 1`, so `dv/dr(1) =
+    /// (2 / (b1 - b0)) sum_i l_i'(-1) v_i` over its nodes.
+    pub(crate) edge_slope_row: DVector<f64>,
+    /// Row of the mode shapes at the outer edge (the last node).
+    pub(crate) outer_row: DVector<f64>,
 }
 
 /// Why a modal decomposition could not be built.
@@ -119,7 +126,14 @@ impl Basis {
         // is nonzero at r = 1), so the load (sigma - p) e_first keeps its modal form.
         let shapes = galerkin::to_nodal(functions, coefficients);
         let edge_row = shapes.row(0).transpose();
-        Ok(Self { mesh, mu, shapes, edge_row })
+        let (_, der) = LagrangeBasis::new(&mesh.reference_nodes).eval(-1.0);
+        let scale = 2.0 / (mesh.breaks[1] - mesh.breaks[0]);
+        let mut edge_slope_row = DVector::zeros(shapes.ncols());
+        for (i, d) in der.iter().enumerate() {
+            edge_slope_row += (scale * d) * shapes.row(mesh.global(0, i)).transpose();
+        }
+        let outer_row = shapes.row(shapes.nrows() - 1).transpose();
+        Ok(Self { mesh, mu, shapes, edge_row, edge_slope_row, outer_row })
     }
 
     pub(crate) fn len(&self) -> usize {
