@@ -163,6 +163,7 @@ class Objective:
                                 / (2 * steps[i]))
             self._profile(theta, r_inf)  # inside_edge at z
             jr = np.vstack([jr, np.column_stack(cols)])
+        jr[:, [i for i in range(4) if i not in columns]] = 0.0
         return jr / self.sd[:, None]
 
     def split(self, res: np.ndarray):
