@@ -22,6 +22,12 @@ import numpy as np
 
 from .objective import LAMBDA_MAX, NAMES, Objective
 
+#: An interval end is located to where sqrt(delta chi^2) is within this fraction of the
+#: threshold's square root (delta within ~2e-3 of the threshold, relative).
+ROOT_TOL = 1e-3
+#: ... or to a bracket across which sqrt(delta) changes by less than this fraction of it.
+BRACKET = 0.05
+
 
 @dataclass
 class Profile:
@@ -65,6 +71,9 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
 
     root = math.sqrt(threshold)
     path = [(z_hat[i], z_hat)]
+    # the last step of a converging fit lowers the cost by more than what remains: a relative
+    # change below ftol leaves each profile value within ~1e-3 of the threshold
+    ftol = min(1e-5, max(1e-3 * threshold / max(chi2_min, 1e-300), 1e-12))
 
     def start(v):
         (v1, z1) = path[-1]
@@ -80,10 +89,10 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
         from the last profile point, keeping the lower (a false crossing would shorten the
         interval). A crossing found by fits that ran out of evaluations (a flat, curved
         valley they crawl along) is not trusted: `unsure` ends the walk with an open end."""
-        z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7)
+        z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7, ftol=ftol)
         unsure = False
         if chi2 - chi2_min >= threshold:
-            z2, chi2b, res2 = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7)
+            z2, chi2b, res2 = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7, ftol=ftol)
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2
             unsure = res.status == 0
@@ -99,34 +108,59 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
         except SolverError:
             return path[-1][1], math.inf, True
 
-    prev_v, prev_delta = z_hat[i], delta0
+    prev_v, prev_s = z_hat[i], math.sqrt(delta0)
+    move = step * root  # aimed at the crossing of a quadratic profile with the Jacobian's error
     points = []
-    for k in range(16):
-        v = prev_v + direction * step * (2.0**k if k else 1.0)
+    for _ in range(16):
+        v = prev_v + direction * move
         v = min(v, limit) if direction > 0 else max(v, limit)
         z, delta, unsure = constrained(v)
         points.append((v, delta))
         if unsure:
             return None, True, points
+        s = math.sqrt(delta)
         if delta >= threshold:
-            a, fa, b, fb = prev_v, math.sqrt(prev_delta) - root, v, math.sqrt(delta) - root
-            for _ in range(2):
-                c = a + (b - a) * (-fa) / (fb - fa)
-                _, dc, unsure = constrained(c)
-                if unsure:
-                    return None, True, points
-                points.append((c, dc))
-                fc = math.sqrt(dc) - root
-                if fc < 0:
-                    a, fa = c, fc
-                else:
-                    b, fb = c, fc
-            return a + (b - a) * (-fa) / (fb - fa), False, points
+            return _crossing(constrained, points, prev_v, prev_s - root, v, s - root, root)
         if v == limit:
             return None, True, points
-        prev_v, prev_delta = v, delta
+        slope = (s - prev_s) / abs(v - prev_v)
+        # just beyond the crossing predicted by the line through the last two points
+        want = ((1 + 5 * ROOT_TOL) * root - s) / slope if slope > 0 else 4 * move
+        move = min(max(want, 0.01 * move), 4 * move)
+        prev_v, prev_s = v, s
         path.append((v, z))
     return None, True, points
+
+
+def _crossing(constrained, points, a, fa, b, fb, root):
+    """The end between a (inside, fa = sqrt(delta) - root < 0) and b (outside, fb >= 0):
+    regula falsi with the Illinois modification on sqrt(delta), which is close to linear in
+    the parameter, until sqrt(delta) is within ROOT_TOL of the threshold's (delta within
+    2 ROOT_TOL of it, relative) or the bracket spans less than BRACKET of it; then the line
+    through the bracket (for sqrt(delta) = |v - v0| (1 + c (v - v0)) / se its error is
+    ~ c (b - a)^2 / 4, below 1e-3 se for a bracket of 5 % and a skewness c se < 1).
+    Returns (end, False, points) or (None, True, points) if a refining fit is unsure."""
+    side = 0
+    for _ in range(6):
+        if min(-fa, fb) < ROOT_TOL * root or fb - fa < BRACKET * root:
+            break
+        c = a + (b - a) * (-fa) / (fb - fa)
+        _, dc, unsure = constrained(c)
+        if unsure:
+            return None, True, points
+        points.append((c, dc))
+        fc = math.sqrt(dc) - root
+        if fc < 0:
+            a, fa = c, fc
+            if side == -1:
+                fb *= 0.5
+            side = -1
+        else:
+            b, fb = c, fc
+            if side == 1:
+                fa *= 0.5
+            side = 1
+    return a + (b - a) * (-fa) / (fb - fa), False, points
 
 
 def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,
