@@ -6,8 +6,13 @@ threshold (3.84, or the F quantile with an estimated noise) or a limit is reache
 delta(v) = min over the others of chi^2 - chi^2_min,   95 % interval = { v : delta(v) < threshold }
 ```
 
-Steps start at the Jacobian's standard error and double; the crossing is refined by two
-secant steps on sqrt(delta), which is close to linear in the parameter near the optimum.
+sqrt(delta) is close to linear in the parameter near the optimum: the first point is aimed
+at the crossing a quadratic profile with the Jacobian's standard error has (sqrt(threshold)
+standard errors), each next one just beyond the crossing predicted by the line through the
+last two (a move between 1/100 and 4 times the previous one), and the bracketed crossing is
+refined by regula falsi on sqrt(delta) (`_crossing`). Each point is a fit of the other three
+from a predicted start, stopped at a relative cost change of 1e-3 threshold / chi^2_min
+(at most 1e-5).
 lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
 and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1 from the
 estimate. An end that reaches such a search limit is open (None): the data do not bound it.
