@@ -11,8 +11,8 @@ at the crossing a quadratic profile with the Jacobian's standard error has (sqrt
 standard errors), each next one just beyond the crossing predicted by the line through the
 last two (a move between 1/100 and 4 times the previous one), and the bracketed crossing is
 refined by regula falsi on sqrt(delta) (`_crossing`). Each point is a fit of the other three
-from a predicted start, stopped at a relative cost change of 1e-3 threshold / chi^2_min
-(at most 1e-5).
+from a predicted start, at tolerances 1e-7: a looser relative cost change (1e-5) lets fits
+on the flat, curved valleys of plateau-only data stop short and report false crossings.
 lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
 and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1 from the
 estimate. An end that reaches such a search limit is open (None): the data do not bound it.
@@ -76,9 +76,6 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
 
     root = math.sqrt(threshold)
     path = [(z_hat[i], z_hat)]
-    # the last step of a converging fit lowers the cost by more than what remains: a relative
-    # change below ftol leaves each profile value within ~1e-3 of the threshold
-    ftol = min(1e-5, max(1e-3 * threshold / max(chi2_min, 1e-300), 1e-12))
 
     def start(v):
         (v1, z1) = path[-1]
@@ -94,10 +91,10 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
         from the last profile point, keeping the lower (a false crossing would shorten the
         interval). A crossing found by fits that ran out of evaluations (a flat, curved
         valley they crawl along) is not trusted: `unsure` ends the walk with an open end."""
-        z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7, ftol=ftol)
+        z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7)
         unsure = False
         if chi2 - chi2_min >= threshold:
-            z2, chi2b, res2 = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7, ftol=ftol)
+            z2, chi2b, res2 = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7)
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2
             unsure = res.status == 0

@@ -39,10 +39,8 @@ def cost(res: np.ndarray, loss: str = "linear") -> float:
 
 
 def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None = None,
-              loss: str = "linear", tol: float = 1e-12, max_nfev: int = 200, ftol: float | None = None):
+              loss: str = "linear", tol: float = 1e-12, max_nfev: int = 200):
     """Minimise the cost from z0, with coordinate `fixed` held at `value` if given.
-    `tol` is least_squares' xtol and gtol, and its ftol unless `ftol` is given (a relative
-    change of the cost: a profile point needs the cost to a small fraction of the threshold).
     `obj` may be an Objective or a reparametrisation of it with its own `bounds()`
     (derived.py). Returns (z, cost at z, least_squares result)."""
     free = [i for i in range(4) if i != fixed]
@@ -66,6 +64,6 @@ def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None 
     res = optimize.least_squares(lambda x: obj.residuals(full(x)), z[free],
                                  jac=lambda x: jacobian(full(x))[:, free],
                                  bounds=(lower[free], upper[free]), method="trf", x_scale="jac", loss=loss,
-                                 xtol=tol, ftol=tol if ftol is None else ftol, gtol=tol, max_nfev=max_nfev)
+                                 xtol=tol, ftol=tol, gtol=tol, max_nfev=max_nfev)
     z = full(res.x)
     return z, cost(obj.residuals(z), loss), res
