@@ -65,6 +65,17 @@ class Reparametrised:
             dz[2, 2], dz[2, 0] = z[2], -z[2]
         return self.obj.jacobian(z) @ dz
 
+    def gradient(self, z) -> np.ndarray:
+        """d w_k / d z: the row of dw/dz that differs from the identity."""
+        g = np.zeros(4)
+        if self.kind == "tau_s":
+            g[2], g[3] = 2 / z[2], 1.0
+        elif self.kind == "zeta_over_G_s_per_um2":
+            g[0], g[3] = -2.0, 1.0
+        else:
+            g[0], g[2] = 1.0, 1 / z[2]
+        return g
+
     def bounds(self):
         from .local import bounds
 
@@ -78,10 +89,13 @@ class Reparametrised:
         return lower, upper
 
 
-def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = "linear", alternates=()) -> dict:
+def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = "linear", alternates=(),
+                     cov_z=None) -> dict:
     """Profile (interval in the quantity's units) of tau, zeta/G and the viscous length;
     with other optima below the threshold (`alternates`: (z, delta chi^2)), the hull of the
-    intervals walked from each (as likelihood.profile_all does)."""
+    intervals walked from each (as likelihood.profile_all does). `cov_z`, the Jacobian's
+    covariance in z, gives the first step (the standard error of w_k, from
+    cov_w = A cov_z A^T with A = dw/dz) and the start of the other coordinates."""
     out = {}
     centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for kind in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um"):
@@ -90,6 +104,14 @@ def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = 
             continue
         rep = Reparametrised(obj, kind)
         k = rep.k
+        step, slope = 0.05, np.eye(4)[k]
+        if cov_z is not None and np.all(np.isfinite(cov_z)):
+            A = np.eye(4)
+            A[k] = rep.gradient(z_hat)
+            cov_w = A @ cov_z @ A.T
+            if cov_w[k, k] > 0:
+                step = float(np.clip(math.sqrt(cov_w[k, k]), 5e-4, 1.0))
+                slope = cov_w[:, k] / cov_w[k, k]
         lows, highs, points = [], [], []
         for centre, delta0 in centres:
             w = rep.to_w(centre)
@@ -97,7 +119,7 @@ def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = 
                 if ends and (ends[0] is None or direction * (w[k] - ends[0]) <= 0):
                     continue  # an optimum inside the interval found (or an open end)
                 limit = w[k] + direction * math.log(100.0)
-                end, _, pts = _side(rep, k, w, chi2_min, threshold, 0.05, direction, limit, np.eye(4)[k], loss, delta0)
+                end, _, pts = _side(rep, k, w, chi2_min, threshold, step, direction, limit, slope, loss, delta0)
                 ends.append(end)
                 points += pts
         lo = None if None in lows else math.exp(min(lows))

@@ -178,7 +178,7 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     if profiles and derived:
         from .derived import derived_profiles
 
-        profiles |= derived_profiles(obj, z, chi2_cost, threshold, loss, alternates)
+        profiles |= derived_profiles(obj, z, chi2_cost, threshold, loss, alternates, cov_z)
     reports = {name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name)) for i, name in enumerate(NAMES)}
     derived_p = {name: p for name, p in profiles.items() if name not in NAMES}
     obj.residuals(z)  # inside_edge at the optimum

@@ -6,8 +6,13 @@ threshold (3.84, or the F quantile with an estimated noise) or a limit is reache
 delta(v) = min over the others of chi^2 - chi^2_min,   95 % interval = { v : delta(v) < threshold }
 ```
 
-Steps start at the Jacobian's standard error and double; the crossing is refined by two
-secant steps on sqrt(delta), which is close to linear in the parameter near the optimum.
+sqrt(delta) is close to linear in the parameter near the optimum: the first point is aimed
+at the crossing a quadratic profile with the Jacobian's standard error has (sqrt(threshold)
+standard errors), each next one just beyond the crossing predicted by the line through the
+last two (a move between 1/100 and 4 times the previous one), and the bracketed crossing is
+refined by regula falsi on sqrt(delta) (`_crossing`). Each point is a fit of the other three
+from a predicted start, at tolerances 1e-7: a looser relative cost change (1e-5) lets fits
+on the flat, curved valleys of plateau-only data stop short and report false crossings.
 lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
 and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1 from the
 estimate. An end that reaches such a search limit is open (None): the data do not bound it.
@@ -21,6 +26,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .objective import LAMBDA_MAX, NAMES, Objective
+
+#: An interval end is located to where sqrt(delta chi^2) is within this fraction of the
+#: threshold's square root (delta within ~2e-3 of the threshold, relative).
+ROOT_TOL = 1e-3
+#: ... or to a bracket across which sqrt(delta) changes by less than this fraction of it.
+BRACKET = 0.05
 
 
 @dataclass
@@ -99,34 +110,59 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
         except SolverError:
             return path[-1][1], math.inf, True
 
-    prev_v, prev_delta = z_hat[i], delta0
+    prev_v, prev_s = z_hat[i], math.sqrt(delta0)
+    move = step * root  # aimed at the crossing of a quadratic profile with the Jacobian's error
     points = []
-    for k in range(16):
-        v = prev_v + direction * step * (2.0**k if k else 1.0)
+    for _ in range(16):
+        v = prev_v + direction * move
         v = min(v, limit) if direction > 0 else max(v, limit)
         z, delta, unsure = constrained(v)
         points.append((v, delta))
         if unsure:
             return None, True, points
+        s = math.sqrt(delta)
         if delta >= threshold:
-            a, fa, b, fb = prev_v, math.sqrt(prev_delta) - root, v, math.sqrt(delta) - root
-            for _ in range(2):
-                c = a + (b - a) * (-fa) / (fb - fa)
-                _, dc, unsure = constrained(c)
-                if unsure:
-                    return None, True, points
-                points.append((c, dc))
-                fc = math.sqrt(dc) - root
-                if fc < 0:
-                    a, fa = c, fc
-                else:
-                    b, fb = c, fc
-            return a + (b - a) * (-fa) / (fb - fa), False, points
+            return _crossing(constrained, points, prev_v, prev_s - root, v, s - root, root)
         if v == limit:
             return None, True, points
-        prev_v, prev_delta = v, delta
+        slope = (s - prev_s) / abs(v - prev_v)
+        # just beyond the crossing predicted by the line through the last two points
+        want = ((1 + 5 * ROOT_TOL) * root - s) / slope if slope > 0 else 4 * move
+        move = min(max(want, 0.01 * move), 4 * move)
+        prev_v, prev_s = v, s
         path.append((v, z))
     return None, True, points
+
+
+def _crossing(constrained, points, a, fa, b, fb, root):
+    """The end between a (inside, fa = sqrt(delta) - root < 0) and b (outside, fb >= 0):
+    regula falsi with the Illinois modification on sqrt(delta), which is close to linear in
+    the parameter, until sqrt(delta) is within ROOT_TOL of the threshold's (delta within
+    2 ROOT_TOL of it, relative) or the bracket spans less than BRACKET of it; then the line
+    through the bracket (for sqrt(delta) = |v - v0| (1 + c (v - v0)) / se its error is
+    ~ c (b - a)^2 / 4, below 1e-3 se for a bracket of 5 % and a skewness c se < 1).
+    Returns (end, False, points) or (None, True, points) if a refining fit is unsure."""
+    side = 0
+    for _ in range(6):
+        if min(-fa, fb) < ROOT_TOL * root or fb - fa < BRACKET * root:
+            break
+        c = a + (b - a) * (-fa) / (fb - fa)
+        _, dc, unsure = constrained(c)
+        if unsure:
+            return None, True, points
+        points.append((c, dc))
+        fc = math.sqrt(dc) - root
+        if fc < 0:
+            a, fa = c, fc
+            if side == -1:
+                fb *= 0.5
+            side = -1
+        else:
+            b, fb = c, fc
+            if side == 1:
+                fa *= 0.5
+            side = 1
+    return a + (b - a) * (-fa) / (fb - fa), False, points
 
 
 def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,

@@ -56,8 +56,13 @@ def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None 
         w[free] = x
         return w
 
+    if fixed is not None and isinstance(obj, Objective):
+        def jacobian(w):
+            return obj.jacobian(w, free)
+    else:
+        jacobian = obj.jacobian
     res = optimize.least_squares(lambda x: obj.residuals(full(x)), z[free],
-                                 jac=lambda x: obj.jacobian(full(x))[:, free],
+                                 jac=lambda x: jacobian(full(x))[:, free],
                                  bounds=(lower[free], upper[free]), method="trf", x_scale="jac", loss=loss,
                                  xtol=tol, ftol=tol, gtol=tol, max_nfev=max_nfev)
     z = full(res.x)

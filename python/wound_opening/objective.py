@@ -125,17 +125,24 @@ class Objective:
     def residuals(self, z) -> np.ndarray:
         return (self.model(z) - self.data()) / self.sd
 
-    def jacobian(self, z) -> np.ndarray:
-        """d residuals / d z, (size, 4): see the module docstring."""
+    def jacobian(self, z, columns=(0, 1, 2, 3)) -> np.ndarray:
+        """d residuals / d z, (size, 4): see the module docstring. Only `columns` are
+        computed (the others are 0): a profile fit holds one coordinate fixed.
+
+        Every difference in ln R0 is taken between the outer radii rc -+ dr of the radius
+        columns, so that one Jacobian needs the modal bases of three outer radii (each new
+        outer radius costs a decomposition)."""
         R0, sigma, lam, T = theta = from_z(z)
         r_inf = self.outer / R0
         t = self.t_sorted
         h, dh = self._h(lam, r_inf, t / T)
         dr = STEP * r_inf
         rc = max(r_inf, R_INF_MIN + dr)  # centred inside the solver's range at its edge
-        dh_dr = (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr)
         dl = STEP * max(lam, 0.01)
-        dh_dl = (self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
+        zero = np.zeros(t.size)
+        dh_dr = (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr) if 0 in columns else zero
+        dh_dl = ((self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
+                 if 2 in columns else zero)
         with np.errstate(invalid="ignore"):
             dlnT = np.where(t > 0, -(t / T) * R0 * sigma * dh, 0.0)
         jr = np.column_stack([R0 * (1 + sigma * h) - R0 * sigma * r_inf * dh_dr, R0 * h, R0 * sigma * dh_dl, dlnT])
@@ -143,13 +150,20 @@ class Objective:
             steps = np.array([STEP, STEP * max(1.0, abs(sigma)), dl, STEP])
             cols = []
             for i in range(4):
-                e = np.zeros(4)
-                e[i] = steps[i]
-                up = self._profile(from_z(z + e), self.outer / math.exp(z[0] + e[0]))
-                down = self._profile(from_z(z - e), self.outer / math.exp(z[0] - e[0]))
-                cols.append((up - down) / (2 * steps[i]))
+                if i not in columns:
+                    cols.append(np.zeros(self.n_profile))
+                elif i == 0:  # R0 = outer / R_inf at R_inf = rc -+ dr
+                    up = self._profile((self.outer / (rc - dr), sigma, lam, T), rc - dr)
+                    down = self._profile((self.outer / (rc + dr), sigma, lam, T), rc + dr)
+                    cols.append((up - down) / math.log((rc + dr) / (rc - dr)))
+                else:
+                    e = np.zeros(4)
+                    e[i] = steps[i]
+                    cols.append((self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf))
+                                / (2 * steps[i]))
             self._profile(theta, r_inf)  # inside_edge at z
             jr = np.vstack([jr, np.column_stack(cols)])
+        jr[:, [i for i in range(4) if i not in columns]] = 0.0
         return jr / self.sd[:, None]
 
     def split(self, res: np.ndarray):

@@ -106,3 +106,24 @@ def test_small_coverage_sample(design, lam, noise):
     assert identified["R0_um"] == identified["sigma"] == 6, identified
     if design == "radius":  # lambda's profile reaches its bound 0: flat, not identified
         assert identified["lambda"] <= 2, identified
+
+
+def test_profile_interval_ends_lie_on_the_threshold():
+    """Each end of a PIV fit's four intervals: chi^2 minimised over the other three there
+    (tolerances 1e-12, started at the estimate) exceeds the minimum by the threshold to
+    2e-3 of it, the precision likelihood.py locates the crossing to."""
+    from wound_opening.fit import _uncertainties
+    from wound_opening.local import local_fit
+
+    radius, profile = draw("piv", 0.5, 1e-2, 7)
+    result = fit(radius, profile, outer_radius_um=100.0, derived=False)
+    assert result.converged, result.reasons
+    obj = Objective(radius, profile, 100.0)
+    _uncertainties(obj, radius, profile)
+    z_hat = to_z(result.theta)
+    _, chi2_min, _ = local_fit(obj, z_hat)
+    for i, name in enumerate(NAMES):
+        for end in result.reports[name].ci95:
+            value = np.log(end) if i in (0, 3) else end
+            _, chi2, _ = local_fit(obj, z_hat, fixed=i, value=value, max_nfev=1000)
+            assert abs(chi2 - chi2_min - result.threshold) < 2e-3 * result.threshold, (name, end, chi2 - chi2_min)
