@@ -86,9 +86,9 @@ def parser() -> argparse.ArgumentParser:
     f.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
     f.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
     f.add_argument("--plot", metavar="OUT.png", help="data with the fit, residuals, profile likelihoods")
-    f.add_argument("--radius-noise-um", type=float, help="noise of the radii (default: column radius_sd_um if "
+    f.add_argument("--radius-noise-um", type=float, help="noise of the radii in um (default: column radius_sd_um if "
                    "present, else from the residuals)")
-    f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities (default: column "
+    f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities in um/s (default: column "
                    "velocity_sd_um_s if present, else from the residuals)")
     c = f.add_argument_group("the files' columns and units", "Both files share the units; the times are "
                              "read from either file as (time - CUT_TIME) in TIME_UNIT. Separators , ; or tab, "

@@ -90,13 +90,14 @@ def test_the_command_line_reads_the_export_with_its_options(tmp_path):
 
 
 def test_a_velocity_profile_in_pixels_per_millisecond_is_converted(tmp_path):
-    (tmp_path / "piv.csv").write_text("# PIV\nt [ms];x [px];u [px/ms]\n2850;200;0,004\n2850;300;0,002\n",
+    (tmp_path / "piv.csv").write_text("# PIV\nt [ms];x [px];u [px/ms];sd\n2850;200;0,004;0,001\n2850;300;0,002;0,001\n",
                                       encoding="utf-8-sig")
-    p = read_profile(tmp_path / "piv.csv", time_col="t [ms]", r_col="x [px]", velocity_col="u [px/ms]",
-                     **{k: v for k, v in LAB.items() if k not in ("time_col", "radius_col")}, noise_um_s=0.01)
+    p = read_profile(tmp_path / "piv.csv", time_col="t [ms]", r_col="x [px]", velocity_col="u [px/ms]", sd_col="sd",
+                     **{k: v for k, v in LAB.items() if k not in ("time_col", "radius_col")})
     np.testing.assert_allclose(p.times_s, [0.5, 0.5], rtol=1e-12)
     np.testing.assert_allclose(p.r_um, [200 * PIXEL_UM, 300 * PIXEL_UM], rtol=1e-12)
     np.testing.assert_allclose(p.velocity_um_s, [0.004 * PIXEL_UM * 1e3, 0.002 * PIXEL_UM * 1e3], rtol=1e-12)
+    np.testing.assert_allclose(p.sd_um_s, [0.001 * PIXEL_UM * 1e3] * 2, rtol=1e-12)
     assert list(p.lines) == [3, 4]
 
 
