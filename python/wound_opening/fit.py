@@ -193,7 +193,7 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                      optimizer=optimizer,
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
                      outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
-                     derived_profiles=derived_p, plausibility=time_scale_warnings(theta, radius, profile))
+                     derived_profiles=derived_p, plausibility=time_scale_warnings(theta, obj.outer, radius, profile))
 
 
 def _outliers(obj: Objective, flagged) -> dict:

@@ -141,14 +141,17 @@ def test_a_millisecond_file_read_as_seconds_is_warned_about(tmp_path):
 
 @pytest.mark.parametrize("theta, times, expected", [
     ((10, 0.5, 0.4, 8.0), [0, 0.5, 60], None),
-    ((10, 0.5, 0.4, 0.2), [0, 0.5, 60], "shorter than the first sample after the cut (0.5 s)"),
-    ((10, 0.5, 0.1, 200.0), [0.5, 60], "longer than 3 x the last sampled time (60 s)"),
-    ((10, 0.5, 3.0, 30.0), [0.5, 60], "tau = lambda^2 T = 270 s is longer than 3 x"),
-    ((10, 0.5, 3.0, 30.0), [0.5, 100], None),
+    ((10, 0.5, 0.0, 0.02), [0, 0.5, 60], "95 % done at the first sample after the cut (0.5 s; half-opening"),
+    ((10, 0.5, 3.0, 10.0), [0.5, 60], "39 % done at the last sample (60 s; half-opening time 86"),
+    ((10, 0.5, 3.0, 10.0), [0.5, 300], None),
+    ((10, 0.5, 0.4, 8000.0), [500, 60000], "T = 8e+03 s (2.22 h) is long for a laser-ablation recoil"),
 ])
-def test_a_time_scale_at_the_edge_of_the_sampling_is_warned_about(theta, times, expected):
+def test_an_opening_at_the_edge_of_the_sampling_is_warned_about(theta, times, expected):
+    """Fractions of the opening done, (R - R1) / (R_final - R1), from the exact solution
+    (wound_exact.edge, R_inf = 10): 0.945 at t = 25 T for lambda = 0; 0.386 at t = 6 T for
+    lambda = 3; 0.067 at 0.5 s and 0.83 at 60 s for lambda = 0.4, T = 8 s."""
     class Series:
         times_s = np.asarray(times, float)
 
-    found = time_scale_warnings(theta, Series)
-    assert (found == []) if expected is None else any(expected in w for w in found), found
+    found = time_scale_warnings(theta, OUTER, Series)
+    assert (found == []) if expected is None else (len(found) == 1 and expected in found[0]), found
