@@ -77,7 +77,7 @@ def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None
         if cells != width:
             hint = (" (with ',' as the separator a decimal comma splits a number in two: separate the "
                     "columns with ';' or a tab)") if sep == "," and cells > width else ""
-            raise InputError(f"{path}: line {n}: {cells} cells, expected {width} as in the header (line "
+            raise InputError(f"{path}: line {n}: {cells} cell{'' if cells == 1 else 's'}, expected {width} as in the header (line "
                              f"{header_line}){hint}")
     if frame is None or len(frame) != len(body):
         raise InputError(f"{path}: cannot be read as a table separated by {sep!r}")
