@@ -3,6 +3,8 @@ units of a laser-ablation experiment (um, s, Pa), through the project's native l
 (the direct C API of include/wound_opening.h, loaded with ctypes; no FMU per run).
 
     simulate(times_s, lam=, sigma=, R0_um=, T_s=, outer_radius_um=, radii_um=None)
+    read_radius(path, time_col=, radius_col=, time_unit=, length_unit=, pixel_size_um=,
+        cut_time=) -> RadiusSeries; read_profile(...) -> VelocityProfile (a lab's CSV files)
     fit(radius data, profile data=None, outer_radius_um=) -> FitResult (estimates, profile
         likelihood intervals, identifiability, derived quantities; to_json())
     sweep(grid or list of parameter sets, times) -> pandas DataFrame (local or Dask)
@@ -15,7 +17,7 @@ import importlib
 #: Where each public name lives; imported on first use, so that `wound-opening --help`
 #: starts without numpy, scipy or pandas.
 _HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
-         "RadiusSeries": "data", "VelocityProfile": "data", "fit": "fit", "Simulation": "model",
+         "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fit", "Simulation": "model",
          "simulate": "model", "FitResult": "result", "sweep": "sweep"}
 
 
@@ -27,4 +29,4 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
-           "fit", "library_path", "simulate", "sweep"]
+           "fit", "library_path", "read_profile", "read_radius", "simulate", "sweep"]

@@ -1,5 +1,5 @@
 """The command line `wound-opening`: fit, sweep, simulate. Bad input ends with one line
-naming the file, the row and the problem, and exit code 2 (no traceback); a fit that did
+naming the file, the file line and the problem, and exit code 2 (no traceback); a fit that did
 not converge prints why, writes its JSON ("converged": false) and exits with 1."""
 
 from __future__ import annotations
@@ -9,18 +9,18 @@ import sys
 
 
 def _fit(args) -> None:
-    from .data import RadiusSeries, VelocityProfile
     from .fit import fit
+    from .lab_files import read_profile, read_radius
 
-    from .tables import read_columns
-
-    cols = read_columns(args.radius_csv, ("time_s", "radius_um"), optional=("radius_sd_um",))
-    radius = RadiusSeries(cols["time_s"], cols["radius_um"], args.radius_noise_um, cols.get("radius_sd_um"))
+    units = dict(time_unit=args.time_unit, length_unit=args.length_unit, pixel_size_um=args.pixel_size_um,
+                 cut_time=args.cut_time)
+    radius = read_radius(args.radius_csv, time_col=args.time_col, radius_col=args.radius_col,
+                         sd_col=args.radius_sd_col, noise_um=args.radius_noise_um, **units)
     profile = None
     if args.profile:
-        p = read_columns(args.profile, ("time_s", "r_um", "velocity_um_s"), min_rows=1, optional=("velocity_sd_um_s",))
-        profile = VelocityProfile(p["time_s"], p["r_um"], p["velocity_um_s"], args.velocity_noise_um_s,
-                                  p.get("velocity_sd_um_s"))
+        profile = read_profile(args.profile, time_col=args.piv_time_col, r_col=args.piv_r_col,
+                               velocity_col=args.piv_velocity_col, sd_col=args.piv_velocity_sd_col,
+                               noise_um_s=args.velocity_noise_um_s, **units)
     result = fit(radius, profile, outer_radius_um=args.outer_radius_um, loss=args.loss)
     print(result.summary())
     if args.json:
@@ -79,16 +79,38 @@ def parser() -> argparse.ArgumentParser:
     sub = top.add_subparsers(dest="command", required=True)
 
     f = sub.add_parser("fit", help="fit R0_um, sigma, lambda, T_s to a radius series (and a velocity profile)")
-    f.add_argument("radius_csv", metavar="RADIUS.csv", help="columns time_s,radius_um (time since the cut)")
+    f.add_argument("radius_csv", metavar="RADIUS.csv", help="columns time_s,radius_um (time since the cut), "
+                   "or as named by --time-col, --radius-col")
     f.add_argument("--profile", metavar="PROFILE.csv",
                    help="columns time_s,r_um,velocity_um_s (r: current distance from the wound centre)")
     f.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
     f.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
     f.add_argument("--plot", metavar="OUT.png", help="data with the fit, residuals, profile likelihoods")
-    f.add_argument("--radius-noise-um", type=float, help="noise of the radii (default: column radius_sd_um if "
+    f.add_argument("--radius-noise-um", type=float, help="noise of the radii in um (default: column radius_sd_um if "
                    "present, else from the residuals)")
-    f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities (default: column "
+    f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities in um/s (default: column "
                    "velocity_sd_um_s if present, else from the residuals)")
+    c = f.add_argument_group("the files' columns and units", "Both files share the units; the times are "
+                             "read from either file as (time - CUT_TIME) in TIME_UNIT. Separators , ; or tab, "
+                             "decimal commas in ;- or tab-separated files, '#' comment lines and a UTF-8 BOM "
+                             "are accepted.")
+    c.add_argument("--time-col", default="time_s", metavar="NAME", help="time column of RADIUS.csv (default time_s)")
+    c.add_argument("--radius-col", default="radius_um", metavar="NAME", help="radius column (default radius_um)")
+    c.add_argument("--radius-sd-col", metavar="NAME", help="per-point standard deviations of the radius "
+                   "(default: the column radius_sd_um if present)")
+    c.add_argument("--piv-time-col", default="time_s", metavar="NAME", help="time column of PROFILE.csv (default time_s)")
+    c.add_argument("--piv-r-col", default="r_um", metavar="NAME", help="distance column of PROFILE.csv (default r_um)")
+    c.add_argument("--piv-velocity-col", default="velocity_um_s", metavar="NAME",
+                   help="velocity column of PROFILE.csv (default velocity_um_s)")
+    c.add_argument("--piv-velocity-sd-col", metavar="NAME", help="per-point standard deviations of the velocity "
+                   "(default: the column velocity_sd_um_s if present)")
+    c.add_argument("--time-unit", choices=("ms", "s", "min"), default="s", help="unit of the times (default s)")
+    c.add_argument("--length-unit", choices=("um", "px"), default="um",
+                   help="unit of radii and distances (default um; px needs --pixel-size-um); velocities are in "
+                   "length unit per time unit")
+    c.add_argument("--pixel-size-um", type=float, metavar="UM", help="size of a pixel in um (with --length-unit px)")
+    c.add_argument("--cut-time", type=float, default=0.0, metavar="TIME",
+                   help="time of the cut in the files' time unit, subtracted from every time (default 0)")
     f.add_argument("--loss", choices=("linear", "soft_l1", "cauchy"), default="linear",
                    help="linear: least squares; soft_l1, cauchy: robust to outliers (flagged in the output)")
     f.set_defaults(run=_fit)

@@ -1,6 +1,6 @@
 """Measurements to fit: a wound radius series and, optionally, a PIV velocity profile, and
 the checks that refuse data no parameter value can describe (ValueError naming the row,
-1 = the first row as given, and the reason)."""
+1 = the first row as given, or the file line when read from a file, and the reason)."""
 
 from __future__ import annotations
 
@@ -19,13 +19,16 @@ class RadiusSeries:
     radius_um: np.ndarray
     noise_um: float | None = None
     sd_um: np.ndarray | None = None
+    #: The file read (lab_files.read_radius) and the file line of each row, for messages.
+    source: str | None = None
+    lines: np.ndarray | None = None
 
     def __post_init__(self):
         _check_columns("radius", self.times_s, self.radius_um)
-        _check_noise("radius", self.noise_um, self.sd_um, np.size(self.radius_um))
+        _check_noise(self, "radius", self.noise_um, self.sd_um, np.size(self.radius_um))
         bad = np.flatnonzero(~(np.asarray(self.radius_um, dtype=float) > 0))
         if bad.size:
-            raise ValueError(f"radius: row {bad[0] + 1}: radius_um = {self.radius_um[bad[0]]:g}: a wound radius must be > 0")
+            raise ValueError(f"{where(self, 'radius', bad[0])}: radius_um = {self.radius_um[bad[0]]:g}: a wound radius must be > 0")
 
 
 @dataclass(frozen=True)
@@ -39,13 +42,22 @@ class VelocityProfile:
     velocity_um_s: np.ndarray
     noise_um_s: float | None = None
     sd_um_s: np.ndarray | None = None
+    source: str | None = None
+    lines: np.ndarray | None = None
 
     def __post_init__(self):
         _check_columns("profile", self.times_s, self.r_um, self.velocity_um_s)
-        _check_noise("profile", self.noise_um_s, self.sd_um_s, np.size(self.r_um))
+        _check_noise(self, "profile", self.noise_um_s, self.sd_um_s, np.size(self.r_um))
         bad = np.flatnonzero(~(np.asarray(self.r_um, dtype=float) > 0))
         if bad.size:
-            raise ValueError(f"profile: row {bad[0] + 1}: r_um = {self.r_um[bad[0]]:g}: a distance from the centre must be > 0")
+            raise ValueError(f"{where(self, 'profile', bad[0])}: r_um = {self.r_um[bad[0]]:g}: a distance from the centre must be > 0")
+
+
+def where(data, what: str, k: int) -> str:
+    """Where row k (0-based) of `data` is: its file and line when read from a file."""
+    if getattr(data, "lines", None) is not None:
+        return f"{data.source}: line {int(data.lines[k])}"
+    return f"{what}: row {k + 1}"
 
 
 def _check_columns(what: str, times, *columns) -> None:
@@ -58,7 +70,7 @@ def _check_columns(what: str, times, *columns) -> None:
         raise ValueError(f"{what}: times must be >= 0 (seconds since the cut)")
 
 
-def _check_noise(what: str, noise, sd, n: int) -> None:
+def _check_noise(data, what: str, noise, sd, n: int) -> None:
     if noise is not None and not (math.isfinite(noise) and noise > 0):
         raise ValueError(f"{what}: noise = {noise:g}: a standard deviation must be finite and > 0")
     if sd is not None:
@@ -67,7 +79,7 @@ def _check_noise(what: str, noise, sd, n: int) -> None:
             raise ValueError(f"{what}: {sd.size} uncertainties for {n} points")
         bad = np.flatnonzero(~(np.isfinite(sd) & (sd > 0)))
         if bad.size:
-            raise ValueError(f"{what}: row {bad[0] + 1}: uncertainty {sd[bad[0]]:g}: must be finite and > 0")
+            raise ValueError(f"{where(data, what, bad[0])}: uncertainty {sd[bad[0]]:g}: must be finite and > 0")
         if noise is not None:
             raise ValueError(f"{what}: give either one noise level or per-point uncertainties, not both")
 
@@ -84,7 +96,7 @@ def check_against(radius: RadiusSeries, profile: VelocityProfile | None, outer_u
     r = np.asarray(radius.radius_um, dtype=float)
     if not outer_um > r.max():
         raise ValueError(f"outer_radius_um = {outer_um:g} is not larger than the largest wound radius "
-                         f"{r.max():g} um (radius row {int(np.argmax(r)) + 1})")
+                         f"{r.max():g} um ({where(radius, 'radius', int(np.argmax(r)))})")
     for what, noise, sd, n in (("radius", radius.noise_um, radius.sd_um, r.size),
                                ("profile", None if profile is None else profile.noise_um_s,
                                 None if profile is None else profile.sd_um_s, 0 if profile is None else np.size(profile.r_um))):
@@ -104,12 +116,12 @@ def check_against(radius: RadiusSeries, profile: VelocityProfile | None, outer_u
     inside = np.flatnonzero(pr < edge - slack)
     if inside.size:
         k = inside[0]
-        raise ValueError(f"profile: row {k + 1}: r_um = {pr[k]:g} is inside the measured wound (radius {edge[k]:.4g} um "
+        raise ValueError(f"{where(profile, 'profile', k)}: r_um = {pr[k]:g} is inside the measured wound (radius {edge[k]:.4g} um "
                          f"at {pt[k]:g} s, less 3 noise = {slack if np.isscalar(slack) else slack[k]:.3g} um)")
     beyond = np.flatnonzero(pr >= outer_um)
     if beyond.size:
         k = beyond[0]
-        raise ValueError(f"profile: row {k + 1}: r_um = {pr[k]:g} is beyond the tissue (outer radius {outer_um:g} um)")
+        raise ValueError(f"{where(profile, 'profile', k)}: r_um = {pr[k]:g} is beyond the tissue (outer radius {outer_um:g} um)")
 
 
 def _roughness(r: np.ndarray) -> float:

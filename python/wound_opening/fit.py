@@ -24,6 +24,7 @@ import numpy as np
 from ._native import SolverError
 from .data import RadiusSeries, VelocityProfile, check_against
 from .objective import NAMES, Objective, from_z
+from .plausibility import time_scale_warnings
 from .result import FitResult, ParameterReport
 
 #: chi^2 p-value below which the model is said not to describe the data (fit failed), and
@@ -192,7 +193,7 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                      optimizer=optimizer,
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
                      outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
-                     derived_profiles=derived_p)
+                     derived_profiles=derived_p, plausibility=time_scale_warnings(theta, obj.outer, radius, profile))
 
 
 def _outliers(obj: Objective, flagged) -> dict:

@@ -59,11 +59,14 @@ class FitResult:
     outliers: dict = field(default_factory=dict)
     piv_at_edge: int = 0
     derived_profiles: dict = field(default_factory=dict)
+    #: The fitted time scale against the sampling (plausibility.py).
+    plausibility: list = field(default_factory=list)
 
     @property
     def warnings(self) -> list:
-        """The model fits, but not as well as the given noise says it should; flagged points."""
-        out = []
+        """The model fits, but not as well as the given noise says it should; flagged points;
+        a time scale at the edge of what the sampling resolves or implausible for a recoil."""
+        out = list(self.plausibility)
         if self.converged and self.p_value is not None and self.p_value < 1e-3:
             out.append(f"chi^2 / dof = {self.chi2 / self.dof:.3g} (p = {self.p_value:.2g}): the model describes the "
                        "data worse than the given noise allows")

@@ -1,63 +1,129 @@
-"""Reading the command line's CSV files with one-line errors naming the file, the row and
-the problem (row 1 is the first data row, under the header)."""
+"""Reading CSV files as labs export them, with one-line errors naming the file, the FILE LINE
+(1-based, counting the header, comment and blank lines) and the problem.
+
+pandas does the reading: a UTF-8 byte-order mark is dropped (`encoding="utf-8-sig"`), lines
+starting with `#` are comments, blank lines are skipped. The separator is the first of tab,
+`;` and `,` found in the header line (the header names the columns, so it has one separator
+fewer than columns and no decimals to confuse it). Decimal commas are read where they are
+unambiguous: in a file separated by `;` or tab, numeric cells with a `,` and none with a `.`;
+a `,`-separated file has `.` decimals."""
 
 from __future__ import annotations
 
 import csv
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 MIN_POINTS = 5
+COMMENT = "#"
 
 
 class InputError(ValueError):
-    """Bad input: the message is one line, naming the file, the row and the problem."""
+    """Bad input: the message is one line, naming the file, the line and the problem."""
 
 
-def read_columns(path: str, columns: tuple[str, ...], *, time_column: str = "time_s",
-                 ascending: bool = True, min_rows: int = MIN_POINTS, optional: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
-    """The named columns of a CSV file as float arrays, checked: every cell a finite number,
-    times >= 0 and (if `ascending`) non-decreasing, at least `min_rows` rows. Columns in
-    `optional` are read too when the header has them."""
+@dataclass(frozen=True)
+class Table:
+    """The requested columns as float arrays; `lines[k]` is the file line of data row k."""
+
+    path: str
+    columns: dict
+    lines: np.ndarray
+
+    def line(self, k: int) -> int:
+        return int(self.lines[k])
+
+
+def _text_lines(path: str) -> list[str]:
     try:
-        with open(path, newline="") as f:
-            rows = list(csv.reader(f))
+        with open(path, encoding="utf-8-sig", newline="") as f:
+            return f.read().splitlines()
     except OSError as e:
         raise InputError(f"{path}: cannot read the file ({e.strerror})") from None
     except UnicodeDecodeError:
-        raise InputError(f"{path}: not a text (CSV) file") from None
-    if not rows:
-        raise InputError(f"{path}: empty file: expected the header {','.join(columns)}")
-    header = [h.strip() for h in rows[0]]
+        raise InputError(f"{path}: not a UTF-8 text (CSV) file") from None
+
+
+def _is_data(text: str) -> bool:
+    s = text.strip()
+    return bool(s) and not s.startswith(COMMENT)
+
+
+def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None = None, cut_time: float = 0.0,
+                 ascending: bool = True, min_rows: int = MIN_POINTS, optional: tuple[str, ...] = ()) -> Table:
+    """The named columns of a CSV file, checked: every cell a finite number, the time column
+    (default: the first of `columns`) >= `cut_time` and (if `ascending`) non-decreasing, at least
+    `min_rows` rows. Columns in `optional` are read too when the header has them."""
+    import pandas as pd
+
+    time_column = time_column or columns[0]
+    text = _text_lines(path)
+    numbered = [(n, s) for n, s in enumerate(text, start=1) if _is_data(s)]
+    if not numbered:
+        raise InputError(f"{path}: no header: expected the columns {', '.join(map(repr, columns))}")
+    header_line, header_text = numbered[0]
+    sep = next((c for c in ("\t", ";", ",") if c in header_text), ",")
+    body = numbered[1:]
+    try:
+        frame = pd.read_csv(path, sep=sep, comment=COMMENT, encoding="utf-8-sig", dtype=str, na_filter=False,
+                            skip_blank_lines=True, skipinitialspace=True, engine="python")
+    except pd.errors.ParserError:
+        frame = None
+    width = len(next(csv.reader([header_text], delimiter=sep)))
+    for n, s in body:  # pandas fills short rows and refuses long ones without a usable line number
+        cells = len(next(csv.reader([s], delimiter=sep)))
+        if cells != width:
+            hint = (" (with ',' as the separator a decimal comma splits a number in two: separate the "
+                    "columns with ';' or a tab)") if sep == "," and cells > width else ""
+            raise InputError(f"{path}: line {n}: {cells} cell{'' if cells == 1 else 's'}, expected {width} as in the header (line "
+                             f"{header_line}){hint}")
+    if frame is None or len(frame) != len(body):
+        raise InputError(f"{path}: cannot be read as a table separated by {sep!r}")
+    frame.columns = [str(c).strip() for c in frame.columns]
+    header = list(frame.columns)
     for name in columns:
         if name not in header:
-            raise InputError(f"{path}: missing column {name!r} (header is {','.join(header)!r}; expected {','.join(columns)!r})")
-    columns = tuple(columns) + tuple(name for name in optional if name in header)
-    index = [header.index(name) for name in columns]
-    data = {name: [] for name in columns}
-    body = [(n, r) for n, r in enumerate(rows[1:], start=1) if any(cell.strip() for cell in r)]
-    for n, row in body:
-        if len(row) != len(header):
-            raise InputError(f"{path}: row {n}: {len(row)} cells, expected {len(header)} (as in the header)")
-        for name, i in zip(columns, index):
-            cell = row[i].strip()
-            try:
-                value = float(cell)
-            except ValueError:
-                raise InputError(f"{path}: row {n}: {name} = {cell!r} is not a number") from None
-            if not math.isfinite(value):
-                raise InputError(f"{path}: row {n}: {name} = {cell} is not a finite number")
-            data[name].append(value)
-        t = data[time_column][-1]
-        if t < 0:
-            raise InputError(f"{path}: row {n}: {time_column} = {t:g} is negative (times are since the cut)")
-        if ascending and len(data[time_column]) > 1 and t < data[time_column][-2]:
-            raise InputError(f"{path}: row {n}: {time_column} = {t:g} is before row {n - 1}'s "
-                             f"{data[time_column][-2]:g} (times must be ascending)")
-    if len(body) < min_rows:
-        raise InputError(f"{path}: {len(body)} data rows: too few points, need at least {min_rows}")
-    return {name: np.asarray(values) for name, values in data.items()}
+            raise InputError(f"{path}: line {header_line}: no column {name!r} (the header has "
+                             f"{', '.join(map(repr, header))})")
+    columns = tuple(columns) + tuple(name for name in optional if name in header and name not in columns)
+    cells = {name: frame[name].astype(str).str.strip() for name in columns}
+    lines = np.array([n for n, _ in body], dtype=int)
+    decimal_comma = False
+    if sep != ",":
+        comma = [(lines[i], name) for name in columns for i in np.flatnonzero(cells[name].str.contains(",", regex=False))]
+        dot = [(lines[i], name) for name in columns for i in np.flatnonzero(cells[name].str.contains(".", regex=False))]
+        if comma and dot:
+            (lc, nc), (ld, nd) = min(comma), min(dot)
+            raise InputError(f"{path}: both decimal commas (line {lc}, {nc}) and decimal points (line {ld}, {nd}): "
+                             "ambiguous, use one of them")
+        decimal_comma = bool(comma)
+    data = {}
+    for name in columns:
+        raw = cells[name]
+        values = pd.to_numeric(raw.str.replace(",", ".", regex=False) if decimal_comma else raw,
+                               errors="coerce").to_numpy(dtype=float)
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            k = bad[0]
+            cell = raw.iloc[k]
+            what = ("is empty" if cell == "" else "is not a finite number"
+                    if np.isinf(values[k]) or cell.lower().lstrip("+-") == "nan" else "is not a number")
+            raise InputError(f"{path}: line {lines[k]}: {name} = {raw.iloc[k]!r} {what}")
+        data[name] = values
+    t = data[time_column]
+    if t.size and np.any(t < cut_time):
+        k = int(np.flatnonzero(t < cut_time)[0])
+        raise InputError(f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before the cut at {cut_time:g} "
+                         "(times are since the cut, or from the cut time given; remove the rows before the cut)")
+    if ascending and t.size > 1 and np.any(np.diff(t) < 0):
+        k = int(np.flatnonzero(np.diff(t) < 0)[0]) + 1
+        raise InputError(f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before line {lines[k - 1]}'s "
+                         f"{t[k - 1]:g} (times must be ascending)")
+    if t.size < min_rows:
+        raise InputError(f"{path}: {t.size} data rows: too few points, need at least {min_rows}")
+    return Table(path, data, lines)
 
 
 def float_list(text: str, what: str) -> list[float]:

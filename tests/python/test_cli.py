@@ -1,6 +1,6 @@
 """The command line `wound-opening` through subprocess: fit (JSON in its documented format, a
 figure), sweep (CSV and Parquet), simulate, and bad input: one line naming the file, the
-row and the problem, exit code 2, no traceback."""
+file line and the problem, exit code 2, no traceback."""
 
 from __future__ import annotations
 
@@ -84,14 +84,14 @@ def test_sweep_and_simulate_write_their_tables(tmp_path):
     assert len(m) == 6 and (tmp_path / "m.png").is_file()
 
 
-BAD = [
-    ("time_s,radius\n0,1\n", "missing column 'radius_um'"),
-    ("time_s,radius_um\n0,10\n1,abc\n", "row 2: radius_um = 'abc' is not a number"),
-    ("time_s,radius_um\n0,10\n-1,10\n", "row 2: time_s = -1 is negative"),
-    ("time_s,radius_um\n0,10\n2,10\n1,10\n", "row 3: time_s = 1 is before row 2's 2 (times must be ascending)"),
-    ("time_s,radius_um\n0,10\n1,nan\n", "row 2: radius_um = nan is not a finite number"),
+BAD = [  # line = the file line, 1 = the header
+    ("time_s,radius\n0,1\n", "line 1: no column 'radius_um'"),
+    ("time_s,radius_um\n0,10\n1,abc\n", "line 3: radius_um = 'abc' is not a number"),
+    ("time_s,radius_um\n0,10\n-1,10\n", "line 3: time_s = -1 is before the cut at 0"),
+    ("time_s,radius_um\n0,10\n2,10\n1,10\n", "line 4: time_s = 1 is before line 3's 2 (times must be ascending)"),
+    ("time_s,radius_um\n0,10\n1,nan\n", "line 3: radius_um = 'nan' is not a finite number"),
     ("time_s,radius_um\n0,10\n1,10.1\n2,10.2\n", "3 data rows: too few points, need at least 5"),
-    ("time_s,radius_um\n0,10,3\n", "row 1: 3 cells, expected 2"),
+    ("time_s,radius_um\n0,10,3\n", "line 2: 3 cells, expected 2"),
 ]
 
 
@@ -110,7 +110,7 @@ def test_a_bad_profile_file_and_a_missing_file_are_named(tmp_path):
     write_radius(tmp_path / "radius.csv")
     (tmp_path / "p.csv").write_text("time_s,r_um,velocity_um_s\n1,12,x\n")
     done = run("fit", tmp_path / "radius.csv", "--profile", tmp_path / "p.csv", "--outer-radius-um", OUTER)
-    assert done.returncode == 2 and f"{tmp_path / 'p.csv'}: row 1: velocity_um_s = 'x' is not a number" in done.stderr
+    assert done.returncode == 2 and f"{tmp_path / 'p.csv'}: line 2: velocity_um_s = 'x' is not a number" in done.stderr
     done = run("fit", tmp_path / "none.csv", "--outer-radius-um", OUTER)
     assert done.returncode == 2 and "none.csv: cannot read the file (No such file or directory)" in done.stderr
     done = run("sweep", "--lambda", "1,x", "--sigma", "1", "--R-inf", "10", "--times", "1", "--csv", tmp_path / "s.csv")
