@@ -17,8 +17,8 @@ import importlib
 #: Where each public name lives; imported on first use, so that `wound-opening --help`
 #: starts without numpy, scipy or pandas.
 _HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
-         "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fit", "Simulation": "model",
-         "simulate": "model", "FitResult": "result", "sweep": "sweep"}
+         "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fitting", "Simulation": "model",
+         "simulate": "model", "FitResult": "result", "sweep": "sweeping"}
 
 
 def __getattr__(name):

@@ -9,7 +9,7 @@ import sys
 
 
 def _fit(args) -> None:
-    from .fit import fit
+    from .fitting import fit
     from .lab_files import read_profile, read_radius
 
     units = dict(time_unit=args.time_unit, length_unit=args.length_unit, pixel_size_um=args.pixel_size_um,
@@ -36,7 +36,7 @@ def _fit(args) -> None:
 
 
 def _sweep(args) -> None:
-    from .sweep import sweep
+    from .sweeping import sweep
     from .tables import float_list
 
     grid = {"lambda": float_list(args.lam, "--lambda"), "sigma": float_list(args.sigma, "--sigma"),

@@ -18,7 +18,7 @@ import wound_exact as we
 from bench.fit_designs import NAMES, clean, covers, draw, truth
 
 from wound_opening.data import RadiusSeries
-from wound_opening.fit import fit
+from wound_opening.fitting import fit
 from wound_opening.objective import Objective, to_z
 
 
@@ -112,7 +112,7 @@ def test_profile_interval_ends_lie_on_the_threshold():
     """Each end of a PIV fit's four intervals: chi^2 minimised over the other three there
     (tolerances 1e-12, started at the estimate) exceeds the minimum by the threshold to
     2e-3 of it, the precision likelihood.py locates the crossing to."""
-    from wound_opening.fit import _uncertainties
+    from wound_opening.fitting import _uncertainties
     from wound_opening.local import local_fit
 
     radius, profile = draw("piv", 0.5, 1e-2, 7)

@@ -14,7 +14,7 @@ import pytest
 import wound_exact as we
 
 from wound_opening.data import RadiusSeries, VelocityProfile
-from wound_opening.fit import fit
+from wound_opening.fitting import fit
 
 EXE = str(Path(sys.executable).with_name("wound-opening"))
 R0, SIGMA, LAM, T, OUTER = 10.0, 0.5, 0.5, 10.0, 100.0

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 import wound_exact as we
 
-from wound_opening.fit import fit
+from wound_opening.fitting import fit
 from wound_opening.lab_files import read_profile, read_radius
 from wound_opening.plausibility import LONGEST_S, time_scale_warnings
 

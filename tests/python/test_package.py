@@ -111,3 +111,18 @@ def test_the_tolerance_sets_the_accuracy_of_the_radius(seed):
 def test_a_tolerance_out_of_range_is_refused_for_the_radius_too():
     with pytest.raises(ValueError, match="tolerance"):
         wo.simulate([1.0], lam=1.0, sigma=1.0, R0_um=R0, T_s=T, outer_radius_um=OUTER, tolerance=0.0)
+
+
+def test_the_package_exports_functions_whatever_was_imported_first():
+    """`wound_opening.fit` and `.sweep` are the functions even after their modules were
+    imported directly (a module named like the function it exports would replace it)."""
+    import importlib
+
+    import wound_opening
+
+    importlib.import_module("wound_opening.fitting")
+    importlib.import_module("wound_opening.sweeping")
+    from wound_opening import fit, sweep
+
+    assert callable(fit) and callable(sweep)
+    assert callable(wound_opening.fit) and callable(wound_opening.sweep)

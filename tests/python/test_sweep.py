@@ -12,9 +12,9 @@ import pytest
 from dask_cluster import cluster
 
 import wound_opening as wo
-from wound_opening.sweep import sweep
+from wound_opening.sweeping import sweep
 
-sweep_module = sys.modules["wound_opening.sweep"]  # the module (the package exports the function)
+sweep_module = sys.modules["wound_opening.sweeping"]
 
 GRID = {"lambda": [0.0, 0.1, 1.0, 10.0], "sigma": [-0.5, 0.0, 0.3, 1.0, 2.0], "R_inf": [2.0, 10.0, 100.0]}
 TIMES = [0.0, 0.01, 0.5, 3.0, 40.0]
