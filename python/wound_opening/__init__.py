@@ -6,6 +6,7 @@ units of a laser-ablation experiment (um, s, Pa), through the project's native l
     fit(radius data, profile data=None, outer_radius_um=) -> FitResult (estimates, profile
         likelihood intervals, identifiability, derived quantities; to_json())
     sweep(grid or list of parameter sets, times) -> pandas DataFrame (local or Dask)
+    fmu_path(name) -> the path of a shipped FMU archive, for fmpy or another FMI master
 
 See docs/fitting.md.
 """
@@ -16,7 +17,7 @@ import importlib
 #: starts without numpy, scipy or pandas.
 _HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
          "RadiusSeries": "data", "VelocityProfile": "data", "fit": "fit", "Simulation": "model",
-         "simulate": "model", "FitResult": "result", "sweep": "sweep"}
+         "simulate": "model", "FitResult": "result", "sweep": "sweep", "fmu_path": "shipped"}
 
 
 def __getattr__(name):
@@ -27,4 +28,4 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
-           "fit", "library_path", "simulate", "sweep"]
+           "fit", "fmu_path", "library_path", "simulate", "sweep"]
