@@ -35,11 +35,17 @@ class BuildNative(build_rust):
         build_ext = self.get_finalized_command("build_ext")
         if self.inplace or getattr(build_ext, "editable_mode", False):
             return
+        # build/lib persists between builds: drop what an earlier one left, so that the
+        # wheel holds this build's files or none.
+        package = Path(build_ext.build_lib) / PACKAGE
+        shutil.rmtree(package / "fmu", ignore_errors=True)
+        for stale in package.glob("*.so"):
+            stale.unlink()
         subprocess.run(["cargo", "run", "--release", "--quiet", "--", "fmu"], cwd=ROOT, check=True)
         super().run()
         target = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
-        dest = Path(build_ext.build_lib) / PACKAGE / "fmu"
-        dest.mkdir(parents=True, exist_ok=True)
+        dest = package / "fmu"
+        dest.mkdir(parents=True)
         for name in FMUS:
             shutil.copyfile(target / "fmu" / name, dest / name)
 

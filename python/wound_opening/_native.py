@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .shipped import CHECKOUT, candidates, first_file
+from .shipped import candidates, first_file
 
 ENV_VAR = "WOUND_OPENING_LIB"
 LIB_NAME = "libwound_opening.so"
@@ -60,7 +60,7 @@ def library_path() -> Path:
         return path
     raise NativeLibraryMissing(
         f"wound_opening: native library not found at {' or '.join(map(str, paths))}; build it with "
-        f"`cargo build --release` in a checkout ({CHECKOUT}), install the wheel, or set {ENV_VAR} to its path"
+        f"`cargo build --release` in the repository (editable install), install the wheel, or set {ENV_VAR} to its path"
     )
 
 
