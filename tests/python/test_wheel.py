@@ -12,7 +12,6 @@ from __future__ import annotations
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 import zipfile
@@ -61,9 +60,7 @@ def _constraints(tmp_path: Path) -> Path:
     return path
 
 
-@pytest.fixture(scope="module")
-def wheel(tmp_path_factory) -> Path:
-    dist = tmp_path_factory.mktemp("dist")
+def build_wheel(dist: Path) -> Path:
     built = subprocess.run([sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "--quiet",
                             "--disable-pip-version-check", "-w", str(dist)], capture_output=True, text=True, timeout=900)
     assert built.returncode == 0, built.stderr
@@ -71,16 +68,16 @@ def wheel(tmp_path_factory) -> Path:
     return path
 
 
-def test_wheel_carries_the_library_and_the_five_archives(wheel):
+def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
+    """One test, one build: builds share the checkout's build/ folder, so two in parallel
+    (pytest-xdist) would race on it."""
+    wheel = build_wheel(tmp_path / "dist")
     names = set(zipfile.ZipFile(wheel).namelist())
     assert "wound_opening/libwound_opening.so" in names
     assert {f"wound_opening/fmu/{name}" for name in FMUS} <= names
-    assert not any(name.startswith("wound_opening/target") for name in names)
     # ctypes, no CPython ABI: any Python 3, one platform.
     assert wheel.name.endswith("-py3-none-linux_x86_64.whl"), wheel.name
 
-
-def test_installed_wheel_fits_and_serves_the_fmus_without_rust_or_checkout(wheel, tmp_path):
     venv, work = tmp_path / "venv", tmp_path / "work"
     work.mkdir()
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "WOUND_OPENING_LIB")}
