@@ -5,8 +5,10 @@ displacement and velocity at CURRENT distances from the wound centre (as PIV mea
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -80,12 +82,17 @@ def test_bad_input_is_refused_with_the_reason(kwargs, message):
         wo.simulate(args.pop("times_s"), **args)
 
 
-def test_a_missing_native_library_is_a_clear_error():
-    env = dict(os.environ, WOUND_OPENING_LIB="/nonexistent/libwound_opening.so")
+def test_a_missing_native_library_is_a_clear_error(tmp_path):
+    """The package copied outside the repository, with $WOUND_OPENING_LIB naming no file: the
+    library is in none of the three places, and the error names each."""
+    shutil.copytree(Path(wo.__file__).parent, tmp_path / "wound_opening", ignore=shutil.ignore_patterns("__pycache__", "*.so", "fmu"))
+    env = dict(os.environ, WOUND_OPENING_LIB="/nonexistent/libwound_opening.so", PYTHONPATH=str(tmp_path))
     code = "import wound_opening as w; w.simulate([1.0], lam=1, sigma=1, R0_um=1, T_s=1, outer_radius_um=10)"
-    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    done = subprocess.run([sys.executable, "-c", code], env=env, cwd=tmp_path, capture_output=True, text=True, timeout=60)
     assert done.returncode != 0
-    assert "native library not found at /nonexistent/libwound_opening.so; build it with `cargo build --release`" in done.stderr
+    looked_at = [tmp_path / "wound_opening" / "libwound_opening.so", tmp_path.parent / "target" / "release" / "libwound_opening.so",
+                 "/nonexistent/libwound_opening.so"]
+    assert f"native library not found at {' or '.join(map(str, looked_at))}; build it with `cargo build --release`" in done.stderr
 
 
 @pytest.mark.parametrize("seed", range(4))
