@@ -8,6 +8,7 @@ units of a laser-ablation experiment (um, s, Pa), through the project's native l
     fit(radius data, profile data=None, outer_radius_um=) -> FitResult (estimates, profile
         likelihood intervals, identifiability, derived quantities; to_json())
     sweep(grid or list of parameter sets, times) -> pandas DataFrame (local or Dask)
+    fmu_path(name) -> the path of a shipped FMU archive, for fmpy or another FMI master
 
 See docs/fitting.md.
 """
@@ -18,7 +19,7 @@ import importlib
 #: starts without numpy, scipy or pandas.
 _HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
          "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fitting", "Simulation": "model",
-         "simulate": "model", "FitResult": "result", "sweep": "sweeping"}
+         "simulate": "model", "FitResult": "result", "sweep": "sweeping", "fmu_path": "shipped"}
 
 
 def __getattr__(name):
@@ -29,4 +30,4 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
-           "fit", "library_path", "read_profile", "read_radius", "simulate", "sweep"]
+           "fit", "fmu_path", "library_path", "read_profile", "read_radius", "simulate", "sweep"]

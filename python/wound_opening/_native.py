@@ -1,8 +1,11 @@
 """ctypes binding of the two series functions of the direct C API (include/wound_opening.h).
 
 Everything here is dimensionless (lengths in R0, time in T, stresses in G); `model.py`
-converts. The library is loaded once per process: `$WOUND_OPENING_LIB` if set, else
-`target/release/libwound_opening.so` of this repository (built by `cargo build --release`).
+converts. The library is loaded once per process: from `$WOUND_OPENING_LIB` when it is set
+(an explicit choice, and the only place then looked at), else from the first of the
+installed package (a wheel carries `wound_opening/libwound_opening.so`) and
+`target/release/libwound_opening.so` of the checkout (built by `cargo build --release`;
+editable install).
 Each worker process of a sweep loads it itself (nothing native crosses a pickle).
 """
 
@@ -14,9 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[2]
+from .shipped import candidates, first_file
+
 ENV_VAR = "WOUND_OPENING_LIB"
-DEFAULT_LIB = ROOT / "target" / "release" / "libwound_opening.so"
+LIB_NAME = "libwound_opening.so"
 
 #: Grid accuracy asked of the solver (relative to the opening amplitude R_final - R1).
 TOLERANCE = 1e-10
@@ -44,22 +48,28 @@ _DOUBLES = ctypes.c_void_p  # float64 arrays, passed by address
 _lib = None
 
 
-def library_path() -> Path:
-    """Where the native library is looked for: $WOUND_OPENING_LIB, else the release build."""
+def library_paths() -> list[Path]:
+    """Where the native library is looked for: $WOUND_OPENING_LIB alone when it is set, else
+    the package, then the checkout."""
     override = os.environ.get(ENV_VAR)
-    return Path(override) if override else DEFAULT_LIB
+    return [Path(override)] if override else candidates(LIB_NAME, f"release/{LIB_NAME}")
+
+
+def library_path() -> Path:
+    """The native library that is (or will be) loaded: the first of library_paths() that exists."""
+    paths = library_paths()
+    if path := first_file(paths):
+        return path
+    raise NativeLibraryMissing(
+        f"wound_opening: native library not found at {' or '.join(map(str, paths))}; build it with "
+        f"`cargo build --release` in the repository (editable install), install the wheel, or set {ENV_VAR} to its path"
+    )
 
 
 def _load():
     global _lib
     if _lib is None:
-        path = library_path()
-        if not path.is_file():
-            raise NativeLibraryMissing(
-                f"wound_opening: native library not found at {path}; build it with "
-                f"`cargo build --release` in {ROOT}, or set {ENV_VAR} to its path"
-            )
-        lib = ctypes.CDLL(str(path))
+        lib = ctypes.CDLL(str(library_path()))
         lib.wo_series.argtypes = [_Problem, _DOUBLES, ctypes.c_size_t, _DOUBLES, _DOUBLES]
         lib.wo_profile_series.argtypes = [
             _Problem, _DOUBLES, ctypes.c_size_t, _DOUBLES, ctypes.c_size_t, _DOUBLES, _DOUBLES,

@@ -103,7 +103,17 @@ fn platform_tuple() -> Result<&'static str, BoxError> {
     }
 }
 
+/// Writes the archive next to `path` and renames it into place, so that a master loading
+/// `path` meanwhile (a test, a wheel build copying it) reads the old archive or the new one,
+/// never a partial file.
 fn write_zip(path: &Path, entries: &[(String, Vec<u8>)]) -> Result<(), BoxError> {
+    let partial = path.with_extension("fmu.partial");
+    write_zip_to(&partial, entries)?;
+    std::fs::rename(&partial, path)?;
+    Ok(())
+}
+
+fn write_zip_to(path: &Path, entries: &[(String, Vec<u8>)]) -> Result<(), BoxError> {
     let file = std::fs::File::create(path)?;
     let mut zip = zip::ZipWriter::new(file);
     // The shared library is stored, not deflated: importers such as fmpy extract the

@@ -5,8 +5,10 @@ displacement and velocity at CURRENT distances from the wound centre (as PIV mea
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -80,12 +82,32 @@ def test_bad_input_is_refused_with_the_reason(kwargs, message):
         wo.simulate(args.pop("times_s"), **args)
 
 
-def test_a_missing_native_library_is_a_clear_error():
-    env = dict(os.environ, WOUND_OPENING_LIB="/nonexistent/libwound_opening.so")
+@pytest.mark.parametrize("override", [None, "/nonexistent/libwound_opening.so"])
+def test_a_missing_native_library_is_a_clear_error(tmp_path, override):
+    """The package copied outside the repository: the library is in neither the package nor a
+    checkout, and the error names both; with $WOUND_OPENING_LIB set, that path alone is
+    looked at (an explicit choice is never silently replaced) and named."""
+    shutil.copytree(Path(wo.__file__).parent, tmp_path / "wound_opening", ignore=shutil.ignore_patterns("__pycache__", "*.so", "fmu"))
+    env = {k: v for k, v in os.environ.items() if k != "WOUND_OPENING_LIB"}
+    env["PYTHONPATH"] = str(tmp_path)
+    if override:
+        env["WOUND_OPENING_LIB"] = override
     code = "import wound_opening as w; w.simulate([1.0], lam=1, sigma=1, R0_um=1, T_s=1, outer_radius_um=10)"
-    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    done = subprocess.run([sys.executable, "-c", code], env=env, cwd=tmp_path, capture_output=True, text=True, timeout=60)
     assert done.returncode != 0
-    assert "native library not found at /nonexistent/libwound_opening.so; build it with `cargo build --release`" in done.stderr
+    looked_at = [override] if override else [tmp_path / "wound_opening" / "libwound_opening.so",
+                                             tmp_path.parent / "target" / "release" / "libwound_opening.so"]
+    assert f"native library not found at {' or '.join(map(str, looked_at))}; build it with `cargo build --release`" in done.stderr
+
+
+def test_the_environment_variable_overrides_the_library_found(tmp_path, monkeypatch):
+    """$WOUND_OPENING_LIB names the library to load even where the package would find one."""
+    from wound_opening import _native
+
+    monkeypatch.setenv("WOUND_OPENING_LIB", str(tmp_path / "chosen.so"))
+    assert _native.library_paths() == [tmp_path / "chosen.so"]
+    monkeypatch.delenv("WOUND_OPENING_LIB")
+    assert tmp_path / "chosen.so" not in _native.library_paths()
 
 
 @pytest.mark.parametrize("seed", range(4))

@@ -1,0 +1,121 @@
+"""The wheel: `pip wheel .` builds it (reusing target/), it installs into a fresh venv with
+no Rust on PATH and no checkout on sys.path, and there `wound-opening fit` runs and fmpy
+loads the shipped FMUs through `wound_opening.fmu_path`.
+
+The runtime dependencies come from the wheel's own metadata, pinned by the versions of
+python/requirements.txt (pip's cache serves them). Nothing here falls back on the checkout:
+a wheel without the library or an archive fails.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+import wound_exact as we
+from test_cli import LAM, OUTER, R0, SIGMA, T, write_radius
+
+ROOT = Path(__file__).resolve().parents[2]
+FMUS = ("WoundOpening.fmu", "WoundOpening-me.fmu", "WoundOpening-fmi3.fmu", "PurseString.fmu", "PurseString-fmi3.fmu")
+#: The FMUs' promise at the default tolerance: |R - R_exact| <= 1e-10 (R_final - R1), t >= 0.01 T.
+FMU_TOL = 1e-10
+
+# Run inside the fresh venv: where the package found its files, and two FMUs simulated.
+PROBE = """
+import json, shutil, sys
+import wound_opening
+from fmpy import read_model_description, simulate_fmu
+start = {"lambda": %(lam)r, "sigma": %(sigma)r, "R_inf": %(r_inf)r, "R0": %(r0)r, "T": %(t)r, "G": 100.0}
+out = {"cargo": shutil.which("cargo"), "sys_path": sys.path, "package": wound_opening.__file__,
+       "library": str(wound_opening.library_path()), "fmus": {}, "radius": {}}
+for name in %(fmus)r:
+    path = wound_opening.fmu_path(name)
+    out["fmus"][name] = [str(path), read_model_description(str(path)).modelName]
+for name in ("WoundOpening.fmu", "WoundOpening-fmi3.fmu"):
+    r = simulate_fmu(str(wound_opening.fmu_path(name)), fmi_type="CoSimulation", start_values=start,
+                     stop_time=%(stop)r, output_interval=%(step)r, output=["wound_radius"])
+    out["radius"][name] = [r["time"].tolist(), r["wound_radius"].tolist()]
+print(json.dumps(out))
+"""
+
+
+def _without_rust(path: str) -> str:
+    """PATH less every folder that holds cargo or rustc."""
+    keep = [d for d in path.split(os.pathsep) if not any((Path(d) / exe).exists() for exe in ("cargo", "rustc"))]
+    return os.pathsep.join(keep)
+
+
+def _constraints(tmp_path: Path) -> Path:
+    """python/requirements.txt as a constraints file (pins only: constraints take no extras)."""
+    pins = re.findall(r"^([A-Za-z0-9_.-]+)(?:\[[^\]]*\])?(==\S+)", (ROOT / "python" / "requirements.txt").read_text(), re.M)
+    path = tmp_path / "constraints.txt"
+    path.write_text("".join(f"{name}{version}\n" for name, version in pins))
+    return path
+
+
+def build_wheel(dist: Path) -> Path:
+    built = subprocess.run([sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "--quiet",
+                            "--disable-pip-version-check", "-w", str(dist)], capture_output=True, text=True, timeout=900)
+    assert built.returncode == 0, built.stderr
+    (path,) = dist.glob("wound_opening-*.whl")
+    return path
+
+
+def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
+    """One test, one build: builds share the checkout's build/ folder, so two in parallel
+    (pytest-xdist) would race on it."""
+    wheel = build_wheel(tmp_path / "dist")
+    names = set(zipfile.ZipFile(wheel).namelist())
+    assert "wound_opening/libwound_opening.so" in names
+    assert {f"wound_opening/fmu/{name}" for name in FMUS} <= names
+    # ctypes, no CPython ABI: any Python 3, one platform.
+    assert wheel.name.endswith("-py3-none-linux_x86_64.whl"), wheel.name
+
+    venv, work = tmp_path / "venv", tmp_path / "work"
+    work.mkdir()
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "WOUND_OPENING_LIB")}
+    env["PATH"] = _without_rust(os.environ["PATH"])
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=120)
+    python = venv / "bin" / "python"
+    installed = subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--no-compile", "--disable-pip-version-check",
+                                "-c", str(_constraints(tmp_path)), str(wheel), "fmpy"],
+                               capture_output=True, text=True, env=env, cwd=work, timeout=600)
+    assert installed.returncode == 0, installed.stderr
+
+    # The command line: a fit of exact data with noise, as in test_cli.
+    write_radius(work / "radius.csv")
+    fit = subprocess.run([str(venv / "bin" / "wound-opening"), "fit", "radius.csv", "--outer-radius-um", str(OUTER),
+                          "--json", "fit.json"], capture_output=True, text=True, env=env, cwd=work, timeout=600)
+    assert fit.returncode == 0, fit.stderr
+    parameters = json.loads((work / "fit.json").read_text())["parameters"]
+    for name, truth in {"R0_um": R0, "sigma": SIGMA, "lambda": LAM, "T_s": T}.items():
+        assert abs(parameters[name]["estimate"] - truth) < 7 * parameters[name]["stderr"], (name, parameters[name])
+
+    # The package's files, and fmpy on the shipped archives.
+    stop, step = 20.0, 1.0
+    script = PROBE % dict(lam=LAM, sigma=SIGMA, r_inf=OUTER / R0, r0=R0, t=T, fmus=FMUS, stop=stop, step=step)
+    probe = subprocess.run([str(python), "-c", script], capture_output=True, text=True, env=env, cwd=work, timeout=300)
+    assert probe.returncode == 0, probe.stderr
+    out = json.loads(probe.stdout)
+    assert out["cargo"] is None
+    assert not any(Path(p).resolve() == ROOT or ROOT in Path(p).resolve().parents for p in out["sys_path"] if p)
+    package = Path(out["package"]).parent
+    assert package.is_relative_to(venv), package
+    assert Path(out["library"]) == package / "libwound_opening.so"
+    for name, (path, model) in out["fmus"].items():
+        assert Path(path) == package / "fmu" / name
+        assert model in ("WoundOpening", "PurseString")
+    opening = R0 * (we.final_radius(SIGMA, OUTER / R0) - we.initial_radius(SIGMA))
+    for name, (t, radius) in out["radius"].items():
+        t, radius = np.array(t), np.array(radius)
+        assert t[-1] == pytest.approx(stop)
+        keep = t >= 0.01 * T
+        exact = R0 * we.edge(LAM, SIGMA, OUTER / R0, t[keep] / T)[0]
+        assert np.abs(radius[keep] - exact).max() <= FMU_TOL * opening, name
