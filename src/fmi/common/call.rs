@@ -172,11 +172,12 @@ impl Call {
             Call::GetEventIndicators => "fmi2GetEventIndicators",
             Call::GetContinuousStates => "fmi2GetContinuousStates",
             Call::GetNominalsOfContinuousStates => "fmi2GetNominalsOfContinuousStates",
-            Call::GetNumberOf => "fmi2GetNumberOf*",
-            Call::EnterConfigurationMode => "fmi2EnterConfigurationMode",
-            Call::FinishStep => "fmi2DoStep",
-            Call::ExitConfigurationMode => "fmi2ExitConfigurationMode",
-            Call::Unsupported => "fmi2",
+            // Calls that exist in FMI 3.0 only, under their only names.
+            Call::GetNumberOf => "fmi3GetNumberOf*",
+            Call::EnterConfigurationMode => "fmi3EnterConfigurationMode",
+            Call::FinishStep => "fmi3DoStep",
+            Call::ExitConfigurationMode => "fmi3ExitConfigurationMode",
+            Call::Unsupported => "fmi3",
         }
     }
 
@@ -224,4 +225,22 @@ pub fn fmi3_text(text: &str) -> String {
         out = out.replace(fmi2, fmi3);
     }
     out.replace("fmi2", "fmi3")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Calls that exist in FMI 3.0 only are named as FMI 3.0 names them, whatever the
+    /// instance's version: there is no `fmi2EnterConfigurationMode` to point a reader to.
+    #[test]
+    fn fmi3_only_calls_have_no_fmi2_name() {
+        for call in [Call::EnterConfigurationMode, Call::ExitConfigurationMode, Call::GetNumberOf, Call::FinishStep] {
+            for version in [Version::Fmi2, Version::Fmi3] {
+                assert!(call.name(version).starts_with("fmi3"), "{call:?} in {version:?}: {}", call.name(version));
+            }
+        }
+        assert_eq!(Call::GetFmuState.name(Version::Fmi2), "fmi2GetFMUstate");
+        assert_eq!(Call::GetFmuState.name(Version::Fmi3), "fmi3GetFMUState");
+    }
 }
