@@ -1,7 +1,7 @@
 """CPU cost of the whole fmpy scenario per archive: parse the model description, extract
 the archive, load and instantiate (co-simulation), initialize, 1000 steps of 0.1 at
-lambda = 1 with wound_radius read after each, terminate, free. `time.process_time`, best
-of `--repeats`; each archive on its own, side by side. `--both` adds the single archive
+lambda = 1 with wound_radius read after each, terminate, free. `time.process_time` of the
+whole and of each phase, best of `--repeats`; each archive on its own, side by side. `--both` adds the single archive
 that declares both FMI 2.0 interfaces (the Model Exchange archive's description with the
 co-simulation element added, the library deflated), the layout the two archives replace.
 Prints a Markdown table; with `--out`, writes OUT/fmpy_whole.csv for docs/benchmarks.md.
@@ -25,30 +25,38 @@ from fmpy.fmi2 import FMU2Slave
 from bench import common
 
 
-def whole(path: str, lam: float = 1.0) -> tuple[float, float, int]:
-    """CPU seconds of the whole scenario, of its parse alone, and the variable count."""
-    start = time.process_time()
+#: The scenario's phases, in order (CPU seconds of each are measured).
+PHASES = ("parse", "extract", "instantiate", "initialize", "steps", "free")
+
+
+def whole(path: str, lam: float = 1.0) -> tuple[dict, int]:
+    """CPU seconds of each phase of the scenario (`PHASES`) and the variable count."""
+    marks = [time.process_time()]
     md = read_model_description(path)
-    parsed = time.process_time()
+    marks.append(time.process_time())
     unzipped = extract(path)
+    marks.append(time.process_time())
     vr = {v.name: v.valueReference for v in md.modelVariables}
     slave = FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier,
                       instanceName="whole")
     slave.instantiate()
+    marks.append(time.process_time())
     slave.setupExperiment(startTime=0.0, stopTime=common.T_END)
     slave.setReal([vr["lambda"], vr["sigma"], vr["R_inf"], vr["edge_stress"]], [lam, common.SIGMA, common.R_INF, 0.0])
     slave.enterInitializationMode()
     slave.exitInitializationMode()
+    marks.append(time.process_time())
     out = [vr["wound_radius"]]
     for i in range(common.STEPS):
         slave.doStep(i * common.STEP, common.STEP)
         slave.getReal(out)
+    marks.append(time.process_time())
     slave.terminate()
     slave.freeInstance()
-    seconds = time.process_time() - start
     slave.freeLibrary()
     shutil.rmtree(unzipped, ignore_errors=True)
-    return seconds, parsed - start, len(md.modelVariables)
+    marks.append(time.process_time())
+    return {name: b - a for name, a, b in zip(PHASES, marks, marks[1:])}, len(md.modelVariables)
 
 
 def both_interfaces(cs_path: str, me_path: str, out: Path) -> str:
@@ -73,17 +81,20 @@ def main() -> None:
     args = parser.parse_args()
     scratch = Path(tempfile.mkdtemp())
     paths = [args.fmu] + ([both_interfaces(args.fmu, args.both, scratch)] if args.both else [])
-    print("| archive | variables | parse | whole scenario (lambda = 1) |")
-    print("|---|---|---|---|")
+    columns = ("archive", "variables", "seconds") + tuple(f"{p}_seconds" for p in PHASES)
+    print("| " + " | ".join(columns) + " |")
+    print("|---" * len(columns) + "|")
     rows = []
     for path in paths:
         runs = [whole(path) for _ in range(args.repeats)]
-        best, parse, count = min(r[0] for r in runs), min(r[1] for r in runs), runs[0][2]
-        rows.append((Path(path).name, count, parse, best))
-        print(f"| {Path(path).name} | {count} | {parse * 1e3:.2f} ms | {best * 1e3:.2f} ms |", flush=True)
+        best = min(sum(r[0].values()) for r in runs)
+        phases = [min(r[0][p] for r in runs) for p in PHASES]  # each phase's best, over all runs
+        rows.append((Path(path).name, runs[0][1], best, *phases))
+        print("| " + " | ".join([Path(path).name, str(runs[0][1])] + [f"{x * 1e3:.2f} ms" for x in (best, *phases)])
+              + " |", flush=True)
     shutil.rmtree(scratch, ignore_errors=True)
     if args.out:
-        common.write_rows(args.out / "fmpy_whole.csv", ("archive", "variables", "parse_seconds", "seconds"), rows)
+        common.write_rows(args.out / "fmpy_whole.csv", columns, rows)
 
 
 if __name__ == "__main__":
