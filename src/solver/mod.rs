@@ -322,17 +322,21 @@ impl Solver {
     /// Mean edge velocity over the next `window` (in T) with `p` held,
     /// `(R(t + window) - R(t)) / window`: finite where [`Solver::edge_velocity`] is not.
     pub fn mean_edge_velocity(&self, p: f64, window: f64) -> Result<f64, SolverError> {
-        let mut ahead = self.clone();
-        ahead.advance(window, p)?;
-        Ok((ahead.wound_radius() - self.wound_radius()) / window)
+        Ok(self.mean_rate(p, window, |s| vec![s.wound_radius()])?[0])
     }
 
     /// Mean velocity at each radius over the next `window` (in T) with `p` held,
     /// `(u(r, t + window) - u(r, t)) / window`.
     pub fn mean_velocity(&self, p: f64, radii: &[f64], window: f64) -> Result<Vec<f64>, SolverError> {
+        self.mean_rate(p, window, |s| s.displacement(radii))
+    }
+
+    /// `(q(t + window) - q(t)) / window` for the quantities `q` measures, the solver
+    /// advanced on a copy with `p` held.
+    fn mean_rate(&self, p: f64, window: f64, q: impl Fn(&Self) -> Vec<f64>) -> Result<Vec<f64>, SolverError> {
         let mut ahead = self.clone();
         ahead.advance(window, p)?;
-        Ok(ahead.displacement(radii).iter().zip(self.displacement(radii)).map(|(b, a)| (b - a) / window).collect())
+        Ok(q(&ahead).iter().zip(q(self)).map(|(b, a)| (b - a) / window).collect())
     }
 
     /// Displacement `u(r)` at each requested radius (clamped into `[1, R_inf]`).

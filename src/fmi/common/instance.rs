@@ -14,23 +14,11 @@ pub use crate::fmi::common::model::Rejected;
 use crate::fmi::common::log::Log;
 use crate::fmi::common::model::{Causality, Description, FmuModel, Kind, Named, Variability};
 pub use crate::fmi::common::machine::{Clock, Interface, Machine, time_slack};
-use crate::fmi::common::serialized;
-use crate::boundary::registry::fresh_handle;
 use std::collections::HashMap;
 use std::sync::Arc;
 
-/// A saved FMU state, as held in the instance's table of states.
-struct Snapshot {
-    machine: Machine,
-    clock: Clock,
-    model: Box<dyn FmuModel>,
-}
-
-impl Clone for Snapshot {
-    fn clone(&self) -> Self {
-        Self { machine: self.machine, clock: self.clock, model: self.model.boxed_clone() }
-    }
-}
+mod fmu_states;
+use fmu_states::Snapshot;
 
 /// The importer's `intermediateUpdate` callback (FMI 3.0): asked for the inputs at `time`
 /// inside a step ([`crate::fmi::common::intermediate`]).
@@ -468,69 +456,5 @@ impl Instance {
     /// rounding of a time near it, [`time_slack`] of a zero step).
     pub fn wants_to_terminate(&self) -> bool {
         self.clock.stop.is_some_and(|s| self.clock.time >= s - time_slack(0.0, s))
-    }
-
-    /// `fmi2GetFMUstate`: save into `handle` if given (it must be ours), else a new one.
-    pub fn get_fmu_state(&mut self, handle: Option<u64>) -> Result<u64, Rejected> {
-        let snap = Snapshot { machine: self.machine, clock: self.clock, model: self.model.boxed_clone() };
-        let h = match handle {
-            Some(h) => self.snapshot(h).map(|_| h)?,
-            None => fresh_handle(),
-        };
-        self.states.insert(h, snap);
-        Ok(h)
-    }
-
-    /// A state of this instance. Any other handle is refused with the reason: FMI 2.0
-    /// (section 2.1.8) gives an FMU state to the instance that made it; the way to move a
-    /// state to another instance is to serialize and deserialize it.
-    fn snapshot(&self, handle: u64) -> Result<&Snapshot, Rejected> {
-        self.states.get(&handle).ok_or_else(|| {
-            format!(
-                "FMU state {handle:#x} is unknown to this instance (never allocated by it, or already freed); \
-                 a state of another instance cannot be used here: move it with fmi2SerializeFMUstate and \
-                 fmi2DeSerializeFMUstate"
-            )
-        })
-    }
-
-    pub fn set_fmu_state(&mut self, handle: u64) -> Result<(), Rejected> {
-        let snap = self.snapshot(handle)?.clone();
-        self.machine = snap.machine;
-        self.clock = snap.clock;
-        self.model = snap.model;
-        Ok(())
-    }
-
-    pub fn free_fmu_state(&mut self, handle: u64) -> Result<(), Rejected> {
-        self.snapshot(handle)?;
-        self.states.remove(&handle);
-        Ok(())
-    }
-
-    pub fn serialize_fmu_state(&self, handle: u64) -> Result<Vec<u8>, Rejected> {
-        let snap = self.snapshot(handle)?;
-        let model = snap.model.encode()?;
-        Ok(serialized::encode(self.description().model_identifier, snap.machine, &snap.clock, &model))
-    }
-
-    /// `fmi2DeSerializeFMUstate`: the bytes must come from an instance of the same model
-    /// with the same parameters (a state is a point of one trajectory, not a parameter
-    /// set). Into `target` if given (it must be ours), else into a new state.
-    pub fn deserialize_fmu_state(&mut self, bytes: &[u8], target: Option<u64>) -> Result<u64, Rejected> {
-        if let Some(h) = target {
-            self.snapshot(h)?;
-        }
-        let (machine, clock, payload) = serialized::decode(self.description().model_identifier, bytes)?;
-        // Intermediate Update Mode exists only inside an fmi3DoStep (no state is saved there),
-        // Configuration Mode only in FMI 3.0.
-        let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && self.version == Version::Fmi2);
-        if transient || !machine.belongs_to(self.interface) {
-            return Err(format!("serialized FMU state is in state {machine:?}, which this instance ({:?}) is never saved in", self.interface));
-        }
-        let model = self.model.decode(payload)?;
-        let handle = target.unwrap_or_else(fresh_handle);
-        self.states.insert(handle, Snapshot { machine, clock, model });
-        Ok(handle)
     }
 }

@@ -4,7 +4,8 @@
 //!
 //! ```text
 //! model.rs          what the glue knows of a model: the FmuModel trait and its Description table
-//! instance.rs       one instance: calls, variables, FMU states, logging
+//! instance.rs       one instance: calls, variables, logging
+//! instance/fmu_states.rs  its table of saved FMU states (get, set, free, serialize)
 //! machine.rs        the state machine's states and the master's clock
 //! call.rs           the calls, and in which state each is allowed
 //! exchange.rs       Model Exchange on an instance
