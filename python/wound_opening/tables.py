@@ -4,7 +4,8 @@
 pandas does the reading: a UTF-8 byte-order mark is dropped (`encoding="utf-8-sig"`), lines
 starting with `#` are comments, blank lines are skipped. The separator is the first of tab,
 `;` and `,` found in the header line (the header names the columns, so it has one separator
-fewer than columns and no decimals to confuse it). Decimal commas are read where they are
+fewer than columns and no decimals to confuse it), or the one an Excel `sep=;` line before
+the header names. Decimal commas are read where they are
 unambiguous: in a file separated by `;` or tab, numeric cells with a `,` and none with a `.`;
 a `,`-separated file has `.` decimals."""
 
@@ -51,6 +52,12 @@ def _is_data(text: str) -> bool:
     return bool(s) and not s.startswith(COMMENT)
 
 
+def _declared_separator(text: str) -> str | None:
+    """The separator an Excel `sep=X` line declares (quoted or not), else None."""
+    s = text.strip().strip('"')
+    return s[4] if len(s) == 5 and s.lower().startswith("sep=") else None
+
+
 def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None = None, cut_time: float = 0.0,
                  ascending: bool = True, min_rows: int = MIN_POINTS, optional: tuple[str, ...] = ()) -> Table:
     """The named columns of a CSV file, checked: every cell a finite number, the time column
@@ -63,12 +70,18 @@ def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None
     numbered = [(n, s) for n, s in enumerate(text, start=1) if _is_data(s)]
     if not numbered:
         raise InputError(f"{path}: no header: expected the columns {', '.join(map(repr, columns))}")
+    declared = _declared_separator(numbered[0][1])
+    if declared is not None:
+        numbered = numbered[1:]
+        if not numbered:
+            raise InputError(f"{path}: no header after the 'sep=' line: expected the columns {', '.join(map(repr, columns))}")
     header_line, header_text = numbered[0]
-    sep = next((c for c in ("\t", ";", ",") if c in header_text), ",")
+    sep = declared or next((c for c in ("\t", ";", ",") if c in header_text), ",")
     body = numbered[1:]
     try:
         frame = pd.read_csv(path, sep=sep, comment=COMMENT, encoding="utf-8-sig", dtype=str, na_filter=False,
-                            skip_blank_lines=True, skipinitialspace=True, engine="python")
+                            skip_blank_lines=True, skipinitialspace=True, engine="python",
+                            skiprows=range(header_line - 1))
     except pd.errors.ParserError:
         frame = None
     width = len(next(csv.reader([header_text], delimiter=sep)))

@@ -155,3 +155,21 @@ def test_an_opening_at_the_edge_of_the_sampling_is_warned_about(theta, times, ex
 
     found = time_scale_warnings(theta, OUTER, Series)
     assert (found == []) if expected is None else (len(found) == 1 and expected in found[0]), found
+
+
+@pytest.mark.parametrize("declaration", ["sep=;", '"sep=;"'])
+def test_an_excel_separator_line_is_read_as_the_separator(tmp_path, declaration):
+    """Excel writes `sep=;` (sometimes quoted) before the header: that line declares the
+    separator (column names with commas stay whole) and is not the header; lines keep their
+    numbers in messages."""
+    t, r = experiment()
+    rows = "".join(f"{comma(a)};{comma(b)}\n" for a, b in zip(t, r))
+    path = tmp_path / "excel.csv"
+    path.write_text(f"\ufeff{declaration}\nTime, s;Radius, um\n" + rows, encoding="utf-8")
+    series = read_radius(path, time_col="Time, s", radius_col="Radius, um")
+    np.testing.assert_allclose(series.times_s, t, rtol=1e-11)
+    np.testing.assert_allclose(series.radius_um, r, rtol=1e-11)
+    assert list(series.lines) == list(range(3, 43))
+    path.write_text(f"{declaration}\nTime, s;Radius, um\n" + rows.replace("0,5;", "0,5;;", 1), encoding="utf-8")
+    with pytest.raises(ValueError, match="line 3: 3 cells, expected 2 as in the header \\(line 2\\)"):
+        read_radius(path, time_col="Time, s", radius_col="Radius, um")
