@@ -119,3 +119,29 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
         keep = t >= 0.01 * T
         exact = R0 * we.edge(LAM, SIGMA, OUTER / R0, t[keep] / T)[0]
         assert np.abs(radius[keep] - exact).max() <= FMU_TOL * opening, name
+
+
+def test_the_source_distribution_carries_what_builds_the_wheel(tmp_path):
+    """`python -m build --sdist` on the tracked files (copied, so that no build folder is
+    shared with the wheel test): the sdist holds the crate (manifest, lock file, every
+    source file and the models' pages) and the C header, and no build output. Building the
+    wheel from it compiles the crate from scratch (minutes): see docs/install.md."""
+    tracked = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True, check=True)
+    tree = tmp_path / "tree"
+    for name in filter(None, tracked.stdout.split("\0")):
+        dest = tree / name
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        dest.write_bytes((ROOT / name).read_bytes())
+    built = subprocess.run([sys.executable, "-m", "build", "--sdist", "-o", str(tmp_path / "dist"), str(tree)],
+                           capture_output=True, text=True, timeout=600)
+    assert built.returncode == 0, built.stdout[-2000:] + built.stderr[-2000:]
+    (sdist,) = (tmp_path / "dist").glob("wound_opening-*.tar.gz")
+    import tarfile
+
+    with tarfile.open(sdist) as tar:
+        names = {n.split("/", 1)[1] for n in tar.getnames() if "/" in n}
+    crate = {n for n in tracked.stdout.split("\0") if n.startswith("src/")} | {"Cargo.toml", "Cargo.lock",
+                                                                              "include/wound_opening.h"}
+    assert crate <= names, sorted(crate - names)
+    assert {"setup.py", "pyproject.toml", "python/wound_opening/cli.py"} <= names
+    assert not any(n.startswith(("target/", ".venv/", "dist/", "build/")) for n in names), sorted(names)
