@@ -203,3 +203,31 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
         upper = None if hi is None else _own_units(i, hi)
         out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)])
     return out
+
+
+def profile_at(obj: Objective, z_hat: np.ndarray, chi2_min: float, i: int, values, loss: str = "linear") -> np.ndarray:
+    """delta chi^2 at the given values of coordinate i of z (ln R0, sigma, lambda, ln T):
+    each a fit of the other three with coordinate i fixed, as the walks above make them.
+    The values are visited outward from the estimate on each side, each fit starting from
+    the previous one's optimum moved along the line through the last two (as `_side` does),
+    so that a point does not start far from its valley. For drawing a profile finely; the
+    intervals come from `profile_all`. A value the solver refuses gives nan."""
+    from ._native import SolverError
+    from .local import local_fit
+
+    values = np.asarray(values, dtype=float)
+    out = np.full(values.size, np.nan)
+    for side in (np.flatnonzero(values >= z_hat[i]), np.flatnonzero(values < z_hat[i])[::-1]):
+        side = side[np.argsort(np.abs(values[side] - z_hat[i]), kind="stable")]
+        path = [(z_hat[i], np.asarray(z_hat, dtype=float))]
+        for k in side:
+            v = values[k]
+            (v1, z1) = path[-1]
+            move = (z1 - path[-2][1]) * (v - v1) / (v1 - path[-2][0]) if len(path) >= 2 and path[-2][0] != v1 else 0
+            try:
+                z, chi2, _ = local_fit(obj, z1 + np.clip(move, -1.0, 1.0), fixed=i, value=v, loss=loss, tol=1e-7)
+            except SolverError:
+                continue
+            out[k] = max(chi2 - chi2_min, 0.0)
+            path.append((v, z))
+    return out
