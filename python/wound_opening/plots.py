@@ -143,11 +143,16 @@ def profile_span(result, name) -> tuple[float, float, str]:
     return left, right, "linear"
 
 
+def _linthresh(right: float) -> float:
+    """The linear part of a symlog profile axis from 0: a power of ten 3-4 decades below `right`."""
+    return 10.0 ** math.floor(math.log10(right / 1e3))
+
+
 def _values(left, right, scale, n):
     if scale == "log":
         return np.geomspace(left, right, n)
     if scale == "symlog":
-        thresh = right / 1e3
+        thresh = _linthresh(right)
         return np.concatenate([np.linspace(left, thresh, n // 4, endpoint=False), np.geomspace(thresh, right, n - n // 4)])
     return np.linspace(left, right, n)
 
@@ -157,19 +162,22 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
     left, right, scale = profile_span(result, name)
     values = _values(left, right, scale, n) if n and result.refit is not None else np.empty(0)
     delta = result.profile_at(name, values) if values.size else values
-    pts = sorted([(float(a), float(b)) for a, b in rep.profile.points] + [(rep.estimate, 0.0)]
-                 + [(float(a), float(b)) for a, b in zip(values, delta) if np.isfinite(b)])
+    pts = sorted([(rep.estimate, 0.0)] + [(float(a), float(b)) for a, b in zip(values, delta) if np.isfinite(b)])
     x, y = np.array(pts).T
-    ax.plot(x, y, "o-", ms=2.5, lw=1)
+    ax.plot(x, y, "o-", ms=2.5, lw=1, label="profile")
+    walk = np.array(rep.profile.points).reshape(-1, 2)
+    ax.plot(walk[:, 0], walk[:, 1], "x", c="C2", ms=4, label="interval search")
+    y = np.concatenate([y, walk[:, 1]])
     ax.axhline(result.threshold, ls="--", c="gray", lw=0.8, label=f"95 % threshold {result.threshold:.3g}")
     ax.axvline(rep.estimate, c="k", ls=":", lw=0.8)
     for end in rep.ci95:
         if end is not None:
             ax.axvline(end, c="C3", lw=0.8)
     if scale == "symlog":
-        ax.set_xscale("symlog", linthresh=right / 1e3, linscale=0.3)
+        ax.set_xscale("symlog", linthresh=_linthresh(right), linscale=0.7)
     elif scale == "log":
         ax.set_xscale("log")
+    ax.set_xlim(min(left, float(x.min())), max(right, float(x.max())))
     ax.set_ylim(0, max(1.5 * result.threshold, min(float(y.max()) * 1.05, 4 * result.threshold)))
     lo, hi = rep.ci95
     verdict = "identified" if rep.identifiable else "not identified"
