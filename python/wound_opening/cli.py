@@ -32,6 +32,8 @@ def _fit(args) -> None:
         write_report(args.report, result, radius, profile, command=_command_line())
         print(f"report -> {args.report}")
     if not result.converged:
+        if args.plot or args.export:
+            print("no figure and no export: the fit did not converge", file=sys.stderr)
         return 1
     if args.plot:
         from .plots import fit_figure

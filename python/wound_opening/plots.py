@@ -36,13 +36,29 @@ def _g(x) -> str:
     return "open" if x is None else f"{x:.3g}"
 
 
+def plain_ticks(axis, linthresh: float | None = None) -> None:
+    """Ticks at 1, 2 and 5 per decade labelled as plain numbers (0.5, 2, 20) on a log or
+    symlog axis, rather than powers of ten whose minor labels collide."""
+    from matplotlib import ticker
+
+    if linthresh is None:
+        axis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    else:
+        axis.set_major_locator(ticker.SymmetricalLogLocator(base=10, linthresh=linthresh, subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(ticker.FuncFormatter(lambda x, _: f"{x:g}"))
+    axis.set_minor_formatter(ticker.NullFormatter())
+
+
 def time_axis(ax, times) -> None:
     """Linear from 0 to the first positive time, logarithmic beyond (symlog)."""
     t = np.asarray(times, dtype=float)
     positive = t[t > 0]
     if positive.size:
-        ax.set_xscale("symlog", linthresh=10 ** math.floor(math.log10(positive.min())), linscale=0.5)
+        linthresh = 10 ** math.floor(math.log10(positive.min()))
+        ax.set_xscale("symlog", linthresh=linthresh, linscale=0.5)
         ax.set_xlim(0, None)
+        if positive.max() < 1e4 * linthresh:  # up to four decades: 1, 2, 5 per decade
+            plain_ticks(ax.xaxis, linthresh)
 
 
 def estimates_text(result) -> str:
@@ -177,6 +193,8 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
         ax.set_xscale("symlog", linthresh=_linthresh(right), linscale=0.7)
     elif scale == "log":
         ax.set_xscale("log")
+        if right < 1e3 * left:
+            plain_ticks(ax.xaxis)
     ax.set_xlim(min(left, float(x.min())), max(right, float(x.max())))
     ax.set_ylim(0, max(1.5 * result.threshold, min(float(y.max()) * 1.05, 4 * result.threshold)))
     lo, hi = rep.ci95
