@@ -203,6 +203,11 @@ def main(argv=None) -> int:
 
     try:
         code = args.run(args) or 0
+    except BrokenPipeError:  # the reader of a printed table stopped (| head): not an error of the input
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except (InputError, ValueError, OSError, NativeLibraryMissing) as e:
         message = " ".join(str(e).split())
         print(f"wound-opening {args.command}: error: {message}", file=sys.stderr)

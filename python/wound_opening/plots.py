@@ -280,7 +280,7 @@ def simulate_figure(sim, path):
     if sim.radii_um is not None:
         for t in sim.times_s[:: max(1, len(sim.times_s) // 5)]:
             k = list(sim.times_s).index(t)
-            axes[2].plot(sim.radii_um, sim.velocity_um_s[k], label=f"t = {t:g} s")
+            axes[2].plot(sim.radii_um, sim.velocity_um_s[k], "-o", ms=3, label=f"t = {t:g} s")
         axes[2].set(xlabel="distance from the wound centre (µm)", ylabel="tissue velocity (µm/s)")
         axes[2].legend(loc="upper right")
     fig.savefig(path, dpi=120)

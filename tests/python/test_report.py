@@ -257,3 +257,13 @@ def test_the_sweep_figure_shows_the_opening_coloured_by_lambda_and_the_half_open
     np.testing.assert_allclose(y, [half_opening_time(lam, 10.0) for lam in x], rtol=1e-12)
     assert b.get_xscale() == "symlog" and b.get_yscale() == "log"
     assert np.all(np.diff(y) > 0)  # viscosity slows the opening
+
+
+def test_a_printed_table_cut_short_by_its_reader_is_not_an_error():
+    import subprocess
+
+    from test_cli import EXE
+
+    done = subprocess.run(f"'{EXE}' simulate --lambda 1 --sigma 1 --R0-um 10 --T-s 10 --outer-radius-um 100 "
+                          "--points 20000 | head -1", shell=True, capture_output=True, text=True, timeout=120)
+    assert done.stdout.split() == ["time_s", "radius_um", "edge_velocity_um_s"] and done.stderr == "", done.stderr
