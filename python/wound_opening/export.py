@@ -79,11 +79,14 @@ def curve_times(times_s, points: int = CURVE_POINTS) -> np.ndarray:
 
 
 def tables(result) -> dict:
-    """pandas DataFrames of the fit (module docstring); profile tables only with PIV data."""
+    """pandas DataFrames of the fit (module docstring); profile tables only with PIV data.
+    A fit that did not converge has no fitted curve: ValueError with its reasons."""
     import pandas as pd
 
     from .model import simulate
 
+    if not result.converged:
+        raise ValueError("the fit did not converge (" + "; ".join(result.reasons) + "): nothing to export")
     R0, sigma, lam, T = result.theta
     params = dict(lam=lam, sigma=sigma, R0_um=R0, T_s=T, outer_radius_um=result.outer_radius_um)
     radius = result.points["radius"]

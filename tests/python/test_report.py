@@ -124,6 +124,8 @@ def test_a_failed_fit_is_reported_as_such(robust):
     text = report_html(result, bad)
     assert "NOT converged" in text and "does not describe the data" in text and "No estimates" in text
     assert "data:image/png" not in text and "given in Python (no file)" in text
+    with pytest.raises(ValueError, match="did not converge"):
+        result.tables()
 
 
 def test_the_report_renders_in_headless_chromium(robust, tmp_path):
