@@ -2,7 +2,11 @@
 (python/wound_exact.py): R0 = 10 um, sigma = 0.5, lambda = 0.5, T = 10 s, outer radius 100 um.
 
     fitting_example.png         wound-opening fit of 30 radii (0.05 um noise) and a PIV profile
-                                at 1 s and 3 s (5 % noise): data, fit, residuals, profiles
+                                at 1 s and 3 s (5 % noise): data with error bars and the fit on a
+                                symlog time axis, residuals, the PIV profile, the four profile
+                                likelihoods (plots.fit_figure)
+    sweep_example.png           a lambda x sigma sweep: opening fraction coloured by lambda and the
+                                half-opening time (plots.sweep_figure)
     fitting_identifiability.png lambda's profile likelihood from the radius alone (2 % noise,
                                 a typical case) and with the velocity profile added; and
                                 R(t) for scaled (G, eta, zeta): identical curves
@@ -50,12 +54,14 @@ def identifiability(path):
     for label, noise, with_profile in (("radius alone, 2 % noise", 0.2, False),
                                        ("radius + velocity profile", 0.2, True)):
         radius, profile = data(noise, 11, with_profile)
-        result = wo.fit(radius, profile, outer_radius_um=OUTER)
-        v, d = np.array(result.reports["lambda"].profile.points).T
-        a.plot(v, d, "o-", ms=3, label=f"{label}: {'identified' if result.reports['lambda'].identifiable else 'flat'}")
+        result = wo.fit(radius, profile, outer_radius_um=OUTER, derived=False)
+        v = np.concatenate([[0.0], np.geomspace(0.01, 50, 40)])
+        d = result.profile_at("lambda", v)  # delta chi^2 by constrained fits at each lambda
+        ok = np.isfinite(d)
+        a.plot(v[ok], d[ok], "o-", ms=3, label=f"{label}: {'identified' if result.reports['lambda'].identifiable else 'flat'}")
     a.axhline(result.threshold, ls="--", c="gray", label="95 % threshold")
     a.axvline(LAM, c="k", lw=0.8, label="true λ = 0.5")
-    a.set_xscale("symlog", linthresh=1.0)
+    a.set_xscale("symlog", linthresh=0.01, linscale=0.5)
     a.set(xlabel="λ", ylabel="Δχ² (profile likelihood)", xlim=(0, 50), ylim=(0, 12),
           title="λ from R(t) alone, and with PIV")
     a.legend(loc="upper right", fontsize="small")
@@ -100,6 +106,10 @@ def main():
         return
     fit_figure(wo.fit(radius, profile, outer_radius_um=OUTER), radius, profile, out / "fitting_example.png")
     identifiability(out / "fitting_identifiability.png")
+    from wound_opening.plots import sweep_figure
+
+    grid = {"lambda": [0, 0.1, 0.3, 1, 3, 10], "sigma": [0.25, 0.5, 1, 2], "R_inf": [10, 30]}
+    sweep_figure(wo.sweep(grid, times=[0, 1, 10, 100], processes=1), out / "sweep_example.png")
 
 
 if __name__ == "__main__":

@@ -21,7 +21,7 @@ python python/coupling/container.py
 step "a synthetic experiment, fitted with wound-opening fit"
 python python/fitting_figures.py --data-only --out out
 wound-opening fit out/experiment_radius.csv --profile out/experiment_profile.csv --outer-radius-um 100 \
-    --json out/fit.json --plot out/fit.png
+    --json out/fit.json --plot out/fit.png --export out/fit --report out/fit.html
 step "a lambda x sigma sweep with wound-opening sweep"
 wound-opening sweep --lambda 0,0.1,0.3,1,3,10 --sigma 0.25,0.5,1,2 --R-inf 10 --times 0,1,10,100 \
     --csv out/sweep.csv --parquet out/sweep.parquet --plot out/sweep.png

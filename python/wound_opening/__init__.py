@@ -6,7 +6,8 @@ units of a laser-ablation experiment (um, s, Pa), through the project's native l
     read_radius(path, time_col=, radius_col=, time_unit=, length_unit=, pixel_size_um=,
         cut_time=) -> RadiusSeries; read_profile(...) -> VelocityProfile (a lab's CSV files)
     fit(radius data, profile data=None, outer_radius_um=) -> FitResult (estimates, profile
-        likelihood intervals, identifiability, derived quantities; to_json())
+        likelihood intervals, identifiability, derived quantities; to_json(), tables(), export(stem))
+    write_report(path, result, radius, profile=None) -> a self-contained HTML report of a fit
     sweep(grid or list of parameter sets, times) -> pandas DataFrame (local or Dask)
     fmu_path(name) -> the path of a shipped FMU archive, for fmpy or another FMI master
 
@@ -19,10 +20,18 @@ import importlib
 #: starts without numpy, scipy or pandas.
 _HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
          "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fitting", "Simulation": "model",
-         "simulate": "model", "FitResult": "result", "sweep": "sweeping", "fmu_path": "shipped"}
+         "simulate": "model", "FitResult": "result", "sweep": "sweeping", "fmu_path": "shipped",
+         "write_report": "report"}
 
 
 def __getattr__(name):
+    if name == "__version__":  # the installed distribution's (pyproject.toml)
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            return version(__name__)
+        except PackageNotFoundError:
+            return "unknown (not installed)"
     if name in _HOME:
         value = getattr(importlib.import_module(f".{_HOME[name]}", __name__), name)
         globals()[name] = value
@@ -30,4 +39,4 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
-           "fit", "fmu_path", "library_path", "read_profile", "read_radius", "simulate", "sweep"]
+           "fit", "fmu_path", "library_path", "read_profile", "read_radius", "simulate", "sweep", "write_report"]

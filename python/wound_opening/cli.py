@@ -26,13 +26,28 @@ def _fit(args) -> None:
     if args.json:
         with open(args.json, "w") as f:
             f.write(result.to_json() + "\n")
+    if args.report:
+        from .report import write_report
+
+        write_report(args.report, result, radius, profile, command=_command_line())
+        print(f"report -> {args.report}")
     if not result.converged:
+        if args.plot or args.export:
+            print("no figure and no export: the fit did not converge", file=sys.stderr)
         return 1
     if args.plot:
         from .plots import fit_figure
 
         fit_figure(result, radius, profile, args.plot)
+    if args.export:
+        print("exported: " + ", ".join(map(str, result.export(args.export))))
     return 0
+
+
+def _command_line() -> str:
+    import shlex
+
+    return "wound-opening " + " ".join(shlex.quote(a) for a in sys.argv[1:])
 
 
 def _sweep(args) -> None:
@@ -43,7 +58,7 @@ def _sweep(args) -> None:
             "R_inf": float_list(args.r_inf, "--R-inf")}
     df = sweep(grid, times=float_list(args.times, "--times"), R0_um=args.R0_um, T_s=args.T_s,
                scheduler=args.scheduler, processes=args.processes)
-    df.to_csv(args.csv, index=False, float_format="%.17g")
+    df.to_csv(args.csv, index=False)  # shortest digits that read back to the same doubles
     if args.parquet:
         df.to_parquet(args.parquet)
     if args.plot:
@@ -64,12 +79,28 @@ def _simulate(args) -> None:
     sim = simulate(times, lam=args.lam, sigma=args.sigma, R0_um=args.R0_um, T_s=args.T_s,
                    outer_radius_um=args.outer_radius_um, edge_stress_pa=args.edge_stress_pa, G_pa=args.G_pa,
                    radii_um=radii)
-    sim.to_frame().to_csv(args.csv, index=False, float_format="%.17g")
+    frame = sim.to_frame()
+    if args.csv:
+        frame.to_csv(args.csv, index=False)  # shortest digits that read back to the same doubles
+    else:
+        print(frame.to_string(index=False, float_format=lambda x: f"{x:.6g}"))
     if args.plot:
         from .plots import simulate_figure
 
         simulate_figure(sim, args.plot)
-    print(f"{len(times)} times -> {args.csv}")
+    if args.csv:
+        print(f"{len(times)} times -> {args.csv}")
+
+
+class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Appends "(default: X)" to an option's help unless it has no default (None, False) or
+    its help already names one."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if action.default in (None, False, argparse.SUPPRESS) or "default" in text.lower():
+            return text
+        return super()._get_help_string(action)
 
 
 def parser() -> argparse.ArgumentParser:
@@ -78,7 +109,8 @@ def parser() -> argparse.ArgumentParser:
         "(docs/fitting.md). Units: um, s, Pa; lambda and sigma dimensionless."))
     sub = top.add_subparsers(dest="command", required=True)
 
-    f = sub.add_parser("fit", help="fit R0_um, sigma, lambda, T_s to a radius series (and a velocity profile)")
+    f = sub.add_parser("fit", help="fit R0_um, sigma, lambda, T_s to a radius series (and a velocity profile)",
+                       formatter_class=HelpFormatter)
     f.add_argument("radius_csv", metavar="RADIUS.csv", help="columns time_s,radius_um (time since the cut), "
                    "or as named by --time-col, --radius-col")
     f.add_argument("--profile", metavar="PROFILE.csv",
@@ -86,6 +118,11 @@ def parser() -> argparse.ArgumentParser:
     f.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
     f.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
     f.add_argument("--plot", metavar="OUT.png", help="data with the fit, residuals, profile likelihoods")
+    f.add_argument("--export", metavar="STEM", help="write STEM_radius.csv (data, model, residual, normalised "
+                   "residual, flagged), STEM_curve.csv (the fitted R(t) on a fine grid) and, with a profile, "
+                   "STEM_profile.csv and STEM_profile_curve.csv; units in the column names (docs/fitting.md)")
+    f.add_argument("--report", metavar="OUT.html", help="a self-contained HTML report: input files and their "
+                   "SHA-256, noise, chi^2, estimates with intervals, flagged points, the figure, versions")
     f.add_argument("--radius-noise-um", type=float, help="noise of the radii in um (default: column radius_sd_um if "
                    "present, else from the residuals)")
     f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities in um/s (default: column "
@@ -115,34 +152,46 @@ def parser() -> argparse.ArgumentParser:
                    help="linear: least squares; soft_l1, cauchy: robust to outliers (flagged in the output)")
     f.set_defaults(run=_fit)
 
-    s = sub.add_parser("sweep", help="outputs over a lambda x sigma x R_inf grid (dimensionless by default)")
-    s.add_argument("--lambda", dest="lam", required=True, metavar="L1,L2,..")
-    s.add_argument("--sigma", required=True, metavar="S1,S2,..")
-    s.add_argument("--R-inf", dest="r_inf", required=True, metavar="R1,R2,..")
-    s.add_argument("--times", required=True, metavar="T1,T2,..", help="in T, or in s with --T-s")
-    s.add_argument("--R0-um", type=float, default=1.0, help="length scale (default 1: dimensionless)")
-    s.add_argument("--T-s", type=float, default=1.0, help="time scale (default 1: dimensionless)")
-    s.add_argument("--csv", required=True, metavar="OUT.csv")
-    s.add_argument("--parquet", metavar="OUT.parquet")
-    s.add_argument("--plot", metavar="OUT.png")
+    s = sub.add_parser("sweep", help="outputs over a lambda x sigma x R_inf grid (dimensionless by default)",
+                       formatter_class=HelpFormatter, description="Columns lambda, sigma, R_inf, time, wound_radius, "
+                       "edge_velocity (lengths in R0, times in T); with --R0-um and --T-s: time_s, wound_radius_um, "
+                       "edge_velocity_um_s.")
+    s.add_argument("--lambda", dest="lam", required=True, metavar="L1,L2,..",
+                   help="viscous length / R0 (dimensionless, >= 0)")
+    s.add_argument("--sigma", required=True, metavar="S1,S2,..", help="tension / G (dimensionless)")
+    s.add_argument("--R-inf", dest="r_inf", required=True, metavar="R1,R2,..",
+                   help="outer radius / R0 (dimensionless, > 1)")
+    s.add_argument("--times", required=True, metavar="T1,T2,..", help="in T, or in s with --R0-um and --T-s")
+    s.add_argument("--R0-um", type=float, help="radius of the cut in um (with --T-s: physical units; default: "
+                   "none, lengths in R0)")
+    s.add_argument("--T-s", type=float, help="time scale zeta R0^2 / 4G in s (with --R0-um; default: none, times in T)")
+    s.add_argument("--csv", required=True, metavar="OUT.csv",
+                   help="the table (every number with the shortest digits that read back exactly)")
+    s.add_argument("--parquet", metavar="OUT.parquet", help="the table as Parquet (pyarrow)")
+    s.add_argument("--plot", metavar="OUT.png", help="opening fraction R(t) coloured by lambda, half-opening time")
     s.add_argument("--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:port); default: local processes")
     s.add_argument("--processes", type=int, help="local processes (default: all cores)")
     s.set_defaults(run=_sweep)
 
-    m = sub.add_parser("simulate", help="radius, edge velocity (and profiles) in um and s, to CSV")
-    m.add_argument("--lambda", dest="lam", type=float, required=True)
-    m.add_argument("--sigma", type=float, required=True)
-    m.add_argument("--R0-um", type=float, required=True)
-    m.add_argument("--T-s", type=float, required=True)
-    m.add_argument("--outer-radius-um", type=float, required=True)
-    m.add_argument("--times", metavar="T1,T2,..", help="times in s (default: --points from 0 to --t-end)")
-    m.add_argument("--t-end", type=float, default=60.0)
-    m.add_argument("--points", type=int, default=61)
+    m = sub.add_parser("simulate", help="radius, edge velocity (and profiles) in um and s: a table, or CSV",
+                       formatter_class=HelpFormatter, description="Prints a table (time_s, radius_um, "
+                       "edge_velocity_um_s; with --radii-um also r_um, displacement_um, velocity_um_s) or writes it "
+                       "to --csv.")
+    m.add_argument("--lambda", dest="lam", type=float, required=True, help="viscous length / R0 (dimensionless)")
+    m.add_argument("--sigma", type=float, required=True, help="tension / G (dimensionless)")
+    m.add_argument("--R0-um", type=float, required=True, help="radius of the cut (um)")
+    m.add_argument("--T-s", type=float, required=True, help="time scale zeta R0^2 / 4G (s)")
+    m.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
+    m.add_argument("--times", metavar="T1,T2,..", help="times in s since the cut (default: --points from 0 to --t-end)")
+    m.add_argument("--t-end", type=float, default=60.0, help="last time (s)")
+    m.add_argument("--points", type=int, default=61, help="number of times from 0 to --t-end")
     m.add_argument("--radii-um", metavar="R1,R2,..", help="current distances from the wound centre (um)")
-    m.add_argument("--edge-stress-pa", type=float)
-    m.add_argument("--G-pa", type=float)
-    m.add_argument("--csv", required=True, metavar="OUT.csv")
-    m.add_argument("--plot", metavar="OUT.png")
+    m.add_argument("--edge-stress-pa", type=float, help="a constant stress at the wound edge (Pa; default: none, "
+                   "a free edge); needs --G-pa")
+    m.add_argument("--G-pa", type=float, help="shear modulus G (Pa), to convert --edge-stress-pa")
+    m.add_argument("--csv", metavar="OUT.csv", help="write the table here (every number with the shortest digits "
+                   "that read back exactly) instead of printing it (6 significant digits)")
+    m.add_argument("--plot", metavar="OUT.png", help="radius and edge velocity against time (and the profiles)")
     m.set_defaults(run=_simulate)
     return top
 
@@ -154,6 +203,11 @@ def main(argv=None) -> int:
 
     try:
         code = args.run(args) or 0
+    except BrokenPipeError:  # the reader of a printed table stopped (| head): not an error of the input
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except (InputError, ValueError, OSError, NativeLibraryMissing) as e:
         message = " ".join(str(e).split())
         print(f"wound-opening {args.command}: error: {message}", file=sys.stderr)

@@ -23,6 +23,7 @@ import numpy as np
 
 from ._native import SolverError
 from .data import RadiusSeries, VelocityProfile, check_against
+from .export import data_points
 from .objective import NAMES, Objective, from_z
 from .plausibility import time_scale_warnings
 from .result import FitResult, ParameterReport
@@ -193,7 +194,9 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                      optimizer=optimizer,
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
                      outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
-                     derived_profiles=derived_p, plausibility=time_scale_warnings(theta, obj.outer, radius, profile))
+                     derived_profiles=derived_p, plausibility=time_scale_warnings(theta, obj.outer, radius, profile),
+                     points=data_points(obj, z, flagged, radius, profile, estimated),
+                     refit=(obj, z, chi2_cost, loss) if not reasons else None)
 
 
 def _outliers(obj: Objective, flagged) -> dict:

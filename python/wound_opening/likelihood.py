@@ -203,3 +203,50 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
         upper = None if hi is None else _own_units(i, hi)
         out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)])
     return out
+
+
+#: A rise of delta chi^2 between neighbouring values of profile_at beyond which the value is
+#: also fitted from the estimate (a start in a higher valley gives such jumps).
+JUMP = 1.0
+
+
+def profile_at(obj: Objective, z_hat: np.ndarray, chi2_min: float, i: int, values, loss: str = "linear",
+               max_nfev: int = 100) -> np.ndarray:
+    """delta chi^2 at the given values of coordinate i of z (ln R0, sigma, lambda, ln T):
+    each a fit of the other three with coordinate i fixed, as the walks above make them.
+    The values are visited outward from the estimate on each side; each is fitted from two
+    starts, the previous value's optimum and that optimum moved along the line through the
+    last two (as `_side` predicts), keeping the lower, and from the estimate too when delta
+    jumps by more than JUMP from the previous value: one start alone can end in a higher
+    valley and draw a spike. A value whose fits both stop without converging within
+    `max_nfev` evaluations, or that the solver refuses, gives nan (its chi^2 would only
+    bound the profile from above). For drawing a profile finely; the intervals come from
+    `profile_all`."""
+    from ._native import SolverError
+    from .local import local_fit
+
+    values = np.asarray(values, dtype=float)
+    out = np.full(values.size, np.nan)
+    for side in (np.flatnonzero(values >= z_hat[i]), np.flatnonzero(values < z_hat[i])):
+        side = side[np.argsort(np.abs(values[side] - z_hat[i]), kind="stable")]
+        path = [(z_hat[i], np.asarray(z_hat, dtype=float))]
+        prev = -1
+        for k in side:
+            v = values[k]
+            (v1, z1) = path[-1]
+            move = (z1 - path[-2][1]) * (v - v1) / (v1 - path[-2][0]) if len(path) >= 2 and path[-2][0] != v1 else 0
+            best = None
+            for start in (z1 + np.clip(move, -1.0, 1.0), z1, z_hat):
+                if start is z_hat and best is not None and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0):
+                    break
+                try:
+                    z, chi2, res = local_fit(obj, start, fixed=i, value=v, loss=loss, tol=1e-7, max_nfev=max_nfev)
+                except SolverError:
+                    continue
+                if res.status > 0 and (best is None or chi2 < best[1]):
+                    best = (z, chi2)
+            if best is not None:
+                out[k] = max(best[1] - chi2_min, 0.0)
+                path.append((v, best[0]))
+                prev = k
+    return out

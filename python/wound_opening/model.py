@@ -127,3 +127,30 @@ def simulate(times_s, *, lam: float, sigma: float, R0_um: float, T_s: float, out
         raise ValueError(f"{e} (in the model's units: lengths in R0 = {R0_um} um, times in T = {T_s} s)") from None
     return Simulation(t, R0_um * radius[back], R0_um / T_s * velocity[back], radii,
                       R0_um * u[back], R0_um / T_s * v[back])
+
+
+def opening_fraction(lam: float, r_inf: float, tau, *, tolerance: float = _native.TOLERANCE) -> np.ndarray:
+    """f = (R - R1) / (R_final - R1) at ascending dimensionless times tau (free edge). With
+    no edge stress R - R1 is proportional to sigma, so f depends on lambda and R_inf only:
+
+        f(tau) = (R(tau; sigma = 1) - 7/6) / (2/3 R_inf^2 / (R_inf^2 - 1) - 1/6)."""
+    r, _ = _native.series(lam, 1.0, r_inf, np.asarray(tau, dtype=float), velocity=False, tolerance=tolerance)
+    return (r - 7 / 6) / (2 / 3 * r_inf**2 / (r_inf**2 - 1) - 1 / 6)
+
+
+def half_opening_time(lam: float, r_inf: float, *, tolerance: float = _native.TOLERANCE) -> float:
+    """The time (in T) at which the free wound has opened half way from R1 to R_final,
+    f(t_half) = 1/2, whatever sigma (opening_fraction). Bracketed on a log grid of 1e-6 ..
+    1e8 T (10 points per decade), then Brent's method on ln t to 1e-12; the radius at
+    t_half is then half way to within `tolerance` of the opening."""
+    from scipy.optimize import brentq
+
+    grid = np.geomspace(1e-6, 1e8, 141)
+    f = opening_fraction(lam, r_inf, grid, tolerance=tolerance)
+    above = np.flatnonzero(f >= 0.5)
+    if above.size == 0 or above[0] == 0:
+        raise ValueError(f"half_opening_time: lambda = {lam}, R_inf = {r_inf}: no crossing of half the opening "
+                         "between 1e-6 and 1e8 T")
+    k = above[0]
+    return math.exp(brentq(lambda s: opening_fraction(lam, r_inf, [math.exp(s)], tolerance=tolerance)[0] - 0.5,
+                           math.log(grid[k - 1]), math.log(grid[k]), xtol=1e-12, rtol=1e-12))

@@ -1,7 +1,22 @@
-"""Figures of the command line: a fit (data and model, residuals, profile likelihoods), a
-sweep (a lambda x sigma map of the radius at the last time), a simulation."""
+"""Figures of the command line: a fit, a sweep, a simulation. Every axis carries its unit.
+
+fit_figure: the radius on a time axis linear up to the first sampled time and logarithmic
+beyond (symlog: the first seconds, where the timing information is, get as much width as
+each later decade), with error bars (the given or estimated noise), flagged points marked
+and the estimates with their 95 % profile intervals written on it; the residuals below; the
+PIV profile only when there is one; each parameter's profile likelihood, evaluated at
+PROFILE_POINTS more values by constrained fits (FitResult.profile_at), on a log axis for
+R0, lambda and T where the values span more than a decade.
+
+sweep_figure: the opening fraction f(t) = (R - R1) / (R_final - R1) of every (lambda, R_inf)
+of the sweep (the sweep's values as markers on the model's curve), coloured by lambda, and
+the half-opening time against lambda. With a free edge R - R1 is proportional to sigma, so
+both depend on lambda and R_inf only (sigma sets the size of the opening, not its timing).
+"""
 
 from __future__ import annotations
+
+import math
 
 import matplotlib
 
@@ -9,98 +24,265 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from .model import simulate  # noqa: E402
 from .objective import NAMES  # noqa: E402
 
 LABELS = {"R0_um": "R₀ (µm)", "sigma": "σ", "lambda": "λ", "T_s": "T (s)"}
+SYMBOLS = {"R0_um": ("R₀", " µm"), "sigma": ("σ", ""), "lambda": ("λ", ""), "T_s": ("T", " s")}
+#: Values at which each profile is evaluated in addition to the points of its walk.
+PROFILE_POINTS = 20
 
 
-def fit_figure(result, radius, profile, path):
-    R0, sigma, lam, T = result.theta
-    fig = plt.figure(figsize=(12, 7.5), layout="constrained")
-    grid = fig.add_gridspec(2, 4)
-    ax = fig.add_subplot(grid[0, :2])
-    t = np.asarray(radius.times_s)
-    fine = np.linspace(0, t.max(), 400)
-    sim = simulate(fine, lam=lam, sigma=sigma, R0_um=R0, T_s=T, outer_radius_um=result.outer_radius_um)
-    ax.plot(t, radius.radius_um, "o", ms=4, label="data")
-    ax.plot(fine, sim.radius_um, "-", label="fit")
-    ax.axhline(R0 * (1 + sigma / 6), ls=":", c="gray", label="R₁ = R₀(1 + σ/6)")
-    ax.set(xlabel="time since the cut (s)", ylabel="wound radius (µm)")
-    ax.legend(loc="lower right")
-    ax = fig.add_subplot(grid[0, 2])
-    fitted = simulate(t, lam=lam, sigma=sigma, R0_um=R0, T_s=T, outer_radius_um=result.outer_radius_um).radius_um
-    ax.plot(t, np.asarray(radius.radius_um) - fitted, "o", ms=4)
-    ax.axhline(0, c="gray", lw=0.8)
-    ax.set(xlabel="time (s)", ylabel="radius residual (µm)")
-    ax = fig.add_subplot(grid[0, 3])
-    if profile is not None:
-        for time in np.unique(profile.times_s):
-            sel = np.asarray(profile.times_s) == time
-            r = np.asarray(profile.r_um)[sel]
-            line, = ax.plot(r, np.asarray(profile.velocity_um_s)[sel], "o", ms=4, label=f"t = {time:g} s")
-            rr = np.linspace(r.min(), r.max(), 200)
-            model = simulate([time], lam=lam, sigma=sigma, R0_um=R0, T_s=T, outer_radius_um=result.outer_radius_um,
-                             radii_um=rr)
-            ax.plot(rr, model.velocity_um_s[0], "-", c=line.get_color())
-        ax.set(xlabel="distance from the centre (µm)", ylabel="tissue velocity (µm/s)")
-        ax.legend(loc="upper right")
+def _g(x) -> str:
+    return "open" if x is None else f"{x:.3g}"
+
+
+def plain_ticks(axis, linthresh: float | None = None) -> None:
+    """Ticks at 1, 2 and 5 per decade labelled as plain numbers (0.5, 2, 20) on a log or
+    symlog axis, rather than powers of ten whose minor labels collide."""
+    from matplotlib import ticker
+
+    if linthresh is None:
+        axis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     else:
-        ax.axis("off")
-        ax.text(0.05, 0.5, "no velocity profile given", transform=ax.transAxes)
-    for k, name in enumerate(NAMES):
-        ax = fig.add_subplot(grid[1, k])
+        axis.set_major_locator(ticker.SymmetricalLogLocator(base=10, linthresh=linthresh, subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(ticker.FuncFormatter(lambda x, _: f"{x:g}"))
+    axis.set_minor_formatter(ticker.NullFormatter())
+
+
+def time_axis(ax, times) -> None:
+    """Linear from 0 to the first positive time, logarithmic beyond (symlog)."""
+    t = np.asarray(times, dtype=float)
+    positive = t[t > 0]
+    if positive.size:
+        linthresh = 10 ** math.floor(math.log10(positive.min()))
+        ax.set_xscale("symlog", linthresh=linthresh, linscale=0.5)
+        ax.set_xlim(0, None)
+        if positive.max() < 1e4 * linthresh:  # up to four decades: 1, 2, 5 per decade
+            plain_ticks(ax.xaxis, linthresh)
+
+
+def estimates_text(result) -> str:
+    """The estimates with their 95 % profile intervals, and the goodness of fit."""
+    lines = []
+    for name in NAMES:
         rep = result.reports[name]
-        if rep.profile is not None:
-            v, d = np.array(rep.profile.points).T
-            ax.plot(v, d, "o-", ms=3)
-            ax.axhline(result.threshold, ls="--", c="gray", label="95 % threshold")
+        symbol, unit = SYMBOLS[name]
+        if rep.profile is None:
+            ci = "(interval not computed)"
+        else:
             lo, hi = rep.ci95
-            for end in (lo, hi):
-                if end is not None:
-                    ax.axvline(end, c="C3", lw=0.8)
-        ax.set(xlabel=LABELS[name], ylabel="Δχ² (profile)",
-               title=f"{LABELS[name]}: {'identified' if rep.identifiable else 'not identified'}")
-        if k == 0:
-            ax.legend(loc="upper center")
-    fig.savefig(path, dpi=120)
+            ci = f"[{_g(lo)}, {_g(hi)}]" + ("" if rep.identifiable else " not identified")
+        lines.append(f"{symbol} = {rep.estimate:.4g}{unit}  {ci}")
+    fit = f"χ²/dof = {result.chi2:.3g}/{result.dof}"
+    fit += f", p = {result.p_value:.2g}" if result.p_value is not None else " (noise estimated)"
+    return "\n".join(lines + [fit, "95 % profile-likelihood intervals"])
+
+
+def _errorbars(ax, x, y, sd, flagged, label):
+    """Points with error bars, the flagged ones circled; returns the points' colour."""
+    bars = ax.errorbar(x, y, yerr=sd, fmt="o", ms=3, lw=0.8, capsize=0, label=label, zorder=2)
+    if np.any(flagged):
+        named = "flagged (down-weighted)" in ax.get_legend_handles_labels()[1]
+        ax.plot(x[flagged], y[flagged], "o", ms=9, mfc="none", mec="C3", mew=1.5,
+                label=None if named else "flagged (down-weighted)", zorder=3)
+    return bars[0].get_color()
+
+
+def fit_figure(result, radius=None, profile=None, path=None, *, profile_points: int = PROFILE_POINTS):
+    """The figure of a converged fit to `path` (a file name or a binary file object), returned
+    (closed). The data come from the result (radius, profile: accepted for the callers that
+    pass them)."""
+    tabs = result.tables()
+    pts, curve = tabs["radius"], tabs["curve"]
+    has_piv = "profile" in tabs
+    profiles = [n for n in NAMES if result.reports[n].profile is not None]
+    fig = plt.figure(figsize=(12, 8.5 if profiles else 5.5), layout="constrained")
+    grid = fig.add_gridspec(3 if profiles else 2, 4, height_ratios=[3, 1.2, 2.4][: 3 if profiles else 2])
+    width = slice(0, 2) if has_piv else slice(0, 4)
+    ax = fig.add_subplot(grid[0, width])
+    t, flagged = pts.time_s.to_numpy(), pts.flagged.to_numpy(bool)
+    estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
+    noise = "estimated" if estimated[0] else "given"
+    _errorbars(ax, t, pts.radius_um.to_numpy(), pts.sd_um.to_numpy(), flagged, f"data ± noise ({noise})")
+    ax.plot(curve.time_s, curve.radius_um, "-", c="C1", label="fit", zorder=1)
+    R0, sigma = result.theta[:2]
+    ax.axhline(R0 * (1 + sigma / 6), ls=":", c="gray", lw=0.8, label="R₁ = R₀(1 + σ/6)")
+    time_axis(ax, t)
+    ax.set(ylabel="wound radius (µm)")
+    ax.legend(loc="lower right", fontsize="small")
+    ax.text(0.02, 0.97, estimates_text(result), transform=ax.transAxes, va="top", fontsize="small",
+            family="monospace", bbox={"fc": "white", "ec": "0.7", "alpha": 0.9})
+    res = fig.add_subplot(grid[1, width], sharex=ax)
+    _errorbars(res, t, pts.residual_um.to_numpy(), pts.sd_um.to_numpy(), flagged, None)
+    res.axhline(0, c="gray", lw=0.8)
+    res.set(xlabel="time since the cut (s)", ylabel="data − fit (µm)")
+    if has_piv:
+        pv, pc = tabs["profile"], tabs["profile_curve"]
+        pax = fig.add_subplot(grid[0:2, 2:])
+        for time in np.unique(pv.time_s):
+            sel = (pv.time_s == time).to_numpy()
+            colour = _errorbars(pax, pv.r_um.to_numpy()[sel], pv.velocity_um_s.to_numpy()[sel],
+                                pv.sd_um_s.to_numpy()[sel], pv.flagged.to_numpy(bool)[sel],
+                                f"t = {time:g} s ± noise ({'estimated' if estimated[1] else 'given'})")
+            c = pc[pc.time_s == time]
+            pax.plot(c.r_um, c.velocity_um_s, "-", c=colour)
+        pax.set(xlabel="distance from the wound centre (µm)", ylabel="tissue velocity (µm/s)",
+                title="PIV velocity profile and fit")
+        pax.legend(loc="upper right", fontsize="small")
+    for k, name in enumerate(profiles):
+        profile_panel(fig.add_subplot(grid[2, k]), result, name, profile_points)
+    if path is not None:
+        fig.savefig(path, dpi=120, format="png")
     plt.close(fig)
+    return fig
 
 
-def sweep_figure(df, path):
-    first = df[df.R_inf == df.R_inf.iloc[0]]
-    last = first[first.time == first.time.max()]
-    lams, sigmas = np.unique(last["lambda"]), np.unique(last.sigma)
-    fig, ax = plt.subplots(figsize=(6.5, 5), layout="constrained")
-    if lams.size > 1 and sigmas.size > 1:
-        table = last.pivot_table(index="sigma", columns="lambda", values="wound_radius")
-        # One cell per value, whatever the spacing (the values label the cells).
-        mesh = ax.pcolormesh(np.arange(table.shape[1] + 1), np.arange(table.shape[0] + 1), table.values)
-        ax.set_xticks(np.arange(table.shape[1]) + 0.5, [f"{v:g}" for v in table.columns])
-        ax.set_yticks(np.arange(table.shape[0]) + 0.5, [f"{v:g}" for v in table.index])
-        fig.colorbar(mesh, ax=ax, label=f"wound radius at t = {last.time.iloc[0]:g}")
-        ax.set(xlabel="λ", ylabel="σ", title=f"R_inf = {first.R_inf.iloc[0]:g}")
+def profile_span(result, name) -> tuple[float, float, str]:
+    """(left, right, axis scale) of a profile panel: the walk's points and half the interval's
+    width beyond each closed end (so the rise past the threshold shows), log where R0, T or
+    lambda span more than a decade (symlog for lambda reaching 0)."""
+    rep = result.reports[name]
+    v = np.array([p[0] for p in rep.profile.points] + [rep.estimate])
+    est, (lo, hi) = rep.estimate, rep.ci95
+    logish = name in ("R0_um", "T_s")
+    left, right = float(v.min()), float(v.max())
+    if lo is not None and not rep.profile.at_bound and lo < est:
+        left = min(left, lo * (lo / est) ** 0.5 if logish else lo - 0.5 * (est - lo))
+    if hi is not None and hi > est:
+        right = max(right, hi * (hi / est) ** 0.5 if logish else hi + 0.5 * (hi - est))
+    if name == "lambda":
+        left = max(left, 0.0)
+        if right > 10 * max(left, 1e-300):
+            return left, right, "symlog" if left <= 0 or left < 1e-3 * right else "log"
+    if logish and right > 10 * left:
+        return left, right, "log"
+    return left, right, "linear"
+
+
+def _linthresh(right: float) -> float:
+    """The linear part of a symlog profile axis from 0: a power of ten 3-4 decades below `right`."""
+    return 10.0 ** math.floor(math.log10(right / 1e3))
+
+
+def _values(left, right, scale, n):
+    if scale == "log":
+        return np.geomspace(left, right, n)
+    if scale == "symlog":
+        thresh = _linthresh(right)
+        return np.concatenate([np.linspace(left, thresh, n // 4, endpoint=False), np.geomspace(thresh, right, n - n // 4)])
+    return np.linspace(left, right, n)
+
+
+def profile_panel(ax, result, name, n=PROFILE_POINTS):
+    rep = result.reports[name]
+    left, right, scale = profile_span(result, name)
+    values = _values(left, right, scale, n) if n and result.refit is not None else np.empty(0)
+    delta = result.profile_at(name, values) if values.size else values
+    pts = sorted([(rep.estimate, 0.0)] + [(float(a), float(b)) for a, b in zip(values, delta) if np.isfinite(b)])
+    x, y = np.array(pts).T
+    ax.plot(x, y, "o-", ms=2.5, lw=1, label="profile")
+    walk = np.array(rep.profile.points).reshape(-1, 2)
+    ax.plot(walk[:, 0], walk[:, 1], "x", c="C2", ms=4, label="interval search")
+    y = np.concatenate([y, walk[:, 1]])
+    ax.axhline(result.threshold, ls="--", c="gray", lw=0.8, label=f"95 % threshold {result.threshold:.3g}")
+    ax.axvline(rep.estimate, c="k", ls=":", lw=0.8)
+    for end in rep.ci95:
+        if end is not None:
+            ax.axvline(end, c="C3", lw=0.8)
+    if scale == "symlog":
+        ax.set_xscale("symlog", linthresh=_linthresh(right), linscale=0.7)
+    elif scale == "log":
+        ax.set_xscale("log")
+        if right < 1e3 * left:
+            plain_ticks(ax.xaxis)
+    ax.set_xlim(min(left, float(x.min())), max(right, float(x.max())))
+    ax.set_ylim(0, max(1.5 * result.threshold, min(float(y.max()) * 1.05, 4 * result.threshold)))
+    lo, hi = rep.ci95
+    verdict = "identified" if rep.identifiable else "not identified"
+    ax.set(xlabel=LABELS[name], ylabel="Δχ² (profile)", title=f"{LABELS[name]}: [{_g(lo)}, {_g(hi)}], {verdict}")
+    ax.title.set_fontsize("small")
+    if name == NAMES[0]:
+        ax.legend(loc="upper center", fontsize="x-small")
+
+
+def sweep_figure(df, path, *, R0_um: float | None = None, T_s: float | None = None):
+    """The sweep's opening fraction and half-opening time (module docstring). Physical
+    columns (time_s, wound_radius_um) need R0_um and T_s, taken from df.attrs by default."""
+    from .model import half_opening_time, opening_fraction
+
+    physical = "time_s" in df.columns
+    R0 = R0_um or df.attrs.get("R0_um", 1.0)
+    T = T_s or df.attrs.get("T_s", 1.0)
+    time, radius = ("time_s", "wound_radius_um") if physical else ("time", "wound_radius")
+    t_unit = " (s)" if physical else " (in T)"
+    rows = df[df.sigma != 0]
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.8), layout="constrained")
+    lams = np.unique(df["lambda"])
+    positive = lams[lams > 0]
+    if positive.size > 1 and positive.max() > 10 * positive.min():  # lambda spanning decades: log colours
+        norm = (matplotlib.colors.SymLogNorm(positive.min(), linscale=0.5, vmin=0, vmax=lams.max()) if lams.min() == 0
+                else matplotlib.colors.LogNorm(lams.min(), lams.max()))
     else:
-        for (lam, sigma), rows in first.groupby(["lambda", "sigma"]):
-            ax.plot(rows.time, rows.wound_radius, "o-", ms=3, label=f"λ = {lam:g}, σ = {sigma:g}")
-        ax.set(xlabel="time", ylabel="wound radius")
-        ax.legend(loc="lower right", fontsize="small")
+        norm = matplotlib.colors.Normalize(lams.min(), lams.max() if lams.max() > lams.min() else lams.min() + 1)
+    cmap = plt.get_cmap("viridis")
+    t_all = np.unique(df[time]) / T
+    last = max(t_all.max(), 1e-12)
+    first = t_all[t_all > 0].min() / 10 if np.any(t_all > 0) else last / 1e3
+    tau = np.unique(np.concatenate([np.linspace(0, first, 20), np.geomspace(first, last, 200)]))
+    styles = ["-", "--", ":", "-."]
+    r_infs = np.unique(df.R_inf)
+    for (lam, r_inf), group in rows.groupby(["lambda", "R_inf"]):
+        colour = cmap(norm(lam))
+        style = styles[int(np.searchsorted(r_infs, r_inf)) % len(styles)]
+        a.plot(tau * T, opening_fraction(lam, r_inf, tau), style, c=colour, lw=1.2)
+        first = group[group.sigma == group.sigma.iloc[0]]
+        R1 = R0 * (1 + first.sigma.to_numpy() / 6)
+        Rf = R0 * (1 + 2 / 3 * first.sigma.to_numpy() * r_inf**2 / (r_inf**2 - 1))
+        a.plot(first[time], (first[radius] - R1) / (Rf - R1), "o", ms=4, c=colour)
+    time_axis(a, tau * T)
+    a.set(xlabel="time since the cut" + t_unit, ylabel="opening fraction (R − R₁)/(R_final − R₁)",
+          title="the sweep's values (markers) on the model's curves")
+    fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), ax=a, label="λ")
+    if r_infs.size > 1:
+        for k, r_inf in enumerate(r_infs[: len(styles)]):
+            a.plot([], [], styles[k], c="k", label=f"R_inf = {r_inf:g}")
+        a.legend(loc="upper left", fontsize="small")
+    fine = lams
+    if positive.size and lams.size > 1:
+        fine = np.unique(np.concatenate([lams, np.geomspace(positive.min(), lams.max(), 60)]))
+    for k, r_inf in enumerate(r_infs):
+        b.plot(fine, [half_opening_time(lam, r_inf) * T for lam in fine], "-", c=f"C{k}", label=f"R_inf = {r_inf:g}")
+        b.plot(lams, [half_opening_time(lam, r_inf) * T for lam in lams], "o", ms=5, c=f"C{k}",
+               label="the sweep's λ" if k == 0 else None)
+    if positive.size and lams.max() > 10 * positive.min():
+        b.set_xscale("symlog" if lams.min() == 0 else "log", **({"linthresh": positive.min()} if lams.min() == 0 else {}))
+        b.set_yscale("log")
+    b.set(xlabel="λ (viscous length / R₀)", ylabel="half-opening time" + t_unit,
+          title="time to half the final opening (any σ)")
+    b.legend(loc="upper left", fontsize="small")
     fig.savefig(path, dpi=120)
     plt.close(fig)
+    return fig
 
 
 def simulate_figure(sim, path):
-    fig, axes = plt.subplots(1, 2 if sim.radii_um is not None else 1, figsize=(11, 4.2), layout="constrained",
-                             squeeze=False)
-    ax = axes[0, 0]
-    ax.plot(sim.times_s, sim.radius_um, "-o", ms=3)
-    ax.set(xlabel="time since the cut (s)", ylabel="wound radius (µm)")
+    """Radius and edge velocity against time (linear to the first time, log beyond) and, with
+    radii, the tissue velocity against the distance from the centre at a few times."""
+    n = 3 if sim.radii_um is not None else 2
+    fig, axes = plt.subplots(1, n, figsize=(5 * n, 4.2), layout="constrained")
+    axes[0].plot(sim.times_s, sim.radius_um, "-o", ms=3)
+    axes[0].set(xlabel="time since the cut (s)", ylabel="wound radius (µm)")
+    finite = np.isfinite(sim.edge_velocity_um_s)
+    axes[1].plot(np.asarray(sim.times_s)[finite], np.asarray(sim.edge_velocity_um_s)[finite], "-o", ms=3)
+    axes[1].set(xlabel="time since the cut (s)", ylabel="edge velocity dR/dt (µm/s)")
+    for ax in axes[:2]:
+        time_axis(ax, sim.times_s)
     if sim.radii_um is not None:
-        ax = axes[0, 1]
-        for i, t in enumerate(sim.times_s[:: max(1, len(sim.times_s) // 5)]):
+        for t in sim.times_s[:: max(1, len(sim.times_s) // 5)]:
             k = list(sim.times_s).index(t)
-            ax.plot(sim.radii_um, sim.velocity_um_s[k], label=f"t = {t:g} s")
-        ax.set(xlabel="distance from the wound centre (µm)", ylabel="tissue velocity (µm/s)")
-        ax.legend(loc="upper right")
+            axes[2].plot(sim.radii_um, sim.velocity_um_s[k], "-o", ms=3, label=f"t = {t:g} s")
+        axes[2].set(xlabel="distance from the wound centre (µm)", ylabel="tissue velocity (µm/s)")
+        axes[2].legend(loc="upper right")
     fig.savefig(path, dpi=120)
     plt.close(fig)
+    return fig

@@ -61,6 +61,11 @@ class FitResult:
     derived_profiles: dict = field(default_factory=dict)
     #: The fitted time scale against the sampling (plausibility.py).
     plausibility: list = field(default_factory=list)
+    #: The data in the input's order with the model, the noise used and the flags (export.py).
+    points: dict = field(default_factory=dict)
+    #: (objective, z, chi^2 at the optimum, loss): for profiles at more values (profile_at).
+    refit: tuple | None = field(default=None, repr=False, compare=False)
+    _profile_cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def warnings(self) -> list:
@@ -94,6 +99,13 @@ class FitResult:
         out["R_final_um"] = (R0 * (1 + 2 * sigma / 3 * r_inf**2 / (r_inf**2 - 1)), (None, None), both)
         return out
 
+    def _derived_computed(self) -> dict:
+        """name -> whether the profiles that judge it were computed (intervals=True, derived=True)."""
+        has = {n: self.reports[n].profile is not None for n in NAMES}
+        out = {k: k in self.derived_profiles for k in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um")}
+        return out | {"tension_over_G": has["sigma"], "R1_um": has["R0_um"] and has["sigma"],
+                      "R_final_um": has["R0_um"] and has["sigma"]}
+
     @property
     def derived(self) -> dict:
         """Derived values, None where not identified: tau = eta/G [s], zeta/G = 4 T / R0^2
@@ -121,6 +133,34 @@ class FitResult:
                     "profile to separate lambda and T (in the viscous regime R(t) depends on lambda^2 T only)")
         return f"{flat}; sample the radius right after the cut (R1) and on the plateau (R_final)"
 
+    def profile_at(self, name: str, values) -> np.ndarray:
+        """delta chi^2 of the profile of parameter `name` at `values` (in its own units), by
+        constrained fits (likelihood.profile_at): to draw a profile finely."""
+        from .likelihood import profile_at
+
+        if self.refit is None:
+            raise ValueError("profile_at: this result keeps no objective (a failed fit)")
+        obj, z, chi2_min, loss = self.refit
+        i = NAMES.index(name)
+        v = np.asarray(values, dtype=float)
+        key = (name, v.tobytes())
+        if key not in self._profile_cache:  # a report and a figure of one result draw the same values
+            self._profile_cache[key] = profile_at(obj, z, chi2_min, i, np.log(v) if i in (0, 3) else v, loss)
+        return self._profile_cache[key].copy()
+
+    def tables(self) -> dict:
+        """The data with the model, residuals and flags, and the fitted curve, as pandas
+        DataFrames with units in the column names (export.py)."""
+        from .export import tables
+
+        return tables(self)
+
+    def export(self, stem) -> list:
+        """Write tables() as stem_radius.csv, stem_curve.csv (and the PIV ones); export.py."""
+        from .export import export
+
+        return export(self, stem)
+
     def to_dict(self) -> dict:
         status = {"converged": self.converged, "reasons": self.reasons, "warnings": self.warnings,
                   "optimizer": self.optimizer, "chi2": self.chi2, "dof": self.dof, "p_value": self.p_value,
@@ -132,7 +172,8 @@ class FitResult:
         for name in NAMES:
             rep = self.reports[name]
             params[name] = {"estimate": rep.estimate, "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
-                            "ci95": list(rep.ci95), "identifiable": rep.identifiable}
+                            "ci95": list(rep.ci95), "identifiable": rep.identifiable,
+                            "interval_computed": rep.profile is not None}
             if self.advice(name):
                 params[name]["advice"] = self.advice(name)
         return status | {"parameters": params, "derived": self.derived, "derived_ci95": self.derived_ci95, "residual_rms_um": self.residual_rms_um,
@@ -150,10 +191,13 @@ class FitResult:
         for name in NAMES:
             rep = self.reports[name]
             lo, hi = rep.ci95
-            lines.append(f"{name:<10} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   "
-                         f"[{_fmt(lo):>9}, {_fmt(hi):>9}]        {'yes' if rep.identifiable else 'no'}")
+            interval = (f"[{_fmt(lo):>9}, {_fmt(hi):>9}]        {'yes' if rep.identifiable else 'no'}"
+                        if rep.profile is not None else f"{'not computed':<22}{'not computed':>17}")
+            lines.append(f"{name:<10} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {interval}")
         lines += [f"  {self.advice(n)}" for n in NAMES if self.advice(n)]
+        computed = self._derived_computed()
         lines.append("derived: " + ", ".join(
+            f"{k} = {_fmt(v)} (interval not computed)" if not computed[k] else
             f"{k} = {_fmt(v)} [{_fmt(ci[0])}, {_fmt(ci[1])}]" if ok and ci != (None, None) else
             f"{k} = {_fmt(v)}" if ok else f"{k} not identified" for k, (v, ci, ok) in self._derived_all().items()))
         fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (f", p = {self.p_value:.3g}" if self.p_value is not None else

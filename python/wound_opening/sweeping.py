@@ -27,6 +27,8 @@ import numpy as np
 from .model import edge_series
 
 COLUMNS = ["lambda", "sigma", "R_inf", "time", "wound_radius", "edge_velocity"]
+#: The columns in physical units (R0_um and T_s given): times in s, radii in um, velocities in um/s.
+PHYSICAL_COLUMNS = ["lambda", "sigma", "R_inf", "time_s", "wound_radius_um", "edge_velocity_um_s"]
 #: Fewest (lambda, R_inf) pairs per task; large sweeps are cut into at most MAX_TASKS tasks
 #: (each pair is solved alone, so the cut does not change a single bit of the result).
 CHUNK = 256
@@ -102,18 +104,24 @@ def _run_dask(chunks, times, scheduler, bar):
     return results
 
 
-def sweep(grid=None, *, times, sets=None, R0_um: float = 1.0, T_s: float = 1.0, scheduler: str | None = None,
-          processes: int | None = None, progress: bool | None = None):
+def sweep(grid=None, *, times, sets=None, R0_um: float | None = None, T_s: float | None = None,
+          scheduler: str | None = None, processes: int | None = None, progress: bool | None = None):
     """Outputs of every parameter set at every time, as a pandas DataFrame with columns
     lambda, sigma, R_inf, time, wound_radius, edge_velocity (one row per set and time).
 
     Dimensionless by default (lengths in R0, time in T, as the FMU's defaults); with R0_um
-    and T_s, `times` are in s, wound_radius in um and edge_velocity in um/s. The edge stress
+    and T_s (both or neither), `times` are in s and the columns are time_s, wound_radius_um
+    and edge_velocity_um_s (um/s), with R0_um and T_s in `df.attrs`. The edge stress
     is 0 (free edge). Local processes by default (`processes`, default: all cores), or the
     Dask cluster at `scheduler`; identical numbers either way. `progress`: a tqdm bar
     (default: on for more than 2000 pairs)."""
     import pandas as pd
 
+    physical = R0_um is not None or T_s is not None
+    if physical and (R0_um is None or T_s is None):
+        raise ValueError("sweep: give both R0_um and T_s (physical units) or neither (dimensionless)")
+    if not physical:
+        R0_um = T_s = 1.0
     if not (math.isfinite(R0_um) and R0_um > 0 and math.isfinite(T_s) and T_s > 0):
         raise ValueError(f"sweep: R0_um = {R0_um} and T_s = {T_s} must be finite and > 0")
     params = parameter_sets(grid, sets)
@@ -135,7 +143,10 @@ def sweep(grid=None, *, times, sets=None, R0_um: float = 1.0, T_s: float = 1.0, 
     with np.errstate(invalid="ignore"):
         velocity = np.where(sigma == 0, 0.0, sigma * velocity1)
     n, m = radius.shape
-    return pd.DataFrame({
-        "lambda": np.repeat(params[:, 0], m), "sigma": np.repeat(params[:, 1], m), "R_inf": np.repeat(params[:, 2], m),
-        "time": np.tile(t, n), "wound_radius": R0_um * radius.ravel(), "edge_velocity": R0_um / T_s * velocity.ravel(),
-    }, columns=COLUMNS)
+    names = PHYSICAL_COLUMNS if physical else COLUMNS
+    values = [np.repeat(params[:, 0], m), np.repeat(params[:, 1], m), np.repeat(params[:, 2], m), np.tile(t, n),
+              R0_um * radius.ravel(), R0_um / T_s * velocity.ravel()]
+    df = pd.DataFrame(dict(zip(names, values)), columns=names)
+    if physical:
+        df.attrs.update(R0_um=float(R0_um), T_s=float(T_s))
+    return df

@@ -28,13 +28,14 @@ window.addEventListener("load", () => {
 </script>"""
 
 
-def render(html: Path, profile: Path):
-    """Console lines of `html` rendered headless, and the page-check summary."""
+def render(html: Path, profile: Path, check: str = CHECK):
+    """Console lines of `html` rendered headless (with the script `check` appended) and the
+    DOM after the scripts ran."""
     chromium = shutil.which("chromium")
     if chromium is None:
         pytest.fail("chromium not found: scripts/test.sh installs it (apt-get install chromium)", pytrace=False)
     checked = html.with_name("checked_" + html.name)
-    checked.write_text(html.read_text().replace("</body>", CHECK + "</body>"))
+    checked.write_text(html.read_text().replace("</body>", check + "</body>"))
     run = subprocess.run([chromium, *FLAGS, f"--user-data-dir={profile}", checked.as_uri()],
                          capture_output=True, text=True, timeout=120)
     console = [line for line in run.stderr.splitlines() if ":CONSOLE" in line]

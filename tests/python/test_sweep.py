@@ -37,8 +37,11 @@ def test_the_sigma_shortcut_matches_direct_simulations():
 def test_physical_units_scale_the_columns():
     a = sweep(GRID, times=TIMES, processes=1)
     b = sweep(GRID, times=np.array(TIMES) * 10.0, R0_um=5.0, T_s=10.0, processes=1)
-    np.testing.assert_array_equal(b.wound_radius, 5.0 * a.wound_radius)
-    np.testing.assert_allclose(b.edge_velocity, 0.5 * a.edge_velocity, rtol=1e-15)
+    assert list(b.columns) == ["lambda", "sigma", "R_inf", "time_s", "wound_radius_um", "edge_velocity_um_s"]
+    assert b.attrs == {"R0_um": 5.0, "T_s": 10.0}
+    np.testing.assert_array_equal(b.wound_radius_um, 5.0 * a.wound_radius)
+    np.testing.assert_allclose(b.edge_velocity_um_s, 0.5 * a.edge_velocity, rtol=1e-15)
+    np.testing.assert_array_equal(b.time_s, 10.0 * a.time)
 
 
 def test_local_processes_and_a_dask_cluster_give_the_same_table_bit_for_bit(monkeypatch, tmp_path):
@@ -54,7 +57,7 @@ def test_local_processes_and_a_dask_cluster_give_the_same_table_bit_for_bit(monk
             assert len(client.scheduler_info()["workers"]) == 2
         on_dask = sweep(grid, times=TIMES, scheduler=address, progress=True)
     pd.testing.assert_frame_equal(one, on_dask, check_exact=True)
-    one.to_csv(tmp_path / "s.csv", index=False, float_format="%.17g")
+    one.to_csv(tmp_path / "s.csv", index=False)  # shortest round-trip digits: read back exactly
     one.to_parquet(tmp_path / "s.parquet")
     pd.testing.assert_frame_equal(pd.read_csv(tmp_path / "s.csv", dtype=float), one, check_exact=True)
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "s.parquet"), one, check_exact=True)
@@ -65,6 +68,7 @@ def test_local_processes_and_a_dask_cluster_give_the_same_table_bit_for_bit(monk
     (dict(grid=None), "give either grid"),
     (dict(times=[-1.0]), "times must be"),
     (dict(grid={"lambda": [-1.0], "sigma": [1.0], "R_inf": [10.0]}), "lambda"),
+    (dict(R0_um=5.0), "give both R0_um and T_s"),
 ])
 def test_bad_sweeps_are_refused(kwargs, message):
     args = dict(grid=GRID, times=[1.0], processes=1) | kwargs
