@@ -32,7 +32,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE, couple, from_material, observed_order  # noqa: E402
+from coupling.loop import MATERIAL_EXAMPLE, PURSE_EXAMPLE, WOUND_EXAMPLE, couple, fmu_start_values, observed_order  # noqa: E402
 
 STEP, STOP = 0.5, 300.0
 STEPS = (4.0, 2.0, 1.0, 0.5, 0.25, 0.125)
@@ -82,7 +82,7 @@ def main() -> None:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
 
-    derived = from_material(G=100.0, eta=1000.0, zeta=40.0, R0=10.0, tension=100.0)
+    derived = fmu_start_values(**MATERIAL_EXAMPLE)
     print("parameters from the material: " + ", ".join(f"{k} = {v:g}" for k, v in derived.items()))
     run = couple(wound, purse, step=STEP, stop=STOP, interpolate=True)
     free = couple(wound, None, step=STEP, stop=STOP, edge_stress=0.0)

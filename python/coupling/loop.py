@@ -38,26 +38,28 @@ import numpy as np
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 
+from wound_opening.material import from_material
+
+
+def fmu_start_values(*, G_pa, eta_pa_s, zeta_pa_s_per_um2, tension_pa, R0_um, outer_radius_um) -> dict:
+    """The WoundOpening FMU's start values (lambda, sigma, R_inf, R0, T, G) from material
+    constants (Pa, Pa s, Pa s / um^2, Pa, um): wound_opening.from_material."""
+    p = from_material(G_pa=G_pa, eta_pa_s=eta_pa_s, zeta_pa_s_per_um2=zeta_pa_s_per_um2, tension_pa=tension_pa,
+                      R0_um=R0_um)
+    return {"lambda": p["lam"], "sigma": p["sigma"], "R_inf": outer_radius_um / R0_um, "R0": R0_um, "T": p["T_s"],
+            "G": G_pa}
+
+
 # The README's worked example: a wound of R0 = 10 um in a tissue with G = 100 Pa,
 # eta = 1000 Pa s (viscous relaxation time eta / G = 10 s) and zeta = 40 Pa s / um^2,
 # so lambda = 2 sqrt(eta / zeta) / R0 = 1 and T = zeta R0^2 / (4 G) = 10 s; homeostatic
 # tension 100 Pa (sigma = 1), outer radius 100 um (R_inf = 10).
-WOUND_EXAMPLE = {"lambda": 1.0, "sigma": 1.0, "R_inf": 10.0, "R0": 10.0, "T": 10.0, "G": 100.0}
+MATERIAL_EXAMPLE = {"G_pa": 100.0, "eta_pa_s": 1000.0, "zeta_pa_s_per_um2": 40.0, "tension_pa": 100.0, "R0_um": 10.0,
+                    "outer_radius_um": 100.0}
+WOUND_EXAMPLE = fmu_start_values(**MATERIAL_EXAMPLE)
 # Purse-string: 6.5 nN after a 20 s delay with a 30 s assembly time, 5 um thick sheet
 # (the PurseString FMU's defaults, written out).
 PURSE_EXAMPLE = {"T_max": 6500.0, "t_assembly": 30.0, "t_delay": 20.0, "thickness": 5.0}
-
-
-def from_material(G, eta, zeta, R0, tension):
-    """WoundOpening parameters from material constants (Pa, Pa s, Pa s / um^2, um, Pa):
-    lambda = 2 sqrt(eta / zeta) / R0, sigma = tension / G, T = zeta R0^2 / (4 G)."""
-    return {
-        "lambda": 2.0 * np.sqrt(eta / zeta) / R0,
-        "sigma": tension / G,
-        "R0": R0,
-        "T": zeta * R0 * R0 / (4.0 * G),
-        "G": G,
-    }
 
 
 class Unit:

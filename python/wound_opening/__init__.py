@@ -2,11 +2,15 @@
 units of a laser-ablation experiment (um, s, Pa), through the project's native library
 (the direct C API of include/wound_opening.h, loaded with ctypes; no FMU per run).
 
-    simulate(times_s, lam=, sigma=, R0_um=, T_s=, outer_radius_um=, radii_um=None)
+    simulate(times_s, lam=, sigma=, R0_um=, T_s=, outer_radius_um=, radii_um=None), or with
+        G_pa=, eta_pa_s=, zeta_pa_s_per_um2=, tension_pa= instead of lam, sigma, T_s
+    from_material(...) -> {lam, sigma, T_s, R0_um}; to_material(...) -> G, eta, zeta, tension
     read_radius(path, time_col=, radius_col=, time_unit=, length_unit=, pixel_size_um=,
         cut_time=) -> RadiusSeries; read_profile(...) -> VelocityProfile (a lab's CSV files)
-    fit(radius data, profile data=None, outer_radius_um=) -> FitResult (estimates, profile
-        likelihood intervals, identifiability, derived quantities; to_json(), tables(), export(stem))
+    fit(radius data, profile data=None, outer_radius_um=, params=Parameters()) -> FitResult
+        (estimates, profile likelihood intervals, identifiability, derived quantities and
+        material values; to_json(), tables(), export(stem)); Parameters: fixed, bounded,
+        Gaussian priors, G
     write_report(path, result, radius, profile=None) -> a self-contained HTML report of a fit
     sweep(grid or list of parameter sets, times) -> pandas DataFrame (local or Dask)
     fmu_path(name) -> the path of a shipped FMU archive, for fmpy or another FMI master
@@ -21,6 +25,7 @@ import importlib
 _HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
          "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fitting", "Simulation": "model",
          "simulate": "model", "FitResult": "result", "sweep": "sweeping", "fmu_path": "shipped",
+         "Parameters": "parameters", "from_material": "material", "to_material": "material",
          "write_report": "report"}
 
 
@@ -38,5 +43,6 @@ def __getattr__(name):
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-__all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
-           "fit", "fmu_path", "library_path", "read_profile", "read_radius", "simulate", "sweep", "write_report"]
+__all__ = ["FitResult", "NativeLibraryMissing", "Parameters", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
+           "fit", "fmu_path", "from_material", "library_path", "read_profile", "read_radius", "simulate", "sweep",
+           "to_material", "write_report"]

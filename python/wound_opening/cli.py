@@ -11,6 +11,7 @@ import sys
 def _fit(args) -> None:
     from .fitting import fit
     from .lab_files import read_profile, read_radius
+    from .parameters import from_options
 
     units = dict(time_unit=args.time_unit, length_unit=args.length_unit, pixel_size_um=args.pixel_size_um,
                  cut_time=args.cut_time)
@@ -21,7 +22,8 @@ def _fit(args) -> None:
         profile = read_profile(args.profile, time_col=args.piv_time_col, r_col=args.piv_r_col,
                                velocity_col=args.piv_velocity_col, sd_col=args.piv_velocity_sd_col,
                                noise_um_s=args.velocity_noise_um_s, **units)
-    result = fit(radius, profile, outer_radius_um=args.outer_radius_um, loss=args.loss)
+    params = from_options(args.fix, args.bound, args.prior)
+    result = fit(radius, profile, outer_radius_um=args.outer_radius_um, loss=args.loss, params=params)
     print(result.summary())
     if args.json:
         with open(args.json, "w") as f:
@@ -78,6 +80,7 @@ def _simulate(args) -> None:
     radii = float_list(args.radii_um, "--radii-um") if args.radii_um else None
     sim = simulate(times, lam=args.lam, sigma=args.sigma, R0_um=args.R0_um, T_s=args.T_s,
                    outer_radius_um=args.outer_radius_um, edge_stress_pa=args.edge_stress_pa, G_pa=args.G_pa,
+                   eta_pa_s=args.eta_pa_s, zeta_pa_s_per_um2=args.zeta_pa_s_per_um2, tension_pa=args.tension_pa,
                    radii_um=radii)
     frame = sim.to_frame()
     if args.csv:
@@ -150,6 +153,16 @@ def parser() -> argparse.ArgumentParser:
                    help="time of the cut in the files' time unit, subtracted from every time (default 0)")
     f.add_argument("--loss", choices=("linear", "soft_l1", "cauchy"), default="linear",
                    help="linear: least squares; soft_l1, cauchy: robust to outliers (flagged in the output)")
+    k = f.add_argument_group("what is known before the fit", "Names and units: R0_um (um), sigma (tension / G), "
+                             "lambda (viscous length / R0), T_s (s), G_pa (Pa; not in the model: for the "
+                             "absolute eta, zeta and tension). Repeat an option for several parameters.")
+    k.add_argument("--fix", action="append", default=[], metavar="NAME=VALUE",
+                   help="hold a parameter fixed, e.g. --fix R0_um=10 (the radius of the cut), --fix G_pa=1000")
+    k.add_argument("--bound", action="append", default=[], metavar="NAME=MIN:MAX",
+                   help="bound a parameter, either side may be empty, e.g. --bound lambda=0:5, --bound T_s=1:")
+    k.add_argument("--prior", action="append", default=[], metavar="NAME=MEAN:SD",
+                   help="a Gaussian prior (mean, standard deviation), e.g. --prior G_pa=1200:200 (AFM), "
+                   "--prior T_s=8:2; it enters chi^2 as ((value - MEAN) / SD)^2")
     f.set_defaults(run=_fit)
 
     s = sub.add_parser("sweep", help="outputs over a lambda x sigma x R_inf grid (dimensionless by default)",
@@ -174,13 +187,20 @@ def parser() -> argparse.ArgumentParser:
     s.set_defaults(run=_sweep)
 
     m = sub.add_parser("simulate", help="radius, edge velocity (and profiles) in um and s: a table, or CSV",
-                       formatter_class=HelpFormatter, description="Prints a table (time_s, radius_um, "
-                       "edge_velocity_um_s; with --radii-um also r_um, displacement_um, velocity_um_s) or writes it "
-                       "to --csv.")
-    m.add_argument("--lambda", dest="lam", type=float, required=True, help="viscous length / R0 (dimensionless)")
-    m.add_argument("--sigma", type=float, required=True, help="tension / G (dimensionless)")
+                       formatter_class=HelpFormatter, description="Give the dimensionless set (--lambda, --sigma, "
+                       "--T-s) or the material set (--G-pa, --eta-pa-s, --zeta-pa-s-per-um2, --tension-pa): "
+                       "lambda = 2 sqrt(eta / zeta) / R0, sigma = tension / G, T = zeta R0^2 / (4 G). Prints a table "
+                       "(time_s, radius_um, edge_velocity_um_s; with --radii-um also r_um, displacement_um, "
+                       "velocity_um_s) or writes it to --csv.")
+    m.add_argument("--lambda", dest="lam", type=float, help="viscous length / R0 (dimensionless set)")
+    m.add_argument("--sigma", type=float, help="tension / G (dimensionless set)")
+    m.add_argument("--T-s", type=float, help="time scale zeta R0^2 / (4 G) in s (dimensionless set)")
+    m.add_argument("--G-pa", type=float, help="shear modulus in Pa (material set, or with --edge-stress-pa)")
+    m.add_argument("--eta-pa-s", type=float, help="viscosity in Pa s (material set)")
+    m.add_argument("--zeta-pa-s-per-um2", type=float, help="substrate friction in Pa s/um^2 (material set)")
+    m.add_argument("--tension-pa", type=float, help="homeostatic tension (edge stress before the cut) in Pa "
+                   "(material set)")
     m.add_argument("--R0-um", type=float, required=True, help="radius of the cut (um)")
-    m.add_argument("--T-s", type=float, required=True, help="time scale zeta R0^2 / 4G (s)")
     m.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
     m.add_argument("--times", metavar="T1,T2,..", help="times in s since the cut (default: --points from 0 to --t-end)")
     m.add_argument("--t-end", type=float, default=60.0, help="last time (s)")
@@ -188,7 +208,6 @@ def parser() -> argparse.ArgumentParser:
     m.add_argument("--radii-um", metavar="R1,R2,..", help="current distances from the wound centre (um)")
     m.add_argument("--edge-stress-pa", type=float, help="a constant stress at the wound edge (Pa; default: none, "
                    "a free edge); needs --G-pa")
-    m.add_argument("--G-pa", type=float, help="shear modulus G (Pa), to convert --edge-stress-pa")
     m.add_argument("--csv", metavar="OUT.csv", help="write the table here (every number with the shortest digits "
                    "that read back exactly) instead of printing it (6 significant digits)")
     m.add_argument("--plot", metavar="OUT.png", help="radius and edge velocity against time (and the profiles)")

@@ -1,14 +1,28 @@
 """Likelihood profiles of derived quantities: the fit reparametrised so that the quantity
 is one coordinate, then profiled like a parameter (likelihood.py).
 
-    quantity                       coordinate w_k (replaces)      z from w
-    tau = eta/G = lambda^2 T [s]   ln tau       (ln T, k = 3)     ln T = w3 - 2 ln lambda
-    zeta/G = 4 T / R0^2 [s/um^2]   ln zeta/G    (ln T, k = 3)     ln T = w3 - ln 4 + 2 ln R0
-    viscous length lambda R0 [um]  ln L         (lambda, k = 2)   lambda = exp(w2 - ln R0)
+Each quantity is a monomial of the parameters, linear in the log coordinates
+y = (ln R0, -, ln lambda, ln T):
 
-tension/G is sigma (its own profile). The Jacobian in w is the objective's times dz/dw.
-A quantity needing lambda > 0 is not profiled when lambda's estimate is 0 (its interval
-then reaches 0: not identified).
+    quantity                       ln q = c + sum_i a_i y_i         replaces (else)
+    tau = eta/G = lambda^2 T [s]   2 y2 + y3                         ln T (lambda)
+    zeta/G = 4 T / R0^2 [s/um^2]   ln 4 - 2 y0 + y3                  ln T (ln R0)
+    viscous length lambda R0 [um]  y0 + y2                           lambda (ln R0)
+
+The coordinate k it replaces becomes w_k = ln q, the others stay (w_i = z_i), and
+
+    y_k = (w_k - c - sum_{i != k} a_i y_i) / a_k,
+    d z_k / d w_k = (d z_k / d y_k) / a_k,   d z_k / d w_i = -(a_i / a_k) (d y_i / d w_i) (d z_k / d y_k),
+    d w_k / d z_i = a_i d y_i / d z_i,
+
+with d z / d y = 1 for ln R0, ln T and lambda for lambda (d y2 / d z2 = 1 / lambda). The
+replaced coordinate is the first of the two that the user does not hold fixed (parameters.py);
+with both held the quantity is fixed itself. A user's bound on the replaced coordinate is
+a box in w only when the other coordinates of the monomial are fixed (it is then mapped to
+w_k); otherwise an unbounded coordinate is replaced where there is one, and failing that the
+quantity is not profiled. tension/G is sigma (its own profile). A
+quantity needing lambda > 0 is not profiled when lambda's estimate is 0 (its interval then
+reaches 0: not identified).
 """
 
 from __future__ import annotations
@@ -19,36 +33,50 @@ import numpy as np
 
 from .likelihood import Profile, _side
 
-LN4 = math.log(4.0)
+#: kind -> (c, {i: a_i}, the coordinates it may replace, in order of preference)
+MONOMIALS = {"tau_s": (0.0, {2: 2.0, 3: 1.0}, (3, 2)),
+             "zeta_over_G_s_per_um2": (math.log(4.0), {0: -2.0, 3: 1.0}, (3, 0)),
+             "viscous_length_um": (0.0, {0: 1.0, 2: 1.0}, (2, 0))}
+
+
+def _y(i: int, z_i: float) -> float:
+    return math.log(max(z_i, 1e-300)) if i == 2 else z_i
 
 
 class Reparametrised:
-    """The objective in coordinates w (one coordinate replaced), for local_fit."""
+    """The objective in coordinates w (one coordinate replaced), for local_fit; `fixed` are
+    the user's held coordinates (unchanged by the reparametrisation)."""
 
     def __init__(self, obj, kind: str):
         self.obj, self.kind = obj, kind
-        self.k = 2 if kind == "viscous_length_um" else 3
+        self.c, self.a, choices = MONOMIALS[kind]
+        self.fixed = dict(getattr(obj, "fixed", {}))
+        spec = getattr(obj, "spec", None)
+        bounded = set() if spec is None else set(spec.bounds)
+        free = [k for k in choices if k not in self.fixed]
+        # The user's bound on the replaced coordinate would not be a box in w: prefer an unbounded one.
+        free.sort(key=lambda k: k in bounded)
+        self.k = free[0] if free else None  # None: the quantity is held fixed
+        #: The replaced coordinate carries a bound of the user's that is not a box in w (the
+        #: others it depends on are not all fixed): the walk could not honour it.
+        self.unenforceable = (bool(free) and free[0] in bounded
+                              and any(i not in self.fixed for i in self.a if i != free[0]))
         for name in ("t_sorted", "radius", "outer", "size"):
             setattr(self, name, getattr(obj, name))
 
+    def value(self, z) -> float:
+        return math.exp(self.c + sum(a * _y(i, z[i]) for i, a in self.a.items()))
+
     def to_z(self, w):
         z = np.array(w, dtype=float)
-        if self.kind == "tau_s":
-            z[3] = w[3] - 2 * math.log(max(w[2], 1e-300))
-        elif self.kind == "zeta_over_G_s_per_um2":
-            z[3] = w[3] - LN4 + 2 * w[0]
-        else:
-            z[2] = math.exp(w[2] - w[0])
+        k = self.k
+        y = (w[k] - self.c - sum(a * _y(i, w[i]) for i, a in self.a.items() if i != k)) / self.a[k]
+        z[k] = math.exp(y) if k == 2 else y
         return z
 
     def to_w(self, z):
         w = np.array(z, dtype=float)
-        if self.kind == "tau_s":
-            w[3] = z[3] + 2 * math.log(z[2])
-        elif self.kind == "zeta_over_G_s_per_um2":
-            w[3] = z[3] + LN4 - 2 * z[0]
-        else:
-            w[2] = math.log(z[2]) + z[0]
+        w[self.k] = math.log(self.value(z))
         return w
 
     def residuals(self, w):
@@ -56,36 +84,38 @@ class Reparametrised:
 
     def jacobian(self, w):
         z = self.to_z(w)
-        dz = np.eye(4)
-        if self.kind == "tau_s":
-            dz[3, 2] = -2 / w[2]
-        elif self.kind == "zeta_over_G_s_per_um2":
-            dz[3, 0] = 2.0
-        else:
-            dz[2, 2], dz[2, 0] = z[2], -z[2]
+        k, dz = self.k, np.eye(4)
+        dzk_dyk = z[k] if k == 2 else 1.0
+        dz[k, k] = dzk_dyk / self.a[k]
+        for i, a in self.a.items():
+            if i != k:
+                dz[k, i] = -(a / self.a[k]) * (1 / w[i] if i == 2 else 1.0) * dzk_dyk
         return self.obj.jacobian(z) @ dz
 
     def gradient(self, z) -> np.ndarray:
         """d w_k / d z: the row of dw/dz that differs from the identity."""
         g = np.zeros(4)
-        if self.kind == "tau_s":
-            g[2], g[3] = 2 / z[2], 1.0
-        elif self.kind == "zeta_over_G_s_per_um2":
-            g[0], g[3] = -2.0, 1.0
-        else:
-            g[0], g[2] = 1.0, 1 / z[2]
+        for i, a in self.a.items():
+            g[i] = a / z[i] if i == 2 else a
         return g
 
     def bounds(self):
-        from .local import bounds
+        """The objective's bounds, w_k free; lambda > 0 where ln lambda enters (k != 2)."""
+        from .local import bounds_of
 
-        lower, upper = bounds(self.obj)
-        if self.kind == "tau_s":
-            lower[2], lower[3], upper[3] = 1e-6, -np.inf, np.inf
-        elif self.kind == "zeta_over_G_s_per_um2":
-            lower[3], upper[3] = -np.inf, np.inf
+        lower, upper = bounds_of(self.obj)
+        k = self.k
+        if all(i in self.fixed for i in self.a if i != k):  # w_k = const + a_k y_k: a box in w too
+            ends = []
+            for zk in (lower[k], upper[k]):
+                yk = (math.log(zk) if zk > 0 else -np.inf) if k == 2 else zk
+                ends.append(self.c + sum(a * _y(i, self.fixed[i]) for i, a in self.a.items() if i != k)
+                            + self.a[k] * yk if math.isfinite(yk) else math.copysign(np.inf, self.a[k] * yk))
+            lower[k], upper[k] = min(ends), max(ends)
         else:
-            lower[2], upper[2] = -np.inf, np.inf
+            lower[k], upper[k] = -np.inf, np.inf
+        if 2 in self.a and self.k != 2:
+            lower[2] = max(lower[2], 1e-6)
         return lower, upper
 
 
@@ -99,11 +129,20 @@ def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = 
     out = {}
     centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for kind in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um"):
+        if kind != "zeta_over_G_s_per_um2" and getattr(obj, "fixed", {}).get(2) == 0.0:
+            out[kind] = Profile(0.0, 0.0, False, [(0.0, 0.0)])  # lambda held at 0: the quantity is 0
+            continue
         if kind != "zeta_over_G_s_per_um2" and any(c[2] <= 1e-6 for c, _ in centres):
             out[kind] = Profile(0.0, None, True)
             continue
         rep = Reparametrised(obj, kind)
         k = rep.k
+        if k is None:  # every coordinate it depends on is fixed
+            q = rep.value(z_hat)
+            out[kind] = Profile(q, q, False, [(q, 0.0)])
+            continue
+        if rep.unenforceable:  # not computed: the walk would leave the user's bounds
+            continue
         step, slope = 0.05, np.eye(4)[k]
         if cov_z is not None and np.all(np.isfinite(cov_z)):
             A = np.eye(4)
@@ -112,17 +151,28 @@ def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = 
             if cov_w[k, k] > 0:
                 step = float(np.clip(math.sqrt(cov_w[k, k]), 5e-4, 1.0))
                 slope = cov_w[:, k] / cov_w[k, k]
-        lows, highs, points = [], [], []
+        lows, highs, points, bounded = [], [], [], [False, False]
+        box = rep.bounds()
+        user_bound = getattr(obj, "user_bound", lambda i, side: False)
         for centre, delta0 in centres:
             w = rep.to_w(centre)
-            for direction, ends in ((-1, lows), (1, highs)):
+            for side, (direction, ends) in enumerate(((-1, lows), (1, highs))):
                 if ends and (ends[0] is None or direction * (w[k] - ends[0]) <= 0):
                     continue  # an optimum inside the interval found (or an open end)
                 limit = w[k] + direction * math.log(100.0)
+                edge = box[side][k]  # finite only for a bound mapped from the replaced coordinate's
+                mine = math.isfinite(edge) and direction * (edge - limit) < 0 and user_bound(k, direction)
+                limit = edge if mine else limit
+                if mine and direction * (limit - w[k]) <= 0:  # the estimate on the user's bound
+                    ends.append(limit)
+                    bounded[side] = True
+                    continue
                 end, _, pts = _side(rep, k, w, chi2_min, threshold, step, direction, limit, slope, loss, delta0)
+                if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
+                    end, bounded[side] = limit, True  # the walk reached the user's bound inside the threshold
                 ends.append(end)
                 points += pts
         lo = None if None in lows else math.exp(min(lows))
         hi = None if None in highs else math.exp(max(highs))
-        out[kind] = Profile(lo, hi, False, sorted((math.exp(v), d) for v, d in points))
+        out[kind] = Profile(lo, hi, False, sorted((math.exp(v), d) for v, d in points), tuple(bounded))
     return out

@@ -7,12 +7,16 @@ profile, for R0_um, sigma, lambda (>= 0) and T_s, with profile-likelihood interv
    (objective.py), tolerances 1e-12; the best of the starts is kept.
 3. Noise: given (one level or per point), or estimated per data set from its residuals
    (degrees of freedom shared in proportion to the points; 1.4826 x the median absolute
-   residual with a robust loss); with an estimated noise the intervals use the F(1, n - 4)
+   residual with a robust loss); with an estimated noise the intervals use the F(1, dof)
    quantile instead of chi^2(1) (3.84).
 4. Intervals: profile likelihood (likelihood.py), also of tau, zeta/G and the viscous length
    (derived.py); standard errors from the Jacobian.
 5. Verdict: converged only if the optimiser reports convergence, the Jacobian has full rank
    and, with the noise given, chi^2 is consistent with its degrees of freedom (p >= 1e-6).
+
+`params` (parameters.py): parameters held fixed, bounded or given a Gaussian prior, and G
+for the absolute material values (material.py). Fixed parameters leave every stage; each
+prior is one more residual; the degrees of freedom are n + priors - free parameters.
 """
 
 from __future__ import annotations
@@ -26,6 +30,7 @@ from .data import RadiusSeries, VelocityProfile, check_against
 from .export import data_points
 from .objective import NAMES, Objective, from_z
 from .plausibility import time_scale_warnings
+from .likelihood import Profile
 from .result import FitResult, ParameterReport
 
 #: chi^2 p-value below which the model is said not to describe the data (fit failed), and
@@ -55,7 +60,7 @@ def _uncertainties(obj: Objective, radius: RadiusSeries, profile: VelocityProfil
     return estimated
 
 
-def _estimate_noise(obj: Objective, z, estimated, robust: bool) -> None:
+def _estimate_noise(obj: Objective, z, estimated, robust: bool, n_free: int = 4) -> None:
     res = obj.residuals(z)
     parts = obj.split(res)
     scale = []
@@ -66,13 +71,13 @@ def _estimate_noise(obj: Objective, z, estimated, robust: bool) -> None:
         if robust:
             factor = 1.4826 * float(np.median(np.abs(part)))
         else:
-            dof = max(part.size - 4 * part.size / obj.size, 1.0)
+            dof = max(part.size - n_free * part.size / obj.size, 1.0)
             factor = math.sqrt(float(np.sum(part**2)) / dof)
         scale.append(np.full(part.size, max(factor, 1e-300)))
     obj.sd = obj.sd * np.concatenate(scale)
 
 
-def _best(obj: Objective, starts, loss):
+def _best(obj, starts, loss):
     from .local import local_fit
 
     best, failures, ends = None, [], []
@@ -89,11 +94,13 @@ def _best(obj: Objective, starts, loss):
 
 
 def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_radius_um: float,
-        intervals: bool = True, loss: str = "linear", derived: bool = True) -> FitResult:
+        intervals: bool = True, loss: str = "linear", derived: bool = True, params=None) -> FitResult:
     """Fit R0_um, sigma, lambda and T_s; see the module docstring and docs/fitting.md.
     `loss`: "linear" (least squares), or "soft_l1" / "cauchy" (robust to outliers).
     `intervals`: the parameters' profile likelihoods; `derived`: also those of tau, zeta/G
-    and the viscous length (without them these are reported not identified)."""
+    and the viscous length (without them these are reported not identified).
+    `params`: a Parameters (parameters.py; or an lmfit.Parameters) fixing, bounding or
+    giving a prior to R0_um, sigma, lambda, T_s, and G_pa fixed or with a prior."""
     from scipy import stats
 
     from .likelihood import profile_all
@@ -102,28 +109,33 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
 
     if loss not in ("linear", "soft_l1", "cauchy"):
         raise ValueError(f"loss = {loss!r}: expected linear, soft_l1 or cauchy")
+    from .parameters import Constrained, specification
+
     check_against(radius, profile, outer_radius_um)
-    obj = Objective(radius, profile, outer_radius_um)
-    if obj.size < 5:
-        raise ValueError(f"fit: {obj.size} data points for 4 parameters: need at least 5")
-    estimated = _uncertainties(obj, radius, profile)
+    spec = specification(params, outer_radius_um)
+    data = Objective(radius, profile, outer_radius_um)
+    n_free = len(spec.free)
+    if data.size < n_free + 1:
+        raise ValueError(f"fit: {data.size} data points for {n_free} free parameters: need at least {n_free + 1}")
+    estimated = _uncertainties(data, radius, profile)
+    obj = Constrained(data, spec)  # the data with the priors, bounds and fixed parameters
 
     def objective_cost(z):
         return cost(obj.residuals(z), loss)
 
-    best, failures, ends = _best(obj, grid_starts(obj, objective_cost), loss)
+    best, failures, ends = _best(obj, grid_starts(data, objective_cost, spec=spec), loss)
     if best is None:
         raise ValueError("fit: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
     z = best[0]
     if any(estimated):
         for _ in range(2):  # noise from the residuals, then refit with those weights
-            _estimate_noise(obj, z, estimated, loss != "linear")
+            _estimate_noise(data, z, estimated, loss != "linear", n_free)
             best, _, _ = _best(obj, [z], loss)
             z = best[0]
     z, chi2_cost, res = best
-    n, dof = obj.size, max(obj.size - 4, 1)
+    dof = max(obj.size - n_free, 1)  # the priors count as data
     threshold = float(stats.f.ppf(0.95, 1, dof)) if any(estimated) else float(stats.chi2.ppf(0.95, 1))
-    residuals = obj.residuals(z)
+    residuals = data.residuals(z)
     jac = obj.jacobian(z)
     reasons = []
     optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
@@ -147,15 +159,17 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     if res.status <= 0:
         reasons.append(f"optimiser stopped without converging ({res.message})")
     flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
-    chi2 = float(np.sum(np.delete(residuals, flagged) ** 2))
+    chi2 = float(np.sum(np.delete(residuals, flagged) ** 2) + np.sum(obj.prior_residuals(z) ** 2))
     p_value = None if any(estimated) else float(stats.chi2.sf(chi2, max(dof - flagged.size, 1)))
     if p_value is not None and p_value < P_FAIL:
         reasons.append(f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
                        "the model does not describe the data with the given noise")
     # lambda on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
-    free = [i for i in range(4) if not (i == 2 and z[2] <= 1e-8)]
+    free = [i for i in spec.free if not (i == 2 and z[2] <= 1e-8)]
     sv = np.linalg.svd(jac[:, free], compute_uv=False)
     cov_z = np.full((4, 4), np.nan)
+    held = list(spec.fixed)
+    cov_z[held, :], cov_z[:, held] = 0.0, 0.0  # no variance
     singular = not (sv.size == len(free) and sv[-1] > 1e-12 * sv[0])
     if not singular:
         try:
@@ -163,8 +177,8 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
         except np.linalg.LinAlgError:
             singular = True
     if singular:
-        reasons.append("the Jacobian at the best point is singular: the data do not determine the four parameters")
-    theta = from_z(z)
+        reasons.append(f"the Jacobian at the best point is singular: the data do not determine the {n_free} free parameters")
+    theta = tuple(spec.fixed.get(i, v) for i, v in enumerate(from_z(z)))  # a fixed value as given, not exp(ln v)
     scale = np.array([theta[0], 1.0, 1.0, theta[3]])  # d theta / d z
     cov = cov_z * np.outer(scale, scale)
     with np.errstate(invalid="ignore"):
@@ -181,21 +195,25 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
         from .derived import derived_profiles
 
         profiles |= derived_profiles(obj, z, chi2_cost, threshold, loss, alternates, cov_z)
-    reports = {name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name)) for i, name in enumerate(NAMES)}
+    if profiles:
+        for i, v in spec.fixed.items():
+            profiles[NAMES[i]] = Profile(v, v, False, [(v, 0.0)])
+    reports = {name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name), spec.describe(i))
+               for i, name in enumerate(NAMES)}
     derived_p = {name: p for name, p in profiles.items() if name not in NAMES}
-    obj.residuals(z)  # inside_edge at the optimum
-    radius_res = obj.split(residuals * obj.sd)[0]
+    data.residuals(z)  # inside_edge at the optimum
+    radius_res = data.split(residuals * data.sd)[0]
     return FitResult(theta=theta, reports=reports, correlation=corr, chi2=chi2, threshold=threshold,
-                     outer_radius_um=obj.outer, residual_rms_um=float(np.sqrt(np.mean(radius_res**2))),
-                     noise=(float(np.median(obj.sd[:obj.n_radius])),
-                            float(np.median(obj.sd[obj.n_radius:])) if obj.n_profile else None),
-                     n_points=(obj.n_radius, obj.n_profile), has_profile=profile is not None,
-                     evaluations=obj.evaluations, converged=not reasons, reasons=reasons,
+                     outer_radius_um=data.outer, residual_rms_um=float(np.sqrt(np.mean(radius_res**2))),
+                     noise=(float(np.median(data.sd[:data.n_radius])),
+                            float(np.median(data.sd[data.n_radius:])) if data.n_profile else None),
+                     n_points=(data.n_radius, data.n_profile), has_profile=profile is not None,
+                     evaluations=data.evaluations, G=spec.G, converged=not reasons, reasons=reasons,
                      optimizer=optimizer,
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
-                     outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
+                     outliers=_outliers(data, flagged), piv_at_edge=data.inside_edge,
                      derived_profiles=derived_p, plausibility=time_scale_warnings(theta, obj.outer, radius, profile),
-                     points=data_points(obj, z, flagged, radius, profile, estimated),
+                     points=data_points(data, z, flagged, radius, profile, estimated),
                      refit=(obj, z, chi2_cost, loss) if not reasons else None)
 
 

@@ -16,6 +16,8 @@ on the flat, curved valleys of plateau-only data stop short and report false cro
 lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
 and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1 from the
 estimate. An end that reaches such a search limit is open (None): the data do not bound it.
+An end that reaches a bound of the user's (parameters.py) is that bound (`bounded`), as an
+estimate on such a bound gives that end. Parameters the user holds fixed are not profiled.
 """
 
 from __future__ import annotations
@@ -43,6 +45,8 @@ class Profile:
     upper: float | None
     at_bound: bool
     points: list = field(default_factory=list)  # (value, delta chi^2), value in its own units
+    #: (lower, upper): the end is a bound the user set, not a rise of the profile.
+    bounded: tuple = (False, False)
 
 
 def _limits(i: int, z: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> tuple[float, float]:
@@ -171,12 +175,15 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
     `alternates`: other local optima (z, delta chi^2) below the threshold. The confidence
     set of a parameter may then be two intervals (a barrier between the valleys rises above
     the threshold): each is walked from its own optimum and the hull is reported."""
-    from .local import bounds
+    from .local import bounds_of
 
     out = {}
-    lims = bounds(obj)
+    lims = bounds_of(obj)
     centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for i, name in enumerate(NAMES):
+        if i in getattr(obj, "fixed", {}):
+            continue
+        user_bound = getattr(obj, "user_bound", lambda i, side: False)
         default = (0.05, 0.05 * abs(z_hat[1]) + 0.01, 0.1, 0.1)[i]
         se = math.sqrt(max(cov_z[i, i], 0.0))
         slope = np.nan_to_num(cov_z[:, i] / cov_z[i, i]) if cov_z[i, i] > 0 else np.zeros(4)
@@ -188,11 +195,14 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
             for direction, limit, ends in ((-1, lo_lim, lows), (1, hi_lim, highs)):
                 if ends and (ends[0][0] is None or direction * (centre[i] - ends[0][0]) <= 0):
                     continue  # an optimum inside the interval found (or an open end): nothing to add
+                mine = user_bound(i, direction) and limit == lims[0 if direction < 0 else 1][i]
                 if centre[i] == limit:
-                    ends.append((None, True))
+                    ends.append((limit, False) if mine else (None, True))
                     continue
                 end, at_limit, pts = _side(obj, i, centre, chi2_min, threshold, step, direction, limit, slope, loss,
                                            delta0)
+                if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
+                    end, at_limit = limit, False  # the walk reached the user's bound inside the threshold
                 ends.append((end, at_limit))
                 points += pts
         lo_open = any(e is None for e, _ in lows)
@@ -201,7 +211,9 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
         at_bound = i == 2 and lo_open  # lambda's lower end is its bound 0
         lower = 0.0 if at_bound else (None if lo is None else _own_units(i, lo))
         upper = None if hi is None else _own_units(i, hi)
-        out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)])
+        bounded = (lo is not None and user_bound(i, -1) and lo == lims[0][i],
+                   hi is not None and user_bound(i, 1) and hi == lims[1][i])
+        out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)], bounded)
     return out
 
 

@@ -28,6 +28,11 @@ def bounds(obj: Objective) -> tuple[np.ndarray, np.ndarray]:
     return lower, upper
 
 
+def bounds_of(obj) -> tuple[np.ndarray, np.ndarray]:
+    """The bounds of `obj`: its own `bounds()` (a wrapper's) or those of an Objective."""
+    return obj.bounds() if hasattr(obj, "bounds") else bounds(obj)
+
+
 def cost(res: np.ndarray, loss: str = "linear") -> float:
     """chi^2 for the linear loss; 2 sum rho(r^2) for a robust one (same scale near 0)."""
     z = res**2
@@ -40,14 +45,22 @@ def cost(res: np.ndarray, loss: str = "linear") -> float:
 
 def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None = None,
               loss: str = "linear", tol: float = 1e-12, max_nfev: int = 200):
-    """Minimise the cost from z0, with coordinate `fixed` held at `value` if given.
-    `obj` may be an Objective or a reparametrisation of it with its own `bounds()`
-    (derived.py). Returns (z, cost at z, least_squares result)."""
-    free = [i for i in range(4) if i != fixed]
-    lower, upper = obj.bounds() if hasattr(obj, "bounds") else bounds(obj)
-    z = np.clip(np.array(z0, dtype=float), lower, upper)
+    """Minimise the cost from z0, with coordinate `fixed` held at `value` if given, and the
+    coordinates `obj.fixed` (a dict, the user's fixed parameters) held at theirs.
+    `obj` may be an Objective or a wrapper of it with its own `bounds()` (parameters.py,
+    derived.py). Returns (z, cost at z, least_squares result)."""
+    held = dict(getattr(obj, "fixed", {}))
     if fixed is not None:
-        z[fixed] = value
+        held[fixed] = value
+    free = [i for i in range(4) if i not in held]
+    lower, upper = bounds_of(obj)
+    z = np.clip(np.array(z0, dtype=float), lower, upper)
+    for i, v in held.items():
+        z[i] = v
+    if not free:  # every coordinate held: nothing to minimise
+        c = cost(obj.residuals(z), loss)
+        return z, c, optimize.OptimizeResult(x=z[[]], status=1, nfev=1, success=True,
+                                             message="Every coordinate held.")
     inner = (lower[free] < z[free]) & (z[free] < upper[free])
     z[free] = np.where(inner, z[free], np.clip(z[free], lower[free] + 1e-9, upper[free] - 1e-9))
 
@@ -56,7 +69,7 @@ def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None 
         w[free] = x
         return w
 
-    if fixed is not None and isinstance(obj, Objective):
+    if held and getattr(obj, "partial_jacobian", isinstance(obj, Objective)):
         def jacobian(w):
             return obj.jacobian(w, free)
     else:

@@ -95,16 +95,21 @@ def edge_series(lam: float, sigma: float, r_inf: float, tau, p: float = 0.0, *,
     return _native.series(lam, sigma, r_inf, tau, p, tolerance=tolerance)
 
 
-def simulate(times_s, *, lam: float, sigma: float, R0_um: float, T_s: float, outer_radius_um: float,
-             edge_stress_pa: float | None = None, G_pa: float | None = None, radii_um=None,
+def simulate(times_s, *, R0_um: float, outer_radius_um: float, lam: float | None = None,
+             sigma: float | None = None, T_s: float | None = None, G_pa: float | None = None,
+             eta_pa_s: float | None = None, zeta_pa_s_per_um2: float | None = None,
+             tension_pa: float | None = None, edge_stress_pa: float | None = None, radii_um=None,
              tolerance: float = _native.TOLERANCE) -> Simulation:
     """Wound radius [um] and edge velocity [um/s] at `times_s` [s since the cut, any order],
     and, if `radii_um` is given, displacement [um] and velocity [um/s] of the tissue at those
     CURRENT distances from the wound centre (as PIV measures them).
 
-    lam, sigma: dimensionless (lambda = viscous length / R0, sigma = tension / G).
+    Either the dimensionless set: lam, sigma (lambda = viscous length / R0, sigma =
+    tension / G) and T_s (the time scale zeta R0^2 / (4 G)); or the material set: G_pa,
+    eta_pa_s, zeta_pa_s_per_um2 (friction, Pa s/um^2) and tension_pa, converted by
+    material.from_material. A mix, or an incomplete set, is refused.
     R0_um: radius of the cut (the wound is R1 = R0 (1 + sigma/6) just after it).
-    T_s: time scale zeta R0^2 / (4 G). outer_radius_um: the tissue's outer radius (> R0).
+    outer_radius_um: the tissue's outer radius (> R0).
     edge_stress_pa with G_pa: a constant stress at the wound edge (default none).
     tolerance: the accuracy target of every output, relative to the opening R_final - R1
     (the grid is the cheapest that meets it; 1e-11 is the finest delivered).
@@ -112,6 +117,11 @@ def simulate(times_s, *, lam: float, sigma: float, R0_um: float, T_s: float, out
     Raises ValueError for invalid input (a radius inside the wound or beyond the tissue at
     some time, with the tissue's span then) and NativeLibraryMissing without the library.
     """
+    from .material import model_parameters
+
+    lam, sigma, T_s = model_parameters(dict(lam=lam, sigma=sigma, T_s=T_s, G_pa=G_pa, eta_pa_s=eta_pa_s,
+                                            zeta_pa_s_per_um2=zeta_pa_s_per_um2, tension_pa=tension_pa,
+                                            R0_um=R0_um)).values()
     r_inf = scales(R0_um, T_s, outer_radius_um)
     p = edge_stress_ratio(edge_stress_pa, G_pa)
     t, order, tau = _sorted_times(times_s, T_s)

@@ -67,7 +67,9 @@ def estimates_text(result) -> str:
     for name in NAMES:
         rep = result.reports[name]
         symbol, unit = SYMBOLS[name]
-        if rep.profile is None:
+        if rep.constraint.get("fixed"):
+            ci = "(fixed)"
+        elif rep.profile is None:
             ci = "(interval not computed)"
         else:
             lo, hi = rep.ci95
@@ -175,6 +177,12 @@ def _values(left, right, scale, n):
 
 def profile_panel(ax, result, name, n=PROFILE_POINTS):
     rep = result.reports[name]
+    if rep.constraint.get("fixed"):  # no profile: say so in the panel
+        ax.text(0.5, 0.5, f"{LABELS[name]} fixed at {rep.estimate:.6g}", ha="center", va="center",
+                transform=ax.transAxes)
+        ax.set(xticks=[], yticks=[], title=f"{LABELS[name]}: fixed")
+        ax.title.set_fontsize("small")
+        return
     left, right, scale = profile_span(result, name)
     values = _values(left, right, scale, n) if n and result.refit is not None else np.empty(0)
     delta = result.profile_at(name, values) if values.size else values
@@ -201,7 +209,7 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
     verdict = "identified" if rep.identifiable else "not identified"
     ax.set(xlabel=LABELS[name], ylabel="Δχ² (profile)", title=f"{LABELS[name]}: [{_g(lo)}, {_g(hi)}], {verdict}")
     ax.title.set_fontsize("small")
-    if name == NAMES[0]:
+    if name == next(n for n in NAMES if not result.reports[n].constraint.get("fixed")):  # the first drawn
         ax.legend(loc="upper center", fontsize="x-small")
 
 

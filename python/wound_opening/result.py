@@ -18,6 +18,9 @@ class ParameterReport:
     estimate: float
     stderr: float
     profile: Profile | None
+    #: The user's specification (parameters.py): {"fixed": True}, {"bounds": [min, max]},
+    #: {"prior": [mean, sd]} or {}.
+    constraint: dict = field(default_factory=dict)
 
     @property
     def ci95(self) -> tuple[float | None, float | None]:
@@ -27,9 +30,11 @@ class ParameterReport:
     @property
     def identifiable(self) -> bool:
         """Both interval ends set by the data (a rise of the profile by the threshold);
-        lambda's interval reaching its bound 0 does not identify it (only bounds it above)."""
+        lambda's interval reaching its bound 0 does not identify it (only bounds it above), nor
+        does an end on a bound the user set. A fixed parameter counts as identified."""
         p = self.profile
-        return p is not None and p.lower is not None and p.upper is not None and not p.at_bound
+        return (p is not None and p.lower is not None and p.upper is not None and not p.at_bound
+                and not any(p.bounded))
 
 
 def _fmt(x) -> str:
@@ -61,6 +66,8 @@ class FitResult:
     derived_profiles: dict = field(default_factory=dict)
     #: The fitted time scale against the sampling (plausibility.py).
     plausibility: list = field(default_factory=list)
+    #: G [Pa] given for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
+    G: tuple | None = None
     #: The data in the input's order with the model, the noise used and the flags (export.py).
     points: dict = field(default_factory=dict)
     #: (objective, z, chi^2 at the optimum, loss): for profiles at more values (profile_at).
@@ -90,7 +97,7 @@ class FitResult:
         for name, value in (("tau_s", lam**2 * T), ("zeta_over_G_s_per_um2", 4 * T / R0**2),
                             ("viscous_length_um", lam * R0)):
             p = self.derived_profiles.get(name)
-            ok = p is not None and p.lower is not None and p.upper is not None and not p.at_bound
+            ok = p is not None and p.lower is not None and p.upper is not None and not p.at_bound and not any(p.bounded)
             out[name] = (value, (None, None) if p is None else (p.lower, p.upper), ok)
         s = self.reports["sigma"]
         out["tension_over_G"] = (sigma, s.ci95, s.identifiable)
@@ -123,6 +130,8 @@ class FitResult:
             return ""
         lo, hi = rep.ci95
         flat = f"{name}: not identified (95 % interval [{_fmt(lo)}, {_fmt(hi)}])"
+        if any(rep.profile.bounded):
+            return f"{flat}: the interval ends at the bound you set, not where the data exclude values"
         if name == "lambda":
             where = "within a few viscous lengths (lambda R0) of the edge, as early after the cut as possible"
             if self.has_profile:
@@ -173,13 +182,23 @@ class FitResult:
             rep = self.reports[name]
             params[name] = {"estimate": rep.estimate, "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
                             "ci95": list(rep.ci95), "identifiable": rep.identifiable,
-                            "interval_computed": rep.profile is not None}
+                            "interval_computed": rep.profile is not None} | rep.constraint
             if self.advice(name):
                 params[name]["advice"] = self.advice(name)
-        return status | {"parameters": params, "derived": self.derived, "derived_ci95": self.derived_ci95, "residual_rms_um": self.residual_rms_um,
+        return status | {"parameters": params, "derived": self.derived, "derived_ci95": self.derived_ci95,
+                "material": self.material, "residual_rms_um": self.residual_rms_um,
                 "correlation": {"order": list(NAMES), "matrix": np.nan_to_num(self.correlation).tolist()},
                 "outer_radius_um": self.outer_radius_um, "delta_chi2_95": self.threshold,
                 "noise": {"radius_um": self.noise[0], "velocity_um_s": self.noise[1] if self.has_profile else None}}
+
+    @property
+    def material(self) -> dict:
+        """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
+        the tension, with profile intervals (material.py): name -> {estimate, ci95,
+        identifiable, unit}."""
+        from .material import material_report
+
+        return material_report(self)
 
     def to_json(self, **kwargs) -> str:
         return json.dumps(self.to_dict(), **({"indent": 2} | kwargs))
@@ -191,15 +210,21 @@ class FitResult:
         for name in NAMES:
             rep = self.reports[name]
             lo, hi = rep.ci95
+            if rep.constraint.get("fixed"):
+                lines.append(f"{name:<10} {rep.estimate:>11.5g} {'':>10}   fixed")
+                continue
+            note = ("   prior {:g} +- {:g}".format(*rep.constraint["prior"]) if "prior" in rep.constraint else "") + (
+                "   bounds [{:g}, {:g}]".format(*rep.constraint["bounds"]) if "bounds" in rep.constraint else "")
             interval = (f"[{_fmt(lo):>9}, {_fmt(hi):>9}]        {'yes' if rep.identifiable else 'no'}"
                         if rep.profile is not None else f"{'not computed':<22}{'not computed':>17}")
-            lines.append(f"{name:<10} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {interval}")
+            lines.append(f"{name:<10} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {interval}{note}")
         lines += [f"  {self.advice(n)}" for n in NAMES if self.advice(n)]
         computed = self._derived_computed()
+        radii = {k: d for k, d in self._derived_all().items() if k in ("R1_um", "R_final_um")}  # the rest: material
         lines.append("derived: " + ", ".join(
-            f"{k} = {_fmt(v)} (interval not computed)" if not computed[k] else
-            f"{k} = {_fmt(v)} [{_fmt(ci[0])}, {_fmt(ci[1])}]" if ok and ci != (None, None) else
-            f"{k} = {_fmt(v)}" if ok else f"{k} not identified" for k, (v, ci, ok) in self._derived_all().items()))
+            f"{k} = {_fmt(v)} (not computed)" if not computed[k] else f"{k} = {_fmt(v)}" if ok
+            else f"{k} not identified" for k, (v, ci, ok) in radii.items()))
+        lines += _material_lines(self.material)
         fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (f", p = {self.p_value:.3g}" if self.p_value is not None else
                                                                " (noise estimated from the residuals)")
         lines.append(f"residual rms {self.residual_rms_um:.3g} um; {fit}; optimiser: {self.optimizer.get('message', '')}")
@@ -207,3 +232,18 @@ class FitResult:
             lines.append(f"PIV vectors at or inside the model's wound edge (compared with the edge velocity): {self.piv_at_edge}")
         lines += [f"warning: {w}" for w in self.warnings]
         return "\n".join(lines)
+
+
+def _material_lines(material: dict) -> list:
+    """The summary's material block: one value per line, with its unit and interval."""
+    lines = ["material (95 % profile intervals):"]
+    for name, m in material.items():
+        if name == "G_pa":
+            lines.append(f"  G_pa = {m['estimate']:.5g} Pa " + ("(fixed)" if m["fixed"] else f"(prior, sd {m['sd']:.3g} Pa)"))
+            continue
+        lo, hi = m["ci95"]
+        interval = ("interval not computed" if not m.get("interval_computed", True) else
+                    f"[{_fmt(lo)}, {_fmt(hi)}]" + ("" if m["identifiable"] else "  not identified"))
+        unit = "" if m["unit"] == "1" else f" {m['unit']}"
+        lines.append(f"  {name} = {_fmt(m['estimate'])}{unit}  {interval}")
+    return lines

@@ -8,6 +8,15 @@ decade from below the first sampled time, and below the diffusive time t_last / 
 radii (variable projection, R_inf held at its value for R0 = the smallest radius / 1.05);
 with a profile, the RESCORED best are scored again by the full cost (radius and profile,
 exact R_inf). The best distinct points start the local fits.
+
+With a specification (parameters.py) the grid honours it: a fixed lambda or T is the only
+value of its axis, bounds clip the axes (and the linear R0, sigma), a fixed R0 or sigma
+leaves the other one of the linear pair to solve,
+
+    R0 fixed:     R - R0 = (R0 sigma) h          (one column)
+    sigma fixed:  R = R0 (1 + sigma h)           (one column)
+
+and the priors' chi^2 is added to each point's score.
 """
 
 from __future__ import annotations
@@ -27,20 +36,37 @@ RESCORED = 24
 LAMBDAS = (0.0, 0.02, 0.05, 0.1, 0.2, 0.35, 0.6, 1.0, 1.7, 3.0, 5.0, 10.0, 20.0, 50.0)
 
 
-def _linear(obj: Objective, lam: float, T: float, r_inf: float, w: np.ndarray):
+def _linear(obj: Objective, lam: float, T: float, r_inf: float, w: np.ndarray, spec=None):
     """(R0, sigma, weighted residual sum of squares) of the linear fit at (lambda, T), R_inf
-    held (the grid only has to find the basin), or None."""
+    held (the grid only has to find the basin), or None. `spec`: fixed R0 or sigma and
+    bounds (parameters.Spec)."""
     h, _ = _native.series(lam, 1.0, r_inf, obj.t_sorted / T, velocity=False, tolerance=GRID_TOLERANCE)
     h = h - 1.0
-    a = np.column_stack([np.ones_like(h), h]) * w[:, None]
-    (c0, c1), *_ = np.linalg.lstsq(a, obj.radius * w, rcond=None)
+    fixed = {} if spec is None else spec.fixed
+    y = obj.radius * w
+    if 0 in fixed and 1 in fixed:
+        c0, c1 = fixed[0], fixed[0] * fixed[1]
+    elif 0 in fixed:
+        c0 = fixed[0]
+        c1 = float(np.dot(h * w, y - c0 * w) / max(np.dot(h * w, h * w), 1e-300))
+    elif 1 in fixed:
+        b = (1 + fixed[1] * h) * w
+        c0 = float(np.dot(b, y) / max(np.dot(b, b), 1e-300))
+        c1 = c0 * fixed[1]
+    else:
+        a = np.column_stack([np.ones_like(h), h]) * w[:, None]
+        (c0, c1), *_ = np.linalg.lstsq(a, y, rcond=None)
     if not (c0 > 0 and math.isfinite(c1)):
         return None
-    return float(c0), float(c1) / float(c0), float(np.sum((a @ (c0, c1) - obj.radius * w) ** 2))
+    R0, sigma = float(c0), float(c1) / float(c0)
+    if spec is not None:
+        R0, sigma = spec.clip(0, R0), spec.clip(1, sigma)
+    return R0, sigma, float(np.sum((R0 * (1 + sigma * h) * w - y) ** 2))
 
 
-def grid_starts(obj: Objective, cost, count: int = 4) -> list[np.ndarray]:
-    """The `count` best distinct grid points (not neighbours on the grid) by `cost(z)`."""
+def grid_starts(obj: Objective, cost, count: int = 4, spec=None) -> list[np.ndarray]:
+    """The `count` best distinct grid points (not neighbours on the grid) by `cost(z)`;
+    `spec` (parameters.Spec): fixed values, bounds and priors to honour."""
     t = obj.t_sorted
     positive = t[t > 0]
     t_last = float(t[-1]) if t[-1] > 0 else 1.0
@@ -49,16 +75,21 @@ def grid_starts(obj: Objective, cost, count: int = 4) -> list[np.ndarray]:
     s_grid = np.logspace(math.log10(low), math.log10(10 * t_last), int(5 * math.log10(100 * t_last / low)) + 1)
     w = 1.0 / obj.sd[: obj.n_radius]
     r_inf0 = obj.outer / (float(np.min(obj.radius)) / 1.05)
-    ranked = []
-    for i, lam in enumerate(LAMBDAS):
+    lambdas = LAMBDAS if spec is None else sorted({spec.clip(2, lam) for lam in LAMBDAS})
+    ranked, seen = [], set()
+    for i, lam in enumerate(lambdas):
         for j, s in enumerate(s_grid):
-            T = s / (1 + lam**2)
+            T = s / (1 + lam**2) if spec is None else spec.clip(3, s / (1 + lam**2))
+            if (lam, T) in seen:  # a fixed or bounded T repeats itself
+                continue
+            seen.add((lam, T))
             try:
-                lin = _linear(obj, lam, T, r_inf0, w)
+                lin = _linear(obj, lam, T, r_inf0, w, spec)
             except _native.SolverError:
                 continue
             if lin is not None and obj.outer / lin[0] > 1.001:
-                ranked.append((lin[2], i, j, to_z((lin[0], lin[1], lam, T))))
+                theta = (lin[0], lin[1], lam, T)
+                ranked.append((lin[2] + (0.0 if spec is None else spec.prior_chi2(theta)), i, j, to_z(theta)))
     ranked.sort(key=lambda s: s[0])
     scored = []
     for _, i, j, z in ranked[:RESCORED] if obj.n_profile else ranked:

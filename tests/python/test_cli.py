@@ -115,3 +115,80 @@ def test_a_bad_profile_file_and_a_missing_file_are_named(tmp_path):
     assert done.returncode == 2 and "none.csv: cannot read the file (No such file or directory)" in done.stderr
     done = run("sweep", "--lambda", "1,x", "--sigma", "1", "--R-inf", "10", "--times", "1", "--csv", tmp_path / "s.csv")
     assert done.returncode == 2 and "--lambda: '1,x' is not a comma-separated list of numbers" in done.stderr
+
+
+README_BLOCK = "<!-- quick start: one wound, a known R0 and G from AFM"
+
+
+def readme_quick_start() -> list[str]:
+    """The README's one-wound quick-start command (the sh block after its marker) as
+    arguments to `wound-opening`."""
+    import shlex
+
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    block = text[text.index(README_BLOCK):]
+    command = block[block.index("```sh\n") + 6:block.index("\n```", block.index("```sh\n"))]
+    args = shlex.split(command.replace("\\\n", " "))
+    assert args[0] == "wound-opening", args
+    return args[1:]
+
+
+def check_quick_start(work: Path) -> None:
+    """The quick start's fit.json: R0 fixed, G's prior, and the material values of the
+    example export (python/example_export.py) inside their 95 % intervals."""
+    import example_export as ex
+
+    out = json.loads((work / "fit.json").read_text())
+    assert out["converged"] is True
+    p = out["parameters"]
+    assert p["R0_um"]["estimate"] == ex.R0_UM and p["R0_um"]["fixed"] is True
+    lam, sigma, T = ex.parameters()
+    for name, truth in (("sigma", sigma), ("lambda", lam), ("T_s", T)):
+        lo, hi = p[name]["ci95"]
+        assert lo < truth < hi, (name, lo, truth, hi)
+    m = out["material"]
+    assert m["G_pa"] == {"estimate": 1100.0, "sd": 150.0, "fixed": False, "unit": "Pa"}
+    G, mat = ex.MATERIAL["G_pa"], ex.MATERIAL
+    truth = {"eta_over_G_s": mat["eta_pa_s"] / G, "zeta_over_G_s_per_um2": mat["zeta_pa_s_per_um2"] / G,
+             "tension_over_G": mat["tension_pa"] / G, "viscous_length_um": lam * ex.R0_UM,
+             "eta_pa_s": mat["eta_pa_s"], "zeta_pa_s_per_um2": mat["zeta_pa_s_per_um2"], "tension_pa": mat["tension_pa"]}
+    for name, value in truth.items():
+        lo, hi = m[name]["ci95"]
+        assert m[name]["identifiable"] and lo < value < hi, (name, lo, value, hi)
+    assert m["eta_pa_s"]["estimate"] == pytest.approx(1100.0 * m["eta_over_G_s"]["estimate"], rel=1e-14)
+
+
+def test_the_readme_quick_start_fits_a_microscope_export_with_a_fixed_r0_and_a_prior_on_g(tmp_path):
+    args = readme_quick_start()
+    data = Path(__file__).resolve().parents[2] / "examples" / "data" / "ablation_export.csv"
+    (tmp_path / "examples" / "data").mkdir(parents=True)
+    (tmp_path / "examples" / "data" / "ablation_export.csv").write_bytes(data.read_bytes())
+    done = run(*args, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert "eta_pa_s = " in done.stdout and "G_pa = 1100 Pa (prior, sd 150 Pa)" in done.stdout
+    check_quick_start(tmp_path)
+
+
+def test_the_example_export_is_the_one_its_script_makes(tmp_path):
+    """examples/data/ablation_export.csv is reproducible from python/example_export.py."""
+    import example_export as ex
+
+    ex.export(tmp_path / "a.csv")
+    data = Path(__file__).resolve().parents[2] / "examples" / "data" / "ablation_export.csv"
+    assert (tmp_path / "a.csv").read_bytes() == data.read_bytes()
+
+
+def test_simulate_takes_the_material_constants_or_refuses_a_mix(tmp_path):
+    material = run("simulate", "--G-pa", 100, "--eta-pa-s", 1000, "--zeta-pa-s-per-um2", 40, "--tension-pa", 100,
+                   "--R0-um", 10, "--outer-radius-um", 100, "--times", "0.5,3,20", "--csv", tmp_path / "m.csv")
+    assert material.returncode == 0, material.stderr
+    got = pd.read_csv(tmp_path / "m.csv")
+    exact = 10.0 * we.edge(1.0, 1.0, 10.0, np.array([0.5, 3.0, 20.0]) / 10.0)[0]
+    opening = 10.0 * (we.final_radius(1.0, 10.0) - we.initial_radius(1.0))
+    assert np.max(np.abs(got["radius_um"].to_numpy() - exact)) < 1e-9 * opening
+    mixed = run("simulate", "--G-pa", 100, "--eta-pa-s", 1000, "--sigma", 1, "--R0-um", 10, "--outer-radius-um", 100,
+                "--csv", tmp_path / "x.csv")
+    assert mixed.returncode == 2 and "not both" in mixed.stderr and "Traceback" not in mixed.stderr
+    write_radius(tmp_path / "radius.csv")
+    bad = run("fit", tmp_path / "radius.csv", "--outer-radius-um", 100, "--fix", "R0_um=500")
+    assert bad.returncode == 2 and "outside the accepted range" in bad.stderr, bad.stderr

@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
-from coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE, couple, from_material, observed_order  # noqa: E402
+from coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE, couple, fmu_start_values, observed_order  # noqa: E402
 
 import fmu_harness  # noqa: E402
 import wound_exact  # noqa: E402
@@ -33,10 +33,11 @@ AMPLITUDE = R_FINAL - R1
 
 
 def test_worked_example_parameters_follow_from_the_material():
-    got = from_material(G=100.0, eta=1000.0, zeta=40.0, R0=10.0, tension=100.0)
+    got = fmu_start_values(G_pa=100.0, eta_pa_s=1000.0, zeta_pa_s_per_um2=40.0, tension_pa=100.0, R0_um=10.0,
+                           outer_radius_um=100.0)
     assert got["lambda"] == pytest.approx(1.0, rel=1e-15)
     assert got["T"] == pytest.approx(10.0, rel=1e-15)
-    assert (got["sigma"], got["R0"], got["G"]) == (1.0, 10.0, 100.0)
+    assert (got["sigma"], got["R0"], got["G"], got["R_inf"]) == (1.0, 10.0, 100.0, 10.0)
     # The viscous relaxation time eta / G = lambda^2 T.
     assert got["lambda"] ** 2 * got["T"] == pytest.approx(1000.0 / 100.0, rel=1e-15)
 

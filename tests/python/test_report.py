@@ -272,3 +272,22 @@ def test_a_printed_table_cut_short_by_its_reader_is_not_an_error():
     done = subprocess.run(f"'{EXE}' simulate --lambda 1 --sigma 1 --R0-um 10 --T-s 10 --outer-radius-um 100 "
                           "--points 20000 | head -1", shell=True, capture_output=True, text=True, timeout=120)
     assert done.stdout.split() == ["time_s", "radius_um", "edge_velocity_um_s"] and done.stderr == "", done.stderr
+
+
+def test_a_fixed_parameter_is_said_fixed_in_the_summary_figure_and_report(robust, tmp_path, recwarn):
+    """R0 held at the radius of the cut: no profile to draw (its panel says so, with no
+    matplotlib warning about an empty axis range), the summary and the figure's text say
+    "fixed", and the report renders."""
+    _, radius, _ = robust
+    params = wo.Parameters()
+    params.add("R0_um", value=R0, vary=False)
+    result = wo.fit(radius, outer_radius_um=OUTER, loss="soft_l1", params=params, derived=False)
+    assert result.converged, result.reasons
+    assert re.search(r"^R0_um\s+10\s+fixed$", result.summary(), re.M), result.summary()
+    from wound_opening.plots import estimates_text, fit_figure
+
+    assert "R₀ = 10 µm  (fixed)" in estimates_text(result)
+    fit_figure(result, radius, None, tmp_path / "fit.png", profile_points=4)
+    assert not [w for w in recwarn if "xlim" in str(w.message)], [str(w.message) for w in recwarn]
+    wo.write_report(tmp_path / "fit.html", result, radius)
+    assert "fixed" in (tmp_path / "fit.html").read_text()

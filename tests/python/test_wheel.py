@@ -1,6 +1,7 @@
 """The wheel: `pip wheel .` builds it (reusing target/), it installs into a fresh venv with
-no Rust on PATH and no checkout on sys.path, and there `wound-opening fit` runs and fmpy
-loads the shipped FMUs through `wound_opening.fmu_path`.
+no Rust on PATH and no checkout on sys.path, and there `wound-opening fit` runs (also the
+README's quick start on its microscope export) and fmpy loads the shipped FMUs through
+`wound_opening.fmu_path`.
 
 The runtime dependencies come from the wheel's own metadata, pinned by the versions of
 python/requirements.txt (pip's cache serves them). Nothing here falls back on the checkout:
@@ -20,7 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import wound_exact as we
-from test_cli import LAM, OUTER, R0, SIGMA, T, write_radius
+from test_cli import LAM, OUTER, R0, SIGMA, T, check_quick_start, readme_quick_start, write_radius
 
 ROOT = Path(__file__).resolve().parents[2]
 FMUS = ("WoundOpening.fmu", "WoundOpening-me.fmu", "WoundOpening-fmi3.fmu", "PurseString.fmu", "PurseString-fmi3.fmu")
@@ -97,6 +98,15 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
     parameters = json.loads((work / "fit.json").read_text())["parameters"]
     for name, truth in {"R0_um": R0, "sigma": SIGMA, "lambda": LAM, "T_s": T}.items():
         assert abs(parameters[name]["estimate"] - truth) < 7 * parameters[name]["stderr"], (name, parameters[name])
+
+    # The README's quick start: a microscope export, R0 fixed, a prior on G.
+    (work / "examples" / "data").mkdir(parents=True)
+    (work / "examples" / "data" / "ablation_export.csv").write_bytes(
+        (ROOT / "examples" / "data" / "ablation_export.csv").read_bytes())
+    quick = subprocess.run([str(venv / "bin" / "wound-opening"), *readme_quick_start()], capture_output=True, text=True,
+                           env=env, cwd=work, timeout=600)
+    assert quick.returncode == 0, quick.stderr
+    check_quick_start(work)
 
     # The package's files, and fmpy on the shipped archives.
     stop, step = 20.0, 1.0
