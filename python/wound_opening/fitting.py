@@ -123,7 +123,13 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     def objective_cost(z):
         return cost(obj.residuals(z), loss)
 
-    best, failures, ends = _best(obj, grid_starts(data, objective_cost, spec=spec), loss)
+    starts = grid_starts(data, objective_cost, spec=spec)
+    if not starts:
+        raise ValueError("fit: no point of the global grid (lambda x time scale, R0 and sigma solved linearly) "
+                         "gives a wound with R0 > 0 inside the outer radius" + (
+                             " with the fixed values and bounds given: the data cannot be described with them"
+                             if spec.fixed or spec.bounds else ""))
+    best, failures, ends = _best(obj, starts, loss)
     if best is None:
         raise ValueError("fit: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
     z = best[0]

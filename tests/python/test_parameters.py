@@ -161,6 +161,14 @@ def test_a_fixed_lambda_or_t_is_honoured_by_the_global_stage_and_the_fit(name, i
     assert result.reports[other].identifiable
 
 
+def test_a_fixed_time_scale_the_data_cannot_have_is_refused_with_the_reason():
+    """T held at 1e4 s, a thousand times the truth, with 60 s of data: the model cannot open
+    in the minute recorded, no grid point gives a wound inside the tissue, and the fit says
+    why (it used to say only "could not be evaluated from any start:")."""
+    with pytest.raises(ValueError, match="no point of the global grid .* with the fixed values and bounds given"):
+        wo.fit(series(), outer_radius_um=OUTER, params=params(T_s=dict(value=1e4, vary=False)))
+
+
 def test_a_tight_prior_gives_an_interval_of_the_prior_plus_minus_1_96_sd(free):
     """Prior R0 = 10 +- sd with sd a tenth of the data's standard error: the interval is
     the precision-weighted combination, within ~0.5 % of the prior's +- 1.96 sd."""
