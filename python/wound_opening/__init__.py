@@ -7,6 +7,8 @@ units of a laser-ablation experiment (um, s, Pa), through the project's native l
         cut_time=) -> RadiusSeries; read_profile(...) -> VelocityProfile (a lab's CSV files)
     fit(radius data, profile data=None, outer_radius_um=) -> FitResult (estimates, profile
         likelihood intervals, identifiability, derived quantities; to_json())
+    fit_wounds([Wound(radius, outer_radius_um, profile=None, name=None), ...]) -> TissueFitResult
+        (several wounds of one tissue: shared material, each R0); read_wounds(path, wound_col=)
     sweep(grid or list of parameter sets, times) -> pandas DataFrame (local or Dask)
     fmu_path(name) -> the path of a shipped FMU archive, for fmpy or another FMI master
 
@@ -19,6 +21,7 @@ import importlib
 #: starts without numpy, scipy or pandas.
 _HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
          "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fitting", "Simulation": "model",
+         "Wound": "tissue", "fit_wounds": "tissue", "read_wounds": "lab_files", "TissueFitResult": "tissue_result",
          "simulate": "model", "FitResult": "result", "sweep": "sweeping", "fmu_path": "shipped"}
 
 
@@ -29,5 +32,6 @@ def __getattr__(name):
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-__all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
-           "fit", "fmu_path", "library_path", "read_profile", "read_radius", "simulate", "sweep"]
+__all__ = ["FitResult", "NativeLibraryMissing", "RadiusSeries", "Simulation", "SolverError", "TissueFitResult",
+           "VelocityProfile", "Wound", "fit", "fit_wounds", "fmu_path", "library_path", "read_profile", "read_radius",
+           "read_wounds", "simulate", "sweep"]

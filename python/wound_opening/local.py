@@ -41,10 +41,10 @@ def cost(res: np.ndarray, loss: str = "linear") -> float:
 def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None = None,
               loss: str = "linear", tol: float = 1e-12, max_nfev: int = 200):
     """Minimise the cost from z0, with coordinate `fixed` held at `value` if given.
-    `obj` may be an Objective or a reparametrisation of it with its own `bounds()`
-    (derived.py). Returns (z, cost at z, least_squares result)."""
-    free = [i for i in range(4) if i != fixed]
+    `obj` may be an Objective or another objective with its own `bounds()` (the
+    reparametrisations of derived.py, the several wounds of tissue.py, of any dimension). Returns (z, cost at z, least_squares result)."""
     lower, upper = obj.bounds() if hasattr(obj, "bounds") else bounds(obj)
+    free = [i for i in range(lower.size) if i != fixed]
     z = np.clip(np.array(z0, dtype=float), lower, upper)
     if fixed is not None:
         z[fixed] = value
