@@ -75,7 +75,7 @@ def _radius_series(path, time_col, radius_col, sd_col, time_unit, length_unit, p
     sd = c.get(sd_col or "radius_sd_um")
     ids = c[wound_col] if wound_col else np.full(table.lines.size, None)
     out = {}
-    for name in dict.fromkeys(ids):
+    for name in dict.fromkeys(ids.tolist()):  # the wound ids as Python str, in order of appearance
         rows = np.flatnonzero(ids == name) if wound_col else np.arange(ids.size)
         if rows.size < MIN_POINTS:
             raise InputError(f"{path}: {wound_col} {name!r} (lines {table.lines[rows[0]]}-{table.lines[rows[-1]]}): "

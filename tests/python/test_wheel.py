@@ -1,6 +1,6 @@
 """The wheel: `pip wheel .` builds it (reusing target/), it installs into a fresh venv with
 no Rust on PATH and no checkout on sys.path, and there `wound-opening fit` runs and fmpy
-loads the shipped FMUs through `wound_opening.fmu_path`.
+loads the shipped FMUs through `wound_opening.fmu_path`; the README's three-wound fit runs there.
 
 The runtime dependencies come from the wheel's own metadata, pinned by the versions of
 python/requirements.txt (pip's cache serves them). Nothing here falls back on the checkout:
@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -20,10 +21,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 import wound_exact as we
+from bench.tissue_designs import TRUTH as TISSUE_TRUTH
 from test_cli import LAM, OUTER, R0, SIGMA, T, write_radius
 
 ROOT = Path(__file__).resolve().parents[2]
 FMUS = ("WoundOpening.fmu", "WoundOpening-me.fmu", "WoundOpening-fmi3.fmu", "PurseString.fmu", "PurseString-fmi3.fmu")
+#: The README's three-wound fit (python/example_wounds.py wrote the files).
+TISSUE_COMMAND = ("tissue_R5um.csv", "tissue_R10um.csv", "tissue_R20um.csv", "--outer-radius-um", "80,100,120")
 #: The FMUs' promise at the default tolerance: |R - R_exact| <= 1e-10 (R_final - R1), t >= 0.01 T.
 FMU_TOL = 1e-10
 
@@ -97,6 +101,16 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
     parameters = json.loads((work / "fit.json").read_text())["parameters"]
     for name, truth in {"R0_um": R0, "sigma": SIGMA, "lambda": LAM, "T_s": T}.items():
         assert abs(parameters[name]["estimate"] - truth) < 7 * parameters[name]["stderr"], (name, parameters[name])
+
+    # The README's three-wound fit (examples/data, copied: the checkout stays off the paths).
+    for R0 in (5, 10, 20):
+        shutil.copy(ROOT / "examples" / "data" / f"tissue_R{R0}um.csv", work)
+    tissue = subprocess.run([str(venv / "bin" / "wound-opening"), "fit", *TISSUE_COMMAND, "--json", "tissue.json"],
+                            capture_output=True, text=True, env=env, cwd=work, timeout=600)
+    assert tissue.returncode == 0, tissue.stderr
+    shared = json.loads((work / "tissue.json").read_text())["shared"]
+    for name, truth in TISSUE_TRUTH.items():
+        assert shared[name]["identifiable"] and shared[name]["ci95"][0] < truth < shared[name]["ci95"][1], (name, shared)
 
     # The package's files, and fmpy on the shipped archives.
     stop, step = 20.0, 1.0
