@@ -1,4 +1,4 @@
-"""Writes examples/data/tissue_R{5,10,20}um.csv and examples/data/tissue_long.csv: three wounds
+"""Writes examples/data/tissue_*.csv (R5um, R10um, R20um, and tissue_long.csv): three wounds
 of one tissue (R0 = 5, 10, 20 um; outer radii 80, 100, 120 um) from the EXACT solution
 (wound_exact.py) of the material of bench/tissue_designs.py (viscous length 20 um,
 tension/G 0.5, zeta/G 0.1 s/um^2, so eta/G = 10 s), 40 radii each over 0.5 .. 60 s with

@@ -56,11 +56,14 @@ def main() -> None:
     ap.add_argument("--draws", type=int, default=30)
     ap.add_argument("--noises", default=",".join(map(str, NOISES)))
     ap.add_argument("--out", default="out/tissue_coverage")
+    ap.add_argument("--table-only", action="store_true", help="write the table from OUT.csv (a run so far)")
     args = ap.parse_args()
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    curves = [clean(r, o) for r, o in zip(R0S, OUTERS)]
     keys = list(TRUTH) + [f"R0_{k}" for k in range(len(R0S))] + [f"alone_{n}" for n in TRUTH]
+    if args.table_only:
+        return table(read(out, keys), keys, args.draws, out)
+    curves = [clean(r, o) for r, o in zip(R0S, OUTERS)]
     rows = []
     with open(f"{out}.csv", "w") as f:
         f.write("noise,seed,failed,alone_failed,seconds," + ",".join(f"{k}_identified,{k}_covered" for k in keys) + "\n")
@@ -73,6 +76,19 @@ def main() -> None:
                         + ",".join(f"{i},{c}" for i, c in cells) + "\n")
                 f.flush()
     table(rows, keys, args.draws, out)
+
+
+def read(out: Path, keys) -> list:
+    """The rows of OUT.csv as `main` holds them: (noise, {key: (identified, covered), ...})."""
+    import csv
+
+    rows = []
+    with open(f"{out}.csv") as f:
+        for r in csv.DictReader(f):
+            row = {"failed": int(r["failed"]), "alone_failed": int(r["alone_failed"])}
+            row |= {k: (int(r[f"{k}_identified"]), int(r[f"{k}_covered"])) for k in keys if r[f"{k}_identified"] != ""}
+            rows.append((float(r["noise"]), row))
+    return rows
 
 
 def table(rows, keys, draws, out: Path) -> None:

@@ -65,8 +65,17 @@ class TissueFitResult:
 
     @staticmethod
     def _report(rep: ParameterReport) -> dict:
+        """identifiable: null when the intervals were not computed (intervals=False)."""
         return {"estimate": rep.estimate, "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
-                "ci95": list(rep.ci95), "identifiable": rep.identifiable}
+                "ci95": list(rep.ci95), "identifiable": rep.identifiable if rep.profile is not None else None}
+
+    @staticmethod
+    def _interval(rep: ParameterReport, width: int) -> str:
+        """The interval and whether identified, or that it was not computed."""
+        if rep.profile is None:
+            return f"{'(not computed)':<{2 * width + 5}}  {'-':<3}"
+        lo, hi = rep.ci95
+        return f"[{_fmt(lo):>{width}}, {_fmt(hi):>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
 
     def to_dict(self) -> dict:
         status = {"converged": self.converged, "reasons": self.reasons, "warnings": self.warnings,
@@ -101,24 +110,20 @@ class TissueFitResult:
     def summary(self) -> str:
         if not self.converged:
             return "FIT FAILED: " + "; ".join(self.reasons)
-        head = "95 % interval (profile)   identified"
+        head = "95 % interval (profile)  identified"
         n = len(self.wounds)
         lines = [f"{f'shared by {n} wound' + 's' * (n > 1):<22} {'estimate':>11} {'stderr':>10}   {head}"]
         for name in SHARED + (ETA,):
             rep = self.shared[name]
-            lo, hi = rep.ci95
-            lines.append(f"{name:<22} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   [{_fmt(lo):>9}, {_fmt(hi):>9}]        "
-                         f"{'yes' if rep.identifiable else 'no'}")
+            lines.append(f"{name:<22} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {self._interval(rep, 9)}")
         lines += [f"  {self.advice(n)}" for n in self.shared if self.advice(n)]
         wide = max([5] + [len(n) for n in self.names])
         lines.append(f"{'wound':<{wide}} {'outer um':>9} {'points':>7} {'R0_um':>9} {'stderr':>9}   "
                      f"{'95 % interval':<21} {'identified':<10} {'lambda':>8} {'T_s':>9} {'chi^2':>8}")
         for w, rep in zip(self.wounds, self.r0):
-            lo, hi = rep.ci95
             _, _, lam, T = w["theta"]
             lines.append(f"{w['name']:<{wide}} {w['outer_radius_um']:>9.4g} {sum(w['n_points']):>7} {rep.estimate:>9.5g} "
-                         f"{rep.stderr:>9.3g}   [{_fmt(lo):>8}, {_fmt(hi):>8}]  {'yes' if rep.identifiable else 'no':<10} "
-                         f"{lam:>8.4g} {T:>9.4g} {w['chi2']:>8.4g}")
+                         f"{rep.stderr:>9.3g}   {self._interval(rep, 8)}        {lam:>8.4g} {T:>9.4g} {w['chi2']:>8.4g}")
         fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (f", p = {self.p_value:.3g}" if self.p_value is not None else
                                                                " (noise estimated from the residuals)")
         lines.append(f"{fit}; optimiser: {self.optimizer.get('message', '')}")

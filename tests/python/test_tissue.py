@@ -79,6 +79,10 @@ def test_one_wound_in_a_list_gives_the_single_wound_fit():
     lo, hi = alone.reports["R0_um"].ci95
     assert one.r0[0].estimate == pytest.approx(alone.theta[0], rel=1e-5)
     assert abs(one.r0[0].ci95[0] - lo) < 1e-2 * (hi - lo) and abs(one.r0[0].ci95[1] - hi) < 1e-2 * (hi - lo)
+    quick = fit_wounds([wound], intervals=False)  # the same optimum; intervals "not computed", not "not identified"
+    assert quick.shared["viscous_length_um"].estimate == pytest.approx(one.shared["viscous_length_um"].estimate, rel=1e-6)
+    assert json.loads(quick.to_json())["shared"]["tension_over_G"]["identifiable"] is None
+    assert "(not computed)" in quick.summary() and " no " not in quick.summary()
 
 
 def _radius(n=40, R0=10.0):

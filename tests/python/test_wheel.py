@@ -103,8 +103,8 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
         assert abs(parameters[name]["estimate"] - truth) < 7 * parameters[name]["stderr"], (name, parameters[name])
 
     # The README's three-wound fit (examples/data, copied: the checkout stays off the paths).
-    for R0 in (5, 10, 20):
-        shutil.copy(ROOT / "examples" / "data" / f"tissue_R{R0}um.csv", work)
+    for name in TISSUE_COMMAND[:3]:
+        shutil.copy(ROOT / "examples" / "data" / name, work)
     tissue = subprocess.run([str(venv / "bin" / "wound-opening"), "fit", *TISSUE_COMMAND, "--json", "tissue.json"],
                             capture_output=True, text=True, env=env, cwd=work, timeout=600)
     assert tissue.returncode == 0, tissue.stderr
