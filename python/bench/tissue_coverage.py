@@ -67,12 +67,13 @@ def main() -> None:
     rows = []
     with open(f"{out}.csv", "w") as f:
         f.write("noise,seed,failed,alone_failed,seconds," + ",".join(f"{k}_identified,{k}_covered" for k in keys) + "\n")
-        for noise in map(float, args.noises.split(",")):
-            for seed in range(args.draws):
-                row = one_draw(noise, 5000 + seed, curves)
+        for level, noise in enumerate(map(float, args.noises.split(","))):
+            for draw_no in range(args.draws):
+                seed = 5000 + 1000 * level + draw_no  # other noise vectors at each level: independent samples
+                row = one_draw(noise, seed, curves)
                 rows.append((noise, row))
                 cells = [row.get(k, ("", "")) for k in keys]
-                f.write(f"{noise},{5000 + seed},{row['failed']},{row['alone_failed']},{row['seconds']},"
+                f.write(f"{noise},{seed},{row['failed']},{row['alone_failed']},{row['seconds']},"
                         + ",".join(f"{i},{c}" for i, c in cells) + "\n")
                 f.flush()
     table(rows, keys, args.draws, out)
