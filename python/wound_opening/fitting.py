@@ -145,13 +145,12 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
             _estimate_noise(obj, z, estimated, loss != "linear")
             best, _, _ = _best(obj, [z], loss)
             z = best[0]
-    z, chi2_cost, res = best
+    z, chi2_cost, res = _restart(obj, *best, loss)  # residuals, Jacobian and chi^2 at the point reported
     n, dof = obj.size, max(obj.size - 4, 1)
     threshold = float(stats.f.ppf(0.95, 1, dof)) if any(estimated) else float(stats.chi2.ppf(0.95, 1))
     residuals = obj.residuals(z)
     jac = obj.jacobian(z)
     reasons = []
-    z, chi2_cost, res = _restart(obj, z, chi2_cost, res, loss)
     optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
     if res.status <= 0:
         reasons.append(f"optimiser stopped without converging ({res.message})")
