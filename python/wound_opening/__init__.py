@@ -12,6 +12,8 @@ units of a laser-ablation experiment (um, s, Pa), through the project's native l
         material values; to_json(), tables(), export(stem)); Parameters: fixed, bounded,
         Gaussian priors, G
     write_report(path, result, radius, profile=None) -> a self-contained HTML report of a fit
+    fit_wounds([Wound(radius, outer_radius_um, profile=None, name=None), ...]) -> TissueFitResult
+        (several wounds of one tissue: shared material, each R0); read_wounds(path, wound_col=)
     sweep(grid or list of parameter sets, times) -> pandas DataFrame (local or Dask)
     fmu_path(name) -> the path of a shipped FMU archive, for fmpy or another FMI master
 
@@ -24,6 +26,7 @@ import importlib
 #: starts without numpy, scipy or pandas.
 _HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
          "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fitting", "Simulation": "model",
+         "Wound": "tissue", "fit_wounds": "tissue", "read_wounds": "lab_files", "TissueFitResult": "tissue_result",
          "simulate": "model", "FitResult": "result", "sweep": "sweeping", "fmu_path": "shipped",
          "Parameters": "parameters", "from_material": "material", "to_material": "material",
          "write_report": "report"}
@@ -43,6 +46,7 @@ def __getattr__(name):
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-__all__ = ["FitResult", "NativeLibraryMissing", "Parameters", "RadiusSeries", "Simulation", "SolverError", "VelocityProfile",
-           "fit", "fmu_path", "from_material", "library_path", "read_profile", "read_radius", "simulate", "sweep",
-           "to_material", "write_report"]
+__all__ = ["FitResult", "NativeLibraryMissing", "Parameters", "RadiusSeries", "Simulation", "SolverError",
+           "TissueFitResult", "VelocityProfile", "Wound", "fit", "fit_wounds", "fmu_path", "from_material",
+           "library_path", "read_profile", "read_radius", "read_wounds", "simulate", "sweep", "to_material",
+           "write_report"]

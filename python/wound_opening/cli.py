@@ -12,18 +12,24 @@ def _fit(args) -> None:
     from .fitting import fit
     from .lab_files import read_profile, read_radius
     from .parameters import from_options
+    from .tables import InputError, float_list
 
     units = dict(time_unit=args.time_unit, length_unit=args.length_unit, pixel_size_um=args.pixel_size_um,
                  cut_time=args.cut_time)
-    radius = read_radius(args.radius_csv, time_col=args.time_col, radius_col=args.radius_col,
+    outer = float_list(args.outer_radius_um, "--outer-radius-um")
+    profiles = [read_profile(p, time_col=args.piv_time_col, r_col=args.piv_r_col, velocity_col=args.piv_velocity_col,
+                             sd_col=args.piv_velocity_sd_col, noise_um_s=args.velocity_noise_um_s, **units)
+                for p in args.profile or []]
+    if args.wound_col or len(args.radius_csv) > 1:
+        return _fit_wounds(args, units, outer, profiles)
+    if len(outer) > 1 or len(profiles) > 1:
+        raise InputError(f"one radius file (one wound) takes one outer radius and at most one --profile, got "
+                         f"{len(outer)} and {len(profiles)}")
+    radius = read_radius(args.radius_csv[0], time_col=args.time_col, radius_col=args.radius_col,
                          sd_col=args.radius_sd_col, noise_um=args.radius_noise_um, **units)
-    profile = None
-    if args.profile:
-        profile = read_profile(args.profile, time_col=args.piv_time_col, r_col=args.piv_r_col,
-                               velocity_col=args.piv_velocity_col, sd_col=args.piv_velocity_sd_col,
-                               noise_um_s=args.velocity_noise_um_s, **units)
+    profile = profiles[0] if profiles else None
     params = from_options(args.fix, args.bound, args.prior)
-    result = fit(radius, profile, outer_radius_um=args.outer_radius_um, loss=args.loss, params=params)
+    result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
     print(result.summary())
     if args.json:
         with open(args.json, "w") as f:
@@ -50,6 +56,42 @@ def _command_line() -> str:
     import shlex
 
     return "wound-opening " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+
+
+def _fit_wounds(args, units, outer, profiles) -> int:
+    """Several wounds of one tissue: one radius file each, or one long table with --wound-col."""
+    from .lab_files import read_radius, read_wounds
+    from .tables import InputError
+    from .tissue import Wound, fit_wounds
+
+    columns = dict(time_col=args.time_col, radius_col=args.radius_col, sd_col=args.radius_sd_col,
+                   noise_um=args.radius_noise_um, **units)
+    if args.wound_col:
+        if len(args.radius_csv) > 1:
+            raise InputError(f"--wound-col reads one long table with every wound: {len(args.radius_csv)} files given")
+        series = read_wounds(args.radius_csv[0], wound_col=args.wound_col, **columns)
+    else:
+        series = {path: read_radius(path, **columns) for path in args.radius_csv}
+    names = list(series)
+    if len(outer) not in (1, len(names)):
+        raise InputError(f"--outer-radius-um: {len(outer)} values for {len(names)} wounds ({', '.join(names)}): give "
+                         "one for all or one per wound, in this order")
+    if profiles and len(profiles) != len(names):
+        raise InputError(f"--profile: {len(profiles)} files for {len(names)} wounds ({', '.join(names)}): give one "
+                         "per wound, in this order, or none")
+    if args.plot or args.report or args.export:
+        raise InputError("--plot, --report and --export describe one wound's fit: with several wounds write --json")
+    if args.fix or args.bound or args.prior:
+        raise InputError("--fix, --bound and --prior apply to one wound's fit: the fit of several wounds takes "
+                         "no constraints")
+    wounds = [Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
+              for k, (name, s) in enumerate(series.items())]
+    result = fit_wounds(wounds, loss=args.loss)
+    print(result.summary())
+    if args.json:
+        with open(args.json, "w") as f:
+            f.write(result.to_json() + "\n")
+    return 0 if result.converged else 1
 
 
 def _sweep(args) -> None:
@@ -112,13 +154,18 @@ def parser() -> argparse.ArgumentParser:
         "(docs/fitting.md). Units: um, s, Pa; lambda and sigma dimensionless."))
     sub = top.add_subparsers(dest="command", required=True)
 
-    f = sub.add_parser("fit", help="fit R0_um, sigma, lambda, T_s to a radius series (and a velocity profile)",
-                       formatter_class=HelpFormatter)
-    f.add_argument("radius_csv", metavar="RADIUS.csv", help="columns time_s,radius_um (time since the cut), "
-                   "or as named by --time-col, --radius-col")
-    f.add_argument("--profile", metavar="PROFILE.csv",
-                   help="columns time_s,r_um,velocity_um_s (r: current distance from the wound centre)")
-    f.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
+    f = sub.add_parser("fit", help="fit R0_um, sigma, lambda, T_s to a radius series (and a velocity profile); "
+                       "several wounds of one tissue: their shared material and each R0", formatter_class=HelpFormatter)
+    f.add_argument("radius_csv", metavar="RADIUS.csv", nargs="+", help="columns time_s,radius_um (time since the "
+                   "cut), or as named by --time-col, --radius-col; several files: several wounds of one tissue, "
+                   "fitted together (shared viscous length, tension/G, zeta/G, eta/G; each wound its R0)")
+    f.add_argument("--profile", metavar="PROFILE.csv", action="append",
+                   help="columns time_s,r_um,velocity_um_s (r: current distance from the wound centre); with "
+                   "several wounds, repeat it once per wound in their order")
+    f.add_argument("--outer-radius-um", required=True, metavar="UM[,UM..]", help="outer radius of the tissue (um); "
+                   "with several wounds one for all or one per wound in their order (100,120,90)")
+    f.add_argument("--wound-col", metavar="NAME", help="RADIUS.csv is one long table of several wounds, this "
+                   "column naming the wound of each row (times ascending within each wound)")
     f.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
     f.add_argument("--plot", metavar="OUT.png", help="data with the fit, residuals, profile likelihoods")
     f.add_argument("--export", metavar="STEM", help="write STEM_radius.csv (data, model, residual, normalised "

@@ -60,7 +60,9 @@ def _uncertainties(obj: Objective, radius: RadiusSeries, profile: VelocityProfil
     return estimated
 
 
-def _estimate_noise(obj: Objective, z, estimated, robust: bool, n_free: int = 4) -> None:
+def _estimate_noise(obj: Objective, z, estimated, robust: bool, share: float | None = None) -> None:
+    """Scale the estimated data sets' uncertainties to their residuals at z; `share`: the
+    fraction of each set's points taken by the parameters (default 4 / the points)."""
     res = obj.residuals(z)
     parts = obj.split(res)
     scale = []
@@ -71,7 +73,7 @@ def _estimate_noise(obj: Objective, z, estimated, robust: bool, n_free: int = 4)
         if robust:
             factor = 1.4826 * float(np.median(np.abs(part)))
         else:
-            dof = max(part.size - n_free * part.size / obj.size, 1.0)
+            dof = max(part.size * (1 - (4 / obj.size if share is None else share)), 1.0)
             factor = math.sqrt(float(np.sum(part**2)) / dof)
         scale.append(np.full(part.size, max(factor, 1e-300)))
     obj.sd = obj.sd * np.concatenate(scale)
@@ -91,6 +93,30 @@ def _best(obj, starts, loss):
         if best is None or c < best[1]:
             best = (z, c, res)
     return best, failures, ends
+
+
+def _restart(obj, z, chi2_cost, res, loss):
+    """A local fit that exhausted its evaluations (status 0) restarted, up to 4 times, until
+    the cost drops by less than FLAT (then converged: at its minimum for the intervals).
+    Returns (z, cost, result)."""
+    if res.status != 0:
+        return z, chi2_cost, res
+    from .local import local_fit
+
+    for _ in range(4):
+        z2, c2, res2 = local_fit(obj, z, loss=loss, max_nfev=400)
+        drop = chi2_cost - c2
+        if c2 < chi2_cost:
+            z, chi2_cost = z2, c2
+        if res2.status > 0 or drop < FLAT:
+            break
+    if res2.status > 0:
+        res = res2
+    elif drop < FLAT:
+        res.status = 1
+        res.message += (f" The last restart lowered the cost by {max(drop, 0):.2g} (< {FLAT}): at its minimum "
+                        "for the intervals, the parameters moving along a flat valley.")
+    return z, chi2_cost, res
 
 
 def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_radius_um: float,
@@ -135,33 +161,16 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     z = best[0]
     if any(estimated):
         for _ in range(2):  # noise from the residuals, then refit with those weights
-            _estimate_noise(data, z, estimated, loss != "linear", n_free)
+            _estimate_noise(data, z, estimated, loss != "linear", n_free / data.size)
             best, _, _ = _best(obj, [z], loss)
             z = best[0]
-    z, chi2_cost, res = best
+    z, chi2_cost, res = _restart(obj, *best, loss)  # residuals, Jacobian and chi^2 at the point reported
     dof = max(obj.size - n_free, 1)  # the priors count as data
     threshold = float(stats.f.ppf(0.95, 1, dof)) if any(estimated) else float(stats.chi2.ppf(0.95, 1))
     residuals = data.residuals(z)
     jac = obj.jacobian(z)
     reasons = []
     optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
-    if res.status == 0:  # evaluations exhausted: restart (up to 4 times) until the cost drops by < FLAT
-        from .local import local_fit
-
-        for _ in range(4):
-            z2, c2, res2 = local_fit(obj, z, loss=loss, max_nfev=400)
-            drop = chi2_cost - c2
-            if c2 < chi2_cost:
-                z, chi2_cost = z2, c2
-            if res2.status > 0 or drop < FLAT:
-                break
-        if res2.status > 0:
-            res = res2
-        elif drop < FLAT:
-            res.status = 1
-            res.message += (f" The last restart lowered the cost by {max(drop, 0):.2g} (< {FLAT}): at its minimum "
-                            "for the intervals, the parameters moving along a flat valley.")
-        optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
     if res.status <= 0:
         reasons.append(f"optimiser stopped without converging ({res.message})")
     flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)

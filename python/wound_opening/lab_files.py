@@ -47,14 +47,42 @@ def read_radius(path: str, *, time_col: str = "time_s", radius_col: str = "radiu
     """The wound radius series of a CSV file. `cut_time`: the time of the cut in the file's
     time unit (subtracted). `sd_col`: per-point standard deviations (in the length unit;
     default: the column radius_sd_um if present). `noise_um`: one noise level in um."""
+    return _radius_series(path, time_col, radius_col, sd_col, time_unit, length_unit, pixel_size_um, cut_time,
+                          noise_um)[None]
+
+
+def read_wounds(path: str, *, wound_col: str, time_col: str = "time_s", radius_col: str = "radius_um",
+                sd_col: str | None = None, time_unit: str = "s", length_unit: str = "um",
+                pixel_size_um: float | None = None, cut_time: float = 0.0,
+                noise_um: float | None = None) -> dict:
+    """Several wounds' radius series from one long table with a wound id column `wound_col`:
+    {id: RadiusSeries} in the order the ids first appear; times ascend within each wound, each
+    wound has at least MIN_POINTS rows. The other arguments as for `read_radius`."""
+    return _radius_series(path, time_col, radius_col, sd_col, time_unit, length_unit, pixel_size_um, cut_time,
+                          noise_um, wound_col)
+
+
+def _radius_series(path, time_col, radius_col, sd_col, time_unit, length_unit, pixel_size_um, cut_time, noise_um,
+                   wound_col=None) -> dict:
+    """{wound id: RadiusSeries} of a file ({None: ...} without a wound column)."""
+    import numpy as np
+
     sec, um = _factors(path, time_unit, length_unit, pixel_size_um)
     cut = _cut(cut_time)
     table = read_columns(path, (time_col, radius_col) + ((sd_col,) if sd_col else ()), cut_time=cut,
-                         min_rows=MIN_POINTS, optional=() if sd_col else ("radius_sd_um",))
+                         min_rows=MIN_POINTS, optional=() if sd_col else ("radius_sd_um",), label=wound_col)
     c = table.columns
     sd = c.get(sd_col or "radius_sd_um")
-    return RadiusSeries((c[time_col] - cut) * sec, c[radius_col] * um, noise_um,
-                        None if sd is None else sd * um, source=path, lines=table.lines)
+    ids = c[wound_col] if wound_col else np.full(table.lines.size, None)
+    out = {}
+    for name in dict.fromkeys(ids.tolist()):  # the wound ids as Python str, in order of appearance
+        rows = np.flatnonzero(ids == name) if wound_col else np.arange(ids.size)
+        if rows.size < MIN_POINTS:
+            raise InputError(f"{path}: {wound_col} {name!r} (lines {table.lines[rows[0]]}-{table.lines[rows[-1]]}): "
+                             f"{rows.size} rows: too few points, need at least {MIN_POINTS} per wound")
+        out[name] = RadiusSeries((c[time_col][rows] - cut) * sec, c[radius_col][rows] * um, noise_um,
+                                 None if sd is None else sd[rows] * um, source=path, lines=table.lines[rows])
+    return out
 
 
 def read_profile(path: str, *, time_col: str = "time_s", r_col: str = "r_um",

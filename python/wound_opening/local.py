@@ -47,13 +47,14 @@ def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None 
               loss: str = "linear", tol: float = 1e-12, max_nfev: int = 200):
     """Minimise the cost from z0, with coordinate `fixed` held at `value` if given, and the
     coordinates `obj.fixed` (a dict, the user's fixed parameters) held at theirs.
-    `obj` may be an Objective or a wrapper of it with its own `bounds()` (parameters.py,
-    derived.py). Returns (z, cost at z, least_squares result)."""
+    `obj` may be an Objective or another objective of any dimension with its own `bounds()`
+    (parameters.py, the reparametrisations of derived.py, the several wounds of tissue.py).
+    Returns (z, cost at z, least_squares result)."""
     held = dict(getattr(obj, "fixed", {}))
     if fixed is not None:
         held[fixed] = value
-    free = [i for i in range(4) if i not in held]
     lower, upper = bounds_of(obj)
+    free = [i for i in range(lower.size) if i not in held]
     z = np.clip(np.array(z0, dtype=float), lower, upper)
     for i, v in held.items():
         z[i] = v

@@ -205,7 +205,7 @@ def specification(params, outer_radius_um: float) -> Spec:
             v = _finite(name, "value", p.value)
             if not (a < v < b or (i == 2 and v == 0.0)):
                 raise ValueError(f"{name} = {v:g}: outside the accepted range ({a:g}, {b:g}) {UNITS[name]}"
-                                 + (f" (R0 below the outer radius / 1.001)" if i == 0 else ""))
+                                 + (" (R0 below the outer radius / 1.001)" if i == 0 else ""))
             fixed[i] = v
             continue
         if math.isfinite(lo) or math.isfinite(hi):

@@ -137,14 +137,34 @@ def _estimates(result) -> str:
     for name in NAMES:
         rep = result.reports[name]
         lo, hi = rep.ci95
+        c = rep.constraint
+        if c.get("fixed"):
+            rows.append((name, _num(rep.estimate), "—", "—", "—", "fixed (given)", ""))
+            continue
         computed = rep.profile is not None
         state = ("identified" if rep.identifiable else "not identified") if computed else "interval not computed"
+        state += ("; prior {:g} ± {:g}".format(*c["prior"]) if "prior" in c else "") + (
+            "; bounds [{:g}, {:g}]".format(*c["bounds"]) if "bounds" in c else "")
         rows.append((name, _num(rep.estimate), _num(rep.stderr, 3), _num(lo) if computed else "—",
                      _num(hi) if computed else "—", state, result.advice(name)))
     out = _table(["parameter", "estimate", "stderr", "95 % lower", "95 % upper", "", "advice"], rows)
+    rows = []
+    for k, m in result.material.items():
+        if k == "G_pa":
+            rows.append((k, _num(m["estimate"]), "—", "—", "Pa", "fixed (given)" if m["fixed"]
+                         else f"Gaussian prior, sd {_num(m['sd'], 3)} Pa"))
+            continue
+        computed = m.get("interval_computed", True)
+        state = ("identified" if m["identifiable"] else "not identified") if computed else "interval not computed"
+        lo, hi = m["ci95"]
+        rows.append((k, _num(m["estimate"]), _num(lo) if computed else "—", _num(hi) if computed else "—",
+                     m["unit"], state))
+    out += "<h3>Material values</h3>" + _table(["quantity", "value", "95 % lower", "95 % upper", "unit", ""], rows)
     computed = result._derived_computed()
     rows = []
     for k, (v, (lo, hi), ok) in result._derived_all().items():
+        if k not in ("R1_um", "R_final_um"):  # the others are material values
+            continue
         state = "interval not computed" if not computed[k] else "identified" if ok else "not identified"
         rows.append((k, _num(v), _num(lo), _num(hi), state))
     return out + "<h3>Derived values</h3>" + _table(["quantity", "value", "95 % lower", "95 % upper", ""], rows)

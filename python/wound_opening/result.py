@@ -37,6 +37,14 @@ class ParameterReport:
                 and not any(p.bounded))
 
 
+def chi2_warning(result) -> list:
+    """A converged fit whose chi^2 p-value (noise given) is below 1e-3."""
+    if result.converged and result.p_value is not None and result.p_value < 1e-3:
+        return [f"chi^2 / dof = {result.chi2 / result.dof:.3g} (p = {result.p_value:.2g}): the model describes the "
+                "data worse than the given noise allows"]
+    return []
+
+
 def _fmt(x) -> str:
     return "open" if x is None else f"{x:.4g}"
 
@@ -78,10 +86,7 @@ class FitResult:
     def warnings(self) -> list:
         """The model fits, but not as well as the given noise says it should; flagged points;
         a time scale at the edge of what the sampling resolves or implausible for a recoil."""
-        out = list(self.plausibility)
-        if self.converged and self.p_value is not None and self.p_value < 1e-3:
-            out.append(f"chi^2 / dof = {self.chi2 / self.dof:.3g} (p = {self.p_value:.2g}): the model describes the "
-                       "data worse than the given noise allows")
+        out = list(self.plausibility) + chi2_warning(self)
         n_out = sum(len(v) for v in self.outliers.values())
         if n_out:
             out.append(f"{n_out} points down-weighted by the {self.loss} loss (|residual| > 3 noise): rows {self.outliers}")

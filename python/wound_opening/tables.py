@@ -59,10 +59,12 @@ def _declared_separator(text: str) -> str | None:
 
 
 def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None = None, cut_time: float = 0.0,
-                 ascending: bool = True, min_rows: int = MIN_POINTS, optional: tuple[str, ...] = ()) -> Table:
+                 ascending: bool = True, min_rows: int = MIN_POINTS, optional: tuple[str, ...] = (),
+                 label: str | None = None) -> Table:
     """The named columns of a CSV file, checked: every cell a finite number, the time column
     (default: the first of `columns`) >= `cut_time` and (if `ascending`) non-decreasing, at least
-    `min_rows` rows. Columns in `optional` are read too when the header has them."""
+    `min_rows` rows. Columns in `optional` are read too when the header has them. `label`: a
+    column of names (kept as text, none empty; a wound id): times ascend within each name."""
     import pandas as pd
 
     time_column = time_column or columns[0]
@@ -96,7 +98,7 @@ def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None
         raise InputError(f"{path}: cannot be read as a table separated by {sep!r}")
     frame.columns = [str(c).strip() for c in frame.columns]
     header = list(frame.columns)
-    for name in columns:
+    for name in columns + ((label,) if label else ()):
         if name not in header:
             raise InputError(f"{path}: line {header_line}: no column {name!r} (the header has "
                              f"{', '.join(map(repr, header))})")
@@ -125,15 +127,25 @@ def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None
                     if np.isinf(values[k]) or cell.lower().lstrip("+-") == "nan" else "is not a number")
             raise InputError(f"{path}: line {lines[k]}: {name} = {raw.iloc[k]!r} {what}")
         data[name] = values
+    ids = np.zeros(len(lines), dtype=int)
+    if label:
+        names = frame[label].astype(str).str.strip()
+        empty = np.flatnonzero(names == "")
+        if empty.size:
+            raise InputError(f"{path}: line {lines[empty[0]]}: {label} is empty (every row needs its name)")
+        data[label] = names.to_numpy(dtype=str)
+        ids = pd.factorize(names)[0]
     t = data[time_column]
     if t.size and np.any(t < cut_time):
         k = int(np.flatnonzero(t < cut_time)[0])
         raise InputError(f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before the cut at {cut_time:g} "
                          "(times are since the cut, or from the cut time given; remove the rows before the cut)")
-    if ascending and t.size > 1 and np.any(np.diff(t) < 0):
-        k = int(np.flatnonzero(np.diff(t) < 0)[0]) + 1
-        raise InputError(f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before line {lines[k - 1]}'s "
-                         f"{t[k - 1]:g} (times must be ascending)")
+    back = [(rows[j + 1], rows[j]) for rows in (np.flatnonzero(ids == g) for g in range(ids.max(initial=0) + 1))
+            for j in np.flatnonzero(np.diff(t[rows]) < 0)[:1]]
+    if ascending and back:
+        k, prev = min(back)
+        raise InputError(f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before line {lines[prev]}'s "
+                         f"{t[prev]:g} (times must be ascending{' within each ' + label if label else ''})")
     if t.size < min_rows:
         raise InputError(f"{path}: {t.size} data rows: too few points, need at least {min_rows}")
     return Table(path, data, lines)

@@ -290,4 +290,5 @@ def test_a_fixed_parameter_is_said_fixed_in_the_summary_figure_and_report(robust
     fit_figure(result, radius, None, tmp_path / "fit.png", profile_points=4)
     assert not [w for w in recwarn if "xlim" in str(w.message)], [str(w.message) for w in recwarn]
     wo.write_report(tmp_path / "fit.html", result, radius)
-    assert "fixed" in (tmp_path / "fit.html").read_text()
+    page = (tmp_path / "fit.html").read_text()
+    assert '<td>R0_um</td><td class="n">10</td><td>—</td><td>—</td><td>—</td><td>fixed (given)</td>' in page, page

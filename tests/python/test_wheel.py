@@ -1,7 +1,7 @@
 """The wheel: `pip wheel .` builds it (reusing target/), it installs into a fresh venv with
 no Rust on PATH and no checkout on sys.path, and there `wound-opening fit` runs (also the
-README's quick start on its microscope export) and fmpy loads the shipped FMUs through
-`wound_opening.fmu_path`.
+README's quick starts: its microscope export, and its three-wound fit) and fmpy loads the
+shipped FMUs through `wound_opening.fmu_path`.
 
 The runtime dependencies come from the wheel's own metadata, pinned by the versions of
 python/requirements.txt (pip's cache serves them). Nothing here falls back on the checkout:
@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -21,10 +22,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 import wound_exact as we
+from bench.tissue_designs import TRUTH as TISSUE_TRUTH
 from test_cli import LAM, OUTER, R0, SIGMA, T, check_quick_start, readme_quick_start, write_radius
 
 ROOT = Path(__file__).resolve().parents[2]
 FMUS = ("WoundOpening.fmu", "WoundOpening-me.fmu", "WoundOpening-fmi3.fmu", "PurseString.fmu", "PurseString-fmi3.fmu")
+#: The README's three-wound fit (python/example_wounds.py wrote the files).
+TISSUE_COMMAND = ("tissue_R5um.csv", "tissue_R10um.csv", "tissue_R20um.csv", "--outer-radius-um", "80,100,120")
 #: The FMUs' promise at the default tolerance: |R - R_exact| <= 1e-10 (R_final - R1), t >= 0.01 T.
 FMU_TOL = 1e-10
 
@@ -107,6 +111,15 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
                            env=env, cwd=work, timeout=600)
     assert quick.returncode == 0, quick.stderr
     check_quick_start(work)
+    # The README's three-wound fit (examples/data, copied: the checkout stays off the paths).
+    for name in TISSUE_COMMAND[:3]:
+        shutil.copy(ROOT / "examples" / "data" / name, work)
+    tissue = subprocess.run([str(venv / "bin" / "wound-opening"), "fit", *TISSUE_COMMAND, "--json", "tissue.json"],
+                            capture_output=True, text=True, env=env, cwd=work, timeout=600)
+    assert tissue.returncode == 0, tissue.stderr
+    shared = json.loads((work / "tissue.json").read_text())["shared"]
+    for name, truth in TISSUE_TRUTH.items():
+        assert shared[name]["identifiable"] and shared[name]["ci95"][0] < truth < shared[name]["ci95"][1], (name, shared)
 
     # The package's files, and fmpy on the shipped archives.
     stop, step = 20.0, 1.0
