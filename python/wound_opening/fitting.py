@@ -71,20 +71,46 @@ def _estimate_noise(obj: Objective, z, estimated, robust: bool) -> None:
     obj.sd = obj.sd * np.concatenate(scale)
 
 
-def _best(obj: Objective, starts, loss):
+def _best(obj: Objective, starts, loss, rounds: int = 6):
+    """The lowest-cost local fit from `starts`. Fits that run out of evaluations (a narrow,
+    curved valley they crawl along, as plateau data at low noise give) continue side by side
+    in rounds of 400 evaluations, until the optimiser converges, a round lowers the cost by
+    less than FLAT (at its minimum for the intervals: status 1, said in the message), or
+    `rounds` are spent (status 0); a fit whose cost lies above the best converged one by more
+    than its last drop times the rounds left is abandoned (it cannot overtake it)."""
     from .local import local_fit
 
-    best, failures, ends = None, [], []
+    fits, failures = [], []
     for z0 in starts:
         try:
             z, c, res = local_fit(obj, z0, loss=loss)
         except SolverError as e:
             failures.append(str(e))
             continue
-        ends.append((z, c))
-        if best is None or c < best[1]:
-            best = (z, c, res)
-    return best, failures, ends
+        fits.append([z, c, res, math.inf])  # z, cost, result, last drop
+    for left in range(rounds, 0, -1):
+        done = [f[1] for f in fits if f[2].status > 0]
+        live = [f for f in fits if f[2].status == 0 and not (done and f[1] - min(done) > f[3] * left)]
+        if not live:
+            break
+        for f in live:
+            try:
+                z2, c2, res2 = local_fit(obj, f[0], loss=loss, max_nfev=400)
+            except SolverError:
+                f[3] = 0.0
+                continue
+            f[3] = f[1] - c2
+            if c2 < f[1]:
+                f[0], f[1] = z2, c2
+            if res2.status > 0:
+                f[2] = res2
+            elif f[3] < FLAT:
+                f[2].status = 1
+                f[2].message += (f" The last restart lowered the cost by {max(f[3], 0):.2g} (< {FLAT}): at its "
+                                 "minimum for the intervals, the parameters moving along a flat valley.")
+    ends = [(f[0], f[1]) for f in fits]
+    best = min(fits, key=lambda f: f[1])[:3] if fits else None
+    return (tuple(best) if best else None), failures, ends
 
 
 def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_radius_um: float,
@@ -126,23 +152,6 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     jac = obj.jacobian(z)
     reasons = []
     optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
-    if res.status == 0:  # evaluations exhausted: restart (up to 4 times) until the cost drops by < FLAT
-        from .local import local_fit
-
-        for _ in range(4):
-            z2, c2, res2 = local_fit(obj, z, loss=loss, max_nfev=400)
-            drop = chi2_cost - c2
-            if c2 < chi2_cost:
-                z, chi2_cost = z2, c2
-            if res2.status > 0 or drop < FLAT:
-                break
-        if res2.status > 0:
-            res = res2
-        elif drop < FLAT:
-            res.status = 1
-            res.message += (f" The last restart lowered the cost by {max(drop, 0):.2g} (< {FLAT}): at its minimum "
-                            "for the intervals, the parameters moving along a flat valley.")
-        optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
     if res.status <= 0:
         reasons.append(f"optimiser stopped without converging ({res.message})")
     flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)

@@ -32,6 +32,8 @@ from .objective import LAMBDA_MAX, NAMES, Objective
 ROOT_TOL = 1e-3
 #: ... or to a bracket across which sqrt(delta) changes by less than this fraction of it.
 BRACKET = 0.05
+#: Refining steps of a bracketed end at most (regula falsi, bisection where it creeps).
+REFINE = 16
 
 
 @dataclass
@@ -141,28 +143,33 @@ def _crossing(constrained, points, a, fa, b, fb, root):
     2 ROOT_TOL of it, relative) or the bracket spans less than BRACKET of it; then the line
     through the bracket (for sqrt(delta) = |v - v0| (1 + c (v - v0)) / se its error is
     ~ c (b - a)^2 / 4, below 1e-3 se for a bracket of 5 % and a skewness c se < 1).
-    Returns (end, False, points) or (None, True, points) if a refining fit is unsure."""
-    side = 0
-    for _ in range(6):
+    Where the profile is far from linear (a wall: delta rising from ~0 to 1e3 within the
+    bracket, as where R0 passes the first measured radius) the secant creeps from the inside
+    end: after two steps that keep the same end the next bisects, so the bracket at least
+    halves every third step. A bracket not located within REFINE steps ends at its
+    outside end b (delta >= threshold there: the interval is never cut inside the region the
+    data allow). Returns (end, False, points) or (None, True, points) if a refining fit is
+    unsure."""
+    last, repeat, wa, wb = 0, 0, fa, fb  # wa, wb: the Illinois-weighted values the secant uses
+    for _ in range(REFINE):
         if min(-fa, fb) < ROOT_TOL * root or fb - fa < BRACKET * root:
-            break
-        c = a + (b - a) * (-fa) / (fb - fa)
+            return a + (b - a) * (-fa) / (fb - fa), False, points
+        c = 0.5 * (a + b) if repeat >= 2 else a + (b - a) * (-wa) / (wb - wa)
         _, dc, unsure = constrained(c)
         if unsure:
             return None, True, points
         points.append((c, dc))
         fc = math.sqrt(dc) - root
-        if fc < 0:
-            a, fa = c, fc
-            if side == -1:
-                fb *= 0.5
-            side = -1
+        side = -1 if fc < 0 else 1
+        repeat = repeat + 1 if side == last else 0
+        last = side
+        if side < 0:
+            a, fa, wa = c, fc, fc
+            wb *= 0.5 if repeat == 1 else 1.0
         else:
-            b, fb = c, fc
-            if side == 1:
-                fa *= 0.5
-            side = 1
-    return a + (b - a) * (-fa) / (fb - fa), False, points
+            b, fb, wb = c, fc, fc
+            wa *= 0.5 if repeat == 1 else 1.0
+    return b, False, points
 
 
 def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,
