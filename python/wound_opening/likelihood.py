@@ -63,6 +63,18 @@ def _limits_around(i: int, z: np.ndarray) -> tuple[float, float]:
     return z[3] - math.log(1e2), z[3] + math.log(1e2)
 
 
+def _on_search_bound(obj, z: np.ndarray, fixed: int) -> bool:
+    """Whether ln R0 or ln T (coordinates 0 and 3, other than the profiled one) lies on its
+    search bound (local.bounds: R0 from 1 % of the smallest radius to the outer radius /
+    1.001, T within 1e-6 .. 1e6 of the last time). Those bounds are not physical: a profile
+    fit held there rises because of the bound (plateau-only data with R0 -> 0 and
+    sigma -> infinity at fixed R0 sigma), so the rise does not bound the parameter."""
+    from .local import bounds
+
+    lower, upper = obj.bounds() if hasattr(obj, "bounds") else bounds(obj)
+    return any(k != fixed and not (lower[k] + 1e-6 < z[k] < upper[k] - 1e-6) for k in (0, 3))
+
+
 def _own_units(i: int, v: float) -> float:
     return math.exp(v) if i in (0, 3) else v
 
@@ -92,7 +104,9 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
         """chi^2 at fixed v from the predicted start; where that looks like a crossing, also
         from the last profile point, keeping the lower (a false crossing would shorten the
         interval). A crossing found by fits that ran out of evaluations (a flat, curved
-        valley they crawl along) is not trusted: `unsure` ends the walk with an open end."""
+        valley they crawl along) is not trusted: `unsure` ends the walk with an open end.
+        Neither is a point whose fit puts R0 or T on a search bound (`_on_search_bound`):
+        the bound, not the data, then holds the profile."""
         z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7)
         unsure = False
         if chi2 - chi2_min >= threshold:
@@ -100,7 +114,7 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2
             unsure = res.status == 0
-        return z, max(chi2 - chi2_min, 0.0), unsure
+        return z, max(chi2 - chi2_min, 0.0), unsure or _on_search_bound(obj, z, i)
 
     from ._native import SolverError
 

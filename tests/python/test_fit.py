@@ -171,3 +171,21 @@ def test_plateau_data_at_noise_1e_6_converge_to_the_optimum():
     assert result.converged, result.reasons
     t, exact, _ = clean("plateau", 5.0)
     assert result.chi2 <= chi2_of(radius, exact) + 1e-6 * 40, (result.chi2, chi2_of(radius, exact))
+
+
+def test_a_profile_held_by_a_search_bound_is_open():
+    """Plateau data (42-60 s, lambda = 0, noise 4 %) leave R0 and sigma free along R0 sigma
+    = const; the best point has R0 on its search bound (1 % of the smallest radius) and
+    sigma ~ 100. Walking sigma up, the fits stay pinned to that bound and the profile rises
+    because of it, not of the data: the end is open (sigma not identified), never a finite
+    end that an interval around sigma ~ 100 would then report."""
+    from wound_opening.fitting import _uncertainties
+    from wound_opening.likelihood import _side
+    from wound_opening.local import local_fit
+
+    radius, _ = draw("plateau", 0.0, 4e-2, 1001)
+    obj = Objective(radius, None, 100.0)
+    _uncertainties(obj, radius, None)
+    z, chi2, _ = local_fit(obj, to_z((0.2, 100.0, 50.0, 0.004)), max_nfev=40)
+    end, open_end, _ = _side(obj, 1, z, chi2, 3.84, 10.0, 1, z[1] + 10 * abs(z[1]) + 1, np.eye(4)[1], "linear")
+    assert end is None and open_end, end
