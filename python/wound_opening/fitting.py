@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from ._native import SolverError
-from .data import RadiusSeries, VelocityProfile, check_against
+from .data import RadiusSeries, VelocityProfile, check_against, where
 from .objective import NAMES, Objective, from_z
 from .plausibility import time_scale_warnings
 from .result import FitResult, ParameterReport
@@ -201,21 +201,25 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                      evaluations=obj.evaluations, converged=not reasons, reasons=reasons,
                      optimizer=optimizer,
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
-                     outliers=_outliers(obj, flagged), piv_at_edge=obj.inside_edge,
+                     outliers=_outliers(obj, flagged, radius, profile), piv_at_edge=obj.inside_edge,
                      derived_profiles=derived_p, plausibility=time_scale_warnings(theta, obj.outer, radius, profile))
 
 
-def _outliers(obj: Objective, flagged) -> dict:
-    """Flagged points as rows of the input (1 = first row)."""
+def _outliers(obj: Objective, flagged, radius: RadiusSeries, profile: VelocityProfile | None) -> dict:
+    """Flagged points as rows of the input (1 = first row), and under "where" each as its
+    file and file line when read from a file (data.where), else as its row."""
     rows = {"radius": [], "profile": []}
     for k in flagged:
         if k < obj.n_radius:
-            rows["radius"].append(int(obj.order[k]) + 1)
+            rows["radius"].append(int(obj.order[k]))
         else:
             j = k - obj.n_radius
             for _, r, _, idx in obj.groups:
                 if j < r.size:
-                    rows["profile"].append(int(idx[j]) + 1)
+                    rows["profile"].append(int(idx[j]))
                     break
                 j -= r.size
-    return {k: sorted(v) for k, v in rows.items()}
+    out = {key: sorted(k + 1 for k in v) for key, v in rows.items()}
+    out["where"] = [where(data, key, k) for key, data in (("radius", radius), ("profile", profile))
+                    for k in sorted(rows[key])]
+    return out

@@ -70,9 +70,10 @@ class FitResult:
         if self.converged and self.p_value is not None and self.p_value < 1e-3:
             out.append(f"chi^2 / dof = {self.chi2 / self.dof:.3g} (p = {self.p_value:.2g}): the model describes the "
                        "data worse than the given noise allows")
-        n_out = sum(len(v) for v in self.outliers.values())
+        n_out = len(self.outliers.get("radius", [])) + len(self.outliers.get("profile", []))
         if n_out:
-            out.append(f"{n_out} points down-weighted by the {self.loss} loss (|residual| > 3 noise): rows {self.outliers}")
+            out.append(f"{n_out} points down-weighted by the {self.loss} loss (|residual| > 3 noise): "
+                       + "; ".join(self.outliers.get("where", [])))
         return out
 
     def _derived_all(self) -> dict:
