@@ -6,8 +6,12 @@ Coverage samples: 6 fixed draws per configuration; every parameter reported iden
 may miss the truth (95 % interval) in at most 2 of them. For an honest 95 % interval
 P(3 or more misses of 6) = 2e-3 (binomial), so an unbiased fit fails this for almost no
 choice of seeds; an interval that misses the truth in half the draws passes with
-probability 0.34, and a bias of several half-widths (coverage ~0) always fails it. The full
-study over noise x lambda x design is python/bench/fit_coverage.py (docs/fitting.md).
+probability 0.34, and a bias of several half-widths (coverage ~0) always fails it. With the
+truth lambda = 0 on its bound (radius at 1e-6, early times at 1e-4) every lambda reported
+identified misses it; the same bound holds (measured: 6 % of draws, bench/fit_lambda_zero.py).
+The full study over noise x lambda x design is python/bench/fit_coverage.py
+(docs/fitting.md). The early-time and plateau draws that cost 10-40 s per fit are kept as
+single decisive draws (the tests after the sample) rather than samples.
 """
 
 from __future__ import annotations
@@ -84,7 +88,8 @@ def test_piv_vectors_at_the_edge_and_just_outside_fit_without_a_penalty():
     assert "piv_vectors_at_edge" in result.to_dict()
 
 
-CONFIGS = [("radius", 0.05, 1e-3), ("radius", 0.0, 1e-6), ("piv", 0.5, 1e-4), ("piv", 5.0, 1e-2)]
+CONFIGS = [("radius", 0.05, 1e-3), ("radius", 0.0, 1e-6), ("piv", 0.5, 1e-4), ("piv", 5.0, 1e-2),
+           ("early", 0.0, 1e-4)]
 
 
 @pytest.mark.parametrize("design, lam, noise", CONFIGS)
