@@ -32,6 +32,10 @@ from .objective import LAMBDA_MAX, NAMES, Objective
 ROOT_TOL = 1e-3
 #: ... or to a bracket across which sqrt(delta) changes by less than this fraction of it.
 BRACKET = 0.05
+#: A fit confirming a crossing (tolerances 1e-10, rounds of 400 evaluations) stops once a
+#: round lowers chi^2 by less than this: the end then moves by a negligible ~CONFIRM / 3.84
+#: of the threshold.
+CONFIRM = 0.01
 #: Refining steps of a bracketed end at most (regula falsi, bisection where it creeps).
 REFINE = 16
 
@@ -105,6 +109,9 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
         from the last profile point, keeping the lower (a false crossing would shorten the
         interval). A crossing found by fits that ran out of evaluations (a flat, curved
         valley they crawl along) is not trusted: `unsure` ends the walk with an open end.
+        The fits at tolerances 1e-7 can stop short on such a valley with a converged status
+        (early-time data: Delta chi^2 = 5.7 where the minimum is 0.02), so a crossing is
+        confirmed by fits at 1e-10 continued while they lower chi^2 by CONFIRM or more.
         Neither is a point whose fit puts R0 or T on a search bound (`_on_search_bound`):
         the bound, not the data, then holds the profile."""
         z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7)
@@ -113,6 +120,13 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
             z2, chi2b, res2 = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7)
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2
+            for _ in range(3):  # a crossing stands only where a fit at tolerances 1e-10 confirms it
+                z3, chi2c, res3 = local_fit(obj, z, fixed=i, value=v, loss=loss, tol=1e-10, max_nfev=400)
+                drop = chi2 - chi2c
+                if chi2c < chi2:
+                    z, chi2, res = z3, chi2c, res3
+                if chi2 - chi2_min < threshold or res3.status > 0 or drop < CONFIRM:
+                    break
             unsure = res.status == 0
         return z, max(chi2 - chi2_min, 0.0), unsure or _on_search_bound(obj, z, i)
 

@@ -194,3 +194,22 @@ def test_a_profile_held_by_a_search_bound_is_open():
     z, chi2, _ = local_fit(obj, to_z((0.2, 100.0, 50.0, 0.004)), max_nfev=40)
     end, open_end, _ = _side(obj, 1, z, chi2, 3.84, 10.0, 1, z[1] + 10 * abs(z[1]) + 1, np.eye(4)[1], "linear")
     assert end is None and open_end, end
+
+
+def test_a_crossing_on_a_curved_valley_is_confirmed_by_a_tight_fit():
+    """Early times (0.5-5 s), lambda = 0.5, noise 1 %: from the estimate (R0 = 10.39) the
+    profile of R0 is flat down past the truth 10 (Delta chi^2 = 0.02 there), but fits at
+    tolerances 1e-7 stop short on its curved valley and showed a crossing at 10.17. The walk
+    down must not close R0's interval above the truth."""
+    import math
+
+    from wound_opening.fitting import _uncertainties
+    from wound_opening.likelihood import _side
+    from wound_opening.local import local_fit
+
+    radius, _ = draw("early", 0.5, 1e-2, 1004)
+    obj = Objective(radius, None, 100.0)
+    _uncertainties(obj, radius, None)
+    z, chi2, _ = local_fit(obj, to_z((10.39, 0.264, 50.0, 0.0026)))
+    end, _, _ = _side(obj, 0, z, chi2, 3.84, 0.01, -1, z[0] - math.log(3.0), np.eye(4)[0], "linear")
+    assert end is None or math.exp(end) < 10.0, math.exp(end)
