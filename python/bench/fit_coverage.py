@@ -13,7 +13,6 @@ import itertools
 import time
 from pathlib import Path
 
-import numpy as np
 
 from bench.fit_designs import NAMES, clean, covers, draw, truth
 from wound_opening.fitting import fit
@@ -21,6 +20,7 @@ from wound_opening.fitting import fit
 NOISES = (1e-6, 1e-4, 1e-3, 1e-2, 4e-2)
 LAMBDAS = (0.0, 0.05, 0.5, 5.0, 50.0)
 DESIGNS = ("radius", "piv", "plateau", "early")
+CELLS = list(itertools.product(LAMBDAS, NOISES, DESIGNS))
 
 
 def cell(design, lam, noise, draws):
@@ -49,13 +49,15 @@ def main() -> None:
     ap.add_argument("--draws", type=int, default=200)
     ap.add_argument("--out", default="out/fit_coverage")
     ap.add_argument("--skip", type=int, default=0, help="leave out the first SKIP cells (to resume a run)")
+    ap.add_argument("--count", type=int, default=None, help="run COUNT cells after the skipped ones (default: all)")
+    ap.add_argument("--designs", default=",".join(DESIGNS), help="only these designs (comma-separated)")
     args = ap.parse_args()
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     rows = []
     with open(f"{out}.csv", "w") as f:
         f.write("design,lambda,noise,draws,failed," + ",".join(f"{n}_identified,{n}_covered" for n in NAMES) + ",seconds\n")
-        for lam, noise, design in list(itertools.product(LAMBDAS, NOISES, DESIGNS))[args.skip:]:
+        for lam, noise, design in [c for c in CELLS[args.skip:][:args.count] if c[2] in args.designs.split(",")]:
             start = time.process_time()
             failed, ident, cover = cell(design, lam, noise, args.draws)
             row = [design, lam, noise, args.draws, failed]

@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 from ._native import SolverError
-from .data import RadiusSeries, VelocityProfile, check_against
+from .data import RadiusSeries, VelocityProfile, check_against, where
 from .export import data_points
 from .objective import NAMES, Objective, from_z
 from .plausibility import time_scale_warnings
@@ -79,44 +79,47 @@ def _estimate_noise(obj: Objective, z, estimated, robust: bool, share: float | N
     obj.sd = obj.sd * np.concatenate(scale)
 
 
-def _best(obj, starts, loss):
+def _best(obj, starts, loss, rounds: int = 6):
+    """The lowest-cost local fit from `starts`. Fits that run out of evaluations (a narrow,
+    curved valley they crawl along, as plateau data at low noise give) continue side by side
+    in rounds of 400 evaluations, until the optimiser converges, a round lowers the cost by
+    less than FLAT (at its minimum for the intervals: status 1, said in the message), or
+    `rounds` are spent (status 0); a fit whose cost lies above the best converged one by more
+    than its last drop times the rounds left is abandoned (it cannot overtake it). `obj`:
+    an Objective or any objective local_fit takes (parameters.py, tissue.py)."""
     from .local import local_fit
 
-    best, failures, ends = None, [], []
+    fits, failures = [], []
     for z0 in starts:
         try:
             z, c, res = local_fit(obj, z0, loss=loss)
         except SolverError as e:
             failures.append(str(e))
             continue
-        ends.append((z, c))
-        if best is None or c < best[1]:
-            best = (z, c, res)
-    return best, failures, ends
-
-
-def _restart(obj, z, chi2_cost, res, loss):
-    """A local fit that exhausted its evaluations (status 0) restarted, up to 4 times, until
-    the cost drops by less than FLAT (then converged: at its minimum for the intervals).
-    Returns (z, cost, result)."""
-    if res.status != 0:
-        return z, chi2_cost, res
-    from .local import local_fit
-
-    for _ in range(4):
-        z2, c2, res2 = local_fit(obj, z, loss=loss, max_nfev=400)
-        drop = chi2_cost - c2
-        if c2 < chi2_cost:
-            z, chi2_cost = z2, c2
-        if res2.status > 0 or drop < FLAT:
+        fits.append([z, c, res, math.inf])  # z, cost, result, last drop
+    for left in range(rounds, 0, -1):
+        done = [f[1] for f in fits if f[2].status > 0]
+        live = [f for f in fits if f[2].status == 0 and not (done and f[1] - min(done) > f[3] * left)]
+        if not live:
             break
-    if res2.status > 0:
-        res = res2
-    elif drop < FLAT:
-        res.status = 1
-        res.message += (f" The last restart lowered the cost by {max(drop, 0):.2g} (< {FLAT}): at its minimum "
-                        "for the intervals, the parameters moving along a flat valley.")
-    return z, chi2_cost, res
+        for f in live:
+            try:
+                z2, c2, res2 = local_fit(obj, f[0], loss=loss, max_nfev=400)
+            except SolverError:
+                f[3] = 0.0
+                continue
+            f[3] = f[1] - c2
+            if c2 < f[1]:
+                f[0], f[1] = z2, c2
+            if res2.status > 0:
+                f[2] = res2
+            elif f[3] < FLAT:
+                f[2].status = 1
+                f[2].message += (f" The last restart lowered the cost by {max(f[3], 0):.2g} (< {FLAT}): at its "
+                                 "minimum for the intervals, the parameters moving along a flat valley.")
+    ends = [(f[0], f[1]) for f in fits]
+    best = min(fits, key=lambda f: f[1])[:3] if fits else None
+    return (tuple(best) if best else None), failures, ends
 
 
 def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_radius_um: float,
@@ -164,7 +167,7 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
             _estimate_noise(data, z, estimated, loss != "linear", n_free / data.size)
             best, _, _ = _best(obj, [z], loss)
             z = best[0]
-    z, chi2_cost, res = _restart(obj, *best, loss)  # residuals, Jacobian and chi^2 at the point reported
+    z, chi2_cost, res = best  # residuals, Jacobian and chi^2 below at the point reported
     dof = max(obj.size - n_free, 1)  # the priors count as data
     threshold = float(stats.f.ppf(0.95, 1, dof)) if any(estimated) else float(stats.chi2.ppf(0.95, 1))
     residuals = data.residuals(z)
@@ -226,23 +229,27 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                      evaluations=data.evaluations, G=spec.G, converged=not reasons, reasons=reasons,
                      optimizer=optimizer,
                      dof=dof, p_value=p_value, noise_given=not any(estimated), loss=loss,
-                     outliers=_outliers(data, flagged), piv_at_edge=data.inside_edge,
+                     outliers=_outliers(data, flagged, radius, profile), piv_at_edge=data.inside_edge,
                      derived_profiles=derived_p, plausibility=time_scale_warnings(theta, obj.outer, radius, profile),
                      points=data_points(data, z, flagged, radius, profile, estimated),
                      refit=(obj, z, chi2_cost, loss) if not reasons else None)
 
 
-def _outliers(obj: Objective, flagged) -> dict:
-    """Flagged points as rows of the input (1 = first row)."""
+def _outliers(obj: Objective, flagged, radius: RadiusSeries, profile: VelocityProfile | None) -> dict:
+    """Flagged points as rows of the input (1 = first row), and under "where" each as its
+    file and file line when read from a file (data.where), else as its row."""
     rows = {"radius": [], "profile": []}
     for k in flagged:
         if k < obj.n_radius:
-            rows["radius"].append(int(obj.order[k]) + 1)
+            rows["radius"].append(int(obj.order[k]))
         else:
             j = k - obj.n_radius
             for _, r, _, idx in obj.groups:
                 if j < r.size:
-                    rows["profile"].append(int(idx[j]) + 1)
+                    rows["profile"].append(int(idx[j]))
                     break
                 j -= r.size
-    return {k: sorted(v) for k, v in rows.items()}
+    out = {key: sorted(k + 1 for k in v) for key, v in rows.items()}
+    out["where"] = [where(data, key, k) for key, data in (("radius", radius), ("profile", profile))
+                    for k in sorted(rows[key])]
+    return out

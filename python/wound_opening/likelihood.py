@@ -34,6 +34,12 @@ from .objective import LAMBDA_MAX, NAMES, Objective
 ROOT_TOL = 1e-3
 #: ... or to a bracket across which sqrt(delta) changes by less than this fraction of it.
 BRACKET = 0.05
+#: A fit confirming a crossing (tolerances 1e-10, rounds of 400 evaluations) stops once a
+#: round lowers chi^2 by less than this: the end then moves by a negligible ~CONFIRM / 3.84
+#: of the threshold.
+CONFIRM = 0.01
+#: Refining steps of a bracketed end at most (regula falsi, bisection where it creeps).
+REFINE = 16
 
 
 @dataclass
@@ -65,6 +71,18 @@ def _limits_around(i: int, z: np.ndarray) -> tuple[float, float]:
     return z[3] - math.log(1e2), z[3] + math.log(1e2)
 
 
+def _on_search_bound(obj, z: np.ndarray, fixed: int) -> bool:
+    """Whether ln R0 or ln T (coordinates 0 and 3, other than the profiled one) lies on its
+    search bound (local.bounds: R0 from 1 % of the smallest radius to the outer radius /
+    1.001, T within 1e-6 .. 1e6 of the last time). Those bounds are not physical: a profile
+    fit held there rises because of the bound (plateau-only data with R0 -> 0 and
+    sigma -> infinity at fixed R0 sigma), so the rise does not bound the parameter."""
+    from .local import bounds
+
+    lower, upper = obj.bounds() if hasattr(obj, "bounds") else bounds(obj)
+    return any(k != fixed and not (lower[k] + 1e-6 < z[k] < upper[k] - 1e-6) for k in (0, 3))
+
+
 def _own_units(i: int, v: float) -> float:
     return math.exp(v) if i in (0, 3) else v
 
@@ -94,15 +112,27 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
         """chi^2 at fixed v from the predicted start; where that looks like a crossing, also
         from the last profile point, keeping the lower (a false crossing would shorten the
         interval). A crossing found by fits that ran out of evaluations (a flat, curved
-        valley they crawl along) is not trusted: `unsure` ends the walk with an open end."""
+        valley they crawl along) is not trusted: `unsure` ends the walk with an open end.
+        The fits at tolerances 1e-7 can stop short on such a valley with a converged status
+        (early-time data: Delta chi^2 = 5.7 where the minimum is 0.02), so a crossing is
+        confirmed by fits at 1e-10 continued while they lower chi^2 by CONFIRM or more.
+        Neither is a point whose fit puts R0 or T on a search bound (`_on_search_bound`):
+        the bound, not the data, then holds the profile."""
         z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7)
         unsure = False
         if chi2 - chi2_min >= threshold:
             z2, chi2b, res2 = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7)
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2
+            for _ in range(3):  # a crossing stands only where a fit at tolerances 1e-10 confirms it
+                z3, chi2c, res3 = local_fit(obj, z, fixed=i, value=v, loss=loss, tol=1e-10, max_nfev=400)
+                drop = chi2 - chi2c
+                if chi2c < chi2:
+                    z, chi2, res = z3, chi2c, res3
+                if chi2 - chi2_min < threshold or res3.status > 0 or drop < CONFIRM:
+                    break
             unsure = res.status == 0
-        return z, max(chi2 - chi2_min, 0.0), unsure
+        return z, max(chi2 - chi2_min, 0.0), unsure or _on_search_bound(obj, z, i)
 
     from ._native import SolverError
 
@@ -145,28 +175,33 @@ def _crossing(constrained, points, a, fa, b, fb, root):
     2 ROOT_TOL of it, relative) or the bracket spans less than BRACKET of it; then the line
     through the bracket (for sqrt(delta) = |v - v0| (1 + c (v - v0)) / se its error is
     ~ c (b - a)^2 / 4, below 1e-3 se for a bracket of 5 % and a skewness c se < 1).
-    Returns (end, False, points) or (None, True, points) if a refining fit is unsure."""
-    side = 0
-    for _ in range(6):
+    Where the profile is far from linear (a wall: delta rising from ~0 to 1e3 within the
+    bracket, as where R0 passes the first measured radius) the secant creeps from the inside
+    end: after two steps that keep the same end the next bisects, so the bracket at least
+    halves every third step. A bracket not located within REFINE steps ends at its
+    outside end b (delta >= threshold there: the interval is never cut inside the region the
+    data allow). Returns (end, False, points) or (None, True, points) if a refining fit is
+    unsure."""
+    last, repeat, wa, wb = 0, 0, fa, fb  # wa, wb: the Illinois-weighted values the secant uses
+    for _ in range(REFINE):
         if min(-fa, fb) < ROOT_TOL * root or fb - fa < BRACKET * root:
-            break
-        c = a + (b - a) * (-fa) / (fb - fa)
+            return a + (b - a) * (-fa) / (fb - fa), False, points
+        c = 0.5 * (a + b) if repeat >= 2 else a + (b - a) * (-wa) / (wb - wa)
         _, dc, unsure = constrained(c)
         if unsure:
             return None, True, points
         points.append((c, dc))
         fc = math.sqrt(dc) - root
-        if fc < 0:
-            a, fa = c, fc
-            if side == -1:
-                fb *= 0.5
-            side = -1
+        side = -1 if fc < 0 else 1
+        repeat = repeat + 1 if side == last else 0
+        last = side
+        if side < 0:
+            a, fa, wa = c, fc, fc
+            wb *= 0.5 if repeat == 1 else 1.0
         else:
-            b, fb = c, fc
-            if side == 1:
-                fa *= 0.5
-            side = 1
-    return a + (b - a) * (-fa) / (fb - fa), False, points
+            b, fb, wb = c, fc, fc
+            wa *= 0.5 if repeat == 1 else 1.0
+    return b, False, points
 
 
 def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,

@@ -87,9 +87,10 @@ class FitResult:
         """The model fits, but not as well as the given noise says it should; flagged points;
         a time scale at the edge of what the sampling resolves or implausible for a recoil."""
         out = list(self.plausibility) + chi2_warning(self)
-        n_out = sum(len(v) for v in self.outliers.values())
+        n_out = len(self.outliers.get("radius", [])) + len(self.outliers.get("profile", []))
         if n_out:
-            out.append(f"{n_out} points down-weighted by the {self.loss} loss (|residual| > 3 noise): rows {self.outliers}")
+            out.append(f"{n_out} points down-weighted by the {self.loss} loss (|residual| > 3 noise): "
+                       + "; ".join(self.outliers.get("where", [])))
         return out
 
     def _derived_all(self) -> dict:

@@ -222,7 +222,7 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
     Returns a TissueFitResult."""
     from scipy import stats
 
-    from .fitting import OUTLIER, P_FAIL, _best, _estimate_noise, _outliers, _restart, _uncertainties, fit
+    from .fitting import OUTLIER, P_FAIL, _best, _estimate_noise, _outliers, _uncertainties, fit
     from .local import cost
     from .plausibility import time_scale_warnings
     from .result import ParameterReport
@@ -259,7 +259,6 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
     y, chi2_cost, res = best
     dof = max(tissue.size - tissue.n, 1)
     threshold = float(stats.chi2.ppf(0.95, 1)) if noise_given else float(stats.f.ppf(0.95, 1, dof))
-    y, chi2_cost, res = _restart(tissue, y, chi2_cost, res, loss)
     optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
     reasons = [] if res.status > 0 else [f"optimiser stopped without converging ({res.message})"]
     residuals = tissue.residuals(y)
@@ -314,7 +313,7 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
                            "n_points": (p.n_radius, p.n_profile), "chi2": float(np.sum(np.delete(part, mine) ** 2)),
                            "noise": (float(np.median(p.sd[:p.n_radius])),
                                      float(np.median(p.sd[p.n_radius:])) if p.n_profile else None),
-                           "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))), "outliers": _outliers(p, mine),
+                           "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))), "outliers": _outliers(p, mine, w.radius, w.profile),
                            "piv_vectors_at_edge": p.inside_edge})
     return TissueFitResult(shared=shared, r0=r0, wounds=wound_rows, correlation=corr, chi2=chi2, dof=dof,
                            p_value=p_value, threshold=threshold, noise_given=noise_given, loss=loss,

@@ -50,10 +50,10 @@ class TissueFitResult:
     def warnings(self) -> list:
         out = list(self.plausibility) + chi2_warning(self)
         for w in self.wounds:
-            n_out = sum(len(v) for v in w["outliers"].values())
+            n_out = len(w["outliers"]["radius"]) + len(w["outliers"]["profile"])
             if n_out:
                 out.append(f"wound {w['name']}: {n_out} points down-weighted by the {self.loss} loss "
-                           f"(|residual| > 3 noise): rows {w['outliers']}")
+                           f"(|residual| > 3 noise): {', '.join(w['outliers']['where'])}")
         return out
 
     def advice(self, name: str) -> str:

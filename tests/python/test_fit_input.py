@@ -65,6 +65,21 @@ def test_outliers_are_flagged_by_a_robust_loss_and_fail_a_least_squares_fit():
     assert abs(robust.theta[1] - SIGMA) < 0.01
 
 
+def test_outliers_in_a_lab_file_are_reported_by_their_file_line(tmp_path):
+    """Rows 11 and 26 of the data, after a header and a comment line, are file lines 13 and 28."""
+    from wound_opening.lab_files import read_radius
+
+    noisy = RADIUS + 0.01 * np.random.default_rng(3).standard_normal(TIMES.size)
+    noisy[[10, 25]] += 1.5  # two segmentation outliers
+    path = tmp_path / "radius.csv"
+    path.write_text("time_s,radius_um\n# segmented by hand\n" + "".join(f"{t},{r}\n" for t, r in zip(TIMES, noisy)))
+    result = fit(read_radius(str(path), noise_um=0.01), outer_radius_um=OUTER, loss="soft_l1", intervals=False)
+    assert result.converged, result.reasons
+    assert {11, 26} <= set(result.outliers["radius"]), result.outliers
+    assert {f"{path}: line 13", f"{path}: line 28"} <= set(result.outliers["where"]), result.outliers
+    assert f"{path}: line 28" in " ".join(result.warnings)
+
+
 def test_the_command_line_refuses_with_exit_2_and_reports_a_failed_fit_with_exit_1(tmp_path):
     bad = tmp_path / "bad.csv"
     bad.write_text("time_s,radius_um\n" + "".join(f"{t},{r}\n" for t, r in zip(TIMES, RADIUS)))

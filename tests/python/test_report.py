@@ -194,7 +194,7 @@ def test_the_summary_says_not_computed_without_intervals(robust):
     _, radius, _ = robust
     result = wo.fit(radius, outer_radius_um=OUTER, loss="soft_l1", intervals=False)
     text = result.summary()
-    assert "open" not in text and text.count("not computed") >= 8
+    assert "[open" not in text and "open]" not in text and text.count("not computed") >= 8  # (the path may hold "popen")
     assert all(result.to_dict()["parameters"][n]["interval_computed"] is False for n in ("R0_um", "lambda"))
 
 
