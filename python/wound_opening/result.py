@@ -45,6 +45,15 @@ def chi2_warning(result) -> list:
     return []
 
 
+def outlier_warning(outliers: dict, loss: str) -> list:
+    """The points a robust loss flagged (fitting._outliers: rows, and "where" each is)."""
+    n_out = len(outliers.get("radius", [])) + len(outliers.get("profile", []))
+    if not n_out:
+        return []
+    return [f"{n_out} points down-weighted by the {loss} loss (|residual| > 3 noise): "
+            + "; ".join(outliers.get("where", []))]
+
+
 def _fmt(x) -> str:
     return "open" if x is None else f"{x:.4g}"
 
@@ -86,12 +95,7 @@ class FitResult:
     def warnings(self) -> list:
         """The model fits, but not as well as the given noise says it should; flagged points;
         a time scale at the edge of what the sampling resolves or implausible for a recoil."""
-        out = list(self.plausibility) + chi2_warning(self)
-        n_out = len(self.outliers.get("radius", [])) + len(self.outliers.get("profile", []))
-        if n_out:
-            out.append(f"{n_out} points down-weighted by the {self.loss} loss (|residual| > 3 noise): "
-                       + "; ".join(self.outliers.get("where", [])))
-        return out
+        return list(self.plausibility) + chi2_warning(self) + outlier_warning(self.outliers, self.loss)
 
     def _derived_all(self) -> dict:
         """name -> (value, (lower, upper), identified). tau, zeta/G and the viscous length have

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .result import ParameterReport, _fmt, chi2_warning
+from .result import ParameterReport, _fmt, chi2_warning, outlier_warning
 from .tissue import ETA, SHARED
 
 #: What would identify a shared quantity that is not.
@@ -50,10 +50,7 @@ class TissueFitResult:
     def warnings(self) -> list:
         out = list(self.plausibility) + chi2_warning(self)
         for w in self.wounds:
-            n_out = len(w["outliers"]["radius"]) + len(w["outliers"]["profile"])
-            if n_out:
-                out.append(f"wound {w['name']}: {n_out} points down-weighted by the {self.loss} loss "
-                           f"(|residual| > 3 noise): {', '.join(w['outliers']['where'])}")
+            out += [f"wound {w['name']}: {m}" for m in outlier_warning(w["outliers"], self.loss)]
         return out
 
     def advice(self, name: str) -> str:
