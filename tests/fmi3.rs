@@ -122,7 +122,9 @@ fn model_exchange_declares_and_serves_the_states() {
         assert_eq!(fmi3EnterContinuousTimeMode(i), OK);
         let mut dx = vec![f64::NAN; nx];
         assert_eq!(fmi3GetContinuousStateDerivatives(i, dx.as_mut_ptr(), nx), OK);
-        assert!(dx[0] != 0.0 && dx[nx - 1] == 0.0);
+        // The states depart from the closed-form response to the edge stress held from
+        // the cut (src/models/wound/exchange.rs): none at the cut, none while it is held.
+        assert!(dx.iter().all(|&v| v == 0.0));
         assert_eq!(fmi3SetTime(i, 0.5), OK);
         assert_eq!(fmi3SetContinuousStates(i, dx.as_ptr(), nx - 1), ERROR, "nx");
         let (mut enter, mut term) = (9u8, 9u8);

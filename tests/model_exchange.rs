@@ -1,6 +1,7 @@
 //! FMI 2.0 Model Exchange through the exported functions: the state machine of chapter 3,
-//! the states (modal coordinates) against the co-simulation step that integrates the same
-//! ODE exactly, refusals, FMU states, and the stiffness an integrator faces.
+//! the states (the modal coordinates' departure from their response to the edge stress
+//! held) against the co-simulation step that integrates the same ODE exactly, the exact
+//! Jacobian, refusals, FMU states, and the stiffness an integrator faces.
 //! (fmpy's CVode against the exact solution: tests/python/test_model_exchange.py.)
 
 mod common;
@@ -58,54 +59,146 @@ fn derivatives(c: fmi2Component) -> Vec<f64> {
     dx
 }
 
-/// The states of a co-simulation instance after one exact step of `h` are the ME states
-/// on the same trajectory: setting them into an ME instance at time h gives the same
-/// radius to the last bits, and the ME derivative is the linear ODE's `(g - c) / nu`,
-/// which an explicit exponential step reproduces.
-#[test]
-fn states_are_the_co_simulation_state_and_derivatives_its_ode() {
-    let h = 0.3;
-    let cs = initialized(WOUND, 0.0, &[(Vr::Lambda as u32, 0.5)]);
+/// A co-simulation step of `h` with lambda = 0.5, and the solver it wraps: the ODE the
+/// ME states depart from ([`wound_opening::solver::Ode`]: physical coordinates, rates,
+/// relaxation times, edge values).
+fn co_simulation_reference(lambda: f64, h: f64) -> (f64, wound_opening::solver::Ode) {
+    let cs = initialized(WOUND, 0.0, &[(Vr::Lambda as u32, lambda)]);
     assert_eq!(unsafe { fmi2DoStep(cs, 0.0, h, 1) }, OK);
     let (_, r_cs) = get_real(cs, Vr::WoundRadius as u32);
-    let me = continuous_time(&[(Vr::Lambda as u32, 0.5)]);
-    let x0 = states(me);
-    assert!(x0.iter().all(|&v| v == 0.0), "0 at the cut");
-    let (_, r0) = get_real(me, Vr::WoundRadius as u32);
-    assert_eq!(r0, 1.0 + 1.0 / 6.0);
-    let d0 = derivatives(me);
-    assert!(d0.iter().skip(49).all(|&v| v == 0.0), "the spare states are inert");
-    let mut x = x0.clone();
-    x[0] = 1e-3;
-    unsafe {
-        assert_eq!(fmi2SetTime(me, h), OK);
-        assert_eq!(fmi2SetContinuousStates(me, x.as_ptr(), NX), OK);
-    }
-    let d1 = derivatives(me);
-    // Linear and uncoupled: only mode 0 changes, by -1e-3 / nu_0.
-    assert!(d1.iter().zip(&d0).skip(1).all(|(a, b)| a == b));
-    let nu0 = -1e-3 / (d1[0] - d0[0]);
-    assert!(nu0 > 0.0 && nu0.is_finite());
-    // A CS instance refuses the ME getters; its state comes from the solver it wraps.
     let mut x_cs = vec![0.0; NX];
     assert_eq!(unsafe { fmi2GetContinuousStates(cs, x_cs.as_mut_ptr(), NX) }, ERROR, "ME function on a CS instance");
-    let params = Params { lambda: 0.5, sigma: 1.0, r_inf: 10.0 };
+    unsafe { fmi2FreeInstance(cs) };
+    let params = Params { lambda, sigma: 1.0, r_inf: 10.0 };
     let mut solver = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
     solver.advance(h, 0.0).unwrap();
-    let ode = solver.ode(0.0).unwrap();
-    let mut x = ode.x.clone();
-    x.resize(NX, 0.0);
+    (r_cs, solver.ode(0.0).unwrap())
+}
+
+/// The states are the departure `y = c - c0(t)` of the modal coordinates from their
+/// closed-form response `c0` to the edge stress held from the cut
+/// (src/models/wound/exchange.rs): 0 at the cut and at every time while the edge stress
+/// is held, where fmi2SetTime alone moves the radius along the exact solution (that of a
+/// co-simulation step, to the last bits). A departure set relaxes at its own rate
+/// `-y_k / nu_k`, and a changed edge stress drives every mode: the derivative is the
+/// physical ODE's `(g_k(p) - c_k) / nu_k` minus `c0_k'`.
+#[test]
+fn states_depart_from_the_held_response_and_derivatives_are_its_ode() {
+    let (h, lambda) = (0.3, 0.5);
+    let (r_cs, ode) = co_simulation_reference(lambda, h);
+    let me = continuous_time(&[(Vr::Lambda as u32, lambda)]);
+    assert!(states(me).iter().all(|&v| v == 0.0), "0 at the cut");
+    let (_, r0) = get_real(me, Vr::WoundRadius as u32);
+    assert_eq!(r0, 1.0 + 1.0 / 6.0);
+    assert!(derivatives(me).iter().all(|&v| v == 0.0), "no departure while the edge stress is held");
+    assert_eq!(unsafe { fmi2SetTime(me, h) }, OK);
+    let (_, r_h) = get_real(me, Vr::WoundRadius as u32);
+    assert!((r_h - r_cs).abs() < 1e-15, "fmi2SetTime follows the exact solution: {r_h} vs {r_cs}");
+    assert!(states(me).iter().all(|&v| v == 0.0));
+    let mut x = vec![0.0; NX];
+    x[0] = 1e-3;
     assert_eq!(unsafe { fmi2SetContinuousStates(me, x.as_ptr(), NX) }, OK);
-    let (_, r_me) = get_real(me, Vr::WoundRadius as u32);
-    assert!((r_me - r_cs).abs() < 1e-15, "{r_me} vs {r_cs}");
-    let dx = derivatives(me);
+    let (_, r_x) = get_real(me, Vr::WoundRadius as u32);
+    assert!((r_x - (r_cs + 1e-3 * ode.loads[0])).abs() < 1e-15, "R = R(c0) + X_0 y_0");
+    let d1 = derivatives(me);
+    assert!(((d1[0] + 1e-3 / ode.relaxation_times[0]) / d1[0]).abs() < 1e-14, "{} vs {}", d1[0], -1e-3 / ode.relaxation_times[0]);
+    assert!(d1.iter().skip(1).all(|&v| v == 0.0), "uncoupled");
+    // A changed edge stress: y' = c' - c0', with c' the physical ODE's rate at c = c0 + y.
+    let p = 0.2;
+    assert_eq!(set_real(me, Vr::EdgeStress as u32, p), OK);
+    let d2 = derivatives(me);
+    let params = Params { lambda, sigma: 1.0, r_inf: 10.0 };
+    let mut solver = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
+    let mut c = ode.x.clone();
+    c[0] += 1e-3;
+    solver.set_ode_state(h, &c, p).unwrap();
+    let physical = solver.ode(p).unwrap();
     for k in 0..ode.x.len() {
-        assert!((dx[k] - ode.rates[k]).abs() <= 1e-15 * ode.rates[k].abs().max(1.0));
+        let (x0, nu) = (ode.loads[k], ode.relaxation_times[k]);
+        let held_rate = x0 * (-h / nu).exp() / nu;
+        let want = physical.rates[k] - held_rate;
+        assert!((d2[k] - want).abs() <= 1e-12 * physical.rates[k].abs().max(held_rate.abs()).max(1e-300), "mode {k}: {} vs {want}", d2[k]);
     }
+    assert!(d2.iter().skip(ode.x.len()).all(|&v| v == 0.0), "the spare states are inert");
+    unsafe { fmi2FreeInstance(me) };
+}
+
+fn state_vr(k: usize) -> u32 {
+    (Vr::ALL.len() + k) as u32
+}
+
+fn derivative_vr(k: usize) -> u32 {
+    (Vr::ALL.len() + NX + k) as u32
+}
+
+fn directional(c: fmi2Component, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
+    let mut out = vec![f64::NAN; unknowns.len()];
+    let s = unsafe { fmi2GetDirectionalDerivative(c, unknowns.as_ptr(), unknowns.len(), knowns.as_ptr(), knowns.len(), seed.as_ptr(), out.as_mut_ptr()) };
+    (s, out)
+}
+
+/// The exact Jacobian of fmi2GetDirectionalDerivative (providesDirectionalDerivative):
+/// `J v` over every state equals `A v` with `A = diag(-1 / nu_k)` of the solver's
+/// relaxation times (0 on the spare states), and finite differences of
+/// fmi2GetDerivatives and of the wound radius in the states and in the edge stress (the
+/// system is linear: differences are exact up to rounding). Refused on a co-simulation
+/// instance and for a parameter as known.
+#[test]
+fn directional_derivatives_are_the_exact_jacobian() {
+    let lambda = 0.0;
+    let me = continuous_time(&[(Vr::Lambda as u32, lambda)]);
+    let (_, ode) = co_simulation_reference(lambda, 0.1);
+    let n = ode.x.len();
+    let mut x: Vec<f64> = (0..NX).map(|k| 1e-3 * ((k as f64) * 0.7).sin()).collect();
     unsafe {
-        fmi2FreeInstance(cs);
-        fmi2FreeInstance(me);
+        assert_eq!(fmi2SetTime(me, 0.1), OK);
+        assert_eq!(fmi2SetContinuousStates(me, x.as_ptr(), NX), OK);
     }
+    let (ders, sts): (Vec<u32>, Vec<u32>) = ((0..NX).map(derivative_vr).collect(), (0..NX).map(state_vr).collect());
+    let v: Vec<f64> = (0..NX).map(|k| ((k as f64) * 1.3).cos()).collect();
+    let (s, jv) = directional(me, &ders, &sts, &v);
+    assert_eq!(s, OK);
+    for k in 0..NX {
+        let want = if k < n { -v[k] / ode.relaxation_times[k] } else { 0.0 };
+        assert!((jv[k] - want).abs() <= 1e-15 * want.abs(), "state {k}: {} vs {want}", jv[k]);
+    }
+    // Finite differences of the derivatives along v.
+    let f0 = derivatives(me);
+    let e = 1e-6;
+    let shifted: Vec<f64> = x.iter().zip(&v).map(|(a, b)| a + e * b).collect();
+    assert_eq!(unsafe { fmi2SetContinuousStates(me, shifted.as_ptr(), NX) }, OK);
+    let f1 = derivatives(me);
+    let (_, r1) = get_real(me, Vr::WoundRadius as u32);
+    assert_eq!(unsafe { fmi2SetContinuousStates(me, x.as_ptr(), NX) }, OK);
+    let (_, r0) = get_real(me, Vr::WoundRadius as u32);
+    for k in 0..NX {
+        let fd = (f1[k] - f0[k]) / e;
+        assert!((fd - jv[k]).abs() <= 1e-6 * jv[k].abs().max(1.0), "state {k}: FD {fd} vs {}", jv[k]);
+    }
+    let (s, dr) = directional(me, &[Vr::WoundRadius as u32], &sts, &v);
+    assert_eq!(s, OK);
+    assert!(((r1 - r0) / e - dr[0]).abs() <= 1e-6 * dr[0].abs(), "radius: FD {} vs {}", (r1 - r0) / e, dr[0]);
+    // The edge stress drives every mode.
+    let edge = [Vr::EdgeStress as u32];
+    let (s, jp) = directional(me, &ders, &edge, &[1.0]);
+    assert_eq!(s, OK);
+    assert_eq!(set_real(me, Vr::EdgeStress as u32, e), OK);
+    let fp = derivatives(me);
+    for k in 0..NX {
+        let want = if k < n { -ode.loads[k] / ode.relaxation_times[k] } else { 0.0 };
+        assert!((jp[k] - want).abs() <= 1e-15 * want.abs(), "mode {k}: {} vs {want}", jp[k]);
+        assert!(((fp[k] - f0[k]) / e - want).abs() <= 1e-6 * want.abs().max(1.0), "mode {k}: FD");
+    }
+    // Refusals: a parameter is no known, a state no unknown; CS has no states to differentiate.
+    assert_eq!(directional(me, &ders[..1], &[Vr::Lambda as u32], &[1.0]).0, ERROR);
+    assert_eq!(directional(me, &sts[..1], &sts[..1], &[1.0]).0, ERROR);
+    x[0] = f64::NAN;
+    assert_eq!(directional(me, &ders[..1], &sts[..1], &x[..1]).0, ERROR, "NaN seed");
+    unsafe { fmi2FreeInstance(me) };
+    let cs = initialized(WOUND, 0.0, &[]);
+    assert_eq!(directional(cs, &[Vr::WoundRadius as u32], &sts[..1], &[1.0]).0, ERROR, "no states in CS");
+    assert_eq!(directional(cs, &[Vr::EdgeVelocity as u32], &edge, &[1.0]).0, OK);
+    unsafe { fmi2FreeInstance(cs) };
 }
 
 /// The state machine of chapter 3 and the interface split: CS functions on an ME

@@ -86,6 +86,9 @@ pub struct Ode {
     pub x: Vec<f64>,
     pub rates: Vec<f64>,
     pub relaxation_times: Vec<f64>,
+    /// How each coordinate's target depends on the edge stress: `x_k` relaxes towards
+    /// `(sigma - p) loads_k` (the mode's edge value `X[0, k]`, also `d R / d x_k`).
+    pub loads: Vec<f64>,
 }
 
 /// Number of equal internal steps of at most `max_step` covering `h`.

@@ -247,6 +247,7 @@ impl Engine for ModalEngine {
             x: self.coeffs.iter().copied().collect(),
             rates: self.modal_rates(p).iter().copied().collect(),
             relaxation_times: self.op.nu.iter().copied().collect(),
+            loads: self.op.basis.edge_row.iter().copied().collect(),
         })
     }
 

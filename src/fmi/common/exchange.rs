@@ -57,7 +57,8 @@ impl Instance {
             return Err(format!("time = {t} is invalid: it must be finite and >= startTime = {}", self.clock.start));
         }
         self.clock.time = t;
-        Ok(())
+        let since = self.clock.since_start();
+        self.model.set_time(since)
     }
 
     pub fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), Rejected> {

@@ -218,6 +218,7 @@ impl Instance {
             Interface::CoSimulation => Machine::StepComplete,
             Interface::ModelExchange => {
                 self.model.check_model_exchange()?;
+                self.model.enter_model_exchange();
                 Machine::EventMode
             }
         };
@@ -372,39 +373,65 @@ impl Instance {
         self.set_values(Kind::Integer, vrs, &values)
     }
 
-    /// `fmi2GetDirectionalDerivative`: `dvUnknown = J dvKnown` with `J[i][j] =
-    /// d unknown_i / d known_j`, for outputs (unknowns) with respect to inputs (knowns),
-    /// at the current communication point.
-    pub fn directional_derivative(&mut self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> Result<Vec<f64>, Rejected> {
+    /// The Jacobian `J[i][j] = d unknown_i / d known_j` (row-major) at the current time:
+    /// unknowns are outputs or (Model Exchange) state derivatives, knowns inputs or (Model
+    /// Exchange) states; `seed` (the vector it multiplies) must be finite.
+    fn jacobian(&mut self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> Result<Vec<f64>, Rejected> {
         let d = self.description();
-        let role = |v: u32, want: Causality, what: &str| -> Result<(), Rejected> {
-            let var = d.typed(Kind::Real, v)?;
-            if var.causality == want {
-                Ok(())
-            } else {
-                let role = var.causality.as_str();
-                let article = if role.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
-                Err(format!("{} (value reference {v}) is {article} {role} but a {what} must be a Real {}", var.name, want.as_str()))
+        let exchange = self.interface == Interface::ModelExchange;
+        let role = |v: u32, want: Causality, state: bool, what: &str| -> Result<(), Rejected> {
+            match d.named(Kind::Real, v)? {
+                Named::Table(var) if var.causality == want => Ok(()),
+                Named::State(_) if state && exchange => Ok(()),
+                Named::Derivative(_) if !state && exchange => Ok(()),
+                named => {
+                    let role = match named {
+                        Named::Table(var) => var.causality.as_str(),
+                        Named::State(_) => "state",
+                        Named::Derivative(_) => "state derivative",
+                    };
+                    let article = if role.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+                    let also = match (exchange, state) {
+                        (false, _) => "",
+                        (true, true) => " or a continuous state",
+                        (true, false) => " or a state derivative",
+                    };
+                    Err(format!("{} (value reference {v}) is {article} {role} but a {what} must be a Real {}{also}", d.state_name(named), want.as_str()))
+                }
             }
         };
-        unknowns.iter().try_for_each(|&v| role(v, Causality::Output, "vUnknown_ref entry"))?;
-        knowns.iter().try_for_each(|&v| role(v, Causality::Input, "vKnown_ref entry"))?;
+        unknowns.iter().try_for_each(|&v| role(v, Causality::Output, false, "vUnknown_ref entry"))?;
+        knowns.iter().try_for_each(|&v| role(v, Causality::Input, true, "vKnown_ref entry"))?;
         if let Some(x) = seed.iter().find(|x| !x.is_finite()) {
             return Err(format!("dvKnown = {x} is invalid: it must be finite"));
         }
         self.prepare()?;
-        let t = self.clock.since_start();
-        let mut got = Vec::with_capacity(unknowns.len());
-        for &u in unknowns {
-            let mut sum = 0.0;
-            for (&k, s) in knowns.iter().zip(seed) {
-                sum += self.model.partial(u, k, t)? * s;
-            }
-            got.push(sum);
-        }
+        self.model.jacobian(unknowns, knowns, self.clock.since_start())
+    }
+
+    /// `fmi2GetDirectionalDerivative` / `fmi3GetDirectionalDerivative`: `J seed`
+    /// ([`Instance::jacobian`]), one value per unknown.
+    pub fn directional_derivative(&mut self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> Result<Vec<f64>, Rejected> {
+        let j = self.jacobian(unknowns, knowns, seed)?;
+        let got: Vec<f64> = (0..unknowns.len()).map(|i| (0..knowns.len()).map(|k| j[i * knowns.len() + k] * seed[k]).sum()).collect();
+        self.overflow(&got, unknowns)
+    }
+
+    /// `fmi3GetAdjointDerivative`: `seed^T J` (`seed` per unknown), one value per known.
+    pub fn adjoint_derivative(&mut self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> Result<Vec<f64>, Rejected> {
+        let j = self.jacobian(unknowns, knowns, seed)?;
+        let got: Vec<f64> = (0..knowns.len()).map(|k| (0..unknowns.len()).map(|i| seed[i] * j[i * knowns.len() + k]).sum()).collect();
+        self.overflow(&got, knowns)
+    }
+
+    fn overflow(&self, got: &[f64], names: &[u32]) -> Result<Vec<f64>, Rejected> {
+        let d = self.description();
         match got.iter().position(|x| !x.is_finite()) {
-            Some(i) => Err(format!("the derivative of {} overflows for this dvKnown", d.variables[unknowns[i] as usize].name)),
-            None => Ok(got),
+            Some(i) => {
+                let name = d.named(Kind::Real, names[i]).map_or_else(|_| names[i].to_string(), |n| d.state_name(n));
+                Err(format!("the derivative of {name} overflows for this dvKnown"))
+            }
+            None => Ok(got.to_vec()),
         }
     }
 

@@ -311,6 +311,19 @@ pub trait FmuModel: Send {
     /// `d output / d input` at time `time` since the cut (after `prepare`); `Err` with the
     /// reason where the exact derivative is infinite or undefined.
     fn partial(&self, output: u32, input: u32, time: f64) -> Result<f64, Rejected>;
+    /// The Jacobian `d unknown_i / d known_j`, row-major (`unknowns.len()` rows), at time
+    /// `time` since the cut (after `prepare`). Unknowns are outputs or (Model Exchange)
+    /// derivatives, knowns inputs or (Model Exchange) states, checked by the glue. The
+    /// default is [`FmuModel::partial`] per entry (models without states).
+    fn jacobian(&self, unknowns: &[u32], knowns: &[u32], time: f64) -> Result<Vec<f64>, Rejected> {
+        let mut out = Vec::with_capacity(unknowns.len() * knowns.len());
+        for &u in unknowns {
+            for &k in knowns {
+                out.push(self.partial(u, k, time)?);
+            }
+        }
+        Ok(out)
+    }
     /// The model's part of a serialized FMU state.
     fn encode(&self) -> Result<Vec<u8>, Rejected>;
     /// A model from `encode`d bytes, which must fit this instance's parameters.
@@ -343,6 +356,14 @@ pub trait FmuModel: Send {
     /// integrator (`Err` with the reason; after [`FmuModel::prepare`]). Models without
     /// states can.
     fn check_model_exchange(&self) -> Result<(), Rejected> {
+        Ok(())
+    }
+    /// Model Exchange starts (initialization ends, after [`FmuModel::check_model_exchange`]):
+    /// the inputs set now are the start of the run.
+    fn enter_model_exchange(&mut self) {}
+    /// The master's time, `time` since the cut, set in Model Exchange (the states and
+    /// inputs kept).
+    fn set_time(&mut self, _time: f64) -> Result<(), Rejected> {
         Ok(())
     }
     /// The continuous states, `description().state_count()` of them (after `prepare`).

@@ -10,8 +10,6 @@ use crate::fmi::common::model::{Causality, Description, Named, ContinuousStates}
 use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 
-/// Flags of `<ModelExchange>`: no events, so `fmi2CompletedIntegratorStep` is not needed;
-/// FMU states as in co-simulation; no directional derivatives of the derivatives.
 /// Flags of `<CoSimulation>`: what the glue provides, the same for every model.
 pub const CO_SIMULATION_FLAGS: [(&str, &str); 9] = [
     ("canBeInstantiatedOnlyOncePerProcess", "false"),
@@ -25,14 +23,16 @@ pub const CO_SIMULATION_FLAGS: [(&str, &str); 9] = [
     ("canNotUseMemoryManagementFunctions", "true"),
 ];
 
-/// Flags of `<ModelExchange>`: what the glue provides, the same for every model.
+/// Flags of `<ModelExchange>`: what the glue provides, the same for every model (no
+/// events, so `fmi2CompletedIntegratorStep` is not needed; directional derivatives of the
+/// outputs and state derivatives with respect to inputs and states).
 pub const MODEL_EXCHANGE_FLAGS: [(&str, &str); 6] = [
     ("completedIntegratorStepNotNeeded", "true"),
     ("canBeInstantiatedOnlyOncePerProcess", "false"),
     ("canNotUseMemoryManagementFunctions", "true"),
     ("canGetAndSetFMUstate", "true"),
     ("canSerializeFMUstate", "true"),
-    ("providesDirectionalDerivative", "false"),
+    ("providesDirectionalDerivative", "true"),
 ];
 
 /// `<Unknown index dependencies dependenciesKind/>` of `ModelStructure`.

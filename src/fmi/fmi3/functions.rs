@@ -338,6 +338,35 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(instance: fmi3Instance, seriali
     unsafe { shims::deserialize_fmu_state(instance, serializedState, size, FMUState, names("fmi3DeserializeFMUState")) }
 }
 
+/// `fmi3GetDirectionalDerivative` (`adjoint = false`: sensitivity = J seed) and
+/// `fmi3GetAdjointDerivative` (`true`: sensitivity = seed^T J).
+unsafe fn derivative_of(
+    instance: fmi3Instance,
+    name: &'static str,
+    adjoint: bool,
+    (unknowns, n_unknowns): (*const fmi3ValueReference, usize),
+    (knowns, n_knowns): (*const fmi3ValueReference, usize),
+    (seed, n_seed): (*const fmi3Float64, usize),
+    (sensitivity, n_sensitivity): (*mut fmi3Float64, usize),
+) -> fmi3Status {
+    unsafe {
+        with_instance(instance, Call::GetDirectionalDerivative, || format!("{name}(nUnknowns={n_unknowns}, nKnowns={n_knowns})"), |i| {
+            let (seeds, sensitivities) = if adjoint { (n_unknowns, n_knowns) } else { (n_knowns, n_unknowns) };
+            if n_seed != seeds || n_sensitivity != sensitivities {
+                let (a, b) = if adjoint { ("nUnknowns", "nKnowns") } else { ("nKnowns", "nUnknowns") };
+                return Err(format!("nSeed = {n_seed} and nSensitivity = {n_sensitivity} must equal {a} = {seeds} and {b} = {sensitivities} (scalar variables)"));
+            }
+            let u = slice(unknowns, n_unknowns, "unknowns")?;
+            let k = slice(knowns, n_knowns, "knowns")?;
+            let s = slice(seed, n_seed, "seed")?;
+            let out = slice_mut(sensitivity, n_sensitivity, "sensitivity")?;
+            let got = if adjoint { i.adjoint_derivative(u, k, s)? } else { i.directional_derivative(u, k, s)? };
+            out.copy_from_slice(&got);
+            OK
+        })
+    }
+}
+
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
     instance: fmi3Instance,
@@ -350,19 +379,24 @@ pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
     sensitivity: *mut fmi3Float64,
     nSensitivity: usize,
 ) -> fmi3Status {
-    unsafe {
-        with_instance(instance, Call::GetDirectionalDerivative, || format!("fmi3GetDirectionalDerivative(nUnknowns={nUnknowns}, nKnowns={nKnowns})"), |i| {
-            if nSeed != nKnowns || nSensitivity != nUnknowns {
-                return Err(format!("nSeed = {nSeed} and nSensitivity = {nSensitivity} must equal nKnowns = {nKnowns} and nUnknowns = {nUnknowns} (scalar variables)"));
-            }
-            let u = slice(unknowns, nUnknowns, "unknowns")?;
-            let k = slice(knowns, nKnowns, "knowns")?;
-            let s = slice(seed, nSeed, "seed")?;
-            let out = slice_mut(sensitivity, nSensitivity, "sensitivity")?;
-            out.copy_from_slice(&i.directional_derivative(u, k, s)?);
-            OK
-        })
-    }
+    let args = ((unknowns, nUnknowns), (knowns, nKnowns), (seed, nSeed), (sensitivity, nSensitivity));
+    unsafe { derivative_of(instance, "fmi3GetDirectionalDerivative", false, args.0, args.1, args.2, args.3) }
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3GetAdjointDerivative(
+    instance: fmi3Instance,
+    unknowns: *const fmi3ValueReference,
+    nUnknowns: usize,
+    knowns: *const fmi3ValueReference,
+    nKnowns: usize,
+    seed: *const fmi3Float64,
+    nSeed: usize,
+    sensitivity: *mut fmi3Float64,
+    nSensitivity: usize,
+) -> fmi3Status {
+    let args = ((unknowns, nUnknowns), (knowns, nKnowns), (seed, nSeed), (sensitivity, nSensitivity));
+    unsafe { derivative_of(instance, "fmi3GetAdjointDerivative", true, args.0, args.1, args.2, args.3) }
 }
 
 /// One step; never early, no event handling (no event mode), `lastSuccessfulTime` the end

@@ -134,21 +134,6 @@ pub unsafe extern "C" fn fmi3GetVariableDependencies(
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetAdjointDerivative(
-    instance: fmi3Instance,
-    _unknowns: *const fmi3ValueReference,
-    _nUnknowns: usize,
-    _knowns: *const fmi3ValueReference,
-    _nKnowns: usize,
-    _seed: *const f64,
-    _nSeed: usize,
-    _sensitivity: *mut f64,
-    _nSensitivity: usize,
-) -> fmi3Status {
-    unsupported(instance, "fmi3GetAdjointDerivative", "providesAdjointDerivatives = false (use fmi3GetDirectionalDerivative)")
-}
-
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3EvaluateDiscreteStates(instance: fmi3Instance) -> fmi3Status {
     unsupported(instance, "fmi3EvaluateDiscreteStates", "it has no discrete states")
 }

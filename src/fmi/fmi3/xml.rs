@@ -55,19 +55,21 @@ fn unknown(element: &str, vr: u32, deps: &[(u32, &str)]) -> String {
 }
 
 /// Flags of `<ModelExchange>`: what the glue provides, the same for every model.
-pub const MODEL_EXCHANGE_FLAGS: [(&str, &str); 4] = [
+pub const MODEL_EXCHANGE_FLAGS: [(&str, &str); 5] = [
     ("needsCompletedIntegratorStep", "false"),
     ("canGetAndSetFMUState", "true"),
     ("canSerializeFMUState", "true"),
-    ("providesDirectionalDerivatives", "false"),
+    ("providesDirectionalDerivatives", "true"),
+    ("providesAdjointDerivatives", "true"),
 ];
 
 /// Flags of `<CoSimulation>`: what the glue provides, the same for every model.
-pub const CO_SIMULATION_FLAGS: [(&str, &str); 6] = [
+pub const CO_SIMULATION_FLAGS: [(&str, &str); 7] = [
     ("canHandleVariableCommunicationStepSize", "true"),
     ("canGetAndSetFMUState", "true"),
     ("canSerializeFMUState", "true"),
     ("providesDirectionalDerivatives", "true"),
+    ("providesAdjointDerivatives", "true"),
     ("hasEventMode", "false"),
     ("providesIntermediateUpdate", "true"),
 ];

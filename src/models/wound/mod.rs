@@ -11,6 +11,7 @@
 //! ```
 
 mod codec;
+mod exchange;
 mod probes;
 pub mod variables;
 
@@ -50,10 +51,9 @@ pub struct WoundModel {
     warning: RefCell<Option<String>>,
     /// A note for the glue to log with the current call, whose status stays OK.
     note: RefCell<Option<String>>,
-    /// Model Exchange: the states beyond the mesh's modes, as the integrator last set
-    /// them. They are inert (derivative 0, no effect on any output): an integrator that
-    /// perturbs them for a finite-difference Jacobian sees a zero column. Not serialized.
-    spare_states: Vec<f64>,
+    /// Model Exchange: the spare states and the reference of the states
+    /// ([`exchange`]). Not serialized.
+    exchange: exchange::Exchange,
     /// FMI 3.0: the probes (radii in um, master units, or the defaults following the tissue).
     probe_radii: Probes,
 }
@@ -77,7 +77,7 @@ impl WoundModel {
             solver: None,
             warning: RefCell::new(None),
             note: RefCell::new(None),
-            spare_states: Vec::new(),
+            exchange: exchange::Exchange::default(),
             probe_radii: Probes::default(),
         })
     }
@@ -359,21 +359,24 @@ impl FmuModel for WoundModel {
         }
     }
 
-    fn continuous_states(&self) -> Vec<f64> {
-        let mut x = self.solver().ode(self.p()).map_or_else(Vec::new, |o| o.x);
-        x.extend(&self.spare_states);
-        x.resize(MODEL_EXCHANGE_STATES, 0.0);
-        x
+    fn enter_model_exchange(&mut self) {
+        self.enter_exchange();
     }
 
-    /// The modes the mesh uses, in solver units, then the inert spare states.
+    fn continuous_states(&self) -> Vec<f64> {
+        self.exchange_states()
+    }
+
     fn set_continuous_states(&mut self, time: f64, x: &[f64]) -> Result<(), Rejected> {
-        let p = self.p();
-        let used = self.solver().ode(p).map_or(0, |o| o.x.len());
-        self.spare_states = x[used..].to_vec();
-        let t = time / self.scales.time;
-        let solver = self.solver.as_mut().expect("prepare() builds the solver before states are set");
-        solver.set_ode_state(t, &x[..used], p).map_err(|e| e.to_string())
+        self.set_exchange_states(time, x)
+    }
+
+    fn set_time(&mut self, time: f64) -> Result<(), Rejected> {
+        self.exchange_time(time)
+    }
+
+    fn jacobian(&self, unknowns: &[u32], knowns: &[u32], time: f64) -> Result<Vec<f64>, Rejected> {
+        self.exchange_jacobian(unknowns, knowns, time)
     }
 
     fn array_length(&self) -> u64 {
@@ -440,12 +443,8 @@ impl FmuModel for WoundModel {
         n
     }
 
-    /// `c_k' = (g_k(p) - c_k) / nu_k` per second of master time (`/ T`).
     fn derivatives(&self, _time: f64) -> Vec<f64> {
-        let mut dx: Vec<f64> =
-            self.solver().ode(self.p()).map_or_else(Vec::new, |o| o.rates.iter().map(|r| r / self.scales.time).collect());
-        dx.resize(MODEL_EXCHANGE_STATES, 0.0);
-        dx
+        self.exchange_derivatives()
     }
 
     /// The bytes must come from an instance with the same parameters, scales, tolerance
@@ -487,7 +486,7 @@ impl FmuModel for WoundModel {
             solver: None,
             warning: RefCell::new(None),
             note: RefCell::new(None),
-            spare_states: Vec::new(),
+            exchange: self.exchange.clone(),
             probe_radii: self.probe_radii.clone(),
         };
         if let Some(st) = &saved.solver {
