@@ -48,6 +48,12 @@ static int token_of(const char *xml, char *out, size_t size) {
     return 1;
 }
 
+/* fmi3GetDirectionalDerivative and fmi3GetAdjointDerivative (the same signature). */
+typedef fmi3Status fmi3DerivativeTYPE(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,
+                                      const fmi3ValueReference knowns[], size_t nKnowns, const fmi3Float64 seed[],
+                                      size_t nSeed, fmi3Float64 sensitivity[], size_t nSensitivity);
+typedef fmi3DerivativeTYPE fmi3GetDirectionalDerivativeTYPE, fmi3GetAdjointDerivativeTYPE;
+
 #define FIELD(name) name##TYPE *name;
 static struct {
     FIELD(fmi3InstantiateModelExchange) FIELD(fmi3InstantiateCoSimulation) FIELD(fmi3FreeInstance)
@@ -56,6 +62,7 @@ static struct {
     FIELD(fmi3EnterContinuousTimeMode) FIELD(fmi3SetTime) FIELD(fmi3SetContinuousStates)
     FIELD(fmi3GetContinuousStateDerivatives) FIELD(fmi3GetNumberOfContinuousStates) FIELD(fmi3GetFMUState)
     FIELD(fmi3FreeFMUState) FIELD(fmi3SerializedFMUStateSize) FIELD(fmi3SetFMUState)
+    FIELD(fmi3GetDirectionalDerivative) FIELD(fmi3GetAdjointDerivative)
 } F;
 #undef FIELD
 
@@ -88,7 +95,62 @@ static void co_simulation(const char *token) {
     F.fmi3FreeInstance(c);
 }
 
-/* Exact integration of the uncoupled modes by the master, from two derivative evaluations. */
+#define VR_EDGE_STRESS 3u
+#define VR_STATE0 13u /* modal_coordinate[1]; der(modal_coordinate[k]) at VR_STATE0 + nx + k - 1 */
+
+/* The exact Jacobian: J (states and edge stress -> derivatives and wound radius) by
+ * fmi3GetDirectionalDerivative equals finite differences of the derivatives (the system
+ * is linear), its state block is diagonal with the rates -1/nu_m of `rate` (0 on the spare
+ * states), and fmi3GetAdjointDerivative is its transpose: v^T (J w) = (J^T v)^T w. */
+static void jacobian(fmi3Instance c, size_t nx, const double *rate) {
+    size_t nu = nx + 1, nk = nx + 1;
+    fmi3ValueReference *unknowns = calloc(nu, sizeof *unknowns), *knowns = calloc(nk, sizeof *knowns);
+    double *v = calloc(nu, sizeof *v), *w = calloc(nk, sizeof *w), *jw = calloc(nu, sizeof *jw), *jtv = calloc(nk, sizeof *jtv);
+    double *x = calloc(nx, sizeof *x), *f0 = calloc(nx, sizeof *f0), *f1 = calloc(nx, sizeof *f1);
+    for (size_t m = 0; m < nx; m++) {
+        unknowns[m] = VR_STATE0 + (fmi3ValueReference)(nx + m);
+        knowns[m] = VR_STATE0 + (fmi3ValueReference)m;
+        x[m] = 1e-3 * sin(0.7 * (double)m);
+    }
+    unknowns[nx] = VR_RADIUS;
+    knowns[nx] = VR_EDGE_STRESS;
+    for (size_t m = 0; m < nu; m++) v[m] = cos(1.3 * (double)m);
+    for (size_t m = 0; m < nk; m++) w[m] = sin(0.9 * (double)m + 0.2);
+    CHECK(F.fmi3SetContinuousStates(c, x, nx) == fmi3OK, "SetContinuousStates");
+    CHECK(F.fmi3GetDirectionalDerivative(c, unknowns, nu, knowns, nk, w, nk, jw, nu) == fmi3OK, "GetDirectionalDerivative");
+    CHECK(F.fmi3GetAdjointDerivative(c, unknowns, nu, knowns, nk, v, nu, jtv, nk) == fmi3OK, "GetAdjointDerivative");
+    CHECK(F.fmi3GetDirectionalDerivative(c, unknowns, nu, knowns, nk, w, nk - 1, jw, nu) == fmi3Error, "nSeed != nKnowns");
+    double vjw = 0, jtvw = 0, scale = 0;
+    for (size_t m = 0; m < nu; m++) vjw += v[m] * jw[m], scale += fabs(v[m] * jw[m]);
+    for (size_t m = 0; m < nk; m++) jtvw += jtv[m] * w[m];
+    CHECK(fabs(vjw - jtvw) <= 1e-13 * scale, "adjoint: v^T (J w) = %.17g but (J^T v)^T w = %.17g", vjw, jtvw);
+    /* Finite differences of the derivatives along w (states part, then edge stress). */
+    double e = 1e-6, p = e * w[nx];
+    CHECK(F.fmi3GetContinuousStateDerivatives(c, f0, nx) == fmi3OK, "derivatives at x");
+    for (size_t m = 0; m < nx; m++) x[m] += e * w[m];
+    fmi3ValueReference edge = VR_EDGE_STRESS;
+    CHECK(F.fmi3SetContinuousStates(c, x, nx) == fmi3OK && F.fmi3SetFloat64(c, &edge, 1, &p, 1) == fmi3OK, "x + e w");
+    CHECK(F.fmi3GetContinuousStateDerivatives(c, f1, nx) == fmi3OK, "derivatives at x + e w");
+    int bad = 0;
+    for (size_t m = 0; m < nx; m++) bad += !(fabs((f1[m] - f0[m]) / e - jw[m]) <= 1e-6 * fmax(fabs(jw[m]), 1.0));
+    CHECK(bad == 0, "J w against finite differences: %d of %zu rows differ", bad, nx);
+    /* The state block alone: J e_m = -rate_m e_m. */
+    double one = 1.0;
+    bad = 0;
+    for (size_t m = 0; m < nx; m++) {
+        CHECK(F.fmi3GetDirectionalDerivative(c, unknowns, nx, &knowns[m], 1, &one, 1, jw, nx) == fmi3OK, "column %zu", m);
+        for (size_t i = 0; i < nx; i++) bad += i == m ? !(fabs(jw[m] + rate[m]) <= 1e-12 * rate[m]) : jw[i] != 0.0;
+    }
+    CHECK(bad == 0, "the state block is diag(-1/nu): %d entries differ", bad);
+    double zero = 0.0;
+    CHECK(F.fmi3SetFloat64(c, &edge, 1, &zero, 1) == fmi3OK, "edge stress back to 0");
+    free(unknowns), free(knowns), free(v), free(w), free(jw), free(jtv), free(x), free(f0), free(f1);
+}
+
+/* Exact integration of the uncoupled modes by the master, from two derivative
+ * evaluations: the states are the departure from the response to the edge stress held
+ * (0 while it is), so the master's exact solution keeps them at 0 and the FMU's outputs
+ * follow the reference results through fmi3SetTime. */
 static void model_exchange(const char *token) {
     fmi3Instance c = F.fmi3InstantiateModelExchange("me", token, NULL, false, false, NULL, logger);
     CHECK(c != NULL, "fmi3InstantiateModelExchange");
@@ -101,17 +163,16 @@ static void model_exchange(const char *token) {
     double next;
     CHECK(F.fmi3UpdateDiscreteStates(c, &a, &b, &d, &e, &g, &next) == fmi3OK && !a && !b && !g, "UpdateDiscreteStates");
     CHECK(F.fmi3EnterContinuousTimeMode(c) == fmi3OK, "EnterContinuousTimeMode");
-    double *x = calloc(nx, sizeof *x), *d0 = calloc(nx, sizeof *d0), *d1 = calloc(nx, sizeof *d1);
+    double *x = calloc(nx, sizeof *x), *d0 = calloc(nx, sizeof *d0), *d1 = calloc(nx, sizeof *d1), *rate = calloc(nx, sizeof *rate);
     CHECK(F.fmi3GetContinuousStateDerivatives(c, d0, nx) == fmi3OK, "derivatives at c = 0");
     for (size_t k = 0; k < nx; k++) x[k] = 1.0;
     CHECK(F.fmi3SetContinuousStates(c, x, nx) == fmi3OK, "SetContinuousStates");
     CHECK(F.fmi3GetContinuousStateDerivatives(c, d1, nx) == fmi3OK, "derivatives at c = 1");
+    for (size_t m = 0; m < nx; m++) rate[m] = d0[m] - d1[m]; /* 1 / nu_m; 0 for the spare states */
+    jacobian(c, nx, rate);
     for (int k = 0; k < 5; k++) {
         double t = REFERENCE[k].t, radius, velocity;
-        for (size_t m = 0; m < nx; m++) {
-            double rate = d0[m] - d1[m]; /* 1 / nu_m; 0 for the spare states */
-            x[m] = rate > 0 ? d0[m] / rate * -expm1(-t * rate) : 0.0;
-        }
+        for (size_t m = 0; m < nx; m++) x[m] = rate[m] > 0 ? d0[m] / rate[m] * -expm1(-t * rate[m]) : 0.0;
         CHECK(F.fmi3SetTime(c, t) == fmi3OK && F.fmi3SetContinuousStates(c, x, nx) == fmi3OK, "set t = %g", t);
         outputs(c, &radius, &velocity);
         CHECK(matches_reference("FMI 3.0 Model Exchange", k, radius, velocity), "t = %g", t);
@@ -119,6 +180,7 @@ static void model_exchange(const char *token) {
     free(x);
     free(d0);
     free(d1);
+    free(rate);
     CHECK(F.fmi3Terminate(c) == fmi3OK, "Terminate");
     F.fmi3FreeInstance(c);
 }
@@ -195,7 +257,8 @@ int main(int argc, char **argv) {
     LOAD(fmi3SetFloat64) LOAD(fmi3DoStep) LOAD(fmi3UpdateDiscreteStates) LOAD(fmi3EnterContinuousTimeMode)
     LOAD(fmi3SetTime) LOAD(fmi3SetContinuousStates) LOAD(fmi3GetContinuousStateDerivatives)
     LOAD(fmi3GetNumberOfContinuousStates) LOAD(fmi3GetFMUState) LOAD(fmi3FreeFMUState)
-    LOAD(fmi3SerializedFMUStateSize) LOAD(fmi3SetFMUState)
+    LOAD(fmi3SerializedFMUStateSize) LOAD(fmi3SetFMUState) LOAD(fmi3GetDirectionalDerivative)
+    LOAD(fmi3GetAdjointDerivative)
 #undef LOAD
     co_simulation(token);
     model_exchange(token);

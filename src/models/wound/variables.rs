@@ -30,10 +30,11 @@ crate::variable_table! {
 }
 
 /// Continuous states of Model Exchange: the modal coordinates of the spectral-element
-/// mesh. The modes are uncoupled (`c_k' = (g_k(p) - c_k) / nu_k`), so the ODE is the
-/// one the co-simulation step integrates exactly, the states are the co-simulation
-/// state (FMU states and their serialization carry over unchanged), and the relaxation
-/// times `nu_k` state its stiffness. Nodal values would couple every unknown through the
+/// mesh less their closed-form response to the edge stress held from the cut
+/// ([`super::exchange`]). The modes are uncoupled (`c_k' = (g_k(p) - c_k) / nu_k`), so the
+/// ODE is the one the co-simulation step integrates exactly, FMU states and their
+/// serialization carry over unchanged (they hold the modal coordinates), and the
+/// relaxation times `nu_k` state its stiffness. Nodal values would couple every unknown through the
 /// mass matrix. FMI 2.0 fixes the count: the mesh of the largest accepted `R_inf` (1e6)
 /// at the finest tolerance (1e-11), 27 elements of degree 8; a smaller mesh leaves the
 /// last states at 0 with derivative 0.
@@ -85,7 +86,7 @@ pub static DESCRIPTION: Description = Description {
         count: MODEL_EXCHANGE_STATES,
         name: "modal_coordinate",
         unit: "1",
-        description: "Modal coordinate of the departure u - sigma r / 6 from the uniform tension (in R0); 0 at the cut; inert (derivative 0) on modes the mesh does not use",
+        description: "Modal coordinate of the departure u - sigma r / 6 from the uniform tension (in R0), less its exact response to the edge stress held since initialization: 0 at the cut and while the edge stress stays; inert (derivative 0) on modes the mesh does not use",
         derivative_unit: "1/s",
         initial_dependencies: &INITIAL_RATE_DEPENDENCIES,
         input_dependencies: &[(Vr::EdgeStress as u32, "fixed")],
