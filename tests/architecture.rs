@@ -2,7 +2,9 @@
 //! variables and no unit, so a new model is a folder under src/models and one line in
 //! `models::MODELS`; and `unsafe` code lives only in the C boundary (the FMI shims and
 //! their frame, the direct API's shims, the panic boundary), which every other module
-//! forbids with `#![forbid(unsafe_code)]`.
+//! forbids with `#![forbid(unsafe_code)]`; and the version-independent FMI core
+//! (src/fmi/common) names no FMI version: each version's function names and its own calls
+//! live in its folder (src/fmi/fmi2, src/fmi/fmi3).
 
 use std::path::{Path, PathBuf};
 use wound_opening::models::MODELS;
@@ -86,4 +88,51 @@ fn unsafe_code_is_confined_to_the_c_boundary() {
         let text = std::fs::read_to_string(src(module)).expect("readable");
         assert!(text.contains("#![forbid(unsafe_code)]"), "{module} does not forbid unsafe code");
     }
+}
+
+/// `text` without its comment lines and the comment tails of code lines (`//` outside a
+/// string literal).
+fn code_of(text: &str) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        let mut in_string = false;
+        let mut prev = ' ';
+        let mut cut = line.len();
+        for (i, c) in line.char_indices() {
+            if c == '"' && prev != '\\' {
+                in_string = !in_string;
+            }
+            if !in_string && c == '/' && prev == '/' {
+                cut = i - 1;
+                break;
+            }
+            prev = c;
+        }
+        out.push_str(&line[..cut]);
+        out.push('\n');
+    }
+    out
+}
+
+/// The core knows no version: no `fmi2` / `fmi3` (nor `Fmi2`, `FMI3`, ...) in its code,
+/// comments aside; the names, the text rewriting and the rules of a version are its
+/// folder's `Dialect` (src/fmi/fmi2/names.rs, src/fmi/fmi3/names.rs), and the calls only
+/// FMI 3.0 has (its arrays, Intermediate Update Mode) are in src/fmi/fmi3.
+#[test]
+fn the_fmi_core_names_no_version() {
+    let mut found = Vec::new();
+    for file in rust_files(&src("fmi/common")) {
+        let code = code_of(&std::fs::read_to_string(&file).expect("readable")).to_lowercase();
+        for token in ["fmi2", "fmi3"] {
+            if code.contains(token) {
+                found.push(format!("{}: {token}", file.display()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "the version-independent core names a version:\n{}", found.join("\n"));
+    for (folder, file) in [("fmi2", "names.rs"), ("fmi3", "names.rs"), ("fmi3", "arrays.rs"), ("fmi3", "intermediate.rs")] {
+        let text = std::fs::read_to_string(src(&format!("fmi/{folder}/{file}"))).expect("the version's own file");
+        assert!(text.contains("#![forbid(unsafe_code)]"), "fmi/{folder}/{file} is safe Rust and says so");
+    }
+    assert_eq!(code_of("let a = \"fmi2\"; // fmi3 here\n// fmi3\n"), "let a = \"fmi2\"; \n\n");
 }

@@ -20,7 +20,7 @@
 //! ignored.
 
 use crate::boundary::pointers::{self, NullArray};
-use crate::fmi::common::instance::{Call, Instance, Logger, Rejected, Status, Version};
+use crate::fmi::common::instance::{Call, Dialect, Instance, Logger, Rejected, Status};
 use crate::fmi::fmi2::types::*;
 use crate::boundary::guard;
 use crate::boundary::registry::Table;
@@ -32,7 +32,7 @@ use std::sync::{Arc, Mutex, TryLockError};
 pub struct Entry {
     logger: Arc<dyn Logger>,
     /// The instance's FMI version, to name a refused call as its importer knows it.
-    version: Version,
+    dialect: Dialect,
     instance: Mutex<Instance>,
 }
 
@@ -54,8 +54,8 @@ fn handle_of(c: fmi2Component) -> u64 {
 /// Put `instance` in the table of live instances; the handle is what the master holds.
 /// (`fmi2Instantiate` does this; tests use it to give an instance a Rust logger.)
 pub fn register(instance: Instance) -> fmi2Component {
-    let (logger, version) = (instance.logger(), instance.version());
-    INSTANCES.insert(Entry { logger, version, instance: Mutex::new(instance) }) as usize as fmi2Component
+    let (logger, dialect) = (instance.logger(), instance.dialect());
+    INSTANCES.insert(Entry { logger, dialect, instance: Mutex::new(instance) }) as usize as fmi2Component
 }
 
 /// `fmi2FreeInstance`: forget the handle. An unknown handle (a second free, or one never
@@ -82,7 +82,7 @@ pub fn with_instance(
         let mut inst = match entry.instance.try_lock() {
             Ok(inst) => inst,
             Err(TryLockError::WouldBlock) => {
-                entry.logger.log(Status::Error, "logStatusError", &format!("{}: {BUSY}", call.name(entry.version)));
+                entry.logger.log(Status::Error, "logStatusError", &format!("{}: {BUSY}", (entry.dialect.name)(call)));
                 return Status::Error;
             }
             // A panic escaped an earlier call while it held the lock (only a panicking
@@ -91,7 +91,7 @@ pub fn with_instance(
             Err(TryLockError::Poisoned(poisoned)) => {
                 entry.instance.clear_poison();
                 let mut inst = poisoned.into_inner();
-                inst.fail(&format!("{}: an earlier call on this instance was interrupted by an internal error", call.name(entry.version)));
+                inst.fail(&format!("{}: an earlier call on this instance was interrupted by an internal error", (entry.dialect.name)(call)));
                 inst
             }
         };
@@ -99,7 +99,7 @@ pub fn with_instance(
             Ok(Ok((s, warning))) => s.max(warning),
             Ok(Err(s)) => s,
             Err(panic) => {
-                inst.fail(&format!("{}: internal error (caught panic: {panic})", call.name(entry.version)));
+                inst.fail(&format!("{}: internal error (caught panic: {panic})", (entry.dialect.name)(call)));
                 Status::Error
             }
         }

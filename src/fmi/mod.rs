@@ -5,9 +5,9 @@
 //! ```text
 //! common/   the version-independent core in safe Rust (no `unsafe`, enforced): the model
 //!           interface, one instance's calls, state machine, FMU states, Model Exchange,
-//!           arrays, logging
-//! fmi2/     FMI 2.0: C types, exported functions, modelDescription.xml
-//! fmi3/     FMI 3.0: the same
+//!           logging; a version's names and rules come from its Dialect
+//! fmi2/     FMI 2.0: C types, exported functions, its Dialect, modelDescription.xml
+//! fmi3/     FMI 3.0: the same, and its own calls (arrays, intermediate update)
 //! frame.rs  what every exported function of both versions runs in: the instance table,
 //!           the instance's lock, the panic boundary, C strings and the importer's logger
 //! shims.rs  the bodies of the functions whose C signatures both versions share

@@ -1,16 +1,26 @@
 //! The FMI calls an instance answers: in which states of the FMI 2.0 state machines each
 //! is allowed (co-simulation, section 4.2.4; Model Exchange, section 3.2.3, as the
-//! Reference-FMUs' masks in `fmi2Functions.c` read it), for which interface type, and its
-//! name for messages.
+//! Reference-FMUs' masks in `fmi2Functions.c` read it) and for which interface type; what
+//! differs between versions (the calls' names, a rule or two) is a [`Dialect`] that each
+//! version's folder defines (`src/fmi/fmi2/names.rs`, `src/fmi/fmi3/names.rs`).
 
 use crate::fmi::common::machine::{Interface, Machine};
 
-/// The FMI version an instance was made through: its rules where they differ, and the
-/// names its importer knows the functions by.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Version {
-    Fmi2,
-    Fmi3,
+/// What differs between the FMI versions an instance can be made through: the names its
+/// importer knows the functions by and the rules where they differ. Each version's folder
+/// defines its own; the core names none.
+#[derive(Debug, Clone, Copy)]
+pub struct Dialect {
+    /// A call's name, for messages.
+    pub name: fn(Call) -> String,
+    /// Free text (log messages, which the models write with the first version's function
+    /// names) as this version's importer should read it.
+    pub text: fn(&str) -> String,
+    /// The Get calls also read start values in Instantiated and Configuration Mode
+    /// (the arrays refuse outputs and states there).
+    pub get_before_initialization: bool,
+    /// Configuration Mode exists: an FMU state saved there can be restored.
+    pub configuration_mode: bool,
 }
 
 /// The FMI calls, for the state-machine check and the call log.
@@ -70,23 +80,10 @@ impl Call {
         }
     }
 
-    /// States in which `version` allows the call: FMI 2.0's table ([`Call::allowed`]), and
-    /// where FMI 3.0 differs, its rules.
-    pub fn allowed_in(self, m: Machine, version: Version) -> bool {
-        match version {
-            Version::Fmi2 => self.allowed(m),
-            // FMI 3.0, section 2.3.2: fmi3Get* also reads start values in Instantiated and
-            // Configuration Mode (the arrays refuse outputs and states there).
-            Version::Fmi3 => self.allowed(m) || (self == Call::Get && matches!(m, Machine::Instantiated | Machine::ConfigurationMode)),
-        }
-    }
-
-    /// The call's name in `version`.
-    pub fn name(self, version: Version) -> String {
-        match version {
-            Version::Fmi2 => self.fmi_name().to_string(),
-            Version::Fmi3 => self.fmi3_name(),
-        }
+    /// States in which `dialect` allows the call: FMI 2.0's table ([`Call::allowed`]), and
+    /// where the dialect differs, its rules.
+    pub fn allowed_in(self, m: Machine, dialect: &Dialect) -> bool {
+        self.allowed(m) || (dialect.get_before_initialization && self == Call::Get && matches!(m, Machine::Instantiated | Machine::ConfigurationMode))
     }
 
     /// States in which FMI 2.0 allows the call (FMI 3.0's extra states included: an FMI 2.0
@@ -139,108 +136,5 @@ impl Call {
             // Refused by its body: steps are never asynchronous, so there is nothing to cancel.
             Call::CancelStep => true,
         }
-    }
-
-    pub fn fmi_name(self) -> &'static str {
-        match self {
-            Call::SetDebugLogging => "fmi2SetDebugLogging",
-            Call::SetupExperiment => "fmi2SetupExperiment",
-            Call::EnterInitializationMode => "fmi2EnterInitializationMode",
-            Call::ExitInitializationMode => "fmi2ExitInitializationMode",
-            Call::Terminate => "fmi2Terminate",
-            Call::Reset => "fmi2Reset",
-            Call::Get => "fmi2Get*",
-            Call::Set => "fmi2Set*",
-            Call::GetFmuState => "fmi2GetFMUstate",
-            Call::SetFmuState => "fmi2SetFMUstate",
-            Call::FreeFmuState => "fmi2FreeFMUstate",
-            Call::SerializeFmuState => "fmi2SerializeFMUstate",
-            Call::DeSerializeFmuState => "fmi2DeSerializeFMUstate",
-            Call::DoStep => "fmi2DoStep",
-            Call::CancelStep => "fmi2CancelStep",
-            Call::GetStatus => "fmi2Get*Status",
-            Call::GetDirectionalDerivative => "fmi2GetDirectionalDerivative",
-            Call::SetRealInputDerivatives => "fmi2SetRealInputDerivatives",
-            Call::GetRealOutputDerivatives => "fmi2GetRealOutputDerivatives",
-            Call::EnterEventMode => "fmi2EnterEventMode",
-            Call::NewDiscreteStates => "fmi2NewDiscreteStates",
-            Call::EnterContinuousTimeMode => "fmi2EnterContinuousTimeMode",
-            Call::CompletedIntegratorStep => "fmi2CompletedIntegratorStep",
-            Call::SetTime => "fmi2SetTime",
-            Call::SetContinuousStates => "fmi2SetContinuousStates",
-            Call::GetDerivatives => "fmi2GetDerivatives",
-            Call::GetEventIndicators => "fmi2GetEventIndicators",
-            Call::GetContinuousStates => "fmi2GetContinuousStates",
-            Call::GetNominalsOfContinuousStates => "fmi2GetNominalsOfContinuousStates",
-            // Calls that exist in FMI 3.0 only, under their only names.
-            Call::GetNumberOf => "fmi3GetNumberOf*",
-            Call::EnterConfigurationMode => "fmi3EnterConfigurationMode",
-            Call::FinishStep => "fmi3DoStep",
-            Call::ExitConfigurationMode => "fmi3ExitConfigurationMode",
-            Call::Unsupported => "fmi3",
-        }
-    }
-
-    /// The FMI 3.0 name, where it is not the FMI 2.0 one with `fmi3` for `fmi2`.
-    pub fn fmi3_name(self) -> String {
-        match self {
-            Call::SetupExperiment | Call::EnterInitializationMode => "fmi3EnterInitializationMode".into(),
-            Call::Get => "fmi3Get*".into(),
-            Call::Set => "fmi3Set*".into(),
-            Call::GetFmuState => "fmi3GetFMUState".into(),
-            Call::SetFmuState => "fmi3SetFMUState".into(),
-            Call::FreeFmuState => "fmi3FreeFMUState".into(),
-            Call::SerializeFmuState => "fmi3SerializeFMUState".into(),
-            Call::DeSerializeFmuState => "fmi3DeserializeFMUState".into(),
-            Call::NewDiscreteStates => "fmi3UpdateDiscreteStates".into(),
-            Call::GetDerivatives => "fmi3GetContinuousStateDerivatives".into(),
-            Call::GetRealOutputDerivatives => "fmi3GetOutputDerivatives".into(),
-            other => other.fmi_name().replacen("fmi2", "fmi3", 1),
-        }
-    }
-}
-
-/// FMI 2.0 names in free text (variable descriptions, log messages) and what an FMI 3.0
-/// importer calls instead; the first that matches wins, then any other `fmi2` prefix
-/// becomes `fmi3`.
-const FMI3_WORDS: [(&str, &str); 12] = [
-    ("fmi2SetRealInputDerivatives", "an intermediate update (requiredIntermediateVariables)"),
-    ("fmi2GetRealOutputDerivatives", "fmi3GetOutputDerivatives"),
-    ("fmi2SetupExperiment", "fmi3EnterInitializationMode"),
-    ("fmi2SetReal", "fmi3SetFloat64"),
-    ("fmi2GetReal", "fmi3GetFloat64"),
-    ("fmi2GetDerivatives", "fmi3GetContinuousStateDerivatives"),
-    ("fmi2NewDiscreteStates", "fmi3UpdateDiscreteStates"),
-    ("fmi2DeSerializeFMUstate", "fmi3DeserializeFMUState"),
-    ("fmi2SerializeFMUstate", "fmi3SerializeFMUState"),
-    ("fmi2GetFMUstate", "fmi3GetFMUState"),
-    ("fmi2SetFMUstate", "fmi3SetFMUState"),
-    ("fmi2FreeFMUstate", "fmi3FreeFMUState"),
-];
-
-/// `text` as an FMI 3.0 importer should read it ([`FMI3_WORDS`]).
-pub fn fmi3_text(text: &str) -> String {
-    let mut out = text.to_string();
-    for (fmi2, fmi3) in FMI3_WORDS {
-        out = out.replace(fmi2, fmi3);
-    }
-    out.replace("fmi2", "fmi3")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Calls that exist in FMI 3.0 only are named as FMI 3.0 names them, whatever the
-    /// instance's version: there is no `fmi2EnterConfigurationMode` to point a reader to.
-    #[test]
-    fn fmi3_only_calls_have_no_fmi2_name() {
-        for call in [Call::EnterConfigurationMode, Call::ExitConfigurationMode, Call::GetNumberOf, Call::FinishStep] {
-            for version in [Version::Fmi2, Version::Fmi3] {
-                assert!(call.name(version).starts_with("fmi3"), "{call:?} in {version:?}: {}", call.name(version));
-            }
-        }
-        assert_eq!(Call::GetFmuState.name(Version::Fmi2), "fmi2GetFMUstate");
-        assert_eq!(Call::GetFmuState.name(Version::Fmi3), "fmi3GetFMUState");
     }
 }

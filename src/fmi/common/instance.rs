@@ -8,7 +8,7 @@
 //! [`Status::Error`], and changes nothing: every check runs before any mutation, so the
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
-pub use crate::fmi::common::call::{Call, Version};
+pub use crate::fmi::common::call::{Call, Dialect};
 pub use crate::fmi::common::log::{Logger, Status};
 pub use crate::fmi::common::model::Rejected;
 use crate::fmi::common::log::Log;
@@ -21,7 +21,7 @@ mod fmu_states;
 use fmu_states::Snapshot;
 
 /// The importer's `intermediateUpdate` callback (FMI 3.0): asked for the inputs at `time`
-/// inside a step ([`crate::fmi::common::intermediate`]).
+/// inside a step ([`crate::fmi::fmi3::intermediate`]).
 pub trait Requester: Send + Sync {
     fn request_inputs(&self, time: f64);
 }
@@ -32,7 +32,7 @@ pub struct Instance {
     log: Log,
     pub(in crate::fmi) interface: Interface,
     /// The FMI version it was made through: its rules and its function names in messages.
-    version: Version,
+    dialect: Dialect,
     pub(in crate::fmi) machine: Machine,
     pub(in crate::fmi) clock: Clock,
     pub(in crate::fmi) model: Box<dyn FmuModel>,
@@ -43,21 +43,19 @@ pub struct Instance {
     /// model), of a freed instance, or a made-up one is never in this table.
     states: HashMap<u64, Snapshot>,
     /// FMI 3.0 co-simulation: the importer's `intermediateUpdate` callback and the inputs
-    /// it may set in Intermediate Update Mode (see [`crate::fmi::common::intermediate`]).
+    /// it may set in Intermediate Update Mode (see [`crate::fmi::fmi3::intermediate`]).
     pub(in crate::fmi) intermediate: Option<(Arc<dyn Requester>, Vec<u32>)>,
 }
 
 const FRESH_CLOCK: Clock = Clock { start: 0.0, stop: None, time: 0.0 };
 
 impl Instance {
-    /// A co-simulation instance of the model that `fresh` makes.
-    pub fn new(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
-        Self::of_interface(Interface::CoSimulation, fresh, name, logger, logging_on)
-    }
-
-    /// An instance of `interface` of the model that `fresh` makes.
+    /// An instance of `interface` of the model that `fresh` makes, in the words and rules
+    /// of `dialect` (`Instance::new` in [`crate::fmi::fmi2::names`] for FMI 2.0
+    /// co-simulation).
     pub fn of_interface(
         interface: Interface,
+        dialect: Dialect,
         fresh: fn() -> Box<dyn FmuModel>,
         name: &str,
         logger: Arc<dyn Logger>,
@@ -67,7 +65,7 @@ impl Instance {
             name: name.to_owned(),
             log: Log::new(logger, logging_on),
             interface,
-            version: Version::Fmi2,
+            dialect,
             machine: Machine::Instantiated,
             clock: FRESH_CLOCK,
             model: fresh(),
@@ -94,15 +92,8 @@ impl Instance {
         self.interface
     }
 
-    /// An instance made by the FMI 3.0 functions: the same machine and model, its calls
-    /// named `fmi3*` in messages.
-    pub fn fmi3(mut self) -> Self {
-        self.version = Version::Fmi3;
-        self
-    }
-
-    pub fn version(&self) -> Version {
-        self.version
+    pub fn dialect(&self) -> Dialect {
+        self.dialect
     }
 
     /// Whether the FMU has no computed values yet: only start values can be read.
@@ -114,14 +105,11 @@ impl Instance {
     /// A message in the words of the instance's FMI version (FMI 3.0: its own function
     /// names, [`super::call::fmi3_text`]).
     fn in_own_words(&self, message: &str) -> String {
-        match self.version {
-            Version::Fmi2 => message.to_string(),
-            Version::Fmi3 => super::call::fmi3_text(message),
-        }
+        (self.dialect.text)(message)
     }
 
     pub fn name_of(&self, call: Call) -> String {
-        call.name(self.version)
+        (self.dialect.name)(call)
     }
 
     pub fn description(&self) -> &'static Description {
@@ -165,7 +153,7 @@ impl Instance {
             self.log_error(&format!("{name} is a {only:?} function but this instance is {:?}", self.interface));
             return Err(Status::Error);
         }
-        if !call.allowed_in(self.machine, self.version) {
+        if !call.allowed_in(self.machine, &self.dialect) {
             self.log_error(&format!("{name} is not allowed in state {:?}", self.machine));
             return Err(Status::Error);
         }
@@ -284,6 +272,17 @@ impl Instance {
         Ok(())
     }
 
+    /// Whether `vr` may be set now: anything outside Intermediate Update Mode, only the
+    /// required intermediate inputs inside it.
+    fn settable_now(&self, vr: u32) -> Result<(), Rejected> {
+        match (&self.intermediate, self.machine) {
+            (Some((_, vrs)), Machine::IntermediateUpdate) if !vrs.contains(&vr) => {
+                Err(format!("value reference {vr} is not a required intermediate variable: it cannot be set in Intermediate Update Mode"))
+            }
+            _ => Ok(()),
+        }
+    }
+
     /// Set the listed variables of type `kind`: all values are checked first; any
     /// rejection sets none of them.
     fn set_values(&mut self, kind: Kind, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
@@ -301,7 +300,7 @@ impl Instance {
                 state => {
                     let name = d.state_name(state);
                     return Err(format!(
-                        "{name} (value reference {v}) is a continuous state or derivative: states are set with fmi2SetContinuousStates"
+                        "{name} (value reference {v}) is a continuous state or derivative: states are set with {}", self.name_of(Call::SetContinuousStates)
                     ));
                 }
             };
@@ -312,8 +311,10 @@ impl Instance {
             }
             if fixed_now {
                 return Err(format!(
-                    "{} is a fixed parameter: it can only be set before fmi2ExitInitializationMode (state is {:?})",
-                    var.name, self.machine
+                    "{} is a fixed parameter: it can only be set before {} (state is {:?})",
+                    var.name,
+                    self.name_of(Call::ExitInitializationMode),
+                    self.machine
                 ));
             }
             checked.push((v, self.model.check(v, x)?));

@@ -9,19 +9,15 @@
 //! machine.rs        the state machine's states and the master's clock
 //! call.rs           the calls, and in which state each is allowed
 //! exchange.rs       Model Exchange on an instance
-//! arrays.rs         FMI 3.0 time, arrays and Configuration Mode on an instance
-//! intermediate.rs   FMI 3.0 Intermediate Update Mode inside a step
 //! serialized.rs     the byte format of serialized FMU states
 //! log.rs            status, logger trait, log categories
 //! xml.rs            what both modelDescription.xml writers share
 //! ```
 #![forbid(unsafe_code)]
 
-pub mod arrays;
 pub mod call;
 pub mod exchange;
 pub mod instance;
-pub mod intermediate;
 pub mod log;
 pub mod machine;
 pub mod model;

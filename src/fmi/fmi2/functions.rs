@@ -66,7 +66,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
             Err(msg) => return fail(msg),
         };
         let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
-        Some(register(Instance::of_interface(interface, fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))
+        Some(register(Instance::of_interface(interface, crate::fmi::fmi2::names::FMI2, fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))
     });
     made.ok().flatten().unwrap_or(std::ptr::null_mut())
 }
@@ -113,7 +113,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 /// `fmi2ExitInitializationMode`, `fmi2Terminate`, `fmi2Reset`. (Written out below, one
 /// function each rather than by a macro, so that cbindgen sees every exported function.)
 fn transition(c: fmi2Component, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi2Status {
-    with_instance(c, call, || call.fmi_name().to_string(), |i| method(i).map(|_| Status::Ok))
+    with_instance(c, call, || crate::fmi::fmi2::names::name(call).to_string(), |i| method(i).map(|_| Status::Ok))
 }
 
 #[unsafe(no_mangle)]

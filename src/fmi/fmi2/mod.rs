@@ -4,11 +4,13 @@
 //! ```text
 //! types.rs       fmi2TypesPlatform.h, fmi2FunctionTypes.h as Rust declarations
 //! functions.rs   the common and co-simulation functions
+//! names.rs       its Dialect: the functions' names (safe Rust)
 //! exchange.rs    the Model Exchange functions
 //! xml.rs         modelDescription.xml (fmi2ModelDescription.xsd)
 //! ```
 
 pub mod exchange;
 pub mod functions;
+pub mod names;
 pub mod types;
 pub mod xml;

@@ -71,7 +71,7 @@ fn instantiate(
             Ok(fresh) => fresh,
             Err(msg) => return fail(msg),
         };
-        let instance = Instance::of_interface(interface, fresh, &name, Arc::new(sink), loggingOn != FMI3_FALSE).fmi3();
+        let instance = Instance::of_interface(interface, crate::fmi::fmi3::names::FMI3, fresh, &name, Arc::new(sink), loggingOn != FMI3_FALSE);
         Some(register(instance))
     });
     made.ok().flatten().unwrap_or(std::ptr::null_mut())
@@ -91,7 +91,7 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
 }
 
 /// The importer's `intermediateUpdate` callback, asked for the inputs at the end of each
-/// step (see [`crate::fmi::common::intermediate`]).
+/// step (see [`crate::fmi::fmi3::intermediate`]).
 struct IntermediateUpdate {
     callback: unsafe extern "C" fn(fmi3InstanceEnvironment, f64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut f64),
     env: fmi3InstanceEnvironment,
@@ -191,7 +191,7 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
 }
 
 fn transition(instance: fmi3Instance, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi3Status {
-    with_instance(instance, call, || call.fmi3_name(), |i| method(i).map(|_| Status::Ok))
+    with_instance(instance, call, || crate::fmi::fmi3::names::name(call), |i| method(i).map(|_| Status::Ok))
 }
 
 #[unsafe(no_mangle)]
@@ -402,7 +402,7 @@ pub unsafe extern "C" fn fmi3GetAdjointDerivative(
 /// One step; never early, no event handling (no event mode), `lastSuccessfulTime` the end
 /// of an accepted step (else the time before it), `terminateSimulation` at the stop time.
 /// With required intermediate variables, the importer is asked for them at the end of the
-/// step, the instance unlocked meanwhile ([`crate::fmi::common::intermediate`]).
+/// step, the instance unlocked meanwhile ([`crate::fmi::fmi3::intermediate`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3DoStep(
     instance: fmi3Instance,

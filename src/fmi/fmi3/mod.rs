@@ -5,13 +5,19 @@
 //! ```text
 //! types.rs         fmi3PlatformTypes.h, fmi3FunctionTypes.h as Rust declarations
 //! functions.rs     the common and co-simulation functions
+//! intermediate.rs  Intermediate Update Mode inside a step (safe Rust)
+//! names.rs         its Dialect: the functions' names, text in its words (safe Rust)
+//! arrays.rs        time, arrays and Configuration Mode on an instance (safe Rust)
 //! exchange.rs      the Model Exchange functions
 //! unsupported.rs   clocks, scheduled execution, adjoints, other variable types: refused
 //! xml.rs           modelDescription.xml (fmi3ModelDescription.xsd)
 //! ```
 
+pub mod arrays;
 pub mod exchange;
 pub mod functions;
+pub mod intermediate;
+pub mod names;
 pub mod types;
 pub mod unsupported;
 pub mod xml;

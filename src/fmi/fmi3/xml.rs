@@ -146,7 +146,7 @@ pub fn fmi3(d: &Description) -> String {
     }
     x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
     // The tables are shared with FMI 2.0: their descriptions name its functions.
-    crate::fmi::common::call::fmi3_text(&x)
+    crate::fmi::fmi3::names::text(&x)
 }
 
 /// The structural parameter, then each array with a `<Dimension>` naming it.

@@ -4,7 +4,7 @@
 //! ([`crate::boundary::registry::fresh_handle`]) and are never reused, so a handle that this
 //! instance did not hand out is refused with the reason, never dereferenced.
 
-use super::{Instance, Machine, Rejected, Version};
+use super::{Call, Instance, Machine, Rejected};
 use crate::boundary::registry::fresh_handle;
 use crate::fmi::common::machine::Clock;
 use crate::fmi::common::model::FmuModel;
@@ -42,8 +42,9 @@ impl Instance {
         self.states.get(&handle).ok_or_else(|| {
             format!(
                 "FMU state {handle:#x} is unknown to this instance (never allocated by it, or already freed); \
-                 a state of another instance cannot be used here: move it with fmi2SerializeFMUstate and \
-                 fmi2DeSerializeFMUstate"
+                 a state of another instance cannot be used here: move it with {} and {}",
+                self.name_of(Call::SerializeFmuState),
+                self.name_of(Call::DeSerializeFmuState)
             )
         })
     }
@@ -76,9 +77,9 @@ impl Instance {
             self.snapshot(h)?;
         }
         let (machine, clock, payload) = serialized::decode(self.description().model_identifier, bytes)?;
-        // Intermediate Update Mode exists only inside an fmi3DoStep (no state is saved there),
-        // Configuration Mode only in FMI 3.0.
-        let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && self.version == Version::Fmi2);
+        // Intermediate Update Mode exists only inside a step (no state is saved there),
+        // Configuration Mode only in the dialects that have it.
+        let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && !self.dialect.configuration_mode);
         if transient || !machine.belongs_to(self.interface) {
             return Err(format!("serialized FMU state is in state {machine:?}, which this instance ({:?}) is never saved in", self.interface));
         }

@@ -14,6 +14,7 @@
 //! ```
 //!
 //! An importer that sets nothing holds the inputs, as without the callback.
+#![forbid(unsafe_code)]
 
 use crate::fmi::common::instance::{Instance, Rejected, Requester};
 use crate::fmi::common::machine::Machine;
@@ -43,17 +44,6 @@ impl Instance {
         let p0 = vrs.iter().map(|&vr| self.model.get(vr, now)).collect();
         self.machine = Machine::IntermediateUpdate;
         Ok(Some((requester, p0)))
-    }
-
-    /// Whether `vr` may be set now: anything outside Intermediate Update Mode, only the
-    /// required intermediate inputs inside it.
-    pub(in crate::fmi) fn settable_now(&self, vr: u32) -> Result<(), Rejected> {
-        match (&self.intermediate, self.machine) {
-            (Some((_, vrs)), Machine::IntermediateUpdate) if !vrs.contains(&vr) => {
-                Err(format!("value reference {vr} is not a required intermediate variable: it cannot be set in Intermediate Update Mode"))
-            }
-            _ => Ok(()),
-        }
     }
 
     /// Phase 3: the inputs linear from `p0` to what the importer set, the step, then held.

@@ -4,6 +4,7 @@
 //! the order of the references, `nValues` the total. The structural parameter is set
 //! only in Configuration Mode (FMI 3.0, section 2.3); parameter arrays then have its
 //! length.
+#![forbid(unsafe_code)]
 
 use crate::fmi::common::instance::{Instance, Rejected};
 use crate::fmi::common::machine::Machine;
