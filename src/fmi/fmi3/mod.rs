@@ -9,7 +9,7 @@
 //! names.rs         its Dialect: the functions' names, text in its words (safe Rust)
 //! arrays.rs        time, arrays and Configuration Mode on an instance (safe Rust)
 //! exchange.rs      the Model Exchange functions
-//! unsupported.rs   clocks, scheduled execution, adjoints, other variable types: refused
+//! unsupported.rs   clocks, scheduled execution, output derivatives, other variable types: refused
 //! xml.rs           modelDescription.xml (fmi3ModelDescription.xsd)
 //! ```
 

@@ -1,8 +1,8 @@
 //! The FMI 3.0 functions this FMU exports because every FMU must (fmi3Functions.h; importers
 //! resolve all of them when loading) but does not provide: the variable types it has none
 //! of (a call naming no variable succeeds, any value reference is an error naming the
-//! type), clocks and their intervals and shifts, event mode in co-simulation, adjoint and
-//! output derivatives, variable dependencies at run time, and scheduled execution. Each is
+//! type), clocks and their intervals and shifts, event mode in co-simulation, output
+//! derivatives, variable dependencies at run time, and scheduled execution. Each is
 //! framed like every other function and refused with the reason under `logStatusError`.
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
