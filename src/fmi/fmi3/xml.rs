@@ -10,7 +10,7 @@ use std::fmt::Write;
 
 /// Value reference of the independent variable `time`.
 pub fn time_reference(d: &Description) -> u32 {
-    (d.variables.len() + 2 * d.state_count()) as u32
+    d.first_state() + 2 * d.state_count() as u32
 }
 
 fn kind3(kind: Kind) -> &'static str {
@@ -21,7 +21,7 @@ fn kind3(kind: Kind) -> &'static str {
 }
 
 fn states(d: &Description, s: &ContinuousStates) -> String {
-    let table = d.variables.len();
+    let table = d.first_state() as usize;
     let mut x = String::new();
     for k in 0..s.count {
         let _ = writeln!(
@@ -183,7 +183,7 @@ fn arrays(d: &Description, a: &Arrays) -> String {
 /// Each array output's value reference with its dependencies: its inputs, then every state.
 fn array_outputs(d: &Description) -> Vec<(u32, Vec<(u32, &'static str)>)> {
     let Some(a) = d.arrays else { return Vec::new() };
-    let (length, table) = (time_reference(d) + 1, d.variables.len() as u32);
+    let (length, table) = (time_reference(d) + 1, d.first_state());
     let states: Vec<(u32, &str)> = (0..d.state_count() as u32).map(|k| (table + k, "fixed")).collect();
     a.arrays
         .iter()
