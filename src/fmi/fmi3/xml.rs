@@ -4,7 +4,7 @@
 //! references `table + k` and `table + count + k`, as in FMI 2.0), then the independent
 //! variable `time` (FMI 3.0 wants exactly one). `ModelStructure` names value references.
 
-use crate::fmi::common::model::{Arrays, Causality, Description, Kind, Named, ContinuousStates, Variability};
+use crate::fmi::common::model::{Arrays, Causality, Description, Kind, Named, ContinuousStates, Variability, Variable};
 use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 
@@ -93,7 +93,9 @@ pub fn fmi3(d: &Description) -> String {
     }
     x.push_str(&units_categories_experiment(d));
     x.push_str("\n  <ModelVariables>\n");
-    for v in d.variables {
+    // The rows added later (value references after every other) come last.
+    let first = d.first_state() as usize;
+    let scalar = |x: &mut String, v: &Variable| {
         let mut attrs = value_attributes(v);
         if v.causality == Causality::Input && v.variability == Variability::Continuous {
             // Settable in Intermediate Update Mode (the FMI 3.0 way to interpolated inputs).
@@ -109,7 +111,8 @@ pub fn fmi3(d: &Description) -> String {
             v.variability.as_str(),
             escape(v.description)
         );
-    }
+    };
+    d.variables[..first].iter().for_each(|v| scalar(&mut x, v));
     if let Some(s) = d.states {
         x.push_str(&states(d, &s));
     }
@@ -121,6 +124,7 @@ pub fn fmi3(d: &Description) -> String {
     if let Some(a) = d.arrays {
         x.push_str(&arrays(d, &a));
     }
+    d.later_rows().iter().for_each(|v| scalar(&mut x, v));
     x.push_str("  </ModelVariables>\n\n  <ModelStructure>\n");
     let structure = Structure::of(d);
     for (vr, deps) in &structure.outputs {
