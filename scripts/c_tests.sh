@@ -12,6 +12,9 @@
 #   fmu3_master      an FMI 3.0 master, dlopen of WoundOpening-fmi3.fmu's .so: all 75
 #                    functions exported, co-simulation and Model Exchange against the exact
 #                    solution, every function it uses on NULL, made-up and freed instances
+#   strict_master    a master that stops on any status but fmi2OK (as fmusim, OMSimulator,
+#                    PyFMI): sigma = 2 stops at the validity warning, runs to the exact end
+#                    with validity_warning = 0; tolerance 0 is none given
 #   two_libraries    WoundOpening and PurseString (FMI 2.0 and 3.0), two copies of the
 #                    library in one process: each copy's instances, FMU states and wo_*
 #                    solvers and states are unknown to the other
@@ -58,6 +61,7 @@ lib="$PWD/target/release"
 "$CC" "${CFLAGS[@]}" -Iinclude -Itests/c tests/c/direct_api.c -L"$lib" -lwound_opening -lm -Wl,-rpath,"$lib" -o "$out/direct_api"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_master.c -ldl -lm -o "$out/fmu_master"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu_misuse.c -ldl -lm -o "$out/fmu_misuse"
+"$CC" "${CFLAGS[@]}" -Itests/c tests/c/strict_master.c -ldl -lm -o "$out/strict_master"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/fmu3_master.c -ldl -lm -o "$out/fmu3_master"
 "$CC" "${CFLAGS[@]}" -Itests/c tests/c/two_libraries.c -ldl -lm -o "$out/two_libraries"
 
@@ -75,6 +79,7 @@ run "$out/fmi2_signatures"
 run "$out/direct_api"
 run "$out/fmu_master" "$out/fmu"
 run "$out/fmu_misuse" "$out/fmu"
+run "$out/strict_master" "$out/fmu"
 run "$out/fmu3_master" "$out/fmu3"
 run "$out/two_libraries" "$out/WoundOpening" "$out/PurseString" "$out/WoundOpening-fmi3" "$out/PurseString-fmi3"
 exit "$failed"

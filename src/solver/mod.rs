@@ -30,7 +30,7 @@ pub mod validity;
 
 pub use mesh::{Mesh, MeshSpec};
 pub use modal::ModalError;
-pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy};
+pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy, sigma_floor};
 pub use params::{
     EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, SIGMA_MIN, check_edge_stress, check_lambda,
     check_r_inf, check_sigma,
@@ -73,6 +73,9 @@ pub enum SolverError {
     Mesh(&'static str),
     /// A tolerance that is not finite and positive.
     Tolerance(f64),
+    /// A sigma so small that the rounding of the wound radius misses the tolerance
+    /// ([`tolerance::sigma_floor`]).
+    Unresolved { sigma: f64, tolerance: f64, floor: f64 },
     /// A communication step that would need more internal work than allowed
     /// (its work, the limit).
     TooManySteps(f64, f64),
@@ -96,6 +99,14 @@ impl std::fmt::Display for SolverError {
             Self::StateNotFinite => write!(f, "state holds a non-finite value"),
             Self::Mesh(why) => write!(f, "mesh settings invalid: {why}"),
             Self::Tolerance(t) => write!(f, "tolerance = {t} is invalid: it must be finite and > 0"),
+            Self::Unresolved { sigma, tolerance, floor } => write!(
+                f,
+                "sigma = {sigma:e} is too small for tolerance {tolerance:e}: accepted: sigma = 0 or |sigma| >= {floor:.2e} \
+                 (6 eps / tolerance; and sigma in (-6, 1e6]). The wound radius R0 (1 + u) is a double near R0, rounded to \
+                 2.2e-16 R0, and the opening is about |sigma| R0 / 2: at this sigma no double meets the tolerance. \
+                 A tolerance >= {:.2e} accepts this sigma",
+                6.0 * f64::EPSILON / sigma.abs()
+            ),
             Self::TooManySteps(work, max) => write!(
                 f,
                 "this step would need {work:.1e} updates of the unknowns (at most {max:.0e} are allowed in one step): take shorter communication steps or a larger internal_step"

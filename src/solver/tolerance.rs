@@ -63,6 +63,23 @@ pub fn delivered_accuracy(tol: f64) -> f64 {
     tol.max(FINEST_TOLERANCE)
 }
 
+/// The smallest `|sigma|` but 0 whose wound radius meets the tolerance `tol` (requested;
+/// the contract is [`delivered_accuracy`]): `6 eps / tol`, 1.3e-5 at the default 1e-10.
+///
+/// The wound radius `R = 1 + u(1)` (in R0) is a double near 1, rounded once when formed and
+/// once when scaled to um: at most one unit in the last place, `eps R` (eps = 2.2e-16), for
+/// any `R < 2`. The opening it is measured against, `R_final - R1 = sigma (2 R_inf^2 /
+/// (3 (R_inf^2 - 1)) - 1/6)`, exceeds `|sigma| / 2`, so the rounding is at most
+/// `2 eps / |sigma|` of it (measured: 2.2e-16 / |sigma| to 3.8e-16 / |sigma| at lambda = 1,
+/// R_inf = 10, whatever the mesh). Below `6 eps / tol` it would take more than a third of
+/// the tolerance, which the mesh's own error (up to 0.54 tol, the table above) needs; no
+/// double can do better, so such a sigma is refused rather than answered inaccurately.
+/// `sigma = 0` is exact: the tissue stays at rest (`R = 1`), or moves only by the edge
+/// stress, whose opening is then the scale.
+pub fn sigma_floor(tol: f64) -> f64 {
+    6.0 * f64::EPSILON / delivered_accuracy(tol)
+}
+
 /// Largest element width in `xi` for a tolerance, interpolated linearly in `log10(tol)`.
 fn max_dxi(tol: f64) -> f64 {
     let (first, last) = (MAX_DXI[0], MAX_DXI[MAX_DXI.len() - 1]);
@@ -85,6 +102,10 @@ impl Settings {
         params.validate()?;
         if !(tol.is_finite() && tol > 0.0) {
             return Err(SolverError::Tolerance(tol));
+        }
+        let floor = sigma_floor(tol);
+        if params.sigma != 0.0 && params.sigma.abs() < floor {
+            return Err(SolverError::Unresolved { sigma: params.sigma, tolerance: tol, floor });
         }
         let span = (1.0 + (params.r_inf - 1.0) / EDGE_SCALE).ln();
         let elements = ((span / max_dxi(tol)).ceil() as usize).max(1);
@@ -121,6 +142,20 @@ mod tests {
         assert!(mid > 0.9 && mid < 1.05);
         assert_eq!(max_dxi(1.0), 3.2);
         assert_eq!(max_dxi(1e-15), 0.6);
+    }
+
+    #[test]
+    fn a_sigma_below_the_rounding_floor_is_refused_with_the_range() {
+        let at = |sigma, tol| Settings::for_tolerance(&Params { sigma, ..Params::default() }, tol);
+        assert!((sigma_floor(1e-10) - 1.33e-5).abs() < 1e-7);
+        assert_eq!(sigma_floor(1e-13), sigma_floor(1e-11), "the floor follows the delivered accuracy");
+        for (sigma, tol) in [(1e-6, 1e-10), (-1e-6, 1e-10), (1e-12, 1e-3), (1.3e-5, 1e-10)] {
+            let msg = at(sigma, tol).unwrap_err().to_string();
+            assert!(msg.contains("accepted: sigma = 0 or |sigma| >= 1.3"), "{msg}");
+        }
+        for (sigma, tol) in [(0.0, 1e-10), (1.34e-5, 1e-10), (-1.34e-5, 1e-10), (1e-12, 1e-2), (2e-9, 1e-6)] {
+            assert!(at(sigma, tol).is_ok(), "{sigma} {tol}");
+        }
     }
 
     #[test]

@@ -22,6 +22,7 @@ WOUND = {
     "R0": (10, "parameter", "fixed", 1.0, "um"),
     "T": (11, "parameter", "fixed", 1.0, "s"),
     "G": (12, "parameter", "fixed", 1.0, "Pa"),
+    "validity_warning": (452, "parameter", "fixed", 1, None),
 }
 
 PURSE = {
@@ -77,10 +78,12 @@ def test_co_simulation_interface(fmu):
     assert md.fmiVersion == "2.0"
     if name == "WoundOpening":
         # Co-simulation alone: its Model Exchange (217 states) is WoundOpening-me.fmu.
-        assert md.modelExchange is None and md.numberOfContinuousStates == 0 and len(md.modelVariables) == 13
+        # 13 published rows and validity_warning (value reference 452, after every other).
+        assert md.modelExchange is None and md.numberOfContinuousStates == 0 and len(md.modelVariables) == 14
         me = read_model_description(path.replace(".fmu", "-me.fmu"))
         assert me.coSimulation is None and me.modelExchange.modelIdentifier == name and me.guid == md.guid
-        assert [(v.name, v.valueReference) for v in me.modelVariables[:13]] == [(v.name, v.valueReference) for v in md.modelVariables]
+        named = [(v.name, v.valueReference) for v in me.modelVariables if v.causality != "local"]
+        assert named == [(v.name, v.valueReference) for v in md.modelVariables]
     else:
         assert md.modelExchange is not None and md.modelExchange.modelIdentifier == name, "both interfaces, one library"
     cs = md.coSimulation
@@ -103,7 +106,7 @@ def test_variables_and_units(fmu):
     units = {u.name: u for u in md.unitDefinitions}
     for var, (vr, causality, variability, start, unit) in table.items():
         v = found[var]
-        assert v.type == ("Integer" if var in ("method", "grid_points") else "Real"), var
+        assert v.type == ("Integer" if var in ("method", "grid_points", "validity_warning") else "Real"), var
         assert (v.valueReference, v.causality, v.variability) == (vr, causality, variability), var
         if start is not None:
             assert v.start is not None and float(v.start) == start, (var, v.start)

@@ -185,9 +185,14 @@ impl Instance {
         if let Some(s) = stop.filter(|&s| !(s.is_finite() && s >= start)) {
             return Err(format!("stopTime = {s} is invalid: it must be finite and >= startTime = {start}"));
         }
-        if let Some(tol) = tolerance.filter(|&t| !(t.is_finite() && t > 0.0)) {
-            return Err(format!("tolerance = {tol} is invalid: it must be finite and > 0"));
+        if let Some(tol) = tolerance.filter(|&t| !(t.is_finite() && t >= 0.0)) {
+            return Err(format!("tolerance = {tol} is invalid: it must be finite and > 0 (or 0: none given)"));
         }
+        // 0 is "none given": OMSimulator passes it when an SSP sets no tolerance.
+        if tolerance == Some(0.0) {
+            self.log.note("tolerance = 0 with toleranceDefined is taken as no tolerance given: the model's own (its tolerance parameter) is in force");
+        }
+        let tolerance = tolerance.filter(|&t| t != 0.0);
         self.clock = Clock { start, stop, time: start };
         self.model.set_experiment_tolerance(tolerance);
         Ok(())

@@ -111,23 +111,30 @@ impl Variable {
 
 /// A model's variable table, declared once: each row names its value-reference constant
 /// and the [`Variable`] constructor with its arguments but the value reference, which is the
-/// row's position. Defines `enum Vr` (the constants; `Vr::ALL` in table order, `from_u32`,
-/// `var`) and `VARIABLES`, from which the glue, the XML and the documentation all read.
+/// row's position. Defines `enum Vr` (the constants, whose discriminants are the value
+/// references; `Vr::ALL` in table order, `from_u32`, `var`) and `VARIABLES`, from which the
+/// glue, the XML and the documentation all read.
+///
+/// A row added after an interface was published takes `= N` after its constant: a value
+/// reference after every other one (the continuous states and derivatives follow the rows
+/// numbered by position, FMI 3.0's `time` and arrays follow them), so that none moves.
+/// Such rows come last ([`Description::first_state`]).
 ///
 /// ```text
 /// variable_table! {
 ///     Gain => parameter("gain", 1.0, "1", "What the gain is ..."),
 ///     Output => output("y", "m", "What y is ..."),
+///     Late = 1000 => integer("late", 0, (0, 1), "Added later ..."),
 /// }
 /// ```
 #[macro_export]
 macro_rules! variable_table {
-    ($($vr:ident => $ctor:ident($name:literal $(, $arg:expr)* $(,)?)),+ $(,)?) => {
-        /// Value references, in the order of the table (index = value reference).
+    ($($vr:ident $(= $at:literal)? => $ctor:ident($name:literal $(, $arg:expr)* $(,)?)),+ $(,)?) => {
+        /// Value references, in the order of the table.
         #[derive(Debug, Clone, Copy, PartialEq, Eq)]
         #[repr(u32)]
         pub enum Vr {
-            $($vr),+
+            $($vr $(= $at)?),+
         }
 
         impl Vr {
@@ -135,15 +142,15 @@ macro_rules! variable_table {
             pub const ALL: &'static [Vr] = &[$(Vr::$vr),+];
 
             pub fn from_u32(vr: u32) -> Option<Self> {
-                Self::ALL.get(vr as usize).copied()
+                Self::ALL.iter().copied().find(|&v| v as u32 == vr)
             }
 
             pub fn var(self) -> &'static Variable {
-                &VARIABLES[self as usize]
+                VARIABLES.iter().find(|v| v.value_reference == self as u32).expect("every constant has its row")
             }
         }
 
-        /// The variables, indexed by value reference.
+        /// The variables, in table order.
         pub const VARIABLES: &[Variable] = &[$(Variable::$ctor($name, Vr::$vr as u32 $(, $arg)*)),+];
     };
 }
@@ -174,7 +181,8 @@ pub struct Description {
     pub summary: &'static str,
     /// The model in HTML, for `documentation/index.html`.
     pub about: &'static str,
-    /// Indexed by value reference.
+    /// In table order: indexed by value reference up to [`Description::first_state`],
+    /// then the rows added later, with value references after every other.
     pub variables: &'static [Variable],
     /// `ModelStructure/Outputs`: each output's value reference with the inputs it depends
     /// on directly and the `dependenciesKind` of each.
@@ -254,11 +262,22 @@ pub enum Named {
 impl Description {
     /// The variable of a value reference, which must be of type `kind`.
     pub fn typed(&self, kind: Kind, vr: u32) -> Result<&'static Variable, Rejected> {
-        match self.variables.get(vr as usize) {
+        match self.variables.iter().find(|v| v.value_reference == vr) {
             Some(v) if v.kind == kind => Ok(v),
             Some(v) => Err(format!("{} (value reference {vr}) is {}, not {}", v.name, v.kind.as_str(), kind.as_str())),
             None => Err(format!("no {} variable has value reference {vr}", kind.as_str())),
         }
+    }
+
+    /// Value reference of the first continuous state: the number of leading rows whose value
+    /// reference is their position (the table less the rows added later).
+    pub fn first_state(&self) -> u32 {
+        self.variables.iter().zip(0..).take_while(|(v, i)| v.value_reference == *i).count() as u32
+    }
+
+    /// The rows added later (value references after every other), in table order.
+    pub fn later_rows(&self) -> &'static [Variable] {
+        &self.variables[self.first_state() as usize..]
     }
 
     /// Number of continuous states (0 without Model Exchange states).
@@ -268,12 +287,11 @@ impl Description {
 
     /// What `vr` names, if it is a variable of type `kind` (states are Reals).
     pub fn named(&self, kind: Kind, vr: u32) -> Result<Named, Rejected> {
-        let (table, n) = (self.variables.len(), self.state_count());
-        let k = (vr as usize).wrapping_sub(table);
-        match vr as usize {
-            v if v < table => self.typed(kind, vr).map(Named::Table),
-            _ if k < 2 * n && kind == Kind::Real => Ok(if k < n { Named::State(k) } else { Named::Derivative(k - n) }),
-            _ => self.typed(kind, vr).map(Named::Table),
+        let (first, n) = (self.first_state() as usize, self.state_count());
+        let k = (vr as usize).wrapping_sub(first);
+        match self.typed(kind, vr) {
+            Err(_) if k < 2 * n && kind == Kind::Real => Ok(if k < n { Named::State(k) } else { Named::Derivative(k - n) }),
+            row => row.map(Named::Table),
         }
     }
 

@@ -91,7 +91,7 @@ pub(in crate::fmi) struct Structure {
 
 impl Structure {
     pub(in crate::fmi) fn of(d: &Description) -> Self {
-        let table = d.variables.len() as u32;
+        let table = d.first_state();
         let states: Vec<u32> = (0..d.state_count() as u32).map(|k| table + k).collect();
         let outputs = d
             .outputs

@@ -3,10 +3,11 @@
 //! exporter does it). FMI 2.0 (fmi2ModelDescription.xsd): `ScalarVariable`s in table
 //! order, then the continuous states and their derivatives ([`ContinuousStates`]), so the 1-based
 //! index that `ModelStructure` uses is `value reference + 1` (value reference = position,
-//! [`crate::variable_table`]). One archive declares both interfaces:
+//! [`crate::variable_table`]); rows added later (parameters only, never in `ModelStructure`)
+//! come after the derivatives. One archive declares both interfaces:
 //! `<ModelExchange>` and `<CoSimulation>` with the same `modelIdentifier`.
 
-use crate::fmi::common::model::{Causality, Description, Named, ContinuousStates};
+use crate::fmi::common::model::{Causality, Description, Named, ContinuousStates, Variable};
 use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 
@@ -45,7 +46,7 @@ fn unknown(vr: u32, deps: &[(u32, &str)]) -> String {
 
 /// The states (local, continuous, calculated: 0 at the cut) and their derivatives.
 fn state_variables(d: &Description, s: &ContinuousStates) -> String {
-    let table = d.variables.len();
+    let table = d.first_state() as usize;
     let mut x = String::new();
     for k in 0..s.count {
         let vr = table + k;
@@ -120,11 +121,17 @@ pub fn fmi2_with(d: &Description, which: Interfaces) -> String {
     }
     x.push_str(&units_categories_experiment(d));
     x.push_str("\n  <ModelVariables>\n");
-    for v in d.variables {
+    // The rows added later come after the states: every other index stays `vr + 1`.
+    let later = d.later_rows();
+    let index_of = |v: &Variable| match later.iter().position(|l| l == v) {
+        Some(j) => (d.first_state() as usize + 2 * d.state_count() + j + 1).to_string(),
+        None => index(v.value_reference),
+    };
+    let scalar = |x: &mut String, v: &Variable| {
         let _ = write!(
             x,
             "    <!-- index {} -->\n    <ScalarVariable name=\"{}\" valueReference=\"{}\" causality=\"{}\" variability=\"{}\"\n      description=\"{}\">\n",
-            index(v.value_reference),
+            index_of(v),
             escape(v.name),
             v.value_reference,
             v.causality.as_str(),
@@ -133,10 +140,12 @@ pub fn fmi2_with(d: &Description, which: Interfaces) -> String {
         );
         let attrs = value_attributes(v);
         let _ = write!(x, "      <{}{attrs}/>\n    </ScalarVariable>\n", v.kind.as_str());
-    }
+    };
+    d.variables[..d.first_state() as usize].iter().for_each(|v| scalar(&mut x, v));
     if let Some(s) = d.states {
         x.push_str(&state_variables(d, &s));
     }
+    later.iter().for_each(|v| scalar(&mut x, v));
     x.push_str("  </ModelVariables>\n\n  <ModelStructure>\n    <Outputs>\n");
     let structure = Structure::of(d);
     for (vr, deps) in &structure.outputs {

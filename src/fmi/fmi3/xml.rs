@@ -4,13 +4,13 @@
 //! references `table + k` and `table + count + k`, as in FMI 2.0), then the independent
 //! variable `time` (FMI 3.0 wants exactly one). `ModelStructure` names value references.
 
-use crate::fmi::common::model::{Arrays, Causality, Description, Kind, Named, ContinuousStates, Variability};
+use crate::fmi::common::model::{Arrays, Causality, Description, Kind, Named, ContinuousStates, Variability, Variable};
 use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 
 /// Value reference of the independent variable `time`.
 pub fn time_reference(d: &Description) -> u32 {
-    (d.variables.len() + 2 * d.state_count()) as u32
+    d.first_state() + 2 * d.state_count() as u32
 }
 
 fn kind3(kind: Kind) -> &'static str {
@@ -21,7 +21,7 @@ fn kind3(kind: Kind) -> &'static str {
 }
 
 fn states(d: &Description, s: &ContinuousStates) -> String {
-    let table = d.variables.len();
+    let table = d.first_state() as usize;
     let mut x = String::new();
     for k in 0..s.count {
         let _ = writeln!(
@@ -95,7 +95,9 @@ pub fn fmi3(d: &Description) -> String {
     }
     x.push_str(&units_categories_experiment(d));
     x.push_str("\n  <ModelVariables>\n");
-    for v in d.variables {
+    // The rows added later (value references after every other) come last.
+    let first = d.first_state() as usize;
+    let scalar = |x: &mut String, v: &Variable| {
         let mut attrs = value_attributes(v);
         if v.causality == Causality::Input && v.variability == Variability::Continuous {
             // Settable in Intermediate Update Mode (the FMI 3.0 way to interpolated inputs).
@@ -111,7 +113,8 @@ pub fn fmi3(d: &Description) -> String {
             v.variability.as_str(),
             escape(v.description)
         );
-    }
+    };
+    d.variables[..first].iter().for_each(|v| scalar(&mut x, v));
     if let Some(s) = d.states {
         x.push_str(&states(d, &s));
     }
@@ -123,6 +126,7 @@ pub fn fmi3(d: &Description) -> String {
     if let Some(a) = d.arrays {
         x.push_str(&arrays(d, &a));
     }
+    d.later_rows().iter().for_each(|v| scalar(&mut x, v));
     x.push_str("  </ModelVariables>\n\n  <ModelStructure>\n");
     let structure = Structure::of(d);
     for (vr, deps) in &structure.outputs {
@@ -185,7 +189,7 @@ fn arrays(d: &Description, a: &Arrays) -> String {
 /// Each array output's value reference with its dependencies: its inputs, then every state.
 fn array_outputs(d: &Description) -> Vec<(u32, Vec<(u32, &'static str)>)> {
     let Some(a) = d.arrays else { return Vec::new() };
-    let (length, table) = (time_reference(d) + 1, d.variables.len() as u32);
+    let (length, table) = (time_reference(d) + 1, d.first_state());
     let states: Vec<(u32, &str)> = (0..d.state_count() as u32).map(|k| (table + k, "fixed")).collect();
     a.arrays
         .iter()

@@ -56,6 +56,9 @@ pub struct WoundModel {
     exchange: exchange::Exchange,
     /// FMI 3.0: the probes (radii in um, master units, or the defaults following the tissue).
     probe_radii: Probes,
+    /// `validity_warning`: a step leaving the validity answers fmi2Warning (else a note,
+    /// status OK). Not serialized: how to report is the instance's, not the trajectory's.
+    validity_warning: bool,
 }
 
 impl WoundModel {
@@ -79,6 +82,7 @@ impl WoundModel {
             note: RefCell::new(None),
             exchange: exchange::Exchange::default(),
             probe_radii: Probes::default(),
+            validity_warning: start(Vr::ValidityWarning) != 0.0,
         })
     }
 
@@ -174,7 +178,7 @@ impl FmuModel for WoundModel {
             Vr::RInf => check_r_inf(x).map_err(|e| e.to_string()),
             Vr::Tolerance => positive("tolerance"),
             Vr::InternalStep => positive("internal_step"),
-            Vr::Method | Vr::GridPoints => in_range(),
+            Vr::Method | Vr::GridPoints | Vr::ValidityWarning => in_range(),
             Vr::LengthScale => scale("R0"),
             Vr::TimeScale => scale("T"),
             Vr::StressScale => scale("G"),
@@ -201,10 +205,11 @@ impl FmuModel for WoundModel {
             Vr::TimeScale => self.scales.time = x,
             Vr::StressScale => self.scales.stress = x,
             Vr::EdgeStress => (self.edge_stress, self.edge_stress_rate) = (x, 0.0),
+            Vr::ValidityWarning => self.validity_warning = x != 0.0,
             Vr::WoundRadius | Vr::EdgeVelocity => {}
         }
-        // Everything but the input changes the solver (scales: the internal step).
-        if vr != Vr::EdgeStress {
+        // Everything but the input and the reporting changes the solver (scales: the internal step).
+        if !matches!(vr, Vr::EdgeStress | Vr::ValidityWarning) {
             self.solver = None;
         }
     }
@@ -254,6 +259,7 @@ impl FmuModel for WoundModel {
             Vr::LengthScale => self.scales.length,
             Vr::TimeScale => self.scales.time,
             Vr::StressScale => self.scales.stress,
+            Vr::ValidityWarning => f64::from(u8::from(self.validity_warning)),
             Vr::WoundRadius => self.scales.length * self.solver().wound_radius(),
             Vr::EdgeVelocity => {
                 let (solver, p) = (self.solver(), self.p());
@@ -278,7 +284,9 @@ impl FmuModel for WoundModel {
     ///
     /// A step that takes the state out of the model's validity (wound radius <= 0, a folded
     /// ring, strains beyond what the linear model claims: [`crate::solver::validity`]) is
-    /// answered with a warning naming the reason and the time; O(modes) per step.
+    /// answered with a warning naming the reason and the time, and how to run on
+    /// (`validity_warning = 0`), or with that text logged and status OK when
+    /// `validity_warning = 0`; O(modes) per step.
     fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected> {
         let r_inf = self.params.r_inf;
         let was_valid = self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
@@ -288,7 +296,12 @@ impl FmuModel for WoundModel {
         solver.advance_linear(dt, p, p1).map_err(|e| e.to_string())?;
         self.edge_stress += rate * h;
         if let Some(why) = self.solver().validity_violation(r_inf).filter(|_| was_valid) {
-            self.warn(format!("at t = {} s the run leaves the model's validity: {why}", time + h));
+            let text = format!("at t = {} s the run leaves the model's validity: {why}", time + h);
+            if self.validity_warning {
+                self.warn(format!("{text} (a master that stops on fmi2Warning runs on, with this message logged and status OK, when the parameter validity_warning is set to 0)"));
+            } else {
+                self.note(format!("{text} (reported with status OK: validity_warning = 0)"));
+            }
         }
         Ok(())
     }
@@ -488,6 +501,7 @@ impl FmuModel for WoundModel {
             note: RefCell::new(None),
             exchange: self.exchange.clone(),
             probe_radii: self.probe_radii.clone(),
+            validity_warning: self.validity_warning,
         };
         if let Some(st) = &saved.solver {
             // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.

@@ -27,6 +27,9 @@ crate::variable_table! {
     LengthScale => parameter("R0", 1.0, "um", "Length scale: the radius of the cut (1e-12 ..= 1e12; 1 keeps lengths dimensionless)"),
     TimeScale => parameter("T", 1.0, "s", "Time scale T = zeta R0^2 / (4 G) (1e-12 ..= 1e12; 1 keeps time dimensionless)"),
     StressScale => parameter("G", 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
+    // Added after the interface was published: after every other value reference (13 rows,
+    // 217 states and derivatives at 13 ..= 446, FMI 3.0's time, n_probes and arrays at 447 ..= 451).
+    ValidityWarning = 452 => integer("validity_warning", 1, (0, 1), "How a step that leaves the model's validity (wound radius <= 0, a folded ring, an edge strain beyond 1) is reported: 1, fmi2Warning (fmi3Warning) with the reason in the log (category logStatusWarning); 0, the same log message with status OK, for masters that stop on a warning"),
 }
 
 /// Continuous states of Model Exchange: the modal coordinates of the spectral-element
@@ -137,10 +140,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn value_references_are_table_indices() {
+    fn value_references_are_table_indices_then_after_every_other() {
+        let first = DESCRIPTION.first_state() as usize;
+        assert_eq!(first, 13, "the published rows");
         for (i, v) in VARIABLES.iter().enumerate() {
-            assert_eq!(v.value_reference as usize, i, "{}", v.name);
-            assert_eq!(Vr::from_u32(i as u32).map(|vr| vr.var().name), Some(v.name));
+            assert_eq!(Vr::from_u32(v.value_reference).map(|vr| vr.var().name), Some(v.name));
+            if i < first {
+                assert_eq!(v.value_reference as usize, i, "{}", v.name);
+            } else {
+                // After the states, derivatives, FMI 3.0 time, n_probes and arrays.
+                let last = first + 2 * MODEL_EXCHANGE_STATES + 1 + PROBE_ARRAYS.len();
+                assert!(v.value_reference as usize > last, "{}", v.name);
+            }
         }
         assert_eq!(Vr::from_u32(VARIABLES.len() as u32), None);
     }
