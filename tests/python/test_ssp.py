@@ -5,6 +5,7 @@ it agrees with the Python loop at the coupling accuracy of docs/fmi.md."""
 from __future__ import annotations
 
 import sys
+import tempfile
 import zipfile
 from pathlib import Path
 
@@ -44,9 +45,11 @@ def test_ssd_is_valid_and_matches_the_loop(ssp_path, fmu_path, purse_path):
             assert z.read(f"resources/{name}") == Path(built).read_bytes()
 
 
-def test_fmpy_simulate_ssp_stops_on_the_zero_radius_it_starts_with(ssp_path):
+def test_fmpy_simulate_ssp_stops_on_the_zero_radius_it_starts_with(ssp_path, tmp_path, monkeypatch):
     """fmpy 0.3.32 starts the connectors at 0 (python/coupling/ssp.py): the purse-string
-    refuses wound_radius = 0 instead of answering with a wrong edge stress."""
+    refuses wound_radius = 0 instead of answering with a wrong edge stress. (fmpy does not
+    clean up after the failure: its extracted folders go to tmp_path.)"""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
     with pytest.raises(Exception, match="fmi2SetReal"):
         simulate_ssp(ssp_path, stop_time=STOP, step_size=0.5)
 
