@@ -92,7 +92,8 @@ const TABLE_HEAD: &str =
     "<tr><th>name</th><th>value reference</th><th>causality</th><th>start</th><th>unit</th><th>description</th></tr>";
 
 /// The page of one archive; `interfaces` says which FMI version and interface types it has.
-pub fn index_html(d: &Description, interfaces: &str, file: &str, results: &Results) -> Result<String, BoxError> {
+/// `more` is HTML appended after the reference results (the paper's cases, [`super::cases`]).
+pub fn index_html(d: &Description, interfaces: &str, file: &str, results: &Results, more: &str) -> Result<String, BoxError> {
     let mut plots = String::new();
     for (i, name) in results.names.iter().enumerate() {
         let unit = d.variables.iter().find(|v| v.name == *name).map_or("", |v| v.unit);
@@ -116,7 +117,7 @@ pub fn index_html(d: &Description, interfaces: &str, file: &str, results: &Resul
 <p>The default experiment (start {start} s, stop {stop} s, step {step} s, tolerance {tol:e}) with the start values,
 computed by this FMU's own code: <code>extra/org.fmi-standard.fmi-ls-ref/{id}_out.csv</code>
 (plotted from the first output time after the start, on a logarithmic time axis).</p>
-{plots}</body></html>
+{plots}{more}</body></html>
 "#,
         about = d.about,
         usage = usage(d, file),

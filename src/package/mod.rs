@@ -13,8 +13,10 @@
 //! Nothing here names a model: every archive comes from the table of models (models::MODELS).
 //! ```
 
+mod cases;
 mod docs;
 mod reference;
+mod ssp;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -62,6 +64,9 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
         let id = description.model_identifier;
         let results = reference::simulate(description, *fresh)?;
         let csv_name = format!("{id}_out.csv");
+        let paper = cases::simulate(description, *fresh)?;
+        let (case_files, case_related) = cases::entries(&paper);
+        let case_page = cases::section_html(&paper)?;
         let fmi3 = ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, fmi3::xml::fmi3(description));
         let versions = if description.states.is_some() {
             vec![
@@ -74,20 +79,22 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
         };
         for (suffix, interfaces, platform, model_description) in versions {
             let file = format!("{id}{suffix}.fmu");
-            let docs = docs::index_html(description, interfaces, &file, &results)?;
+            let docs = docs::index_html(description, interfaces, &file, &results, &case_page)?;
             let path = out_dir.join(&file);
             let so_name = format!("binaries/{platform}/{id}{}", std::env::consts::DLL_SUFFIX);
-            let entries: Vec<(String, Vec<u8>)> = vec![
+            let mut entries: Vec<(String, Vec<u8>)> = vec![
                 ("modelDescription.xml".into(), model_description.into_bytes()),
                 (so_name, so.clone()),
                 ("documentation/index.html".into(), docs.into_bytes()),
-                (format!("{}/fmi-ls-manifest.xml", reference::FOLDER), reference::manifest(description, &csv_name).into_bytes()),
+                (format!("{}/fmi-ls-manifest.xml", reference::FOLDER), reference::manifest(description, &csv_name, &case_related).into_bytes()),
                 (format!("{}/{csv_name}", reference::FOLDER), results.csv().into_bytes()),
             ];
+            entries.extend(case_files.iter().cloned());
             write_zip(&path, &entries)?;
             paths.push(path);
         }
     }
+    paths.push(ssp::write_ssp(&out_dir)?);
     Ok(paths)
 }
 

@@ -11,7 +11,7 @@
 use std::sync::Arc;
 use wound_opening::fmi::common::xml;
 use wound_opening::fmi::common::instance::{Instance, Logger, Status};
-use wound_opening::fmi::common::model::{Causality, Description, FmuModel};
+use wound_opening::fmi::common::model::{Causality, Description, Experiment, FmuModel};
 
 pub const FOLDER: &str = "extra/org.fmi-standard.fmi-ls-ref";
 
@@ -31,12 +31,26 @@ pub struct Results {
 
 /// Run the default experiment with the start values.
 pub fn simulate(d: &'static Description, fresh: fn() -> Box<dyn FmuModel>) -> Result<Results, String> {
+    simulate_with(d, fresh, &[], d.default_experiment)
+}
+
+/// Run experiment `e` with the start values changed by `values` (name, value), set in
+/// Initialization Mode as a master does.
+pub fn simulate_with(
+    d: &'static Description,
+    fresh: fn() -> Box<dyn FmuModel>,
+    values: &[(&str, f64)],
+    e: Experiment,
+) -> Result<Results, String> {
     let outputs: Vec<_> = d.variables.iter().filter(|v| v.causality == Causality::Output).collect();
     let vrs: Vec<u32> = outputs.iter().map(|v| v.value_reference).collect();
-    let e = d.default_experiment;
     let mut inst = Instance::new(fresh, d.model_identifier, Arc::new(Silent), false);
     inst.setup_experiment(Some(e.tolerance), e.start, Some(e.stop))?;
     inst.enter_initialization_mode()?;
+    for (name, value) in values {
+        let v = d.variables.iter().find(|v| v.name == *name).ok_or(format!("{} has no variable {name}", d.model_identifier))?;
+        inst.set_real(&[v.value_reference], &[*value])?;
+    }
     inst.exit_initialization_mode()?;
     let steps = ((e.stop - e.start) / e.step).round() as usize;
     let every = steps.div_ceil(MAX_ROWS).max(1);
@@ -68,13 +82,14 @@ impl Results {
     }
 }
 
-/// The layered standard's manifest, naming the CSV as the result of the default experiment.
-pub fn manifest(d: &Description, csv_name: &str) -> String {
+/// The layered standard's manifest, naming the CSV as the result of the default experiment,
+/// then the `<Related>` lines of `more` (the paper's cases, [`super::cases`]).
+pub fn manifest(d: &Description, csv_name: &str, more: &str) -> String {
     format!(
         r#"<?xml version="1.0" encoding="UTF-8"?>
 <fmiReferences xmlns:fmi-ls="http://fmi-standard.org/fmi-ls-manifest" fmi-ls:fmi-ls-name="org.fmi-standard.fmi-ls-ref" fmi-ls:fmi-ls-version="1.0.0-alpha.1" fmi-ls:fmi-ls-description="Reference results of {id}">
   <Related type="text/csv" source="{csv_name}" role="result" description="Outputs of {id} over its DefaultExperiment with the start values, computed by this binary"/>
-</fmiReferences>
+{more}</fmiReferences>
 "#,
         id = d.model_identifier
     )

@@ -148,7 +148,9 @@ def test_reference_results_are_declared_and_start_at_the_start_values(fmu):
         ns = "{http://fmi-standard.org/fmi-ls-manifest}"
         assert manifest.tag == "fmiReferences"
         assert manifest.get(f"{ns}fmi-ls-name") == "org.fmi-standard.fmi-ls-ref"
-        (related,) = manifest.findall("Related")
+        # The default experiment's first; the paper's cases follow (test_reference_cases.py).
+        related = manifest.findall("Related")[0]
+        assert related.get("source") == f"{name}_out.csv"
         assert related.get("role") == "result" and related.get("type") == "text/csv"
         rows = list(csv.reader(io.StringIO(zf.read(f"{folder}/{related.get('source')}").decode())))
     md = read_model_description(path)
