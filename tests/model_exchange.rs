@@ -123,12 +123,18 @@ fn states_depart_from_the_held_response_and_derivatives_are_its_ode() {
     unsafe { fmi2FreeInstance(me) };
 }
 
+/// The first state's value reference: after the rows numbered by position (rows added
+/// later, such as `validity_warning`, come after the derivatives).
+fn first_state() -> usize {
+    wound_opening::models::wound::variables::DESCRIPTION.first_state() as usize
+}
+
 fn state_vr(k: usize) -> u32 {
-    (Vr::ALL.len() + k) as u32
+    (first_state() + k) as u32
 }
 
 fn derivative_vr(k: usize) -> u32 {
-    (Vr::ALL.len() + NX + k) as u32
+    (first_state() + NX + k) as u32
 }
 
 fn directional(c: fmi2Component, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
