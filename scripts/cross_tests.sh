@@ -42,6 +42,7 @@ cp "$out/fmu/binaries/win64/WoundOpening.dll" "$out/win/$dll_name"
 
 export WINEPREFIX="$PWD/target/wine" WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml="
 wine=(wine)
+[ -x /usr/lib/wine/wine64 ] && wine=(/usr/lib/wine/wine64)  # the 64-bit loader itself: no wine32 warning
 failed=0
 run() { # run <platform> <program> <argument>: its output into $out/<platform>/<program>.txt
     local platform=$1 program=$2 argument=${3:-}
