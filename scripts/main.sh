@@ -9,6 +9,7 @@ cd "$(dirname "$0")/.."
 step() { echo "== $1"; }
 step "Python environment (.venv, created on first use)"
 source scripts/venv.sh
+bash scripts/cross.sh  # the toolchains of the archives' Windows and aarch64 binaries
 step "building the library and the five FMU archives (cargo, release; a few minutes the first time)"
 cargo run --release --quiet -- fmu
 cargo build --release --quiet

@@ -7,6 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/venv.sh
+bash scripts/cross.sh  # Rust targets, cross linkers, Wine and qemu: the Windows and aarch64 binaries
 if ! command -v chromium >/dev/null; then
     echo "== installing chromium (for tests/python/test_fmu_pages.py)"
     apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium </dev/null
@@ -15,5 +16,6 @@ cargo test --release
 cargo build --release  # the library the Python package loads
 cargo run --release --quiet -- fmu
 bash scripts/c_tests.sh
+bash scripts/cross_tests.sh  # the archives' Windows and aarch64 binaries under Wine and qemu-user
 # Two worker processes (pytest-xdist): the Python tests are independent of each other.
 python -m pytest -q -n 2 tests/python

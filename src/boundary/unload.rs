@@ -13,6 +13,7 @@
 #[unsafe(link_section = ".fini_array")]
 static RELEASE_ON_UNLOAD: extern "C" fn() = release;
 
+#[cfg(target_os = "linux")]
 extern "C" fn release() {
     // Nothing may unwind out of a destructor called by the C runtime.
     let _ = std::panic::catch_unwind(crate::solver::basis::clear);

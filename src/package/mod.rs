@@ -4,10 +4,13 @@
 //! WoundOpening.fmu
 //! ├── modelDescription.xml             (generated from the model's table: fmi::fmi2::xml)
 //! ├── binaries/linux64/WoundOpening.so (the cdylib built beside this executable)
+//! ├── binaries/win64/WoundOpening.dll, binaries/aarch64-linux/WoundOpening.so
+//! │                                    (cross-built when their targets are installed: platforms.rs)
 //! ├── documentation/index.html         (generated: model, variables, plots of the results)
 //! └── extra/org.fmi-standard.fmi-ls-ref/fmi-ls-manifest.xml, WoundOpening_out.csv
 //! WoundOpening-me.fmu                  (FMI 2.0 Model Exchange; WoundOpening.fmu is co-simulation)
-//! WoundOpening-fmi3.fmu                (FMI 3.0: both interfaces, binaries/x86_64-linux/WoundOpening.so)
+//! WoundOpening-fmi3.fmu                (FMI 3.0: both interfaces, binaries/x86_64-linux/WoundOpening.so,
+//!                                       x86_64-windows/WoundOpening.dll, aarch64-linux/WoundOpening.so)
 //! PurseString.fmu, PurseString-fmi3.fmu (the same cdylib: it picks the model by GUID)
 //!
 //! Nothing here names a model: every archive comes from the table of models (models::MODELS).
@@ -15,6 +18,7 @@
 
 mod cases;
 mod docs;
+mod platforms;
 mod reference;
 mod ssp;
 
@@ -32,22 +36,6 @@ fn profile_dir() -> Result<PathBuf, BoxError> {
     Ok(exe.parent().ok_or("executable has no parent directory")?.to_path_buf())
 }
 
-fn shared_object(dir: &Path) -> Result<Vec<u8>, BoxError> {
-    let name = format!("{}wound_opening{}", std::env::consts::DLL_PREFIX, std::env::consts::DLL_SUFFIX);
-    let path = dir.join(&name);
-    std::fs::read(&path).map_err(|e| format!("cannot read {} (built by cargo with the binary): {e}", path.display()).into())
-}
-
-fn platform_dir() -> Result<&'static str, BoxError> {
-    match (std::env::consts::OS, std::env::consts::ARCH) {
-        ("linux", "x86_64") => Ok("linux64"),
-        ("linux", "x86") => Ok("linux32"),
-        ("macos", _) => Ok("darwin64"),
-        ("windows", "x86_64") => Ok("win64"),
-        (os, arch) => Err(format!("no FMI 2.0 platform folder for {os}/{arch}").into()),
-    }
-}
-
 /// Build every archive and return their paths: per model, `<id>.fmu` (FMI 2.0) and
 /// `<id>-fmi3.fmu` (FMI 3.0), each with co-simulation and Model Exchange; a model with
 /// continuous states gets two FMI 2.0 archives instead, `<id>.fmu` (co-simulation) and
@@ -55,7 +43,7 @@ fn platform_dir() -> Result<&'static str, BoxError> {
 /// hundreds of state and derivative variables (FMI 2.0 has no arrays) on every load.
 pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
     let profile = profile_dir()?;
-    let so = shared_object(&profile)?;
+    let binaries = platforms::binaries(&profile)?;
     let target = profile.parent().ok_or("profile directory has no parent")?;
     let out_dir = target.join("fmu");
     std::fs::create_dir_all(&out_dir)?;
@@ -67,28 +55,27 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
         let paper = cases::simulate(description, *fresh)?;
         let (case_files, case_related) = cases::entries(&paper);
         let case_page = cases::section_html(&paper)?;
-        let fmi3 = ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", platform_tuple()?, fmi3::xml::fmi3(description));
+        let fmi3 = ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", Fmi::Three, fmi3::xml::fmi3(description));
         let versions = if description.states.is_some() {
             vec![
-                ("", "FMI 2.0: co-simulation", platform_dir()?, fmi2::xml::fmi2_with(description, Interfaces::CoSimulation)),
-                ("-me", "FMI 2.0: Model Exchange", platform_dir()?, fmi2::xml::fmi2_with(description, Interfaces::ModelExchange)),
+                ("", "FMI 2.0: co-simulation", Fmi::Two, fmi2::xml::fmi2_with(description, Interfaces::CoSimulation)),
+                ("-me", "FMI 2.0: Model Exchange", Fmi::Two, fmi2::xml::fmi2_with(description, Interfaces::ModelExchange)),
                 fmi3,
             ]
         } else {
-            vec![("", "FMI 2.0: co-simulation and Model Exchange, from one library", platform_dir()?, fmi2::xml::fmi2(description)), fmi3]
+            vec![("", "FMI 2.0: co-simulation and Model Exchange, from one library", Fmi::Two, fmi2::xml::fmi2(description)), fmi3]
         };
-        for (suffix, interfaces, platform, model_description) in versions {
+        for (suffix, interfaces, version, model_description) in versions {
             let file = format!("{id}{suffix}.fmu");
             let docs = docs::index_html(description, interfaces, &file, &results, &case_page)?;
             let path = out_dir.join(&file);
-            let so_name = format!("binaries/{platform}/{id}{}", std::env::consts::DLL_SUFFIX);
-            let mut entries: Vec<(String, Vec<u8>)> = vec![
-                ("modelDescription.xml".into(), model_description.into_bytes()),
-                (so_name, so.clone()),
+            let mut entries: Vec<(String, Vec<u8>)> = vec![("modelDescription.xml".into(), model_description.into_bytes())];
+            entries.extend(binary_entries(&binaries, version, id));
+            entries.extend([
                 ("documentation/index.html".into(), docs.into_bytes()),
                 (format!("{}/fmi-ls-manifest.xml", reference::FOLDER), reference::manifest(description, &csv_name, &case_related).into_bytes()),
                 (format!("{}/{csv_name}", reference::FOLDER), results.csv().into_bytes()),
-            ];
+            ]);
             entries.extend(case_files.iter().cloned());
             write_zip(&path, &entries)?;
             paths.push(path);
@@ -98,16 +85,25 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
     Ok(paths)
 }
 
-/// The FMI 3.0 platform tuple (`<arch>-<os>`).
-fn platform_tuple() -> Result<&'static str, BoxError> {
-    match (std::env::consts::OS, std::env::consts::ARCH) {
-        ("linux", "x86_64") => Ok("x86_64-linux"),
-        ("linux", "aarch64") => Ok("aarch64-linux"),
-        ("macos", "aarch64") => Ok("aarch64-darwin"),
-        ("macos", "x86_64") => Ok("x86_64-darwin"),
-        ("windows", "x86_64") => Ok("x86_64-windows"),
-        (os, arch) => Err(format!("no FMI 3.0 platform tuple for {os}/{arch}").into()),
-    }
+#[derive(Clone, Copy)]
+enum Fmi {
+    Two,
+    Three,
+}
+
+/// The archive entries `binaries/<folder>/<id><suffix>` of every platform binary, in the
+/// folders of FMI version `version`.
+fn binary_entries(binaries: &[platforms::Binary], version: Fmi, id: &str) -> Vec<(String, Vec<u8>)> {
+    binaries
+        .iter()
+        .map(|b| {
+            let folder = match version {
+                Fmi::Two => b.fmi2,
+                Fmi::Three => b.fmi3,
+            };
+            (format!("binaries/{folder}/{id}{}", b.suffix), b.bytes.clone())
+        })
+        .collect()
 }
 
 /// Writes the archive next to `path` and renames it into place, so that a master loading

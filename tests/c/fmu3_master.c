@@ -1,6 +1,6 @@
 /*
  * A minimal FMI 3.0 master in C. It loads the shared object of WoundOpening-fmi3.fmu
- * (extracted into argv[1], binaries/x86_64-linux) with dlopen, knowing only the standard
+ * (extracted into argv[1], binaries/<platform>: dynamic_library.h), knowing only the standard
  * (fmi3_standard.h) and modelDescription.xml, and checks:
  *   1. all 75 functions of fmi3Functions.h are exported;
  *   2. co-simulation: the paper's lambda = 1 case against the exact solution (reference.h);
@@ -15,11 +15,11 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "check.h"
+#include "dynamic_library.h"
 #include "fmi3_standard.h"
 #include "read_file.h"
 #include "reference.h"
 
-#include <dlfcn.h>
 #include <stdlib.h>
 
 #define VR_RADIUS 4u
@@ -242,16 +242,16 @@ int main(int argc, char **argv) {
     char *xml = read_file(path);
     CHECK(xml != NULL && token_of(xml, token, sizeof token), "instantiationToken in %s", path);
     free(xml);
-    snprintf(path, sizeof path, "%s/binaries/x86_64-linux/WoundOpening.so", argv[1]);
-    void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    CHECK(lib != NULL, "dlopen(%s): %s", path, lib == NULL ? dlerror() : "");
+    snprintf(path, sizeof path, "%s/binaries/" FMI3_PLATFORM "/WoundOpening" LIBRARY_SUFFIX, argv[1]);
+    void *lib = library_open(path);
+    CHECK(lib != NULL, "cannot load %s: %s", path, lib == NULL ? library_error() : "");
     if (lib == NULL) return check_report("fmu3_master");
     int exported = 0;
-#define COUNT(name) exported += dlsym(lib, #name) != NULL;
+#define COUNT(name) exported += library_symbol(lib, #name) != NULL;
     FMI3_ALL_FUNCTIONS(COUNT)
 #undef COUNT
     CHECK(exported == 75, "%d of the 75 FMI 3.0 functions exported", exported);
-#define LOAD(name) *(void **)(&F.name) = dlsym(lib, #name);
+#define LOAD(name) *(void **)(&F.name) = library_symbol(lib, #name);
     LOAD(fmi3InstantiateModelExchange) LOAD(fmi3InstantiateCoSimulation) LOAD(fmi3FreeInstance)
     LOAD(fmi3EnterInitializationMode) LOAD(fmi3ExitInitializationMode) LOAD(fmi3Terminate) LOAD(fmi3GetFloat64)
     LOAD(fmi3SetFloat64) LOAD(fmi3DoStep) LOAD(fmi3UpdateDiscreteStates) LOAD(fmi3EnterContinuousTimeMode)
@@ -276,6 +276,6 @@ int main(int argc, char **argv) {
     no_instance(freed, "freed");
     no_instance((fmi3Instance)&own, "the caller's memory");
     CHECK(own == 0, "nothing written through a forged instance");
-    dlclose(lib);
+    library_close(lib);
     return check_report("fmu3_master");
 }

@@ -1,16 +1,16 @@
 /*
  * What a minimal FMI 2.0 co-simulation master needs to load an extracted FMU: read the
- * GUID and model identifier from modelDescription.xml, dlopen
- * binaries/linux64/<modelIdentifier>.so, resolve all 34 functions with the standard's
+ * GUID and model identifier from modelDescription.xml, load
+ * binaries/<platform>/<modelIdentifier><suffix> (dynamic_library.h), resolve all 34 functions with the standard's
  * types (fmi2_standard.h), and a printf-like logger that records what it was told.
  */
 #ifndef TESTS_FMU_LOADER_H
 #define TESTS_FMU_LOADER_H
 
 #include "fmi2_standard.h"
+#include "dynamic_library.h"
 #include "read_file.h"
 
-#include <dlfcn.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,14 +53,14 @@ static int fmu_load(struct fmu *fmu, const char *dir) {
         fprintf(stderr, "cannot read guid and modelIdentifier from %s\n", path);
         return 0;
     }
-    snprintf(path, sizeof path, "%s/binaries/linux64/%s.so", dir, fmu->identifier);
-    fmu->library = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    snprintf(path, sizeof path, "%s/binaries/" FMI2_PLATFORM "/%s" LIBRARY_SUFFIX, dir, fmu->identifier);
+    fmu->library = library_open(path);
     if (fmu->library == NULL) {
-        fprintf(stderr, "dlopen(%s): %s\n", path, dlerror());
+        fprintf(stderr, "cannot load %s: %s\n", path, library_error());
         return 0;
     }
 #define LOAD(name)                                                                                               \
-    fmu->name = (name##TYPE *)dlsym(fmu->library, #name);                                                        \
+    fmu->name = (name##TYPE *)library_symbol(fmu->library, #name);                                                        \
     if (fmu->name == NULL) {                                                                                     \
         fprintf(stderr, "%s does not export %s\n", path, #name);                                                 \
         ok = 0;                                                                                                  \
@@ -72,7 +72,7 @@ static int fmu_load(struct fmu *fmu, const char *dir) {
 }
 
 static void fmu_unload(struct fmu *fmu) {
-    if (fmu->library != NULL) dlclose(fmu->library);
+    if (fmu->library != NULL) library_close(fmu->library);
     free(fmu->xml);
     fmu->library = NULL;
     fmu->xml = NULL;

@@ -33,14 +33,27 @@ STATE_CASE = {"lambda": 0.5, "sigma": 1.0, "R_inf": 10.0}
 STATE_TIME = 1.0
 
 
-def exported_symbols(fmu: Path) -> list[str]:
+# Every platform folder of the archives (src/package/platforms.rs), with the command that
+# lists a binary's exported functions (the cross binutils of scripts/cross.sh).
+PLATFORMS = {
+    "WoundOpening.fmu": ("linux64", "aarch64-linux", "win64"),
+    "WoundOpening-fmi3.fmu": ("x86_64-linux", "aarch64-linux", "x86_64-windows"),
+}
+
+
+def exported_symbols(fmu: Path, folder: str = "linux64") -> list[str]:
     with zipfile.ZipFile(fmu) as z:
-        name = next(n for n in z.namelist() if n.startswith("binaries/") and n.endswith(".so"))
+        name = next(n for n in z.namelist() if n.startswith(f"binaries/{folder}/"))
         data = z.read(name)
     with tempfile.TemporaryDirectory() as tmp:
-        so = Path(tmp) / f"{fmu.stem}.so"
-        so.write_bytes(data)
-        out = subprocess.run(["nm", "-D", "--defined-only", str(so)], capture_output=True, text=True, check=True).stdout
+        library = Path(tmp) / Path(name).name
+        library.write_bytes(data)
+        if library.suffix == ".dll":  # the PE export table: "[   0] name" lines
+            out = subprocess.run(["x86_64-w64-mingw32-objdump", "-p", str(library)], capture_output=True, text=True, check=True).stdout
+            table = out.split("[Ordinal/Name Pointer] Table", 1)[1].split("\n\n", 1)[0]
+            return sorted(line.split("]", 1)[1].strip() for line in table.splitlines() if "]" in line)
+        nm = "aarch64-linux-gnu-nm" if folder.startswith("aarch64") else "nm"
+        out = subprocess.run([nm, "-D", "--defined-only", str(library)], capture_output=True, text=True, check=True).stdout
     return sorted(line.split()[-1] for line in out.splitlines() if line.strip())
 
 
@@ -115,6 +128,14 @@ def fmu_dir(fmu_path, fmu3_path, purse_path, purse3_path) -> Path:
 
 def test_exported_symbols_are_the_pinned_ones(pinned, fmu_dir):
     assert exported_symbols(fmu_dir / "WoundOpening.fmu") == pinned["symbols"]
+
+
+@pytest.mark.parametrize("archive, folder", [(a, f) for a, folders in PLATFORMS.items() for f in folders])
+def test_every_platform_binary_exports_the_pinned_symbols(pinned, fmu_dir, archive, folder):
+    with zipfile.ZipFile(fmu_dir / archive) as z:
+        binaries = sorted({n.split("/")[1] for n in z.namelist() if n.startswith("binaries/")})
+    assert binaries == sorted(PLATFORMS[archive]), binaries
+    assert exported_symbols(fmu_dir / archive, folder) == pinned["symbols"]
 
 
 @pytest.mark.parametrize("archive", ARCHIVES)

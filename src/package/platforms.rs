@@ -1,0 +1,144 @@
+//! The platform binaries of the archives: the library of the host (built by cargo beside
+//! this executable) and, when their Rust targets are installed (scripts/cross.sh), the
+//! cross-built libraries of the other shipped platforms, each in its FMI folder:
+//!
+//! ```text
+//! target triple                 FMI 2.0 folder   FMI 3.0 folder   file
+//! x86_64-unknown-linux-gnu      linux64          x86_64-linux     WoundOpening.so
+//! aarch64-unknown-linux-gnu     aarch64-linux    aarch64-linux    WoundOpening.so
+//! x86_64-pc-windows-gnu         win64            x86_64-windows   WoundOpening.dll
+//! x86_64-apple-darwin           darwin64         x86_64-darwin    WoundOpening.dylib
+//! aarch64-apple-darwin          darwin64         aarch64-darwin   WoundOpening.dylib
+//! ```
+//!
+//! FMI 2.0 names six folders (win32, win64, linux32, linux64, darwin32, darwin64) and none
+//! for aarch64: its archives use the FMI 3.0 tuple `aarch64-linux`, as the Reference FMUs
+//! do. Only the host and the two cross targets below are built; a Mac builds its own
+//! `darwin64` / `<arch>-darwin` binary and no other unless their targets are installed.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+type BoxError = Box<dyn std::error::Error>;
+
+/// The platforms built besides the host when their targets are installed: the
+/// Windows and aarch64 Linux binaries, tested under Wine and qemu by scripts/cross_tests.sh.
+pub const CROSS_TARGETS: [&str; 2] = ["x86_64-pc-windows-gnu", "aarch64-unknown-linux-gnu"];
+
+/// One platform binary: its FMI 2.0 and FMI 3.0 folders, the suffix of the library in
+/// the archive, and the library's bytes.
+pub struct Binary {
+    pub fmi2: &'static str,
+    pub fmi3: &'static str,
+    pub suffix: &'static str,
+    pub bytes: Vec<u8>,
+}
+
+/// FMI folders and library name of a target triple: (FMI 2.0 folder, FMI 3.0 folder,
+/// prefix and suffix of the file cargo writes).
+pub fn folders(triple: &str) -> Option<(&'static str, &'static str, &'static str, &'static str)> {
+    Some(match triple {
+        "x86_64-unknown-linux-gnu" => ("linux64", "x86_64-linux", "lib", ".so"),
+        "aarch64-unknown-linux-gnu" => ("aarch64-linux", "aarch64-linux", "lib", ".so"),
+        "x86_64-pc-windows-gnu" | "x86_64-pc-windows-msvc" => ("win64", "x86_64-windows", "", ".dll"),
+        "x86_64-apple-darwin" => ("darwin64", "x86_64-darwin", "lib", ".dylib"),
+        "aarch64-apple-darwin" => ("darwin64", "aarch64-darwin", "lib", ".dylib"),
+        _ => return None,
+    })
+}
+
+/// The target triple this executable was built for (from its OS and architecture).
+pub fn host_triple() -> Result<&'static str, BoxError> {
+    host_triple_of(std::env::consts::OS, std::env::consts::ARCH)
+}
+
+fn host_triple_of(os: &str, arch: &str) -> Result<&'static str, BoxError> {
+    match (os, arch) {
+        ("linux", "x86_64") => Ok("x86_64-unknown-linux-gnu"),
+        ("linux", "aarch64") => Ok("aarch64-unknown-linux-gnu"),
+        ("windows", "x86_64") => Ok(if cfg!(target_env = "msvc") { "x86_64-pc-windows-msvc" } else { "x86_64-pc-windows-gnu" }),
+        ("macos", "x86_64") => Ok("x86_64-apple-darwin"),
+        ("macos", "aarch64") => Ok("aarch64-apple-darwin"),
+        (os, arch) => Err(format!("no FMI platform folder for {os}/{arch}").into()),
+    }
+}
+
+/// Every binary for the archives: the host's library from `profile` (`target/release`),
+/// then each installed cross target's, built by cargo into `target/<triple>/release`.
+/// A cross target whose Rust standard library is not installed is left out, with a note
+/// on stderr naming the script that installs it.
+pub fn binaries(profile: &Path) -> Result<Vec<Binary>, BoxError> {
+    let host = host_triple()?;
+    let mut out = vec![read_binary(host, profile)?];
+    let target_dir = profile.parent().ok_or("profile directory has no parent")?;
+    for triple in CROSS_TARGETS.into_iter().filter(|t| *t != host) {
+        if !target_installed(triple) {
+            eprintln!("note: Rust target {triple} not installed: no {triple} binary (bash scripts/cross.sh installs it)");
+            continue;
+        }
+        cross_build(triple, target_dir)?;
+        out.push(read_binary(triple, &target_dir.join(triple).join("release"))?);
+    }
+    Ok(out)
+}
+
+fn read_binary(triple: &str, dir: &Path) -> Result<Binary, BoxError> {
+    let (fmi2, fmi3, prefix, suffix) = folders(triple).ok_or_else(|| format!("no FMI platform folder for {triple}"))?;
+    let path: PathBuf = dir.join(format!("{prefix}wound_opening{suffix}"));
+    let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {} (built by cargo): {e}", path.display()))?;
+    Ok(Binary { fmi2, fmi3, suffix, bytes })
+}
+
+/// Whether rustc has the standard library of `triple` (`rustup target add` installs it).
+fn target_installed(triple: &str) -> bool {
+    let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+    let libdir = Command::new(rustc).args(["--print", "target-libdir", "--target", triple]).output();
+    match libdir {
+        Ok(out) if out.status.success() => {
+            let dir = PathBuf::from(String::from_utf8_lossy(&out.stdout).trim());
+            std::fs::read_dir(dir).is_ok_and(|entries| {
+                entries.flatten().any(|e| e.file_name().to_string_lossy().starts_with("libstd-"))
+            })
+        }
+        _ => false,
+    }
+}
+
+/// `cargo build --release --lib --target <triple>`, with the linker of .cargo/config.toml.
+fn cross_build(triple: &str, target_dir: &Path) -> Result<(), BoxError> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let status = Command::new(cargo)
+        .args(["build", "--release", "--quiet", "--lib", "--target", triple, "--target-dir"])
+        .arg(target_dir)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .status()?;
+    if !status.success() {
+        return Err(format!("cargo build --release --lib --target {triple} failed (its linker: bash scripts/cross.sh)").into());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn folders_of_every_host() {
+        let cases = [
+            ("linux", "x86_64", "linux64", "x86_64-linux", ".so"),
+            ("linux", "aarch64", "aarch64-linux", "aarch64-linux", ".so"),
+            ("windows", "x86_64", "win64", "x86_64-windows", ".dll"),
+            ("macos", "x86_64", "darwin64", "x86_64-darwin", ".dylib"),
+            ("macos", "aarch64", "darwin64", "aarch64-darwin", ".dylib"),
+        ];
+        for (os, arch, fmi2, fmi3, suffix) in cases {
+            let triple = host_triple_of(os, arch).unwrap();
+            let (f2, f3, _, s) = folders(triple).unwrap();
+            assert_eq!((f2, f3, s), (fmi2, fmi3, suffix), "{os}/{arch} ({triple})");
+        }
+        assert!(host_triple_of("freebsd", "x86_64").is_err());
+        for triple in CROSS_TARGETS {
+            assert!(folders(triple).is_some(), "{triple}");
+        }
+    }
+}
