@@ -31,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import wound_exact as we  # noqa: E402
 
 import wound_opening as wo  # noqa: E402
-from wound_opening.plots import fit_figure  # noqa: E402
+from wound_opening.results.plots import fit_figure  # noqa: E402
 
 LAM, SIGMA, R0, T, OUTER = 0.5, 0.5, 10.0, 10.0, 100.0
 
@@ -106,7 +106,7 @@ def main():
         return
     fit_figure(wo.fit(radius, profile, outer_radius_um=OUTER), radius, profile, out / "fitting_example.png")
     identifiability(out / "fitting_identifiability.png")
-    from wound_opening.plots import sweep_figure
+    from wound_opening.results.plots import sweep_figure
 
     grid = {"lambda": [0, 0.1, 0.3, 1, 3, 10], "sigma": [0.25, 0.5, 1, 2], "R_inf": [10, 30]}
     sweep_figure(wo.sweep(grid, times=[0, 1, 10, 100], processes=1), out / "sweep_example.png")

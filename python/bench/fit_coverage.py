@@ -15,7 +15,7 @@ from pathlib import Path
 
 
 from bench.fit_designs import NAMES, clean, covers, draw, truth
-from wound_opening.fitting import fit
+from wound_opening.fitting.single import fit
 
 NOISES = (1e-6, 1e-4, 1e-3, 1e-2, 4e-2)
 LAMBDAS = (0.0, 0.05, 0.5, 5.0, 50.0)

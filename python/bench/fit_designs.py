@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import wound_exact as we
 
-from wound_opening.data import RadiusSeries, VelocityProfile
+from wound_opening.inputs.series import RadiusSeries, VelocityProfile
 
 R0, SIGMA, OUTER = 10.0, 0.5, 100.0
 NAMES = ("R0_um", "sigma", "lambda", "T_s")

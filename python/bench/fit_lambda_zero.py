@@ -17,9 +17,9 @@ import time
 import numpy as np
 
 from bench.fit_designs import clean, draw, truth
-from wound_opening.fitting import _uncertainties, fit
-from wound_opening.local import local_fit
-from wound_opening.objective import Objective, to_z
+from wound_opening.fitting.single import _uncertainties, fit
+from wound_opening.fitting.local import local_fit
+from wound_opening.fitting.objective import Objective, to_z
 
 
 def main() -> None:

@@ -11,9 +11,9 @@ from __future__ import annotations
 import argparse
 
 from bench.tissue_designs import TRUTH, draw
-from wound_opening.fitting import fit
-from wound_opening.result import _fmt
-from wound_opening.tissue import fit_wounds
+from wound_opening.fitting.single import fit
+from wound_opening.results.result import _fmt
+from wound_opening.fitting.wounds import fit_wounds
 
 #: The single fit's names of the shared quantities.
 ALONE = {"viscous_length_um": "viscous_length_um", "tension_over_G": "tension_over_G",

@@ -16,8 +16,8 @@ from pathlib import Path
 
 from bench.fit_designs import covers
 from bench.tissue_designs import OUTERS, R0S, TRUTH, clean, draw
-from wound_opening.fitting import fit
-from wound_opening.tissue import fit_wounds
+from wound_opening.fitting.single import fit
+from wound_opening.fitting.wounds import fit_wounds
 
 NOISES = (1e-3, 1e-2, 4e-2)
 #: The single wound's names of the shared quantities.

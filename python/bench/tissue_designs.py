@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 import wound_exact as we
 
-from wound_opening.data import RadiusSeries
-from wound_opening.tissue import Wound
+from wound_opening.inputs.series import RadiusSeries
+from wound_opening.fitting.wounds import Wound
 
 L_UM, SIGMA, ZETA_G = 20.0, 0.5, 0.1
 R0S, OUTERS = (5.0, 10.0, 20.0), (80.0, 100.0, 120.0)

@@ -9,10 +9,10 @@ import sys
 
 
 def _fit(args) -> None:
-    from .fitting import fit
-    from .lab_files import read_profile, read_radius
-    from .parameters import from_options
-    from .tables import InputError, float_list
+    from .fitting.single import fit
+    from .inputs.lab_files import read_profile, read_radius
+    from .fitting.parameters import from_options
+    from .inputs.columns import InputError, float_list
 
     units = dict(time_unit=args.time_unit, length_unit=args.length_unit, pixel_size_um=args.pixel_size_um,
                  cut_time=args.cut_time)
@@ -35,7 +35,7 @@ def _fit(args) -> None:
         with open(args.json, "w") as f:
             f.write(result.to_json() + "\n")
     if args.report:
-        from .report import write_report
+        from .results.report import write_report
 
         write_report(args.report, result, radius, profile, command=_command_line())
         print(f"report -> {args.report}")
@@ -44,7 +44,7 @@ def _fit(args) -> None:
             print("no figure and no export: the fit did not converge", file=sys.stderr)
         return 1
     if args.plot:
-        from .plots import fit_figure
+        from .results.plots import fit_figure
 
         fit_figure(result, radius, profile, args.plot)
     if args.export:
@@ -60,9 +60,9 @@ def _command_line() -> str:
 
 def _fit_wounds(args, units, outer, profiles) -> int:
     """Several wounds of one tissue: one radius file each, or one long table with --wound-col."""
-    from .lab_files import read_radius, read_wounds
-    from .tables import InputError
-    from .tissue import Wound, fit_wounds
+    from .inputs.lab_files import read_radius, read_wounds
+    from .inputs.columns import InputError
+    from .fitting.wounds import Wound, fit_wounds
 
     columns = dict(time_col=args.time_col, radius_col=args.radius_col, sd_col=args.radius_sd_col,
                    noise_um=args.radius_noise_um, **units)
@@ -96,7 +96,7 @@ def _fit_wounds(args, units, outer, profiles) -> int:
 
 def _sweep(args) -> None:
     from .sweeping import sweep
-    from .tables import float_list
+    from .inputs.columns import float_list
 
     grid = {"lambda": float_list(args.lam, "--lambda"), "sigma": float_list(args.sigma, "--sigma"),
             "R_inf": float_list(args.r_inf, "--R-inf")}
@@ -106,7 +106,7 @@ def _sweep(args) -> None:
     if args.parquet:
         df.to_parquet(args.parquet)
     if args.plot:
-        from .plots import sweep_figure
+        from .results.plots import sweep_figure
 
         sweep_figure(df, args.plot)
     print(f"{len(df)} rows -> {args.csv}")
@@ -116,7 +116,7 @@ def _simulate(args) -> None:
     import numpy as np
 
     from .model import simulate
-    from .tables import float_list
+    from .inputs.columns import float_list
 
     times = float_list(args.times, "--times") if args.times else np.linspace(0, args.t_end, args.points)
     radii = float_list(args.radii_um, "--radii-um") if args.radii_um else None
@@ -130,7 +130,7 @@ def _simulate(args) -> None:
     else:
         print(frame.to_string(index=False, float_format=lambda x: f"{x:.6g}"))
     if args.plot:
-        from .plots import simulate_figure
+        from .results.plots import simulate_figure
 
         simulate_figure(sim, args.plot)
     if args.csv:
@@ -265,7 +265,7 @@ def parser() -> argparse.ArgumentParser:
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
     from ._native import NativeLibraryMissing
-    from .tables import InputError
+    from .inputs.columns import InputError
 
     try:
         code = args.run(args) or 0

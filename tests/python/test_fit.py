@@ -21,9 +21,9 @@ import pytest
 import wound_exact as we
 from bench.fit_designs import NAMES, clean, covers, draw, truth
 
-from wound_opening.data import RadiusSeries
-from wound_opening.fitting import fit
-from wound_opening.objective import Objective, to_z
+from wound_opening.inputs.series import RadiusSeries
+from wound_opening.fitting.single import fit
+from wound_opening.fitting.objective import Objective, to_z
 
 
 def chi2_of(series, model):
@@ -117,8 +117,8 @@ def test_profile_interval_ends_lie_on_the_threshold():
     """Each end of a PIV fit's four intervals: chi^2 minimised over the other three there
     (tolerances 1e-12, started at the estimate) exceeds the minimum by the threshold to
     2e-3 of it, the precision likelihood.py locates the crossing to."""
-    from wound_opening.fitting import _uncertainties
-    from wound_opening.local import local_fit
+    from wound_opening.fitting.single import _uncertainties
+    from wound_opening.fitting.local import local_fit
 
     radius, profile = draw("piv", 0.5, 1e-2, 7)
     result = fit(radius, profile, outer_radius_um=100.0, derived=False)
@@ -140,7 +140,7 @@ def test_a_profile_end_past_a_wall_is_not_cut_inside_the_allowed_region():
     end lies at the wall (to the refinement's bracket), never inside the allowed region."""
     import math
 
-    from wound_opening.likelihood import _crossing
+    from wound_opening.fitting.intervals import _crossing
 
     def constrained(v):
         return None, (0.8 if v < 1.5 else 1800.0), False
@@ -184,9 +184,9 @@ def test_a_profile_held_by_a_search_bound_is_open():
     sigma ~ 100. Walking sigma up, the fits stay pinned to that bound and the profile rises
     because of it, not of the data: the end is open (sigma not identified), never a finite
     end that an interval around sigma ~ 100 would then report."""
-    from wound_opening.fitting import _uncertainties
-    from wound_opening.likelihood import _side
-    from wound_opening.local import local_fit
+    from wound_opening.fitting.single import _uncertainties
+    from wound_opening.fitting.intervals import _side
+    from wound_opening.fitting.local import local_fit
 
     radius, _ = draw("plateau", 0.0, 4e-2, 1001)
     obj = Objective(radius, None, 100.0)
@@ -203,9 +203,9 @@ def test_a_crossing_on_a_curved_valley_is_confirmed_by_a_tight_fit():
     down must not close R0's interval above the truth."""
     import math
 
-    from wound_opening.fitting import _uncertainties
-    from wound_opening.likelihood import _side
-    from wound_opening.local import local_fit
+    from wound_opening.fitting.single import _uncertainties
+    from wound_opening.fitting.intervals import _side
+    from wound_opening.fitting.local import local_fit
 
     radius, _ = draw("early", 0.5, 1e-2, 1004)
     obj = Objective(radius, None, 100.0)

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 import wound_exact as we
 
-from wound_opening.data import RadiusSeries, VelocityProfile
-from wound_opening.fitting import fit
+from wound_opening.inputs.series import RadiusSeries, VelocityProfile
+from wound_opening.fitting.single import fit
 
 EXE = str(Path(sys.executable).with_name("wound-opening"))
 R0, SIGMA, LAM, T, OUTER = 10.0, 0.5, 0.5, 10.0, 100.0
@@ -67,7 +67,7 @@ def test_outliers_are_flagged_by_a_robust_loss_and_fail_a_least_squares_fit():
 
 def test_outliers_in_a_lab_file_are_reported_by_their_file_line(tmp_path):
     """Rows 11 and 26 of the data, after a header and a comment line, are file lines 13 and 28."""
-    from wound_opening.lab_files import read_radius
+    from wound_opening.inputs.lab_files import read_radius
 
     noisy = RADIUS + 0.01 * np.random.default_rng(3).standard_normal(TIMES.size)
     noisy[[10, 25]] += 1.5  # two segmentation outliers

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 import wound_exact as we
 
-from wound_opening.fitting import fit
-from wound_opening.lab_files import read_profile, read_radius
-from wound_opening.plausibility import LONGEST_S, time_scale_warnings
+from wound_opening.fitting.single import fit
+from wound_opening.inputs.lab_files import read_profile, read_radius
+from wound_opening.fitting.plausibility import LONGEST_S, time_scale_warnings
 
 R0, SIGMA, LAM, T, OUTER = 10.0, 0.5, 0.4, 8.0, 100.0
 PIXEL_UM, CUT_MS = 0.1625, 2350.0

@@ -14,10 +14,10 @@ import wound_exact as we
 from scipy import optimize
 
 import wound_opening as wo
-from wound_opening.derived import Reparametrised
-from wound_opening.local import local_fit
-from wound_opening.objective import Objective, to_z
-from wound_opening.parameters import Parameter, Parameters, from_options
+from wound_opening.fitting.derived import Reparametrised
+from wound_opening.fitting.local import local_fit
+from wound_opening.fitting.objective import Objective, to_z
+from wound_opening.fitting.parameters import Parameter, Parameters, from_options
 
 LAM, SIGMA, R0, T, OUTER, NOISE = 0.5, 0.5, 10.0, 10.0, 100.0, 0.05
 

@@ -18,7 +18,7 @@ from test_fmu_pages import render
 
 import wound_opening as wo
 from wound_opening.model import half_opening_time
-from wound_opening.report import render as report_html
+from wound_opening.results.report import render as report_html
 
 NOISE = 0.05
 OUTLIER_ROW = 12  # 1-based data row made an outlier (+1 um = 20 noise)
@@ -151,7 +151,7 @@ def test_the_report_renders_in_headless_chromium(robust, tmp_path):
 def test_the_fit_figure_has_a_log_time_axis_error_bars_flags_estimates_and_fine_profiles(robust):
     from matplotlib.container import ErrorbarContainer
 
-    from wound_opening.plots import PROFILE_POINTS, fit_figure
+    from wound_opening.results.plots import PROFILE_POINTS, fit_figure
 
     result, _, _ = robust
     fig = fit_figure(result)
@@ -251,7 +251,7 @@ def test_every_option_of_every_subcommand_shows_its_default_and_unit():
 
 
 def test_the_sweep_figure_shows_the_opening_coloured_by_lambda_and_the_half_opening_time(tmp_path):
-    from wound_opening.plots import sweep_figure
+    from wound_opening.results.plots import sweep_figure
 
     df = wo.sweep({"lambda": [0.0, 0.3, 3.0, 30.0], "sigma": [0.5, 1.0], "R_inf": [10.0]}, times=[0, 1, 10, 100],
                   processes=1)
@@ -284,7 +284,7 @@ def test_a_fixed_parameter_is_said_fixed_in_the_summary_figure_and_report(robust
     result = wo.fit(radius, outer_radius_um=OUTER, loss="soft_l1", params=params, derived=False)
     assert result.converged, result.reasons
     assert re.search(r"^R0_um\s+10\s+fixed$", result.summary(), re.M), result.summary()
-    from wound_opening.plots import estimates_text, fit_figure
+    from wound_opening.results.plots import estimates_text, fit_figure
 
     assert "R₀ = 10 µm  (fixed)" in estimates_text(result)
     fit_figure(result, radius, None, tmp_path / "fit.png", profile_points=4)

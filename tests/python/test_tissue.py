@@ -16,9 +16,9 @@ import pytest
 from bench.fit_designs import covers
 from bench.tissue_designs import R0S, TRUTH, draw, wound_truth
 
-from wound_opening.data import RadiusSeries
-from wound_opening.fitting import fit
-from wound_opening.tissue import Wound, fit_wounds
+from wound_opening.inputs.series import RadiusSeries
+from wound_opening.fitting.single import fit
+from wound_opening.fitting.wounds import Wound, fit_wounds
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "examples" / "data"

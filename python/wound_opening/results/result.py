@@ -8,8 +8,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .objective import NAMES
-from .likelihood import Profile
+from .names import NAMES
+from .profiles import Profile
 
 
 @dataclass
@@ -88,7 +88,8 @@ class FitResult:
     #: The data in the input's order with the model, the noise used and the flags (export.py).
     points: dict = field(default_factory=dict)
     #: (objective, z, chi^2 at the optimum, loss): for profiles at more values (profile_at).
-    refit: tuple | None = field(default=None, repr=False, compare=False)
+    #: (i, values of z_i) -> delta chi^2: the profile of coordinate i by constrained fits.
+    refit: object = field(default=None, repr=False, compare=False)
     _profile_cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
@@ -154,17 +155,15 @@ class FitResult:
 
     def profile_at(self, name: str, values) -> np.ndarray:
         """delta chi^2 of the profile of parameter `name` at `values` (in its own units), by
-        constrained fits (likelihood.profile_at): to draw a profile finely."""
-        from .likelihood import profile_at
-
+        constrained fits (fitting.intervals.profile_at, which `refit` holds): to draw a
+        profile finely."""
         if self.refit is None:
             raise ValueError("profile_at: this result keeps no objective (a failed fit)")
-        obj, z, chi2_min, loss = self.refit
         i = NAMES.index(name)
         v = np.asarray(values, dtype=float)
         key = (name, v.tobytes())
         if key not in self._profile_cache:  # a report and a figure of one result draw the same values
-            self._profile_cache[key] = profile_at(obj, z, chi2_min, i, np.log(v) if i in (0, 3) else v, loss)
+            self._profile_cache[key] = self.refit(i, np.log(v) if i in (0, 3) else v)
         return self._profile_cache[key].copy()
 
     def tables(self) -> dict:
@@ -206,7 +205,7 @@ class FitResult:
         """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
         the tension, with profile intervals (material.py): name -> {estimate, ci95,
         identifiable, unit}."""
-        from .material import material_report
+        from ..material import material_report
 
         return material_report(self)
 

@@ -33,9 +33,8 @@ import math
 
 import numpy as np
 
-from . import _native
+from .. import _native
 
-NAMES = ("R0_um", "sigma", "lambda", "T_s")
 #: Largest lambda searched: a viscous length of 50 R0, beyond which the tissues of these
 #: experiments (outer radius ~10 R0) move as one and R(t) depends on tau = lambda^2 T only.
 LAMBDA_MAX = 50.0

@@ -83,7 +83,7 @@ def tables(result) -> dict:
     A fit that did not converge has no fitted curve: ValueError with its reasons."""
     import pandas as pd
 
-    from .model import simulate
+    from ..model import simulate
 
     if not result.converged:
         raise ValueError("the fit did not converge (" + "; ".join(result.reasons) + "): nothing to export")

@@ -37,8 +37,8 @@ LONGEST_S = 3600.0
 def time_scale_warnings(theta, outer_radius_um: float, radius, profile=None) -> list[str]:
     """Warnings for the fitted theta = (R0_um, sigma, lambda, T_s) against the sampled times
     [s since the cut] of the radius series and the velocity profile."""
-    from ._native import SolverError
-    from .model import simulate
+    from .._native import SolverError
+    from ..model import simulate
 
     R0, sigma, lam, T = (float(x) for x in theta)
     t = np.concatenate([np.asarray(radius.times_s, dtype=float)]

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .result import ParameterReport, _fmt, chi2_warning, outlier_warning
-from .tissue import ETA, SHARED
+from .names import ETA, SHARED
 
 #: What would identify a shared quantity that is not.
 ADVICE = {

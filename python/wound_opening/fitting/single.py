@@ -22,16 +22,18 @@ prior is one more residual; the degrees of freedom are n + priors - free paramet
 from __future__ import annotations
 
 import math
+from functools import partial
 
 import numpy as np
 
-from ._native import SolverError
-from .data import RadiusSeries, VelocityProfile, check_against, where
-from .export import data_points
-from .objective import NAMES, Objective, from_z
+from .._native import SolverError
+from ..inputs.series import RadiusSeries, VelocityProfile, check_against, where
+from ..results.export import data_points
+from ..results.names import NAMES
+from .objective import Objective, from_z
 from .plausibility import time_scale_warnings
-from .likelihood import Profile
-from .result import FitResult, ParameterReport
+from ..results.profiles import Profile
+from ..results.result import FitResult, ParameterReport
 
 #: chi^2 p-value below which the model is said not to describe the data (fit failed), and
 #: below which a warning is given.
@@ -132,9 +134,9 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     giving a prior to R0_um, sigma, lambda, T_s, and G_pa fixed or with a prior."""
     from scipy import stats
 
-    from .likelihood import profile_all
+    from .intervals import profile_all, profile_at
     from .local import cost
-    from .start import grid_starts
+    from .starts import grid_starts
 
     if loss not in ("linear", "soft_l1", "cauchy"):
         raise ValueError(f"loss = {loss!r}: expected linear, soft_l1 or cauchy")
@@ -232,7 +234,7 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
                      outliers=_outliers(data, flagged, radius, profile), piv_at_edge=data.inside_edge,
                      derived_profiles=derived_p, plausibility=time_scale_warnings(theta, obj.outer, radius, profile),
                      points=data_points(data, z, flagged, radius, profile, estimated),
-                     refit=(obj, z, chi2_cost, loss) if not reasons else None)
+                     refit=partial(profile_at, obj, z, chi2_cost, loss=loss) if not reasons else None)
 
 
 def _outliers(obj: Objective, flagged, radius: RadiusSeries, profile: VelocityProfile | None) -> dict:

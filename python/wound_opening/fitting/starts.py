@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from . import _native
+from .. import _native
 from .objective import Objective, to_z
 
 #: Accuracy of the grid's curves (relative to the opening): far below any noise that matters

@@ -23,11 +23,12 @@ estimate on such a bound gives that end. Parameters the user holds fixed are not
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 
-from .objective import LAMBDA_MAX, NAMES, Objective
+from ..results.names import NAMES
+from ..results.profiles import Profile
+from .objective import LAMBDA_MAX, Objective
 
 #: An interval end is located to where sqrt(delta chi^2) is within this fraction of the
 #: threshold's square root (delta within ~2e-3 of the threshold, relative).
@@ -40,19 +41,6 @@ BRACKET = 0.05
 CONFIRM = 0.01
 #: Refining steps of a bracketed end at most (regula falsi, bisection where it creeps).
 REFINE = 16
-
-
-@dataclass
-class Profile:
-    """One parameter's profile: the interval ends (in the parameter's own units; None where
-    the search limit was reached), whether lambda's lower end is its bound, and the points."""
-
-    lower: float | None
-    upper: float | None
-    at_bound: bool
-    points: list = field(default_factory=list)  # (value, delta chi^2), value in its own units
-    #: (lower, upper): the end is a bound the user set, not a rise of the profile.
-    bounded: tuple = (False, False)
 
 
 def _limits(i: int, z: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> tuple[float, float]:
@@ -134,7 +122,7 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
             unsure = res.status == 0
         return z, max(chi2 - chi2_min, 0.0), unsure or _on_search_bound(obj, z, i)
 
-    from ._native import SolverError
+    from .._native import SolverError
 
     plain = constrained
 
@@ -269,7 +257,7 @@ def profile_at(obj: Objective, z_hat: np.ndarray, chi2_min: float, i: int, value
     `max_nfev` evaluations, or that the solver refuses, gives nan (its chi^2 would only
     bound the profile from above). For drawing a profile finely; the intervals come from
     `profile_all`."""
-    from ._native import SolverError
+    from .._native import SolverError
     from .local import local_fit
 
     values = np.asarray(values, dtype=float)

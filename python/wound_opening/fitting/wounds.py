@@ -37,14 +37,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._native import SolverError
-from .data import RadiusSeries, VelocityProfile, check_against
+from .._native import SolverError
+from ..inputs.series import RadiusSeries, VelocityProfile, check_against
+from ..results.names import ETA, SHARED
+from ..results.profiles import Profile
 from .objective import LAMBDA_MAX, Objective, from_z
 
 LN4 = math.log(4.0)
-#: The shared coordinates (y[0], y[1], y[2]) and the derived eta/G, by their names in the result.
-SHARED = ("viscous_length_um", "tension_over_G", "zeta_over_G_s_per_um2")
-ETA = "eta_over_G_s"
 #: Points each wound needs: its start is a fit of its own four parameters (fitting.fit).
 MIN_POINTS = 5
 
@@ -222,11 +221,11 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
     Returns a TissueFitResult."""
     from scipy import stats
 
-    from .fitting import OUTLIER, P_FAIL, _best, _estimate_noise, _outliers, _uncertainties, fit
+    from .single import OUTLIER, P_FAIL, _best, _estimate_noise, _outliers, _uncertainties, fit
     from .local import cost
     from .plausibility import time_scale_warnings
-    from .result import ParameterReport
-    from .tissue_result import TissueFitResult
+    from ..results.result import ParameterReport
+    from ..results.wounds import TissueFitResult
 
     if loss not in ("linear", "soft_l1", "cauchy"):
         raise ValueError(f"loss = {loss!r}: expected linear, soft_l1 or cauchy")
@@ -326,7 +325,7 @@ def _interval(obj, k, centres, chi2_min, threshold, cov, loss, limits, default):
     likelihood._side from the optimum and from every other optimum below the threshold
     (`centres`: (y, delta chi^2)), as likelihood.profile_all does; `limits(centre)` gives
     the search range, `cov` the Jacobian's covariance (first step and start prediction)."""
-    from .likelihood import _side
+    from .intervals import _side
 
     n = centres[0][0].size
     ok = np.all(np.isfinite(cov[:, k])) and cov[k, k] > 0
@@ -355,7 +354,6 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
     (likelihood.py): l from 0 to LAMBDA_MAX times the largest R0 (an interval reaching 0 is
     closed there but does not identify l, as lambda's), sigma within 10 |sigma| + 1, zeta/G
     and eta/G within a factor 100, R0 within a factor 3."""
-    from .likelihood import Profile
 
     lower, upper = tissue.bounds()
     centres = [(y_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]

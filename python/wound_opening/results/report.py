@@ -24,7 +24,7 @@ import platform
 import sys
 from pathlib import Path
 
-from .objective import NAMES
+from .names import NAMES
 
 STYLE = """body{font-family:sans-serif;max-width:70em;margin:1em auto;padding:0 1em;color:#222}
 table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}
@@ -60,8 +60,8 @@ def software() -> dict:
     import numpy
     import scipy
 
-    from . import __version__
-    from ._native import library_path
+    from .. import __version__
+    from .._native import library_path
 
     lib = library_path()
     return {"wound_opening": __version__, "native library": f"{lib} (SHA-256 {sha256(lib)})",

@@ -34,7 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .objective import LAMBDA_MAX, NAMES, Objective, from_z
+from ..results.names import NAMES
+from .objective import LAMBDA_MAX, Objective, from_z
 
 #: The fit parameters (NAMES) and G, which only scales the absolute material values.
 G_NAME = "G_pa"

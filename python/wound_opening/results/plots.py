@@ -24,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from .objective import NAMES  # noqa: E402
+from .names import NAMES  # noqa: E402
 
 LABELS = {"R0_um": "R₀ (µm)", "sigma": "σ", "lambda": "λ", "T_s": "T (s)"}
 SYMBOLS = {"R0_um": ("R₀", " µm"), "sigma": ("σ", ""), "lambda": ("λ", ""), "T_s": ("T", " s")}
@@ -216,7 +216,7 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
 def sweep_figure(df, path, *, R0_um: float | None = None, T_s: float | None = None):
     """The sweep's opening fraction and half-opening time (module docstring). Physical
     columns (time_s, wound_radius_um) need R0_um and T_s, taken from df.attrs by default."""
-    from .model import half_opening_time, opening_fraction
+    from ..model import half_opening_time, opening_fraction
 
     physical = "time_s" in df.columns
     R0 = R0_um or df.attrs.get("R0_um", 1.0)

@@ -31,7 +31,8 @@ import math
 
 import numpy as np
 
-from .likelihood import Profile, _side
+from ..results.profiles import Profile
+from .intervals import _side
 
 #: kind -> (c, {i: a_i}, the coordinates it may replace, in order of preference)
 MONOMIALS = {"tau_s": (0.0, {2: 2.0, 3: 1.0}, (3, 2)),

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import math
 
-from .data import RadiusSeries, VelocityProfile
-from .tables import InputError, MIN_POINTS, read_columns
+from .series import RadiusSeries, VelocityProfile
+from .columns import InputError, MIN_POINTS, read_columns
 
 #: Seconds per time unit.
 TIME_UNITS = {"ms": 1e-3, "s": 1.0, "min": 60.0}
