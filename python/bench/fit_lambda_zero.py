@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 from bench.fit_designs import clean, draw, truth
-from wound_opening.fitting.single import _uncertainties, fit
+from wound_opening.fitting.single import fit
 from wound_opening.fitting.local import local_fit
 from wound_opening.fitting.objective import Objective, to_z
 
@@ -34,7 +34,6 @@ def main() -> None:
         radius, profile = draw(args.design, 0.0, args.noise, 5000 + k, data)
         result = fit(radius, profile, outer_radius_um=100.0, intervals=False)
         obj = Objective(radius, profile, 100.0)
-        _uncertainties(obj, radius, profile)
         chi2_0 = min(local_fit(obj, z0, fixed=2, value=0.0)[1] for z0 in (z_true, to_z(result.theta)))
         deltas.append(chi2_0 - result.chi2)
         at_zero += result.theta[2] < 1e-6

@@ -12,7 +12,7 @@ import argparse
 
 from bench.tissue_designs import TRUTH, draw
 from wound_opening.fitting.single import fit
-from wound_opening.results.result import _fmt
+from wound_opening.results.result import fmt
 from wound_opening.fitting.wounds import fit_wounds
 
 #: The single fit's names of the shared quantities.
@@ -22,7 +22,7 @@ ALONE = {"viscous_length_um": "viscous_length_um", "tension_over_G": "tension_ov
 
 def cell(ci, identified: bool) -> str:
     lo, hi = ci
-    return f"[{_fmt(lo)}, {_fmt(hi)}]" + ("" if identified else " (not identified)")
+    return f"[{fmt(lo)}, {fmt(hi)}]" + ("" if identified else " (not identified)")
 
 
 def main() -> None:

@@ -5,6 +5,8 @@ not converge prints why, writes its JSON ("converged": false) and exits with 1."
 from __future__ import annotations
 
 import argparse
+import os
+import shlex
 import sys
 
 
@@ -53,8 +55,6 @@ def _fit(args) -> None:
 
 
 def _command_line() -> str:
-    import shlex
-
     return "wound-opening " + " ".join(shlex.quote(a) for a in sys.argv[1:])
 
 
@@ -270,8 +270,6 @@ def main(argv=None) -> int:
     try:
         code = args.run(args) or 0
     except BrokenPipeError:  # the reader of a printed table stopped (| head): not an error of the input
-        import os
-
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
     except (InputError, ValueError, OSError, NativeLibraryMissing) as e:

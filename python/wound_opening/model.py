@@ -1,6 +1,6 @@
 """`simulate`: the model in the units of an experiment (um, s, Pa).
 
-Scales (README, "Physical units"): lengths in R0 [um], time in T = zeta R0^2 / (4 G) [s],
+Scales (docs/model.md, "Physical units"): lengths in R0 [um], time in T = zeta R0^2 / (4 G) [s],
 stresses in G [Pa]; lambda = 2 sqrt(eta / zeta) / R0 and sigma = tension / G are
 dimensionless, R_inf = outer radius / R0. The wound radius just after the cut is
 R1 = R0 (1 + sigma / 6), not R0, and the wound opens towards
@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _native
+from .material import model_parameters
 
 
 @dataclass(frozen=True)
@@ -111,14 +112,15 @@ def simulate(times_s, *, R0_um: float, outer_radius_um: float, lam: float | None
     R0_um: radius of the cut (the wound is R1 = R0 (1 + sigma/6) just after it).
     outer_radius_um: the tissue's outer radius (> R0).
     edge_stress_pa with G_pa: a constant stress at the wound edge (default none).
-    tolerance: the accuracy target of every output, relative to the opening R_final - R1
-    (the grid is the cheapest that meets it; 1e-11 is the finest delivered).
+    tolerance: the accuracy target of the wound radius and edge velocity, relative to the
+    opening R_final - R1 (the grid is the cheapest that meets it; 1e-11 is the finest
+    delivered). The field at `radii_um` is less accurate (wider elements inside the tissue):
+    its contract is "The field contract" in section "Interfaces: FMI 2.0 and 3.0,
+    co-simulation or Model Exchange" of docs/fmi.md.
     At lambda = 0 the edge velocity at t = 0 is infinite in the model and returned as inf.
     Raises ValueError for invalid input (a radius inside the wound or beyond the tissue at
     some time, with the tissue's span then) and NativeLibraryMissing without the library.
     """
-    from .material import model_parameters
-
     lam, sigma, T_s = model_parameters(dict(lam=lam, sigma=sigma, T_s=T_s, G_pa=G_pa, eta_pa_s=eta_pa_s,
                                             zeta_pa_s_per_um2=zeta_pa_s_per_um2, tension_pa=tension_pa,
                                             R0_um=R0_um)).values()

@@ -117,14 +117,12 @@ def test_profile_interval_ends_lie_on_the_threshold():
     """Each end of a PIV fit's four intervals: chi^2 minimised over the other three there
     (tolerances 1e-12, started at the estimate) exceeds the minimum by the threshold to
     2e-3 of it, the precision likelihood.py locates the crossing to."""
-    from wound_opening.fitting.single import _uncertainties
     from wound_opening.fitting.local import local_fit
 
     radius, profile = draw("piv", 0.5, 1e-2, 7)
     result = fit(radius, profile, outer_radius_um=100.0, derived=False)
     assert result.converged, result.reasons
     obj = Objective(radius, profile, 100.0)
-    _uncertainties(obj, radius, profile)
     z_hat = to_z(result.theta)
     _, chi2_min, _ = local_fit(obj, z_hat)
     for i, name in enumerate(NAMES):
@@ -140,18 +138,18 @@ def test_a_profile_end_past_a_wall_is_not_cut_inside_the_allowed_region():
     end lies at the wall (to the refinement's bracket), never inside the allowed region."""
     import math
 
-    from wound_opening.fitting.intervals import _crossing
+    from wound_opening.fitting.intervals import crossing
 
     def constrained(v):
         return None, (0.8 if v < 1.5 else 1800.0), False
 
     root = math.sqrt(3.84)
-    end, open_end, _ = _crossing(constrained, [], 0.0, math.sqrt(0.8) - root, 3.0, math.sqrt(1800.0) - root, root)
+    end, open_end, _ = crossing(constrained, [], 0.0, math.sqrt(0.8) - root, 3.0, math.sqrt(1800.0) - root, root)
     assert not open_end and 1.5 <= end < 1.5 + 3.0 / 2**4, end
     def mirrored(v):
         return None, (0.8 if v > -1.5 else 1800.0), False
 
-    end, _, _ = _crossing(mirrored, [], 0.0, math.sqrt(0.8) - root, -3.0, math.sqrt(1800.0) - root, root)
+    end, _, _ = crossing(mirrored, [], 0.0, math.sqrt(0.8) - root, -3.0, math.sqrt(1800.0) - root, root)
     assert -1.5 - 3.0 / 2**4 < end <= -1.5, end
 
 
@@ -184,15 +182,13 @@ def test_a_profile_held_by_a_search_bound_is_open():
     sigma ~ 100. Walking sigma up, the fits stay pinned to that bound and the profile rises
     because of it, not of the data: the end is open (sigma not identified), never a finite
     end that an interval around sigma ~ 100 would then report."""
-    from wound_opening.fitting.single import _uncertainties
-    from wound_opening.fitting.intervals import _side
+    from wound_opening.fitting.intervals import walk_side
     from wound_opening.fitting.local import local_fit
 
     radius, _ = draw("plateau", 0.0, 4e-2, 1001)
     obj = Objective(radius, None, 100.0)
-    _uncertainties(obj, radius, None)
     z, chi2, _ = local_fit(obj, to_z((0.2, 100.0, 50.0, 0.004)), max_nfev=40)
-    end, open_end, _ = _side(obj, 1, z, chi2, 3.84, 10.0, 1, z[1] + 10 * abs(z[1]) + 1, np.eye(4)[1], "linear")
+    end, open_end, _ = walk_side(obj, 1, z, chi2, 3.84, 10.0, 1, z[1] + 10 * abs(z[1]) + 1, np.eye(4)[1], "linear")
     assert end is None and open_end, end
 
 
@@ -202,14 +198,11 @@ def test_a_crossing_on_a_curved_valley_is_confirmed_by_a_tight_fit():
     tolerances 1e-7 stop short on its curved valley and showed a crossing at 10.17. The walk
     down must not close R0's interval above the truth."""
     import math
-
-    from wound_opening.fitting.single import _uncertainties
-    from wound_opening.fitting.intervals import _side
+    from wound_opening.fitting.intervals import walk_side
     from wound_opening.fitting.local import local_fit
 
     radius, _ = draw("early", 0.5, 1e-2, 1004)
     obj = Objective(radius, None, 100.0)
-    _uncertainties(obj, radius, None)
     z, chi2, _ = local_fit(obj, to_z((10.39, 0.264, 50.0, 0.0026)))
-    end, _, _ = _side(obj, 0, z, chi2, 3.84, 0.01, -1, z[0] - math.log(3.0), np.eye(4)[0], "linear")
+    end, _, _ = walk_side(obj, 0, z, chi2, 3.84, 0.01, -1, z[0] - math.log(3.0), np.eye(4)[0], "linear")
     assert end is None or math.exp(end) < 10.0, math.exp(end)

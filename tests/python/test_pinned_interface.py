@@ -128,6 +128,7 @@ def test_a_state_saved_by_the_pinned_build_restores_and_continues_exactly(pinned
     slave.setFMUstate(slave.deSerializeFMUstate(blob))
     lam, sigma, r_inf = STATE_CASE.values()
     amplitude = wound_exact.final_radius(sigma, r_inf) - wound_exact.initial_radius(sigma)
+    slave_time = STATE_TIME
     for t in (STATE_TIME, 2.5, 10.0):
         if t > STATE_TIME:
             slave.doStep(slave_time, t - slave_time)

@@ -10,27 +10,10 @@ residuals in units of their uncertainty (f_scale = 1).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from scipy import optimize
 
-from .objective import LAMBDA_MAX, Objective
-
-
-def bounds(obj: Objective) -> tuple[np.ndarray, np.ndarray]:
-    """Bounds in z: R0 between 1 % of the smallest radius and the outer radius / 1.001
-    (R_inf >= 1.001), sigma free, 0 <= lambda <= LAMBDA_MAX, T within 1e-6 .. 1e6 of the
-    last time."""
-    t_max = float(obj.t_sorted[-1]) if obj.t_sorted[-1] > 0 else 1.0
-    lower = np.array([math.log(0.01 * float(np.min(obj.radius))), -np.inf, 0.0, math.log(1e-6 * t_max)])
-    upper = np.array([math.log(obj.outer / 1.001), np.inf, LAMBDA_MAX, math.log(1e6 * t_max)])
-    return lower, upper
-
-
-def bounds_of(obj) -> tuple[np.ndarray, np.ndarray]:
-    """The bounds of `obj`: its own `bounds()` (a wrapper's) or those of an Objective."""
-    return obj.bounds() if hasattr(obj, "bounds") else bounds(obj)
+from .problem import Problem
 
 
 def cost(res: np.ndarray, loss: str = "linear") -> float:
@@ -43,17 +26,15 @@ def cost(res: np.ndarray, loss: str = "linear") -> float:
     return float(np.sum(z))
 
 
-def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None = None,
+def local_fit(obj: Problem, z0, fixed: int | None = None, value: float | None = None,
               loss: str = "linear", tol: float = 1e-12, max_nfev: int = 200):
-    """Minimise the cost from z0, with coordinate `fixed` held at `value` if given, and the
-    coordinates `obj.fixed` (a dict, the user's fixed parameters) held at theirs.
-    `obj` may be an Objective or another objective of any dimension with its own `bounds()`
-    (parameters.py, the reparametrisations of derived.py, the several wounds of tissue.py).
-    Returns (z, cost at z, least_squares result)."""
-    held = dict(getattr(obj, "fixed", {}))
+    """Minimise the cost of the problem `obj` (problem.py: any dimension) from z0, with
+    coordinate `fixed` held at `value` if given, and the coordinates `obj.fixed` (the user's
+    fixed parameters) held at theirs. Returns (z, cost at z, least_squares result)."""
+    held = dict(obj.fixed)
     if fixed is not None:
         held[fixed] = value
-    lower, upper = bounds_of(obj)
+    lower, upper = obj.bounds()
     free = [i for i in range(lower.size) if i not in held]
     z = np.clip(np.array(z0, dtype=float), lower, upper)
     for i, v in held.items():
@@ -70,13 +51,9 @@ def local_fit(obj: Objective, z0, fixed: int | None = None, value: float | None 
         w[free] = x
         return w
 
-    if held and getattr(obj, "partial_jacobian", isinstance(obj, Objective)):
-        def jacobian(w):
-            return obj.jacobian(w, free)
-    else:
-        jacobian = obj.jacobian
+    columns = free if held else None  # the columns the fit needs
     res = optimize.least_squares(lambda x: obj.residuals(full(x)), z[free],
-                                 jac=lambda x: jacobian(full(x))[:, free],
+                                 jac=lambda x: obj.jacobian(full(x), columns)[:, free],
                                  bounds=(lower[free], upper[free]), method="trf", x_scale="jac", loss=loss,
                                  xtol=tol, ftol=tol, gtol=tol, max_nfev=max_nfev)
     z = full(res.x)

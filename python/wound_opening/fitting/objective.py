@@ -34,6 +34,7 @@ import math
 import numpy as np
 
 from .. import _native
+from .problem import Problem
 
 #: Largest lambda searched: a viscous length of 50 R0, beyond which the tissues of these
 #: experiments (outer radius ~10 R0) move as one and R(t) depends on tau = lambda^2 T only.
@@ -55,12 +56,15 @@ def from_z(z) -> tuple[float, float, float, float]:
     return math.exp(z[0]), float(z[1]), abs(float(z[2])), math.exp(z[3])
 
 
-class Objective:
+class Objective(Problem):
     """Residuals (model - data) / uncertainty, radius points first, then profile points.
-    `sd` holds the per-point uncertainties (None where estimated: see `scale`)."""
+    `sd` holds the per-point uncertainties: the data's own where given, else a first guess
+    (`estimated` says which data sets: radius, profile) that `estimate_noise` scales to the
+    residuals."""
 
     def __init__(self, radius, profile, outer_radius_um: float):
         self.outer = float(outer_radius_um)
+        self.inputs = (radius, profile)  # the series read (rows, file lines)
         t = np.asarray(radius.times_s, dtype=float)
         self.order = np.argsort(t, kind="stable")
         self.t_sorted = t[self.order]
@@ -75,9 +79,51 @@ class Objective:
         self.n_radius = self.radius.size
         self.n_profile = sum(g[1].size for g in self.groups)
         self.group_times = np.array([g[0] for g in self.groups])
-        self.sd = np.ones(self.size)  # per-point uncertainty [um or um/s]
+        self.sd, self.estimated = self._uncertainties(radius, profile)  # [um or um/s]
         self.evaluations = 0
         self.inside_edge = 0
+
+    def _uncertainties(self, radius, profile) -> tuple[np.ndarray, list]:
+        """Initial per-point uncertainties and which data sets have theirs estimated: 1 % of
+        the mean radius, a tenth of the velocities' spread."""
+        r_sd = radius.sd_um if radius.sd_um is not None else np.full(self.n_radius, radius.noise_um or 1.0)
+        sd = [np.asarray(r_sd, float)[self.order]]
+        estimated = [radius.noise_um is None and radius.sd_um is None, False]
+        if profile is not None:
+            p_sd = profile.sd_um_s if profile.sd_um_s is not None else np.full(self.n_profile, profile.noise_um_s or 1.0)
+            sd.append(np.concatenate([np.asarray(p_sd, float)[g[3]] for g in self.groups]))
+            estimated[1] = profile.noise_um_s is None and profile.sd_um_s is None
+            if estimated[1]:
+                sd[1][:] = max(float(np.std(np.concatenate([g[2] for g in self.groups]))), 1e-12) * 0.1
+        if estimated[0]:
+            sd[0][:] = 0.01 * float(np.mean(self.radius))
+        return np.concatenate(sd), estimated
+
+    def estimate_noise(self, z, robust: bool, share: float | None = None) -> None:
+        """Scale the estimated data sets' uncertainties to their residuals at z; `share`: the
+        fraction of each set's points taken by the parameters (default 4 / the points)."""
+        parts = self.split(self.residuals(z))
+        scale = []
+        for k, part in enumerate(parts):
+            if not (self.estimated[k] and part.size):
+                scale.append(np.ones(part.size))
+                continue
+            if robust:
+                factor = 1.4826 * float(np.median(np.abs(part)))
+            else:
+                dof = max(part.size * (1 - (4 / self.size if share is None else share)), 1.0)
+                factor = math.sqrt(float(np.sum(part**2)) / dof)
+            scale.append(np.full(part.size, max(factor, 1e-300)))
+        self.sd = self.sd * np.concatenate(scale)
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Bounds in z: R0 between 1 % of the smallest radius and the outer radius / 1.001
+        (R_inf >= 1.001), sigma free, 0 <= lambda <= LAMBDA_MAX, T within 1e-6 .. 1e6 of the
+        last time."""
+        t_max = float(self.t_sorted[-1]) if self.t_sorted[-1] > 0 else 1.0
+        lower = np.array([math.log(0.01 * float(np.min(self.radius))), -np.inf, 0.0, math.log(1e-6 * t_max)])
+        upper = np.array([math.log(self.outer / 1.001), np.inf, LAMBDA_MAX, math.log(1e6 * t_max)])
+        return lower, upper
 
     @property
     def size(self) -> int:
@@ -124,13 +170,14 @@ class Objective:
     def residuals(self, z) -> np.ndarray:
         return (self.model(z) - self.data()) / self.sd
 
-    def jacobian(self, z, columns=(0, 1, 2, 3)) -> np.ndarray:
+    def jacobian(self, z, columns=None) -> np.ndarray:
         """d residuals / d z, (size, 4): see the module docstring. Only `columns` are
-        computed (the others are 0): a profile fit holds one coordinate fixed.
+        computed (the others are 0; None: all): a profile fit holds one coordinate fixed.
 
         Every difference in ln R0 is taken between the outer radii rc -+ dr of the radius
         columns, so that one Jacobian needs the modal bases of three outer radii (each new
         outer radius costs a decomposition)."""
+        columns = (0, 1, 2, 3) if columns is None else columns
         R0, sigma, lam, T = theta = from_z(z)
         r_inf = self.outer / R0
         t = self.t_sorted

@@ -36,6 +36,7 @@ import numpy as np
 
 from ..results.names import NAMES
 from .objective import LAMBDA_MAX, Objective, from_z
+from .problem import Problem
 
 #: The fit parameters (NAMES) and G, which only scales the absolute material values.
 G_NAME = "G_pa"
@@ -227,17 +228,15 @@ def _z(i: int, x: float) -> float:
     return math.log(x) if i in (0, 3) else x
 
 
-class Constrained:
+class Constrained(Problem):
     """The objective of the data with the specification: residuals and Jacobian with one row
     per prior appended, bounds narrowed to the user's, coordinates held fixed (`fixed`, in z,
     honoured by local.local_fit). The data's own objective is `obj`."""
 
-    #: jacobian(z, columns) computes only the columns asked for (local.local_fit).
-    partial_jacobian = True
-
     def __init__(self, obj: Objective, spec: Spec):
         self.obj, self.spec = obj, spec
         self.fixed = {i: _z(i, v) for i, v in spec.fixed.items()}
+        self.user_bounded = frozenset(spec.bounds)
         self.t_sorted, self.radius, self.outer = obj.t_sorted, obj.radius, obj.outer
         self.n_radius, self.n_profile = obj.n_radius, obj.n_profile
 
@@ -256,8 +255,9 @@ class Constrained:
     def residuals(self, z) -> np.ndarray:
         return np.concatenate([self.obj.residuals(z), self.prior_residuals(z)])
 
-    def jacobian(self, z, columns=(0, 1, 2, 3)) -> np.ndarray:
+    def jacobian(self, z, columns=None) -> np.ndarray:
         """The data's Jacobian and, per prior, d theta_i / d z_i / sd in column i."""
+        columns = (0, 1, 2, 3) if columns is None else columns
         theta = from_z(z)
         rows = np.zeros((len(self.spec.priors), 4))
         for k, (i, (_, sd)) in enumerate(self.spec.priors.items()):
@@ -266,10 +266,8 @@ class Constrained:
         return np.vstack([self.obj.jacobian(z, columns), rows])
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """The accepted bounds (local.bounds) narrowed to the user's, in z."""
-        from .local import bounds
-
-        lower, upper = bounds(self.obj)
+        """The accepted bounds (Objective.bounds) narrowed to the user's, in z."""
+        lower, upper = self.obj.bounds()
         for i, (lo, hi) in self.spec.bounds.items():
             if i in (0, 3):
                 lo, hi = (math.log(lo) if lo > 0 else -math.inf), (math.log(hi) if hi > 0 else -math.inf)
@@ -280,8 +278,6 @@ class Constrained:
         """Whether the limit of coordinate i on `side` (-1 lower, +1 upper) is the user's."""
         if i not in self.spec.bounds:
             return False
-        from .local import bounds
-
-        default = bounds(self.obj)[0 if side < 0 else 1][i]
+        default = self.obj.bounds()[0 if side < 0 else 1][i]
         mine = self.bounds()[0 if side < 0 else 1][i]
         return bool(mine != default)

@@ -25,6 +25,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._native import SolverError
+from ..model import simulate
+
 #: Fraction of the opening done by the first sample after the cut above which the opening is
 #: over before it is sampled.
 DONE_AT_FIRST = 0.9
@@ -37,9 +40,6 @@ LONGEST_S = 3600.0
 def time_scale_warnings(theta, outer_radius_um: float, radius, profile=None) -> list[str]:
     """Warnings for the fitted theta = (R0_um, sigma, lambda, T_s) against the sampled times
     [s since the cut] of the radius series and the velocity profile."""
-    from .._native import SolverError
-    from ..model import simulate
-
     R0, sigma, lam, T = (float(x) for x in theta)
     t = np.concatenate([np.asarray(radius.times_s, dtype=float)]
                        + ([] if profile is None else [np.asarray(profile.times_s, dtype=float)]))

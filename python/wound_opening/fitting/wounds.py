@@ -42,6 +42,14 @@ from ..inputs.series import RadiusSeries, VelocityProfile, check_against
 from ..results.names import ETA, SHARED
 from ..results.profiles import Profile
 from .objective import LAMBDA_MAX, Objective, from_z
+from ..results.result import ParameterReport
+from ..results.wounds import TissueFitResult
+from .intervals import walk_side
+from .local import cost
+from .plausibility import time_scale_warnings
+from .problem import Problem
+from .single import fit
+from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
 
 LN4 = math.log(4.0)
 #: Points each wound needs: its start is a fit of its own four parameters (fitting.fit).
@@ -59,7 +67,7 @@ class Wound:
     name: str | None = None
 
 
-class Tissue:
+class Tissue(Problem):
     """The wounds' Objectives as one objective in y (see the module docstring)."""
 
     def __init__(self, parts: list[Objective]):
@@ -85,7 +93,8 @@ class Tissue:
     def residuals(self, y) -> np.ndarray:
         return np.concatenate([p.residuals(self.z(y, k)) for k, p in enumerate(self.parts)])
 
-    def jacobian(self, y) -> np.ndarray:
+    def jacobian(self, y, columns=None) -> np.ndarray:
+        """dr/dy by the chain rule, every column (`columns` is not used)."""
         blocks = []
         for k, p in enumerate(self.parts):
             z = self.z(y, k)
@@ -98,11 +107,9 @@ class Tissue:
         return np.vstack(blocks)
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """Each wound's bounds (local.bounds) on its R0 and T, carried to y: l from 0 to a
+        """Each wound's bounds (Objective.bounds) on its R0 and T, carried to y: l from 0 to a
         viscous length of LAMBDA_MAX outer radii, zeta/G over the union of the wounds' T ranges."""
-        from .local import bounds
-
-        each = [bounds(p) for p in self.parts]
+        each = [p.bounds() for p in self.parts]
         z_lo = min(lo[3] + LN4 - 2 * hi[0] for lo, hi in each)
         z_hi = max(hi[3] + LN4 - 2 * lo[0] for lo, hi in each)
         lower = np.array([0.0, -np.inf, z_lo] + [lo[0] for lo, _ in each])
@@ -110,12 +117,16 @@ class Tissue:
         return lower, upper
 
 
-class EtaCoordinate:
+class EtaCoordinate(Problem):
     """The tissue objective with w_2 = ln eta/G = ln zeta/G + 2 ln l - ln 4 in place of
     ln zeta/G (for its profile; needs l > 0)."""
 
     def __init__(self, tissue: Tissue):
         self.tissue = tissue
+
+    @property
+    def size(self) -> int:
+        return self.tissue.size
 
     @staticmethod
     def to_y(w):
@@ -139,7 +150,8 @@ class EtaCoordinate:
     def residuals(self, w):
         return self.tissue.residuals(self.to_y(w))
 
-    def jacobian(self, w):
+    def jacobian(self, w, columns=None):
+        """dr/dw by the chain rule, every column (`columns` is not used)."""
         dy = np.eye(len(w))
         dy[2, 0] = -2 / w[0]
         return self.tissue.jacobian(self.to_y(w)) @ dy
@@ -219,68 +231,21 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
     zeta/G (and eta/G) with each wound's R0; see the module docstring and docs/fitting.md.
     `experiments`: Wound objects. `loss` and the noise of each data set as in `fit`.
     Returns a TissueFitResult."""
-    from scipy import stats
-
-    from .single import OUTLIER, P_FAIL, _best, _estimate_noise, _outliers, _uncertainties, fit
-    from .local import cost
-    from .plausibility import time_scale_warnings
-    from ..results.result import ParameterReport
-    from ..results.wounds import TissueFitResult
-
-    if loss not in ("linear", "soft_l1", "cauchy"):
-        raise ValueError(f"loss = {loss!r}: expected linear, soft_l1 or cauchy")
+    check_loss(loss)
     wounds = _wounds(experiments)
     parts = [Objective(w.radius, w.profile, w.outer_radius_um) for w in wounds]
     tissue = Tissue(parts)
-    estimated = [_uncertainties(p, w.radius, w.profile) for p, w in zip(parts, wounds)]
-    singles = []
-    for w in wounds:
-        try:
-            singles.append(fit(w.radius, w.profile, outer_radius_um=w.outer_radius_um, intervals=False, loss=loss).theta)
-        except (ValueError, SolverError):
-            singles.append(None)
-
-    def tissue_cost(y):
-        return cost(tissue.residuals(y), loss)
-
-    best, failures, ends = _best(tissue, _combine(tissue, singles, tissue_cost), loss)
-    if best is None:
-        raise ValueError("fit_wounds: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
-    y = best[0]
-    noise_given = not any(any(e) for e in estimated)
-    if not noise_given:
-        share = tissue.n / tissue.size
-        for _ in range(2):  # noise from the residuals, then refit with those weights
-            for k, p in enumerate(parts):
-                _estimate_noise(p, tissue.z(y, k), estimated[k], loss != "linear", share)
-            best, _, _ = _best(tissue, [y], loss)
-            y = best[0]
+    best, ends = _local_fits(tissue, wounds, loss)
     y, chi2_cost, res = best
+    noise_given = not any(any(p.estimated) for p in parts)
     dof = max(tissue.size - tissue.n, 1)
-    threshold = float(stats.chi2.ppf(0.95, 1)) if noise_given else float(stats.f.ppf(0.95, 1, dof))
-    optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
-    reasons = [] if res.status > 0 else [f"optimiser stopped without converging ({res.message})"]
     residuals = tissue.residuals(y)
-    flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
-    chi2 = float(np.sum(np.delete(residuals, flagged) ** 2))
-    p_value = float(stats.chi2.sf(chi2, max(dof - flagged.size, 1))) if noise_given else None
-    if p_value is not None and p_value < P_FAIL:
-        reasons.append(f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
-                       "the model does not describe the data with the given noise")
-    jac = tissue.jacobian(y)
     # l on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
     free = [i for i in range(tissue.n) if not (i == 0 and y[0] <= 1e-8 * math.exp(max(y[3:])))]
-    sv = np.linalg.svd(jac[:, free], compute_uv=False)
-    cov = np.full((tissue.n, tissue.n), np.nan)
-    if sv.size == len(free) and sv[-1] > 1e-12 * sv[0]:
-        cov[np.ix_(free, free)] = np.linalg.inv(jac[:, free].T @ jac[:, free])
-    else:
-        reasons.append("the Jacobian at the best point is singular: the data do not determine the parameters")
-    alternates = []
-    for e, _ in ends:
-        if all(np.max(np.abs(e - other)) > 1e-2 for other in [y] + [a for a, _ in alternates]):
-            alternates.append((e, cost(tissue.residuals(e), loss) - chi2_cost))
-    profiles = _profiles(tissue, y, chi2_cost, threshold, cov, loss, alternates) if intervals and not reasons else {}
+    judged = verdict(residuals, tissue.jacobian(y), free, res, dof=dof, noise_given=noise_given, loss=loss)
+    reasons, threshold, cov, flagged = judged.reasons, judged.threshold, judged.cov, judged.flagged
+    others = alternates(tissue, y, ends, chi2_cost, loss)
+    profiles = _profiles(tissue, y, chi2_cost, threshold, cov, loss, others) if intervals and not reasons else {}
     # standard errors in each quantity's own units: d quantity / d y_i
     own = np.array([1.0, 1.0, math.exp(y[2])] + [math.exp(v) for v in y[3:]])
     with np.errstate(invalid="ignore"):
@@ -312,21 +277,40 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
                            "n_points": (p.n_radius, p.n_profile), "chi2": float(np.sum(np.delete(part, mine) ** 2)),
                            "noise": (float(np.median(p.sd[:p.n_radius])),
                                      float(np.median(p.sd[p.n_radius:])) if p.n_profile else None),
-                           "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))), "outliers": _outliers(p, mine, w.radius, w.profile),
+                           "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))), "outliers": outliers(p, mine),
                            "piv_vectors_at_edge": p.inside_edge})
-    return TissueFitResult(shared=shared, r0=r0, wounds=wound_rows, correlation=corr, chi2=chi2, dof=dof,
-                           p_value=p_value, threshold=threshold, noise_given=noise_given, loss=loss,
-                           converged=not reasons, reasons=reasons, optimizer=optimizer,
+    return TissueFitResult(shared=shared, r0=r0, wounds=wound_rows, correlation=corr, chi2=judged.chi2, dof=dof,
+                           p_value=judged.p_value, threshold=threshold, noise_given=noise_given, loss=loss,
+                           converged=not reasons, reasons=reasons, optimizer=judged.optimizer,
                            evaluations=tissue.evaluations, plausibility=warnings)
+
+
+def _local_fits(tissue: Tissue, wounds, loss: str):
+    """The best local fit from the starts the wounds fitted alone give, at the estimated
+    noise where any is estimated; (best (y, cost, result), the ends of every fit)."""
+    singles = []
+    for w in wounds:
+        try:
+            singles.append(fit(w.radius, w.profile, outer_radius_um=w.outer_radius_um, intervals=False, loss=loss).theta)
+        except (ValueError, SolverError):
+            singles.append(None)
+
+    def tissue_cost(y):
+        return cost(tissue.residuals(y), loss)
+
+    best, failures, ends = best_of(tissue, _combine(tissue, singles, tissue_cost), loss)
+    if best is None:
+        raise ValueError("fit_wounds: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
+    if any(any(p.estimated) for p in tissue.parts):
+        best = refit_at_noise(tissue, tissue.parts, lambda k, y: tissue.z(y, k), best, loss, tissue.n / tissue.size)
+    return best, ends
 
 
 def _interval(obj, k, centres, chi2_min, threshold, cov, loss, limits, default):
     """One coordinate's profile interval (lower, upper; None where open) and points, walked by
-    likelihood._side from the optimum and from every other optimum below the threshold
-    (`centres`: (y, delta chi^2)), as likelihood.profile_all does; `limits(centre)` gives
+    intervals.walk_side from the optimum and from every other optimum below the threshold
+    (`centres`: (y, delta chi^2)), as intervals.profile_all does; `limits(centre)` gives
     the search range, `cov` the Jacobian's covariance (first step and start prediction)."""
-    from .intervals import _side
-
     n = centres[0][0].size
     ok = np.all(np.isfinite(cov[:, k])) and cov[k, k] > 0
     se = math.sqrt(cov[k, k]) if ok else math.nan
@@ -341,7 +325,7 @@ def _interval(obj, k, centres, chi2_min, threshold, cov, loss, limits, default):
             if centre[k] == limit:
                 ends.append(None)
                 continue
-            end, _, pts = _side(obj, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0)
+            end, _, pts = walk_side(obj, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0)
             ends.append(end)
             points += pts
     lo = None if None in lows else min(lows)

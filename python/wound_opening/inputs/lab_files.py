@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .series import RadiusSeries, VelocityProfile
 from .columns import InputError, MIN_POINTS, read_columns
 
@@ -65,8 +67,6 @@ def read_wounds(path: str, *, wound_col: str, time_col: str = "time_s", radius_c
 def _radius_series(path, time_col, radius_col, sd_col, time_unit, length_unit, pixel_size_um, cut_time, noise_um,
                    wound_col=None) -> dict:
     """{wound id: RadiusSeries} of a file ({None: ...} without a wound column)."""
-    import numpy as np
-
     sec, um = _factors(path, time_unit, length_unit, pixel_size_um)
     cut = _cut(cut_time)
     table = read_columns(path, (time_col, radius_col) + ((sd_col,) if sd_col else ()), cut_time=cut,

@@ -30,14 +30,19 @@ from pathlib import Path
 
 import numpy as np
 
+from ..model import simulate
+
 #: Points of each grid of the curves.
 CURVE_POINTS = 200
 
 
-def data_points(obj, z, flagged, radius, profile, estimated=(False, False)) -> dict:
-    """The data in the input's order with the model at z, the per-point noise used and the
-    flags (objective indices `flagged`): {"radius": columns, "profile": columns or None,
-    "noise_estimated": (radius, profile) whether each noise was estimated from the residuals}."""
+def data_points(obj, z, flagged) -> dict:
+    """The data (`obj.inputs`) in the input's order with the model of the Objective `obj` at
+    z, the per-point noise used and the flags (objective indices `flagged`): {"radius":
+    columns, "profile": columns or None, "noise_estimated": (radius, profile) whether each
+    noise was estimated from the residuals}."""
+    radius, profile = obj.inputs
+    estimated = obj.estimated
     model = obj.model(z)
     mask = np.zeros(obj.size, bool)
     mask[np.asarray(flagged, int)] = True
@@ -82,8 +87,6 @@ def tables(result) -> dict:
     """pandas DataFrames of the fit (module docstring); profile tables only with PIV data.
     A fit that did not converge has no fitted curve: ValueError with its reasons."""
     import pandas as pd
-
-    from ..model import simulate
 
     if not result.converged:
         raise ValueError("the fit did not converge (" + "; ".join(result.reasons) + "): nothing to export")

@@ -23,7 +23,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib import ticker  # noqa: E402
 
+from ..model import half_opening_time, opening_fraction  # noqa: E402
 from .names import NAMES  # noqa: E402
 
 LABELS = {"R0_um": "R₀ (µm)", "sigma": "σ", "lambda": "λ", "T_s": "T (s)"}
@@ -39,8 +41,6 @@ def _g(x) -> str:
 def plain_ticks(axis, linthresh: float | None = None) -> None:
     """Ticks at 1, 2 and 5 per decade labelled as plain numbers (0.5, 2, 20) on a log or
     symlog axis, rather than powers of ten whose minor labels collide."""
-    from matplotlib import ticker
-
     if linthresh is None:
         axis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     else:
@@ -216,8 +216,6 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
 def sweep_figure(df, path, *, R0_um: float | None = None, T_s: float | None = None):
     """The sweep's opening fraction and half-opening time (module docstring). Physical
     columns (time_s, wound_radius_um) need R0_um and T_s, taken from df.attrs by default."""
-    from ..model import half_opening_time, opening_fraction
-
     physical = "time_s" in df.columns
     R0 = R0_um or df.attrs.get("R0_um", 1.0)
     T = T_s or df.attrs.get("T_s", 1.0)

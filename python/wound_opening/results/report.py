@@ -24,6 +24,11 @@ import platform
 import sys
 from pathlib import Path
 
+import numpy
+import scipy
+
+from .._native import library_path
+
 from .names import NAMES
 
 STYLE = """body{font-family:sans-serif;max-width:70em;margin:1em auto;padding:0 1em;color:#222}
@@ -57,11 +62,7 @@ def _num(x, digits: int = 5) -> str:
 
 def software() -> dict:
     """Versions of the package and its numerics, and the native library that is loaded."""
-    import numpy
-    import scipy
-
-    from .. import __version__
-    from .._native import library_path
+    from .. import __version__  # the installed distribution's (the package's __getattr__)
 
     lib = library_path()
     return {"wound_opening": __version__, "native library": f"{lib} (SHA-256 {sha256(lib)})",

@@ -8,6 +8,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..material import material_report
+from .export import export as export_csv
+from .export import tables as data_tables
 from .names import NAMES
 from .profiles import Profile
 
@@ -54,7 +57,7 @@ def outlier_warning(outliers: dict, loss: str) -> list:
             + "; ".join(outliers.get("where", []))]
 
 
-def _fmt(x) -> str:
+def fmt(x) -> str:
     return "open" if x is None else f"{x:.4g}"
 
 
@@ -140,7 +143,7 @@ class FitResult:
         if rep.identifiable or rep.profile is None:
             return ""
         lo, hi = rep.ci95
-        flat = f"{name}: not identified (95 % interval [{_fmt(lo)}, {_fmt(hi)}])"
+        flat = f"{name}: not identified (95 % interval [{fmt(lo)}, {fmt(hi)}])"
         if any(rep.profile.bounded):
             return f"{flat}: the interval ends at the bound you set, not where the data exclude values"
         if name == "lambda":
@@ -169,15 +172,11 @@ class FitResult:
     def tables(self) -> dict:
         """The data with the model, residuals and flags, and the fitted curve, as pandas
         DataFrames with units in the column names (export.py)."""
-        from .export import tables
-
-        return tables(self)
+        return data_tables(self)
 
     def export(self, stem) -> list:
         """Write tables() as stem_radius.csv, stem_curve.csv (and the PIV ones); export.py."""
-        from .export import export
-
-        return export(self, stem)
+        return export_csv(self, stem)
 
     def to_dict(self) -> dict:
         status = {"converged": self.converged, "reasons": self.reasons, "warnings": self.warnings,
@@ -205,8 +204,6 @@ class FitResult:
         """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
         the tension, with profile intervals (material.py): name -> {estimate, ci95,
         identifiable, unit}."""
-        from ..material import material_report
-
         return material_report(self)
 
     def to_json(self, **kwargs) -> str:
@@ -224,14 +221,14 @@ class FitResult:
                 continue
             note = ("   prior {:g} +- {:g}".format(*rep.constraint["prior"]) if "prior" in rep.constraint else "") + (
                 "   bounds [{:g}, {:g}]".format(*rep.constraint["bounds"]) if "bounds" in rep.constraint else "")
-            interval = (f"[{_fmt(lo):>9}, {_fmt(hi):>9}]        {'yes' if rep.identifiable else 'no'}"
+            interval = (f"[{fmt(lo):>9}, {fmt(hi):>9}]        {'yes' if rep.identifiable else 'no'}"
                         if rep.profile is not None else f"{'not computed':<22}{'not computed':>17}")
             lines.append(f"{name:<10} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {interval}{note}")
         lines += [f"  {self.advice(n)}" for n in NAMES if self.advice(n)]
         computed = self._derived_computed()
         radii = {k: d for k, d in self._derived_all().items() if k in ("R1_um", "R_final_um")}  # the rest: material
         lines.append("derived: " + ", ".join(
-            f"{k} = {_fmt(v)} (not computed)" if not computed[k] else f"{k} = {_fmt(v)}" if ok
+            f"{k} = {fmt(v)} (not computed)" if not computed[k] else f"{k} = {fmt(v)}" if ok
             else f"{k} not identified" for k, (v, ci, ok) in radii.items()))
         lines += _material_lines(self.material)
         fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (f", p = {self.p_value:.3g}" if self.p_value is not None else
@@ -252,7 +249,7 @@ def _material_lines(material: dict) -> list:
             continue
         lo, hi = m["ci95"]
         interval = ("interval not computed" if not m.get("interval_computed", True) else
-                    f"[{_fmt(lo)}, {_fmt(hi)}]" + ("" if m["identifiable"] else "  not identified"))
+                    f"[{fmt(lo)}, {fmt(hi)}]" + ("" if m["identifiable"] else "  not identified"))
         unit = "" if m["unit"] == "1" else f" {m['unit']}"
-        lines.append(f"  {name} = {_fmt(m['estimate'])}{unit}  {interval}")
+        lines.append(f"  {name} = {fmt(m['estimate'])}{unit}  {interval}")
     return lines

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .result import ParameterReport, _fmt, chi2_warning, outlier_warning
+from .result import ParameterReport, fmt, chi2_warning, outlier_warning
 from .names import ETA, SHARED
 
 #: What would identify a shared quantity that is not.
@@ -58,7 +58,7 @@ class TissueFitResult:
         if rep.identifiable or rep.profile is None:
             return ""
         lo, hi = rep.ci95
-        return f"{name}: not identified (95 % interval [{_fmt(lo)}, {_fmt(hi)}]); {ADVICE[name]}"
+        return f"{name}: not identified (95 % interval [{fmt(lo)}, {fmt(hi)}]); {ADVICE[name]}"
 
     @staticmethod
     def _report(rep: ParameterReport) -> dict:
@@ -72,7 +72,7 @@ class TissueFitResult:
         if rep.profile is None:
             return f"{'(not computed)':<{2 * width + 5}}  {'-':<3}"
         lo, hi = rep.ci95
-        return f"[{_fmt(lo):>{width}}, {_fmt(hi):>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
+        return f"[{fmt(lo):>{width}}, {fmt(hi):>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
 
     def to_dict(self) -> dict:
         status = {"converged": self.converged, "reasons": self.reasons, "warnings": self.warnings,
