@@ -15,5 +15,8 @@ cargo test --release
 cargo build --release  # the library the Python package loads
 cargo run --release --quiet -- fmu
 bash scripts/c_tests.sh
+# The Python code's format and lint (ruff, configured in pyproject.toml).
+ruff format --check python tests/python setup.py
+ruff check python tests/python setup.py
 # Two worker processes (pytest-xdist): the Python tests are independent of each other.
 python -m pytest -q -n 2 tests/python

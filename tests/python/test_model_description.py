@@ -77,12 +77,24 @@ def test_co_simulation_interface(fmu):
     assert md.fmiVersion == "2.0"
     if name == "WoundOpening":
         # Co-simulation alone: its Model Exchange (217 states) is WoundOpening-me.fmu.
-        assert md.modelExchange is None and md.numberOfContinuousStates == 0 and len(md.modelVariables) == 13
+        assert (
+            md.modelExchange is None
+            and md.numberOfContinuousStates == 0
+            and len(md.modelVariables) == 13
+        )
         me = read_model_description(path.replace(".fmu", "-me.fmu"))
-        assert me.coSimulation is None and me.modelExchange.modelIdentifier == name and me.guid == md.guid
-        assert [(v.name, v.valueReference) for v in me.modelVariables[:13]] == [(v.name, v.valueReference) for v in md.modelVariables]
+        assert (
+            me.coSimulation is None
+            and me.modelExchange.modelIdentifier == name
+            and me.guid == md.guid
+        )
+        assert [(v.name, v.valueReference) for v in me.modelVariables[:13]] == [
+            (v.name, v.valueReference) for v in md.modelVariables
+        ]
     else:
-        assert md.modelExchange is not None and md.modelExchange.modelIdentifier == name, "both interfaces, one library"
+        assert md.modelExchange is not None and md.modelExchange.modelIdentifier == name, (
+            "both interfaces, one library"
+        )
     cs = md.coSimulation
     assert cs is not None and cs.modelIdentifier == name
     assert cs.canHandleVariableCommunicationStepSize
@@ -91,7 +103,9 @@ def test_co_simulation_interface(fmu):
     assert cs.providesDirectionalDerivative
     assert not cs.canBeInstantiatedOnlyOncePerProcess  # the tests run several instances
     categories = {c.name for c in md.logCategories}
-    assert {"logStatusError", "logStatusWarning", "logStatusDiscard", "logCalls"} <= categories, categories
+    assert {"logStatusError", "logStatusWarning", "logStatusDiscard", "logCalls"} <= categories, (
+        categories
+    )
 
 
 def test_variables_and_units(fmu):

@@ -73,8 +73,12 @@ def test_the_graph_is_read():
 def test_every_import_goes_down_the_layers():
     """inputs/ imports nothing of results/, fitting/ or the command line; results/ nothing of
     fitting/; the simulation side none of them. Within a layer any module may import another."""
-    up = [f"{a} -> {b}" for a, targets in graph().items() for b in targets
-          if b != "wound_opening" and layer(b) > layer(a)]
+    up = [
+        f"{a} -> {b}"
+        for a, targets in graph().items()
+        for b in targets
+        if b != "wound_opening" and layer(b) > layer(a)
+    ]
     assert not up, "imports that climb a layer:\n" + "\n".join(up)
 
 
@@ -86,7 +90,7 @@ def test_no_import_cycle():
         state[node] = "open"
         for nxt in sorted(g.get(node, ())):
             if state.get(nxt) == "open":
-                cycles.append(" -> ".join(stack[stack.index(nxt):] + [nxt]))
+                cycles.append(" -> ".join(stack[stack.index(nxt) :] + [nxt]))
             elif nxt not in state:
                 visit(nxt, stack + [nxt])
         state[node] = "done"
@@ -102,8 +106,14 @@ def test_no_private_name_crosses_a_module():
     crossing = []
     for p in sorted(PACKAGE.rglob("*.py")):
         for node in ast.walk(ast.parse(p.read_text())):
-            if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith("wound_opening")):
-                crossing += [f"{module_name(p)}: {a.name}" for a in node.names
-                             if a.name.startswith("_") and not a.name.startswith("__")
-                             and not module_path(f"wound_opening.{a.name}")]
+            if isinstance(node, ast.ImportFrom) and (
+                node.level or (node.module or "").startswith("wound_opening")
+            ):
+                crossing += [
+                    f"{module_name(p)}: {a.name}"
+                    for a in node.names
+                    if a.name.startswith("_")
+                    and not a.name.startswith("__")
+                    and not module_path(f"wound_opening.{a.name}")
+                ]
     assert not crossing, "private names imported from another module:\n" + "\n".join(crossing)

@@ -1,6 +1,7 @@
 """What importers and saved files rely on stays as it was: the exported symbols of the
 shared object, every archive's GUID / instantiation token and the variables an importer
-names (name, value reference, causality, variability, type), and the serialized FMU-state format (a state
+names (name, value reference, causality, variability, type), and the serialized FMU-state format
+(a state
 saved by an earlier build restores and continues on the exact solution; a state saved now
 has the same layout).
 
@@ -22,7 +23,6 @@ from xml.etree import ElementTree
 
 import numpy as np
 import pytest
-
 import wound_exact
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -40,7 +40,9 @@ def exported_symbols(fmu: Path) -> list[str]:
     with tempfile.TemporaryDirectory() as tmp:
         so = Path(tmp) / f"{fmu.stem}.so"
         so.write_bytes(data)
-        out = subprocess.run(["nm", "-D", "--defined-only", str(so)], capture_output=True, text=True, check=True).stdout
+        out = subprocess.run(
+            ["nm", "-D", "--defined-only", str(so)], capture_output=True, text=True, check=True
+        ).stdout
     return sorted(line.split()[-1] for line in out.splitlines() if line.strip())
 
 
@@ -54,10 +56,26 @@ def variables(fmu: Path) -> dict:
     if root.get("fmiVersion", "").startswith("2"):
         for v in root.iter("ScalarVariable"):
             kind = next(iter(v)).tag
-            rows.append([v.get("name"), int(v.get("valueReference")), v.get("causality", "local"), v.get("variability", "continuous"), kind])
+            rows.append(
+                [
+                    v.get("name"),
+                    int(v.get("valueReference")),
+                    v.get("causality", "local"),
+                    v.get("variability", "continuous"),
+                    kind,
+                ]
+            )
     else:
         for v in root.find("ModelVariables"):
-            rows.append([v.get("name"), int(v.get("valueReference")), v.get("causality", "local"), v.get("variability", "continuous"), v.tag])
+            rows.append(
+                [
+                    v.get("name"),
+                    int(v.get("valueReference")),
+                    v.get("causality", "local"),
+                    v.get("variability", "continuous"),
+                    v.tag,
+                ]
+            )
     rows = [r for r in rows if r[2] != "local"]
     return {"token": token, "model_identifier": root.get("modelName"), "variables": rows}
 
@@ -70,7 +88,11 @@ def initialized(fmu: Path):
 
     md = read_model_description(str(fmu))
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    slave = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)), modelIdentifier=md.coSimulation.modelIdentifier)
+    slave = FMU2Slave(
+        guid=md.guid,
+        unzipDirectory=extract(str(fmu)),
+        modelIdentifier=md.coSimulation.modelIdentifier,
+    )
     slave.instantiate()
     slave.setupExperiment(startTime=0.0)
     slave.setReal([vr[k] for k in STATE_CASE], list(STATE_CASE.values()))
@@ -100,7 +122,7 @@ def layout(blob: bytes) -> tuple[bytes, np.ndarray]:
     n = struct.unpack_from("<I", blob, solver + 1 + 8)[0]
     coeffs = solver + 1 + 8 + 4
     values = np.frombuffer(blob, dtype="<f8", count=n, offset=coeffs)
-    return blob[:coeffs] + blob[coeffs + 8 * n:-4], values
+    return blob[:coeffs] + blob[coeffs + 8 * n : -4], values
 
 
 @pytest.fixture(scope="module")

@@ -11,9 +11,26 @@ import sys
 import wound_opening
 
 PUBLIC = {
-    "FitResult", "NativeLibraryMissing", "Parameters", "RadiusSeries", "Simulation", "SolverError",
-    "TissueFitResult", "VelocityProfile", "Wound", "fit", "fit_wounds", "fmu_path", "from_material",
-    "library_path", "read_profile", "read_radius", "read_wounds", "simulate", "sweep", "to_material",
+    "FitResult",
+    "NativeLibraryMissing",
+    "Parameters",
+    "RadiusSeries",
+    "Simulation",
+    "SolverError",
+    "TissueFitResult",
+    "VelocityProfile",
+    "Wound",
+    "fit",
+    "fit_wounds",
+    "fmu_path",
+    "from_material",
+    "library_path",
+    "read_profile",
+    "read_radius",
+    "read_wounds",
+    "simulate",
+    "sweep",
+    "to_material",
     "write_report",
 }
 
@@ -36,11 +53,19 @@ def test_the_subpackages_do_not_shadow_a_public_function():
     import wound_opening.fitting.single  # noqa: F401
     import wound_opening.results.result  # noqa: F401
 
-    assert callable(wound_opening.fit) and wound_opening.fit.__module__ == "wound_opening.fitting.single"
+    assert (
+        callable(wound_opening.fit)
+        and wound_opening.fit.__module__ == "wound_opening.fitting.single"
+    )
 
 
 def test_the_package_imports_no_numerics_until_a_name_is_used():
     """`import wound_opening` (and `wound-opening --help`) load neither numpy nor scipy."""
-    code = "import sys, wound_opening; wound_opening.__all__; print(sorted(m for m in ('numpy', 'scipy', 'pandas') if m in sys.modules))"
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    code = (
+        "import sys, wound_opening; wound_opening.__all__; print(sorted(m for m in ('numpy', "
+        "'scipy', 'pandas') if m in sys.modules))"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout
     assert out.strip() == "[]"

@@ -27,7 +27,6 @@ import math
 import numpy as np
 
 from .._native import SolverError
-
 from ..results.names import NAMES
 from ..results.profiles import Profile
 from .local import local_fit
@@ -113,7 +112,9 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2
             for _ in range(3):  # a crossing stands only where a fit at tolerances 1e-10 confirms it
-                z3, chi2c, res3 = local_fit(obj, z, fixed=i, value=v, loss=loss, tol=1e-10, max_nfev=400)
+                z3, chi2c, res3 = local_fit(
+                    obj, z, fixed=i, value=v, loss=loss, tol=1e-10, max_nfev=400
+                )
                 drop = chi2 - chi2c
                 if chi2c < chi2:
                     z, chi2, res = z3, chi2c, res3
@@ -121,7 +122,6 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
                     break
             unsure = res.status == 0
         return z, max(chi2 - chi2_min, 0.0), unsure or _on_search_bound(obj, z, i)
-
 
     plain = constrained
 
@@ -191,8 +191,15 @@ def crossing(constrained, points, a, fa, b, fb, root):
     return b, False, points
 
 
-def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,
-                loss: str = "linear", alternates=()) -> dict:
+def profile_all(
+    obj: Objective,
+    z_hat: np.ndarray,
+    chi2_min: float,
+    threshold: float,
+    cov_z: np.ndarray,
+    loss: str = "linear",
+    alternates=(),
+) -> dict:
     """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z.
     `alternates`: other local optima (z, delta chi^2) below the threshold. The confidence
     set of a parameter may then be two intervals (a barrier between the valleys rises above
@@ -208,21 +215,27 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
         se = math.sqrt(max(cov_z[i, i], 0.0))
         slope = np.nan_to_num(cov_z[:, i] / cov_z[i, i]) if cov_z[i, i] > 0 else np.zeros(4)
         slope[i] = 1.0
-        step = float(np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20))
+        step = float(
+            np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20)
+        )
         lows, highs, points = [], [], [(z_hat[i], 0.0)]
         for centre, delta0 in centres:
             lo_lim, hi_lim = _limits(i, centre, *lims)
             for direction, limit, ends in ((-1, lo_lim, lows), (1, hi_lim, highs)):
                 if ends and (ends[0][0] is None or direction * (centre[i] - ends[0][0]) <= 0):
-                    continue  # an optimum inside the interval found (or an open end): nothing to add
+                    continue  # an optimum inside the interval found (or an open end)
                 mine = user_bound(i, direction) and limit == lims[0 if direction < 0 else 1][i]
                 if centre[i] == limit:
                     ends.append((limit, False) if mine else (None, True))
                     continue
-                end, at_limit, pts = walk_side(obj, i, centre, chi2_min, threshold, step, direction, limit, slope, loss,
-                                           delta0)
+                end, at_limit, pts = walk_side(
+                    obj, i, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0
+                )
                 if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
-                    end, at_limit = limit, False  # the walk reached the user's bound inside the threshold
+                    end, at_limit = (
+                        limit,
+                        False,
+                    )  # the walk reached the user's bound inside the threshold
                 ends.append((end, at_limit))
                 points += pts
         lo_open = any(e is None for e, _ in lows)
@@ -231,9 +244,13 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
         at_bound = i == 2 and lo_open  # lambda's lower end is its bound 0
         lower = 0.0 if at_bound else (None if lo is None else _own_units(i, lo))
         upper = None if hi is None else _own_units(i, hi)
-        bounded = (lo is not None and user_bound(i, -1) and lo == lims[0][i],
-                   hi is not None and user_bound(i, 1) and hi == lims[1][i])
-        out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)], bounded)
+        bounded = (
+            lo is not None and user_bound(i, -1) and lo == lims[0][i],
+            hi is not None and user_bound(i, 1) and hi == lims[1][i],
+        )
+        out[name] = Profile(
+            lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)], bounded
+        )
     return out
 
 
@@ -242,8 +259,15 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
 JUMP = 1.0
 
 
-def profile_at(obj: Objective, z_hat: np.ndarray, chi2_min: float, i: int, values, loss: str = "linear",
-               max_nfev: int = 100) -> np.ndarray:
+def profile_at(
+    obj: Objective,
+    z_hat: np.ndarray,
+    chi2_min: float,
+    i: int,
+    values,
+    loss: str = "linear",
+    max_nfev: int = 100,
+) -> np.ndarray:
     """delta chi^2 at the given values of coordinate i of z (ln R0, sigma, lambda, ln T):
     each a fit of the other three with coordinate i fixed, as the walks above make them.
     The values are visited outward from the estimate on each side; each is fitted from two
@@ -264,13 +288,23 @@ def profile_at(obj: Objective, z_hat: np.ndarray, chi2_min: float, i: int, value
         for k in side:
             v = values[k]
             (v1, z1) = path[-1]
-            move = (z1 - path[-2][1]) * (v - v1) / (v1 - path[-2][0]) if len(path) >= 2 and path[-2][0] != v1 else 0
+            move = (
+                (z1 - path[-2][1]) * (v - v1) / (v1 - path[-2][0])
+                if len(path) >= 2 and path[-2][0] != v1
+                else 0
+            )
             best = None
             for start in (z1 + np.clip(move, -1.0, 1.0), z1, z_hat):
-                if start is z_hat and best is not None and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0):
+                if (
+                    start is z_hat
+                    and best is not None
+                    and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0)
+                ):
                     break
                 try:
-                    z, chi2, res = local_fit(obj, start, fixed=i, value=v, loss=loss, tol=1e-7, max_nfev=max_nfev)
+                    z, chi2, res = local_fit(
+                        obj, start, fixed=i, value=v, loss=loss, tol=1e-7, max_nfev=max_nfev
+                    )
                 except SolverError:
                     continue
                 if res.status > 0 and (best is None or chi2 < best[1]):

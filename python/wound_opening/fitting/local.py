@@ -26,8 +26,15 @@ def cost(res: np.ndarray, loss: str = "linear") -> float:
     return float(np.sum(z))
 
 
-def local_fit(obj: Problem, z0, fixed: int | None = None, value: float | None = None,
-              loss: str = "linear", tol: float = 1e-12, max_nfev: int = 200):
+def local_fit(
+    obj: Problem,
+    z0,
+    fixed: int | None = None,
+    value: float | None = None,
+    loss: str = "linear",
+    tol: float = 1e-12,
+    max_nfev: int = 200,
+):
     """Minimise the cost of the problem `obj` (problem.py: any dimension) from z0, with
     coordinate `fixed` held at `value` if given, and the coordinates `obj.fixed` (the user's
     fixed parameters) held at theirs. Returns (z, cost at z, least_squares result)."""
@@ -41,8 +48,13 @@ def local_fit(obj: Problem, z0, fixed: int | None = None, value: float | None = 
         z[i] = v
     if not free:  # every coordinate held: nothing to minimise
         c = cost(obj.residuals(z), loss)
-        return z, c, optimize.OptimizeResult(x=z[[]], status=1, nfev=1, success=True,
-                                             message="Every coordinate held.")
+        return (
+            z,
+            c,
+            optimize.OptimizeResult(
+                x=z[[]], status=1, nfev=1, success=True, message="Every coordinate held."
+            ),
+        )
     inner = (lower[free] < z[free]) & (z[free] < upper[free])
     z[free] = np.where(inner, z[free], np.clip(z[free], lower[free] + 1e-9, upper[free] - 1e-9))
 
@@ -52,9 +64,18 @@ def local_fit(obj: Problem, z0, fixed: int | None = None, value: float | None = 
         return w
 
     columns = free if held else None  # the columns the fit needs
-    res = optimize.least_squares(lambda x: obj.residuals(full(x)), z[free],
-                                 jac=lambda x: obj.jacobian(full(x), columns)[:, free],
-                                 bounds=(lower[free], upper[free]), method="trf", x_scale="jac", loss=loss,
-                                 xtol=tol, ftol=tol, gtol=tol, max_nfev=max_nfev)
+    res = optimize.least_squares(
+        lambda x: obj.residuals(full(x)),
+        z[free],
+        jac=lambda x: obj.jacobian(full(x), columns)[:, free],
+        bounds=(lower[free], upper[free]),
+        method="trf",
+        x_scale="jac",
+        loss=loss,
+        xtol=tol,
+        ftol=tol,
+        gtol=tol,
+        max_nfev=max_nfev,
+    )
     z = full(res.x)
     return z, cost(obj.residuals(z), loss), res

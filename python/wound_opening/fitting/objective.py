@@ -74,8 +74,14 @@ class Objective(Problem):
             pt = np.asarray(profile.times_s, dtype=float)
             for time in np.unique(pt):
                 idx = np.flatnonzero(pt == time)
-                self.groups.append((float(time), np.asarray(profile.r_um, float)[idx],
-                                    np.asarray(profile.velocity_um_s, float)[idx], idx))
+                self.groups.append(
+                    (
+                        float(time),
+                        np.asarray(profile.r_um, float)[idx],
+                        np.asarray(profile.velocity_um_s, float)[idx],
+                        idx,
+                    )
+                )
         self.n_radius = self.radius.size
         self.n_profile = sum(g[1].size for g in self.groups)
         self.group_times = np.array([g[0] for g in self.groups])
@@ -86,15 +92,25 @@ class Objective(Problem):
     def _uncertainties(self, radius, profile) -> tuple[np.ndarray, list]:
         """Initial per-point uncertainties and which data sets have theirs estimated: 1 % of
         the mean radius, a tenth of the velocities' spread."""
-        r_sd = radius.sd_um if radius.sd_um is not None else np.full(self.n_radius, radius.noise_um or 1.0)
+        r_sd = (
+            radius.sd_um
+            if radius.sd_um is not None
+            else np.full(self.n_radius, radius.noise_um or 1.0)
+        )
         sd = [np.asarray(r_sd, float)[self.order]]
         estimated = [radius.noise_um is None and radius.sd_um is None, False]
         if profile is not None:
-            p_sd = profile.sd_um_s if profile.sd_um_s is not None else np.full(self.n_profile, profile.noise_um_s or 1.0)
+            p_sd = (
+                profile.sd_um_s
+                if profile.sd_um_s is not None
+                else np.full(self.n_profile, profile.noise_um_s or 1.0)
+            )
             sd.append(np.concatenate([np.asarray(p_sd, float)[g[3]] for g in self.groups]))
             estimated[1] = profile.noise_um_s is None and profile.sd_um_s is None
             if estimated[1]:
-                sd[1][:] = max(float(np.std(np.concatenate([g[2] for g in self.groups]))), 1e-12) * 0.1
+                sd[1][:] = (
+                    max(float(np.std(np.concatenate([g[2] for g in self.groups]))), 1e-12) * 0.1
+                )
         if estimated[0]:
             sd[0][:] = 0.01 * float(np.mean(self.radius))
         return np.concatenate(sd), estimated
@@ -121,7 +137,9 @@ class Objective(Problem):
         (R_inf >= 1.001), sigma free, 0 <= lambda <= LAMBDA_MAX, T within 1e-6 .. 1e6 of the
         last time."""
         t_max = float(self.t_sorted[-1]) if self.t_sorted[-1] > 0 else 1.0
-        lower = np.array([math.log(0.01 * float(np.min(self.radius))), -np.inf, 0.0, math.log(1e-6 * t_max)])
+        lower = np.array(
+            [math.log(0.01 * float(np.min(self.radius))), -np.inf, 0.0, math.log(1e-6 * t_max)]
+        )
         upper = np.array([math.log(self.outer / 1.001), np.inf, LAMBDA_MAX, math.log(1e6 * t_max)])
         return lower, upper
 
@@ -152,7 +170,9 @@ class Objective(Problem):
             v = np.full(x.size, edge_v[k])
             tissue = x > edge_r[k] * (1 + 1e-12)
             if np.any(tissue):
-                _, vt = _native.profile_series(abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=TOLERANCE_FD)
+                _, vt = _native.profile_series(
+                    abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=TOLERANCE_FD
+                )
                 v[tissue] = vt[0]
             inside += int(np.sum(~tissue))
             out.append(R0 / T * v)
@@ -186,12 +206,21 @@ class Objective(Problem):
         rc = max(r_inf, R_INF_MIN + dr)  # centred inside the solver's range at its edge
         dl = STEP * max(lam, 0.01)
         zero = np.zeros(t.size)
-        dh_dr = (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr) if 0 in columns else zero
-        dh_dl = ((self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
-                 if 2 in columns else zero)
+        dh_dr = (
+            (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr)
+            if 0 in columns
+            else zero
+        )
+        dh_dl = (
+            (self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
+            if 2 in columns
+            else zero
+        )
         with np.errstate(invalid="ignore"):
             dlnT = np.where(t > 0, -(t / T) * R0 * sigma * dh, 0.0)
-        jr = np.column_stack([R0 * (1 + sigma * h) - R0 * sigma * r_inf * dh_dr, R0 * h, R0 * sigma * dh_dl, dlnT])
+        jr = np.column_stack(
+            [R0 * (1 + sigma * h) - R0 * sigma * r_inf * dh_dr, R0 * h, R0 * sigma * dh_dl, dlnT]
+        )
         if self.groups:
             steps = np.array([STEP, STEP * max(1.0, abs(sigma)), dl, STEP])
             cols = []
@@ -205,8 +234,10 @@ class Objective(Problem):
                 else:
                     e = np.zeros(4)
                     e[i] = steps[i]
-                    cols.append((self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf))
-                                / (2 * steps[i]))
+                    cols.append(
+                        (self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf))
+                        / (2 * steps[i])
+                    )
             self._profile(theta, r_inf)  # inside_edge at z
             jr = np.vstack([jr, np.column_stack(cols)])
         jr[:, [i for i in range(4) if i not in columns]] = 0.0
@@ -214,4 +245,4 @@ class Objective(Problem):
 
     def split(self, res: np.ndarray):
         """(radius part, profile part) of a vector over the data points."""
-        return res[: self.n_radius], res[self.n_radius:]
+        return res[: self.n_radius], res[self.n_radius :]

@@ -14,7 +14,8 @@ The names and attributes are lmfit's (`Parameters.add(name, value=, vary=, min=,
 
 A prior enters the likelihood as one more residual (theta - mean) / sd, so that
 
-    chi^2(theta) = sum over the data of ((model - data) / noise)^2 + sum over priors of ((theta - mean) / sd)^2
+    chi^2(theta) = sum over the data of ((model - data) / noise)^2 + sum over priors of ((theta
+        - mean) / sd)^2
 
 and the profile intervals, the standard errors, the Jacobian's rank check and the degrees of
 freedom (n + priors - free parameters) all count it. A fixed parameter leaves every stage
@@ -41,7 +42,13 @@ from .problem import Problem
 #: The fit parameters (NAMES) and G, which only scales the absolute material values.
 G_NAME = "G_pa"
 ACCEPTED = NAMES + (G_NAME,)
-UNITS = {"R0_um": "um", "sigma": "1 (tension / G)", "lambda": "1 (viscous length / R0)", "T_s": "s", G_NAME: "Pa"}
+UNITS = {
+    "R0_um": "um",
+    "sigma": "1 (tension / G)",
+    "lambda": "1 (viscous length / R0)",
+    "T_s": "s",
+    G_NAME: "Pa",
+}
 
 
 @dataclass
@@ -60,8 +67,15 @@ class Parameters(dict):
     """name -> Parameter, filled by `add` as lmfit's Parameters is. `value` of a varied
     parameter is not needed: the global stage finds the start (it is ignored)."""
 
-    def add(self, name: str, value: float | None = None, vary: bool = True, min: float = -math.inf,
-            max: float = math.inf, prior: tuple[float, float] | None = None) -> Parameter:
+    def add(
+        self,
+        name: str,
+        value: float | None = None,
+        vary: bool = True,
+        min: float = -math.inf,
+        max: float = math.inf,
+        prior: tuple[float, float] | None = None,
+    ) -> Parameter:
         self[name] = Parameter(name, value, vary, min, max, prior)
         return self[name]
 
@@ -82,10 +96,15 @@ def from_options(fix=(), bound=(), prior=()) -> Parameters:
         name, sep, rest = text.partition("=")
         name = name.strip()
         if not sep or not rest.strip():
-            raise ValueError(f"{option} {text!r}: expected NAME=" + {"--fix": "VALUE", "--bound": "MIN:MAX",
-                                                                      "--prior": "MEAN:SD"}[option])
+            raise ValueError(
+                f"{option} {text!r}: expected NAME="
+                + {"--fix": "VALUE", "--bound": "MIN:MAX", "--prior": "MEAN:SD"}[option]
+            )
         if name not in ACCEPTED:
-            raise ValueError(f"{option} {text!r}: parameter {name!r} is unknown: expected one of {', '.join(ACCEPTED)}")
+            raise ValueError(
+                f"{option} {text!r}: parameter {name!r} is unknown: expected one of "
+                f"{', '.join(ACCEPTED)}"
+            )
         return params.get(name) or params.add(name), rest.strip()
 
     for text in fix:
@@ -163,13 +182,24 @@ def specification(params, outer_radius_um: float) -> Spec:
     """Check `params` (Parameters, an lmfit.Parameters, a dict name -> Parameter, or None)
     and return a Spec; ValueError naming the parameter and the reason otherwise."""
     fixed, bounds, priors, G = {}, {}, {}, None
-    items = [] if params is None else list(params.values()) if hasattr(params, "values") else list(params)
+    items = (
+        []
+        if params is None
+        else list(params.values())
+        if hasattr(params, "values")
+        else list(params)
+    )
     for p in items:
         name = getattr(p, "name", None)
         if name not in ACCEPTED:
-            raise ValueError(f"parameter {name!r} is unknown: expected one of {', '.join(ACCEPTED)}")
+            raise ValueError(
+                f"parameter {name!r} is unknown: expected one of {', '.join(ACCEPTED)}"
+            )
         if getattr(p, "expr", None):
-            raise ValueError(f"{name}: expressions (expr = {p.expr!r}) are not supported: fix, bound or give a prior")
+            raise ValueError(
+                f"{name}: expressions (expr = {p.expr!r}) are not supported: fix, bound or give a "
+                f"prior"
+            )
         lo = -math.inf if p.min is None else float(p.min)
         hi = math.inf if p.max is None else float(p.max)
         if math.isnan(lo) or math.isnan(hi):
@@ -186,8 +216,10 @@ def specification(params, outer_radius_um: float) -> Spec:
             prior = (mean, sd)
         if name == G_NAME:
             if math.isfinite(lo) or math.isfinite(hi):
-                raise ValueError(f"{name}: bounds are not supported (the data do not depend on G): "
-                                 "give a fixed value or a prior")
+                raise ValueError(
+                    f"{name}: bounds are not supported (the data do not depend on G): "
+                    "give a fixed value or a prior"
+                )
             if not p.vary:
                 if prior is not None:
                     raise ValueError(f"{name}: fixed and with a prior: give one of them")
@@ -195,7 +227,10 @@ def specification(params, outer_radius_um: float) -> Spec:
             elif prior is not None:
                 G = prior
             else:
-                raise ValueError(f"{name}: give a fixed value (vary=False) or a prior (the data do not depend on G)")
+                raise ValueError(
+                    f"{name}: give a fixed value (vary=False) or a prior (the data do not depend "
+                    f"on G)"
+                )
             if not G[0] > 0:
                 raise ValueError(f"{name}: {G[0]:g} Pa: a shear modulus must be > 0")
             continue
@@ -206,20 +241,26 @@ def specification(params, outer_radius_um: float) -> Spec:
                 raise ValueError(f"{name}: a fixed parameter takes no bounds and no prior")
             v = _finite(name, "value", p.value)
             if not (a < v < b or (i == 2 and v == 0.0)):
-                raise ValueError(f"{name} = {v:g}: outside the accepted range ({a:g}, {b:g}) {UNITS[name]}"
-                                 + (" (R0 below the outer radius / 1.001)" if i == 0 else ""))
+                raise ValueError(
+                    f"{name} = {v:g}: outside the accepted range ({a:g}, {b:g}) {UNITS[name]}"
+                    + (" (R0 below the outer radius / 1.001)" if i == 0 else "")
+                )
             fixed[i] = v
             continue
         if math.isfinite(lo) or math.isfinite(hi):
             lo_in, hi_in = max(lo, a), min(hi, b)
             if not lo_in < hi_in:
-                raise ValueError(f"{name}: bounds [{lo:g}, {hi:g}] leave nothing of the accepted range "
-                                 f"({a:g}, {b:g}) {UNITS[name]}")
+                raise ValueError(
+                    f"{name}: bounds [{lo:g}, {hi:g}] leave nothing of the accepted range "
+                    f"({a:g}, {b:g}) {UNITS[name]}"
+                )
             bounds[i] = (lo, hi)
         if prior is not None:
             priors[i] = prior
     if len(fixed) == 4:
-        raise ValueError("every fit parameter is fixed: leave at least one of R0_um, sigma, lambda, T_s free")
+        raise ValueError(
+            "every fit parameter is fixed: leave at least one of R0_um, sigma, lambda, T_s free"
+        )
     return Spec(fixed, bounds, priors, G)
 
 
@@ -270,7 +311,10 @@ class Constrained(Problem):
         lower, upper = self.obj.bounds()
         for i, (lo, hi) in self.spec.bounds.items():
             if i in (0, 3):
-                lo, hi = (math.log(lo) if lo > 0 else -math.inf), (math.log(hi) if hi > 0 else -math.inf)
+                lo, hi = (
+                    (math.log(lo) if lo > 0 else -math.inf),
+                    (math.log(hi) if hi > 0 else -math.inf),
+                )
             lower[i], upper[i] = max(lower[i], lo), min(upper[i], hi)
         return lower, upper
 

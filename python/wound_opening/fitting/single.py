@@ -40,8 +40,16 @@ from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, v
 from .starts import grid_starts
 
 
-def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_radius_um: float,
-        intervals: bool = True, loss: str = "linear", derived: bool = True, params=None) -> FitResult:
+def fit(
+    radius: RadiusSeries,
+    profile: VelocityProfile | None = None,
+    *,
+    outer_radius_um: float,
+    intervals: bool = True,
+    loss: str = "linear",
+    derived: bool = True,
+    params=None,
+) -> FitResult:
     """Fit R0_um, sigma, lambda and T_s; see the module docstring and docs/fitting.md.
     `loss`: "linear" (least squares), or "soft_l1" / "cauchy" (robust to outliers).
     `intervals`: the parameters' profile likelihoods; `derived`: also those of tau, zeta/G
@@ -54,20 +62,32 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     data = Objective(radius, profile, outer_radius_um)
     n_free = len(spec.free)
     if data.size < n_free + 1:
-        raise ValueError(f"fit: {data.size} data points for {n_free} free parameters: need at least {n_free + 1}")
+        raise ValueError(
+            f"fit: {data.size} data points for {n_free} free parameters: need at least {n_free + 1}"
+        )
     obj = Constrained(data, spec)  # the data with the priors, bounds and fixed parameters
     best, ends = _local_fits(obj, data, spec, loss)
     z, chi2_cost, res = best  # residuals, Jacobian and chi^2 below at the point reported
     residuals = data.residuals(z)
     # lambda on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
     free = [i for i in spec.free if not (i == 2 and z[2] <= 1e-8)]
-    judged = verdict(residuals, obj.jacobian(z), free, res, dof=max(obj.size - n_free, 1),  # the priors count as data
-                noise_given=not any(data.estimated), loss=loss, extra_chi2=float(np.sum(obj.prior_residuals(z) ** 2)),
-                what=f"the {n_free} free parameters")
+    judged = verdict(
+        residuals,
+        obj.jacobian(z),
+        free,
+        res,
+        dof=max(obj.size - n_free, 1),  # the priors count as data
+        noise_given=not any(data.estimated),
+        loss=loss,
+        extra_chi2=float(np.sum(obj.prior_residuals(z) ** 2)),
+        what=f"the {n_free} free parameters",
+    )
     cov_z = judged.cov
     held = list(spec.fixed)
     cov_z[held, :], cov_z[:, held] = 0.0, 0.0  # no variance
-    theta = tuple(spec.fixed.get(i, v) for i, v in enumerate(from_z(z)))  # a fixed value as given, not exp(ln v)
+    theta = tuple(
+        spec.fixed.get(i, v) for i, v in enumerate(from_z(z))
+    )  # a fixed value as given, not exp(ln v)
     scale = np.array([theta[0], 1.0, 1.0, theta[3]])  # d theta / d z
     cov = cov_z * np.outer(scale, scale)
     with np.errstate(invalid="ignore"):
@@ -75,24 +95,47 @@ def fit(radius: RadiusSeries, profile: VelocityProfile | None = None, *, outer_r
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
     others = alternates(obj, z, ends, chi2_cost, loss)  # other local optima a profile may reach
-    profiles = _profiles(obj, z, chi2_cost, judged.threshold, cov_z, loss, others, derived) if intervals and not judged.reasons else {}
-    reports = {name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name), spec.describe(i))
-               for i, name in enumerate(NAMES)}
+    profiles = (
+        _profiles(obj, z, chi2_cost, judged.threshold, cov_z, loss, others, derived)
+        if intervals and not judged.reasons
+        else {}
+    )
+    reports = {
+        name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name), spec.describe(i))
+        for i, name in enumerate(NAMES)
+    }
     data.residuals(z)  # inside_edge at the optimum
     radius_res = data.split(residuals * data.sd)[0]
-    return FitResult(theta=theta, reports=reports, correlation=corr, chi2=judged.chi2, threshold=judged.threshold,
-                     outer_radius_um=data.outer, residual_rms_um=float(np.sqrt(np.mean(radius_res**2))),
-                     noise=(float(np.median(data.sd[:data.n_radius])),
-                            float(np.median(data.sd[data.n_radius:])) if data.n_profile else None),
-                     n_points=(data.n_radius, data.n_profile), has_profile=profile is not None,
-                     evaluations=data.evaluations, G=spec.G, converged=not judged.reasons, reasons=judged.reasons,
-                     optimizer=judged.optimizer, dof=max(obj.size - n_free, 1), p_value=judged.p_value,
-                     noise_given=not any(data.estimated), loss=loss,
-                     outliers=outliers(data, judged.flagged), piv_at_edge=data.inside_edge,
-                     derived_profiles={name: p for name, p in profiles.items() if name not in NAMES},
-                     plausibility=time_scale_warnings(theta, obj.outer, radius, profile),
-                     points=data_points(data, z, judged.flagged),
-                     refit=partial(profile_at, obj, z, chi2_cost, loss=loss) if not judged.reasons else None)
+    return FitResult(
+        theta=theta,
+        reports=reports,
+        correlation=corr,
+        chi2=judged.chi2,
+        threshold=judged.threshold,
+        outer_radius_um=data.outer,
+        residual_rms_um=float(np.sqrt(np.mean(radius_res**2))),
+        noise=(
+            float(np.median(data.sd[: data.n_radius])),
+            float(np.median(data.sd[data.n_radius :])) if data.n_profile else None,
+        ),
+        n_points=(data.n_radius, data.n_profile),
+        has_profile=profile is not None,
+        evaluations=data.evaluations,
+        G=spec.G,
+        converged=not judged.reasons,
+        reasons=judged.reasons,
+        optimizer=judged.optimizer,
+        dof=max(obj.size - n_free, 1),
+        p_value=judged.p_value,
+        noise_given=not any(data.estimated),
+        loss=loss,
+        outliers=outliers(data, judged.flagged),
+        piv_at_edge=data.inside_edge,
+        derived_profiles={name: p for name, p in profiles.items() if name not in NAMES},
+        plausibility=time_scale_warnings(theta, obj.outer, radius, profile),
+        points=data_points(data, z, judged.flagged),
+        refit=partial(profile_at, obj, z, chi2_cost, loss=loss) if not judged.reasons else None,
+    )
 
 
 def _local_fits(obj: Constrained, data: Objective, spec, loss: str):
@@ -104,19 +147,28 @@ def _local_fits(obj: Constrained, data: Objective, spec, loss: str):
 
     starts = grid_starts(data, objective_cost, spec=spec)
     if not starts:
-        raise ValueError("fit: no point of the global grid (lambda x time scale, R0 and sigma solved linearly) "
-                         "gives a wound with R0 > 0 inside the outer radius" + (
-                             " with the fixed values and bounds given: the data cannot be described with them"
-                             if spec.fixed or spec.bounds else ""))
+        raise ValueError(
+            "fit: no point of the global grid (lambda x time scale, R0 and sigma solved linearly) "
+            "gives a wound with R0 > 0 inside the outer radius"
+            + (
+                " with the fixed values and bounds given: the data cannot be described with them"
+                if spec.fixed or spec.bounds
+                else ""
+            )
+        )
     best, failures, ends = best_of(obj, starts, loss)
     if best is None:
-        raise ValueError("fit: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
+        raise ValueError(
+            "fit: the model could not be evaluated from any start: " + "; ".join(failures[:2])
+        )
     if any(data.estimated):
         best = refit_at_noise(obj, [data], lambda k, z: z, best, loss, len(spec.free) / data.size)
     return best, ends
 
 
-def _profiles(obj: Constrained, z, chi2_min: float, threshold: float, cov_z, loss: str, others, derived: bool):
+def _profiles(
+    obj: Constrained, z, chi2_min: float, threshold: float, cov_z, loss: str, others, derived: bool
+):
     """The parameters' profiles (and the derived values' with `derived`); a fixed
     parameter's is its value."""
     profiles = profile_all(obj, z, chi2_min, threshold, cov_z, loss, others)

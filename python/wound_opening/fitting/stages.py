@@ -53,7 +53,9 @@ def best_of(obj, starts, loss, rounds: int = 6):
         fits.append([z, c, res, math.inf])  # z, cost, result, last drop
     for left in range(rounds, 0, -1):
         done = [f[1] for f in fits if f[2].status > 0]
-        live = [f for f in fits if f[2].status == 0 and not (done and f[1] - min(done) > f[3] * left)]
+        live = [
+            f for f in fits if f[2].status == 0 and not (done and f[1] - min(done) > f[3] * left)
+        ]
         if not live:
             break
         for f in live:
@@ -69,8 +71,10 @@ def best_of(obj, starts, loss, rounds: int = 6):
                 f[2] = res2
             elif f[3] < FLAT:
                 f[2].status = 1
-                f[2].message += (f" The last restart lowered the cost by {max(f[3], 0):.2g} (< {FLAT}): at its "
-                                 "minimum for the intervals, the parameters moving along a flat valley.")
+                f[2].message += (
+                    f" The last restart lowered the cost by {max(f[3], 0):.2g} (< {FLAT}): at its "
+                    "minimum for the intervals, the parameters moving along a flat valley."
+                )
     ends = [(f[0], f[1]) for f in fits]
     best = min(fits, key=lambda f: f[1])[:3] if fits else None
     return (tuple(best) if best else None), failures, ends
@@ -104,8 +108,18 @@ class Verdict:
     cov: np.ndarray
 
 
-def verdict(residuals, jac, free, res, *, dof: int, noise_given: bool, loss: str, extra_chi2: float = 0.0,
-            what: str = "the parameters") -> Verdict:
+def verdict(
+    residuals,
+    jac,
+    free,
+    res,
+    *,
+    dof: int,
+    noise_given: bool,
+    loss: str,
+    extra_chi2: float = 0.0,
+    what: str = "the parameters",
+) -> Verdict:
     """The verdict at the best point: `residuals` and `jac` there, `free` the columns judged
     (a coordinate on a bound where its column vanishes left out), `res` the optimiser's
     result; `what` the singular Jacobian leaves undetermined."""
@@ -116,8 +130,10 @@ def verdict(residuals, jac, free, res, *, dof: int, noise_given: bool, loss: str
     chi2 = float(np.sum(np.delete(residuals, flagged) ** 2) + extra_chi2)
     p_value = float(stats.chi2.sf(chi2, max(dof - flagged.size, 1))) if noise_given else None
     if p_value is not None and p_value < P_FAIL:
-        reasons.append(f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
-                       "the model does not describe the data with the given noise")
+        reasons.append(
+            f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
+            "the model does not describe the data with the given noise"
+        )
     n = jac.shape[1]
     sv = np.linalg.svd(jac[:, free], compute_uv=False)
     cov = np.full((n, n), np.nan)
@@ -128,7 +144,9 @@ def verdict(residuals, jac, free, res, *, dof: int, noise_given: bool, loss: str
         except np.linalg.LinAlgError:
             singular = True
     if singular:
-        reasons.append(f"the Jacobian at the best point is singular: the data do not determine {what}")
+        reasons.append(
+            f"the Jacobian at the best point is singular: the data do not determine {what}"
+        )
     return Verdict(reasons, optimizer, flagged, chi2, p_value, threshold, cov)
 
 
@@ -157,6 +175,9 @@ def outliers(obj: Objective, flagged) -> dict:
                     break
                 j -= r.size
     out = {key: sorted(k + 1 for k in v) for key, v in rows.items()}
-    out["where"] = [where(data, key, k) for key, data in zip(("radius", "profile"), obj.inputs)
-                    for k in sorted(rows[key])]
+    out["where"] = [
+        where(data, key, k)
+        for key, data in zip(("radius", "profile"), obj.inputs)
+        for k in sorted(rows[key])
+    ]
     return out

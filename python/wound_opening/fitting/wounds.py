@@ -41,11 +41,11 @@ from .._native import SolverError
 from ..inputs.series import RadiusSeries, VelocityProfile, check_against
 from ..results.names import ETA, SHARED
 from ..results.profiles import Profile
-from .objective import LAMBDA_MAX, Objective, from_z
 from ..results.result import ParameterReport
 from ..results.wounds import TissueFitResult
 from .intervals import walk_side
 from .local import cost
+from .objective import LAMBDA_MAX, Objective, from_z
 from .plausibility import time_scale_warnings
 from .problem import Problem
 from .single import fit
@@ -113,7 +113,10 @@ class Tissue(Problem):
         z_lo = min(lo[3] + LN4 - 2 * hi[0] for lo, hi in each)
         z_hi = max(hi[3] + LN4 - 2 * lo[0] for lo, hi in each)
         lower = np.array([0.0, -np.inf, z_lo] + [lo[0] for lo, _ in each])
-        upper = np.array([LAMBDA_MAX * max(p.outer for p in self.parts), np.inf, z_hi] + [hi[0] for _, hi in each])
+        upper = np.array(
+            [LAMBDA_MAX * max(p.outer for p in self.parts), np.inf, z_hi]
+            + [hi[0] for _, hi in each]
+        )
         return lower, upper
 
 
@@ -167,13 +170,19 @@ def _wounds(experiments) -> list[Wound]:
     wounds = []
     for k, w in enumerate(experiments):
         if not isinstance(w, Wound):
-            raise TypeError(f"fit_wounds: experiment {k + 1} is a {type(w).__name__}, expected a Wound")
-        wounds.append(w if w.name is not None else Wound(w.radius, w.outer_radius_um, w.profile, str(k + 1)))
+            raise TypeError(
+                f"fit_wounds: experiment {k + 1} is a {type(w).__name__}, expected a Wound"
+            )
+        wounds.append(
+            w if w.name is not None else Wound(w.radius, w.outer_radius_um, w.profile, str(k + 1))
+        )
     if not wounds:
         raise ValueError("fit_wounds: no wound given")
     names = [w.name for w in wounds]
     if len(set(names)) < len(names):
-        raise ValueError(f"fit_wounds: wound names repeat ({', '.join(names)}): each wound needs its own")
+        raise ValueError(
+            f"fit_wounds: wound names repeat ({', '.join(names)}): each wound needs its own"
+        )
     for w in wounds:
         try:
             check_against(w.radius, w.profile, w.outer_radius_um)
@@ -181,8 +190,10 @@ def _wounds(experiments) -> list[Wound]:
             raise ValueError(f"wound {w.name}: {e}") from None
         n = np.size(w.radius.radius_um) + (0 if w.profile is None else np.size(w.profile.r_um))
         if n < MIN_POINTS:
-            raise ValueError(f"wound {w.name}: {n} data points: need at least {MIN_POINTS} per wound "
-                             "(its start is a fit of its own four parameters)")
+            raise ValueError(
+                f"wound {w.name}: {n} data points: need at least {MIN_POINTS} per wound "
+                "(its start is a fit of its own four parameters)"
+            )
     return wounds
 
 
@@ -195,8 +206,10 @@ def _combine(tissue: Tissue, singles, cost, count: int = 3) -> list[np.ndarray]:
     if not ok:
         raise ValueError("fit_wounds: no wound could be fitted alone to start from")
     sigma = float(np.median([t[1] for t in ok]))
-    r0 = [t[0] if t is not None else float(np.min(p.radius)) / (1 + sigma / 6)
-          for t, p in zip(singles, tissue.parts)]
+    r0 = [
+        t[0] if t is not None else float(np.min(p.radius)) / (1 + sigma / 6)
+        for t, p in zip(singles, tissue.parts)
+    ]
     ln_r0 = [math.log(r) for r in r0]
     zg = [4 * t[3] / t[0] ** 2 for t in ok]
     ls = [t[2] * t[0] for t in ok]
@@ -242,10 +255,16 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
     residuals = tissue.residuals(y)
     # l on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
     free = [i for i in range(tissue.n) if not (i == 0 and y[0] <= 1e-8 * math.exp(max(y[3:])))]
-    judged = verdict(residuals, tissue.jacobian(y), free, res, dof=dof, noise_given=noise_given, loss=loss)
+    judged = verdict(
+        residuals, tissue.jacobian(y), free, res, dof=dof, noise_given=noise_given, loss=loss
+    )
     reasons, threshold, cov, flagged = judged.reasons, judged.threshold, judged.cov, judged.flagged
     others = alternates(tissue, y, ends, chi2_cost, loss)
-    profiles = _profiles(tissue, y, chi2_cost, threshold, cov, loss, others) if intervals and not reasons else {}
+    profiles = (
+        _profiles(tissue, y, chi2_cost, threshold, cov, loss, others)
+        if intervals and not reasons
+        else {}
+    )
     # standard errors in each quantity's own units: d quantity / d y_i
     own = np.array([1.0, 1.0, math.exp(y[2])] + [math.exp(v) for v in y[3:]])
     with np.errstate(invalid="ignore"):
@@ -255,34 +274,65 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
     if y[0] > 0 and np.all(np.isfinite(cov[np.ix_([0, 2], [0, 2])])):
         g = EtaCoordinate.gradient(y)
         se_eta = eta * math.sqrt(max(float(g @ cov @ g), 0.0))
-    shared = {name: ParameterReport(name, float(v if i != 2 else math.exp(v)), float(se[i]), profiles.get(name))
-              for i, (name, v) in enumerate(zip(SHARED, y[:3]))}
+    shared = {
+        name: ParameterReport(
+            name, float(v if i != 2 else math.exp(v)), float(se[i]), profiles.get(name)
+        )
+        for i, (name, v) in enumerate(zip(SHARED, y[:3]))
+    }
     shared[ETA] = ParameterReport(ETA, eta, se_eta, profiles.get(ETA))
-    r0 = [ParameterReport("R0_um", math.exp(y[3 + k]), float(se[3 + k]), profiles.get(("R0_um", k)))
-          for k in range(len(parts))]
+    r0 = [
+        ParameterReport("R0_um", math.exp(y[3 + k]), float(se[3 + k]), profiles.get(("R0_um", k)))
+        for k in range(len(parts))
+    ]
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(np.sqrt(np.diag(cov)), np.sqrt(np.diag(cov)))
     start = 0
     warnings = []
     wound_rows = []
     for k, (p, w) in enumerate(zip(parts, wounds)):
-        part = residuals[start:start + p.size]
+        part = residuals[start : start + p.size]
         mine = flagged[(flagged >= start) & (flagged < start + p.size)] - start
         start += p.size
         p.residuals(tissue.z(y, k))  # inside_edge at the optimum
         theta = tissue.theta(y, k)
-        warnings += [f"wound {w.name}: {m}" for m in time_scale_warnings(theta, p.outer, w.radius, w.profile)]
+        warnings += [
+            f"wound {w.name}: {m}" for m in time_scale_warnings(theta, p.outer, w.radius, w.profile)
+        ]
         radius_res = p.split(part * p.sd)[0]
-        wound_rows.append({"name": w.name, "theta": theta, "outer_radius_um": p.outer,
-                           "n_points": (p.n_radius, p.n_profile), "chi2": float(np.sum(np.delete(part, mine) ** 2)),
-                           "noise": (float(np.median(p.sd[:p.n_radius])),
-                                     float(np.median(p.sd[p.n_radius:])) if p.n_profile else None),
-                           "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))), "outliers": outliers(p, mine),
-                           "piv_vectors_at_edge": p.inside_edge})
-    return TissueFitResult(shared=shared, r0=r0, wounds=wound_rows, correlation=corr, chi2=judged.chi2, dof=dof,
-                           p_value=judged.p_value, threshold=threshold, noise_given=noise_given, loss=loss,
-                           converged=not reasons, reasons=reasons, optimizer=judged.optimizer,
-                           evaluations=tissue.evaluations, plausibility=warnings)
+        wound_rows.append(
+            {
+                "name": w.name,
+                "theta": theta,
+                "outer_radius_um": p.outer,
+                "n_points": (p.n_radius, p.n_profile),
+                "chi2": float(np.sum(np.delete(part, mine) ** 2)),
+                "noise": (
+                    float(np.median(p.sd[: p.n_radius])),
+                    float(np.median(p.sd[p.n_radius :])) if p.n_profile else None,
+                ),
+                "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))),
+                "outliers": outliers(p, mine),
+                "piv_vectors_at_edge": p.inside_edge,
+            }
+        )
+    return TissueFitResult(
+        shared=shared,
+        r0=r0,
+        wounds=wound_rows,
+        correlation=corr,
+        chi2=judged.chi2,
+        dof=dof,
+        p_value=judged.p_value,
+        threshold=threshold,
+        noise_given=noise_given,
+        loss=loss,
+        converged=not reasons,
+        reasons=reasons,
+        optimizer=judged.optimizer,
+        evaluations=tissue.evaluations,
+        plausibility=warnings,
+    )
 
 
 def _local_fits(tissue: Tissue, wounds, loss: str):
@@ -291,7 +341,15 @@ def _local_fits(tissue: Tissue, wounds, loss: str):
     singles = []
     for w in wounds:
         try:
-            singles.append(fit(w.radius, w.profile, outer_radius_um=w.outer_radius_um, intervals=False, loss=loss).theta)
+            singles.append(
+                fit(
+                    w.radius,
+                    w.profile,
+                    outer_radius_um=w.outer_radius_um,
+                    intervals=False,
+                    loss=loss,
+                ).theta
+            )
         except (ValueError, SolverError):
             singles.append(None)
 
@@ -300,9 +358,14 @@ def _local_fits(tissue: Tissue, wounds, loss: str):
 
     best, failures, ends = best_of(tissue, _combine(tissue, singles, tissue_cost), loss)
     if best is None:
-        raise ValueError("fit_wounds: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
+        raise ValueError(
+            "fit_wounds: the model could not be evaluated from any start: "
+            + "; ".join(failures[:2])
+        )
     if any(any(p.estimated) for p in tissue.parts):
-        best = refit_at_noise(tissue, tissue.parts, lambda k, y: tissue.z(y, k), best, loss, tissue.n / tissue.size)
+        best = refit_at_noise(
+            tissue, tissue.parts, lambda k, y: tissue.z(y, k), best, loss, tissue.n / tissue.size
+        )
     return best, ends
 
 
@@ -325,7 +388,9 @@ def _interval(obj, k, centres, chi2_min, threshold, cov, loss, limits, default):
             if centre[k] == limit:
                 ends.append(None)
                 continue
-            end, _, pts = walk_side(obj, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0)
+            end, _, pts = walk_side(
+                obj, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0
+            )
             ends.append(end)
             points += pts
     lo = None if None in lows else min(lows)
@@ -347,12 +412,20 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
         return lambda c: (max(lo(c), lower[i]), min(hi(c), upper[i]))
 
     l_max = LAMBDA_MAX * math.exp(max(y_hat[3:]))
-    limits = {0: clipped(0, lambda c: 0.0, lambda c: min(l_max, upper[0])),
-              1: clipped(1, lambda c: c[1] - 10 * abs(c[1]) - 1, lambda c: c[1] + 10 * abs(c[1]) + 1),
-              2: clipped(2, lambda c: c[2] - math.log(100.0), lambda c: c[2] + math.log(100.0))}
+    limits = {
+        0: clipped(0, lambda c: 0.0, lambda c: min(l_max, upper[0])),
+        1: clipped(1, lambda c: c[1] - 10 * abs(c[1]) - 1, lambda c: c[1] + 10 * abs(c[1]) + 1),
+        2: clipped(2, lambda c: c[2] - math.log(100.0), lambda c: c[2] + math.log(100.0)),
+    }
     for i in range(tissue.n):
-        lim = limits.get(i) or clipped(i, lambda c, i=i: c[i] - math.log(3.0), lambda c, i=i: c[i] + math.log(3.0))
-        default = (0.1 * math.exp(float(np.median(y_hat[3:]))), 0.05 * abs(y_hat[1]) + 0.01, 0.1)[i] if i < 3 else 0.05
+        lim = limits.get(i) or clipped(
+            i, lambda c, i=i: c[i] - math.log(3.0), lambda c, i=i: c[i] + math.log(3.0)
+        )
+        default = (
+            (0.1 * math.exp(float(np.median(y_hat[3:]))), 0.05 * abs(y_hat[1]) + 0.01, 0.1)[i]
+            if i < 3
+            else 0.05
+        )
         lo, hi, pts = _interval(tissue, i, centres, chi2_min, threshold, cov, loss, lim, default)
         if i == 1 or i == 0:
             at_bound = i == 0 and lo is None
@@ -360,8 +433,12 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
             out[key] = Profile(0.0 if at_bound else lo, hi, at_bound, pts)
         else:
             key = SHARED[2] if i == 2 else ("R0_um", i - 3)
-            out[key] = Profile(None if lo is None else math.exp(lo), None if hi is None else math.exp(hi), False,
-                               [(math.exp(v), d) for v, d in pts])
+            out[key] = Profile(
+                None if lo is None else math.exp(lo),
+                None if hi is None else math.exp(hi),
+                False,
+                [(math.exp(v), d) for v, d in pts],
+            )
     if any(c[0] <= 1e-8 * l_max for c, _ in centres):
         out[ETA] = Profile(0.0, None, True)  # eta/G = 0 is allowed: not identified
         return out
@@ -369,8 +446,21 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
     a = np.eye(tissue.n)
     a[2] = rep.gradient(y_hat)
     eta_centres = [(rep.to_w(c), d) for c, d in centres]
-    lo, hi, pts = _interval(rep, 2, eta_centres, chi2_min, threshold, a @ cov @ a.T, loss,
-                            lambda c: (c[2] - math.log(100.0), c[2] + math.log(100.0)), 0.1)
-    out[ETA] = Profile(None if lo is None else math.exp(lo), None if hi is None else math.exp(hi), False,
-                       [(math.exp(v), d) for v, d in pts])
+    lo, hi, pts = _interval(
+        rep,
+        2,
+        eta_centres,
+        chi2_min,
+        threshold,
+        a @ cov @ a.T,
+        loss,
+        lambda c: (c[2] - math.log(100.0), c[2] + math.log(100.0)),
+        0.1,
+    )
+    out[ETA] = Profile(
+        None if lo is None else math.exp(lo),
+        None if hi is None else math.exp(hi),
+        False,
+        [(math.exp(v), d) for v, d in pts],
+    )
     return out
