@@ -117,3 +117,74 @@ def test_no_private_name_crosses_a_module():
                     and not module_path(f"wound_opening.{a.name}")
                 ]
     assert not crossing, "private names imported from another module:\n" + "\n".join(crossing)
+
+
+class _Optimiser(Exception):
+    """Raised when the trace reaches the local fit: the path is walked."""
+
+
+def test_a_radius_file_goes_down_the_layers_from_the_command_line_to_the_optimiser():
+    """`wound-opening fit <radius file>` traced by sys.setprofile up to the first local fit:
+    every call between the package's modules goes to the same layer or a lower one, never
+    back up (cli -> fitting -> results / inputs -> simulation), and the path enters each of
+    cli, inputs/ and fitting/."""
+    import sys
+
+    from wound_opening import cli
+    from wound_opening.fitting import local
+
+    root = str(PACKAGE) + "/"
+    climbs, entered = set(), set()
+
+    def name_of(frame):
+        path = frame.f_code.co_filename
+        return module_name(Path(path)) if path.startswith(root) else None
+
+    def profile(frame, event, arg):
+        if event != "call":
+            return
+        callee = name_of(frame)
+        if callee is None:
+            return
+        if frame.f_code is local.local_fit.__code__:
+            raise _Optimiser
+        entered.add(callee)
+        caller = name_of(frame.f_back) if frame.f_back is not None else None
+        if caller is not None and layer(callee) > layer(caller):
+            climbs.add(f"{caller}.{frame.f_back.f_code.co_name} -> {callee}.{frame.f_code.co_name}")
+
+    data = PACKAGE.parents[1] / "examples" / "data" / "ablation_export.csv"
+    argv = [
+        "fit",
+        str(data),
+        "--time-col",
+        "Time [ms]",
+        "--radius-col",
+        "Radius [px]",
+        "--time-unit",
+        "ms",
+        "--length-unit",
+        "px",
+        "--pixel-size-um",
+        "0.1625",
+        "--cut-time",
+        "2350",
+        "--outer-radius-um",
+        "100",
+    ]
+    sys.setprofile(profile)
+    try:
+        cli.main(argv)
+    except _Optimiser:
+        reached = True
+    else:
+        reached = False
+    finally:
+        sys.setprofile(None)
+    assert reached, "the trace did not reach local_fit"
+    assert {
+        "wound_opening.cli",
+        "wound_opening.inputs.lab_files",
+        "wound_opening.fitting.single",
+    } <= entered
+    assert not climbs, "calls back up a layer:\n" + "\n".join(sorted(climbs))
