@@ -65,8 +65,14 @@ class PlatformWheel(bdist_wheel):
 setup(
     # The crate types of Cargo.toml (setuptools-rust would ask for cdylib alone): cargo then
     # finds the library of `cargo build --release` fresh instead of rebuilding it.
-    rust_extensions=[RustExtension(f"{PACKAGE}.{LIBRARY.removesuffix('.so')}", path="Cargo.toml",
-                                   binding=Binding.NoBinding, args=["--crate-type", "cdylib", "--crate-type", "rlib"])],
+    rust_extensions=[
+        RustExtension(
+            f"{PACKAGE}.{LIBRARY.removesuffix('.so')}",
+            path="Cargo.toml",
+            binding=Binding.NoBinding,
+            args=["--crate-type", "cdylib", "--crate-type", "rlib"],
+        )
+    ],
     cmdclass={"build_rust": BuildNative, "bdist_wheel": PlatformWheel},
     zip_safe=False,
 )

@@ -32,7 +32,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from coupling.loop import MATERIAL_EXAMPLE, PURSE_EXAMPLE, WOUND_EXAMPLE, couple, fmu_start_values, observed_order  # noqa: E402
+from coupling.loop import (
+    MATERIAL_EXAMPLE,
+    PURSE_EXAMPLE,
+    WOUND_EXAMPLE,
+    couple,
+    fmu_start_values,
+    observed_order,
+)  # noqa: E402
 
 STEP, STOP = 0.5, 300.0
 STEPS = (4.0, 2.0, 1.0, 0.5, 0.25, 0.125)
@@ -52,18 +59,36 @@ def plot(run, free, path: Path) -> None:
     # Okabe-Ito colours (distinguishable with the common colour-vision deficiencies).
     blue, grey, vermillion, green, orange = "#0072B2", "#7f7f7f", "#D55E00", "#009E73", "#E69F00"
     ax.plot(run.time, run.wound_radius, color=blue, lw=2, label="with purse-string (coupled FMUs)")
-    ax.plot(free.time, free.wound_radius, color=grey, ls="--", lw=1.5, label="free opening (edge_stress = 0)")
-    ax.axhline(equilibrium_radius(), color=vermillion, lw=1, ls=":", label="equilibrium with T_c = T_max")
+    ax.plot(
+        free.time,
+        free.wound_radius,
+        color=grey,
+        ls="--",
+        lw=1.5,
+        label="free opening (edge_stress = 0)",
+    )
+    ax.axhline(
+        equilibrium_radius(), color=vermillion, lw=1, ls=":", label="equilibrium with T_c = T_max"
+    )
     ax.axhline(WOUND_EXAMPLE["R0"], color="k", lw=0.6)
     ax.set_ylabel("wound radius [µm]")
     # Centre right: between the free opening (above 16 µm there) and the closing wound (below 12).
     ax.legend(loc="center right", fontsize=9, framealpha=0.9)
-    ax.set_title("Wound R0 = 10 µm, τ = η/G = 10 s (λ = 1): opening, then purse-string closure", fontsize=10)
+    ax.set_title(
+        "Wound R0 = 10 µm, τ = η/G = 10 s (λ = 1): opening, then purse-string closure", fontsize=10
+    )
     bx.plot(run.time, run.line_tension / 1000.0, color=green, lw=2, label="line tension T_c [nN]")
     bx.set_ylabel("T_c [nN]")
     bx.set_xlabel("time since the cut [s]")
     cx = bx.twinx()
-    cx.plot(run.time, run.edge_stress, color=orange, lw=1.5, ls="--", label="edge stress p = T_c/(h R) [Pa]")
+    cx.plot(
+        run.time,
+        run.edge_stress,
+        color=orange,
+        lw=1.5,
+        ls="--",
+        label="edge stress p = T_c/(h R) [Pa]",
+    )
     cx.set_ylabel("p [Pa]")
     lines = bx.get_lines() + cx.get_lines()
     bx.legend(lines, [line.get_label() for line in lines], loc="center right", fontsize=9)
@@ -73,9 +98,17 @@ def plot(run, free, path: Path) -> None:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--fmu-dir", default="target/fmu", help="folder with WoundOpening.fmu and PurseString.fmu (default: %(default)s)")
-    ap.add_argument("--out", default="out", help="folder for the CSV files and the chart (default: %(default)s)")
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    ap.add_argument(
+        "--fmu-dir",
+        default="target/fmu",
+        help="folder with WoundOpening.fmu and PurseString.fmu (default: %(default)s)",
+    )
+    ap.add_argument(
+        "--out", default="out", help="folder for the CSV files and the chart (default: %(default)s)"
+    )
     args = ap.parse_args()
     wound = str(Path(args.fmu_dir) / "WoundOpening.fmu")
     purse = str(Path(args.fmu_dir) / "PurseString.fmu")
@@ -88,30 +121,60 @@ def main() -> None:
     free = couple(wound, None, step=STEP, stop=STOP, edge_stress=0.0)
     with open(out / "coupled_closure.csv", "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["time_s", "wound_radius_um", "edge_velocity_um_per_s", "edge_stress_Pa", "line_tension_pN",
-                    "free_wound_radius_um"])
-        for row in zip(run.time, run.wound_radius, run.edge_velocity, run.edge_stress, run.line_tension,
-                       free.wound_radius):
+        w.writerow(
+            [
+                "time_s",
+                "wound_radius_um",
+                "edge_velocity_um_per_s",
+                "edge_stress_Pa",
+                "line_tension_pN",
+                "free_wound_radius_um",
+            ]
+        )
+        for row in zip(
+            run.time,
+            run.wound_radius,
+            run.edge_velocity,
+            run.edge_stress,
+            run.line_tension,
+            free.wound_radius,
+        ):
             w.writerow([f"{x:.17g}" for x in row])
     plot(run, free, out / "coupled_closure.png")
     i = int(np.argmax(run.wound_radius))
-    print(f"communication step {STEP} s: R(0) = {run.wound_radius[0]:.4f} um, max {run.wound_radius[i]:.4f} um "
-          f"at t = {run.time[i]:g} s, R({STOP:g} s) = {run.wound_radius[-1]:.4f} um "
-          f"(free opening: {free.wound_radius[-1]:.4f} um; equilibrium with T_max: {equilibrium_radius():.4f} um)")
+    print(
+        f"communication step {STEP} s: R(0) = {run.wound_radius[0]:.4f} um, max "
+        f"{run.wound_radius[i]:.4f} um "
+        f"at t = {run.time[i]:g} s, R({STOP:g} s) = {run.wound_radius[-1]:.4f} um "
+        f"(free opening: {free.wound_radius[-1]:.4f} um; equilibrium with T_max: "
+        f"{equilibrium_radius():.4f} um)"
+    )
 
     _, diffs, orders = observed_order(wound, purse, STEPS, stop=STOP)
     _, diffs2, orders2 = observed_order(wound, purse, STEPS, stop=STOP, interpolate=True)
     with open(out / "coupled_convergence.csv", "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["step_s", "held_max_abs_R_h_minus_R_half_um", "held_observed_order",
-                    "interpolated_max_abs_R_h_minus_R_half_um", "interpolated_observed_order"])
+        w.writerow(
+            [
+                "step_s",
+                "held_max_abs_R_h_minus_R_half_um",
+                "held_observed_order",
+                "interpolated_max_abs_R_h_minus_R_half_um",
+                "interpolated_observed_order",
+            ]
+        )
         for k, (h, d, d2) in enumerate(zip(STEPS, diffs, diffs2)):
             order = orders[k - 1] if k > 0 else float("nan")
             order2 = orders2[k - 1] if k > 0 else float("nan")
             w.writerow([h, f"{d:.6g}", f"{order:.4f}", f"{d2:.6g}", f"{order2:.4f}"])
-            print(f"step {h:6.3f} s: max |R(h) - R(h/2)| held {d:.3e} um, with input derivatives {d2:.3e} um"
-                  + (f"; observed orders {order:.3f} and {order2:.3f}" if k else ""))
-    print(f"wrote {out / 'coupled_closure.csv'}, {out / 'coupled_closure.png'}, {out / 'coupled_convergence.csv'}")
+            print(
+                f"step {h:6.3f} s: max |R(h) - R(h/2)| held {d:.3e} um, with input derivatives "
+                f"{d2:.3e} um" + (f"; observed orders {order:.3f} and {order2:.3f}" if k else "")
+            )
+    print(
+        f"wrote {out / 'coupled_closure.csv'}, {out / 'coupled_closure.png'}, "
+        f"{out / 'coupled_convergence.csv'}"
+    )
 
 
 if __name__ == "__main__":

@@ -15,7 +15,6 @@ model whose edge stress builds up from the cut.
 from __future__ import annotations
 
 import numpy as np
-
 import wound_exact
 
 
@@ -26,6 +25,10 @@ def edge_stress(t, amplitude: float, tau: float):
 
 def edge(lam: float, sigma: float, r_inf: float, t, amplitude: float, tau: float) -> np.ndarray:
     """Exact R(t) at t > 0 under `edge_stress(t, amplitude, tau)`."""
-    f = lambda s: (wound_exact.edge_transform(s, lam, sigma, r_inf, 0.0)
-                   + amplitude * wound_exact.edge_transform(s, lam, 0.0, r_inf, 1.0) / (1 + tau * s))
+
+    def f(s):
+        return wound_exact.edge_transform(
+            s, lam, sigma, r_inf, 0.0
+        ) + amplitude * wound_exact.edge_transform(s, lam, 0.0, r_inf, 1.0) / (1 + tau * s)
+
     return 1 + sigma / 6 + wound_exact._invert(f, t)

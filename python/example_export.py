@@ -19,7 +19,6 @@ import math
 from pathlib import Path
 
 import numpy as np
-
 import wound_exact as we
 
 R0_UM, OUTER_UM, PIXEL_UM, CUT_MS = 10.0, 100.0, 0.1625, 2350.0
@@ -30,22 +29,31 @@ NOISE_PX, FRAME_MS, FRAMES, SEED = 0.3, 250.0, 80, 2026
 def parameters() -> tuple[float, float, float]:
     """(lambda, sigma, T_s) of MATERIAL and R0_UM."""
     m = MATERIAL
-    return (2 * math.sqrt(m["eta_pa_s"] / m["zeta_pa_s_per_um2"]) / R0_UM, m["tension_pa"] / m["G_pa"],
-            m["zeta_pa_s_per_um2"] * R0_UM**2 / (4 * m["G_pa"]))
+    return (
+        2 * math.sqrt(m["eta_pa_s"] / m["zeta_pa_s_per_um2"]) / R0_UM,
+        m["tension_pa"] / m["G_pa"],
+        m["zeta_pa_s_per_um2"] * R0_UM**2 / (4 * m["G_pa"]),
+    )
 
 
 def export(path: Path) -> None:
     lam, sigma, T = parameters()
     t_ms = CUT_MS + 120.0 + FRAME_MS * np.arange(FRAMES)  # the first frame 120 ms after the cut
     radius_um = R0_UM * we.edge(lam, sigma, OUTER_UM / R0_UM, (t_ms - CUT_MS) / 1000.0 / T)[0]
-    radius_px = radius_um / PIXEL_UM + NOISE_PX * np.random.default_rng(SEED).standard_normal(t_ms.size)
-    rows = ["Time [ms];Radius [px]"] + [f"{t:.0f};{r:.3f}".replace(".", ",") for t, r in zip(t_ms, radius_px)]
+    radius_px = radius_um / PIXEL_UM + NOISE_PX * np.random.default_rng(SEED).standard_normal(
+        t_ms.size
+    )
+    rows = ["Time [ms];Radius [px]"] + [
+        f"{t:.0f};{r:.3f}".replace(".", ",") for t, r in zip(t_ms, radius_px)
+    ]
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text("\n".join(rows) + "\n", encoding="utf-8-sig")
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--out", default="examples/data", help="folder (default: %(default)s)")
     export(Path(ap.parse_args().out) / "ablation_export.csv")
 

@@ -14,14 +14,15 @@ import argparse
 from pathlib import Path
 
 import pandas as pd
-
 from bench.tissue_designs import OUTERS, R0S, draw
 
 NOISE, SEED = 0.02, 2026
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--out", default=str(Path(__file__).resolve().parents[1] / "examples" / "data"))
     out = Path(ap.parse_args().out)
     out.mkdir(parents=True, exist_ok=True)

@@ -18,7 +18,9 @@ RADII = [1.5, 2, 10, 100, 1000]
 if __name__ == "__main__":
     import argparse
 
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("dir", type=Path, help="folder for the ref_{lambda}_{R_inf}.csv tables")
     out = parser.parse_args().dir
     out.mkdir(parents=True, exist_ok=True)
@@ -26,4 +28,6 @@ if __name__ == "__main__":
     for lam in LAMBDAS:
         for r_inf in RADII:
             radius, velocity = wound_exact.edge(lam, 1.0, r_inf, t)
-            np.savetxt(out / f"ref_{lam:g}_{r_inf:g}.csv", np.c_[t, radius, velocity], delimiter=",")
+            np.savetxt(
+                out / f"ref_{lam:g}_{r_inf:g}.csv", np.c_[t, radius, velocity], delimiter=","
+            )

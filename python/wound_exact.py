@@ -105,7 +105,10 @@ def _invert(transform, t, n=CONTOUR_NODES):
 
 def edge(lam, sigma, r_inf, t, p=0.0):
     """Exact (R(t), dR/dt) arrays for a constant edge stress p applied from t = 0 (t > 0)."""
-    f = lambda s: edge_transform(s, lam, sigma, r_inf, p)
+
+    def f(s):
+        return edge_transform(s, lam, sigma, r_inf, p)
+
     radius = 1 + sigma / 6 + _invert(f, t)
     velocity = _invert(lambda s: s * f(s), t)
     return radius, velocity

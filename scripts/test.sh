@@ -17,5 +17,8 @@ cargo build --release  # the library the Python package loads
 cargo run --release --quiet -- fmu
 bash scripts/c_tests.sh
 bash scripts/cross_tests.sh  # the archives' Windows and aarch64 binaries under Wine and qemu-user
+# The Python code's format and lint (ruff, configured in pyproject.toml).
+ruff format --check python tests/python setup.py
+ruff check python tests/python setup.py
 # Two worker processes (pytest-xdist): the Python tests are independent of each other.
 python -m pytest -q -n 2 tests/python

@@ -39,7 +39,8 @@ def main():
         worst = max(worst, err.max())
         print(
             f"lambda {lam:<7g} R_inf {r_inf:<7g} unknowns {rows[0]['unknowns']:>3} "
-            f"build {float(rows[0]['build_s']):.4f} s  max error {err.max():.2e} at t = {t[err.argmax()]:.3g}"
+            f"build {float(rows[0]['build_s']):.4f} s  max error {err.max():.2e} at t = "
+            f"{t[err.argmax()]:.3g}"
         )
     print(f"worst {worst:.2e}")
 

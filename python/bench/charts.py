@@ -28,11 +28,13 @@ from bench import common, panels_chart, stability_chart, summary, work_chart  # 
 
 CHART_NOTES = {
     "work_precision": "error against CPU time for the whole scenario, one line per method "
-                      "(data: `work_precision.csv`)",
+    "(data: `work_precision.csv`)",
     "stability": "status over lambda (rows, 0 at the bottom) and dt (columns), one panel per grid",
-    "explicit_limits": "the explicit scheme's step limit against lambda and its lambda limit against "
-                       "grid size, measured (circles) and theory (lines)",
-    "paper_panels": "the paper's four panels: u(r), v(r) at several t; normalised u(t), v(t) at several r",
+    "explicit_limits": "the explicit scheme's step limit against lambda and its lambda limit "
+    "against "
+    "grid size, measured (circles) and theory (lines)",
+    "paper_panels": "the paper's four panels: u(r), v(r) at several t; normalised u(t), v(t) at "
+    "several r",
 }
 
 
@@ -56,12 +58,18 @@ def main() -> None:
         path = args.out / f"work_precision_lambda_{lam}.png"
         work_chart.plot_regime(lam, rust, peers, fmpy, path)
         note(path, "work_precision")
-    common.write_rows(args.out / "work_precision.csv", common.WORK_COLUMNS, work_chart.all_rows(rust, peers, fmpy))
+    common.write_rows(
+        args.out / "work_precision.csv", common.WORK_COLUMNS, work_chart.all_rows(rust, peers, fmpy)
+    )
 
     for scheme in dict.fromkeys(r["scheme"] for r in stability):
         path = args.out / f"stability_{scheme}.png"
-        stability_chart.plot_scheme(scheme, [r for r in stability if r["scheme"] == scheme],
-                                    limits if scheme == "explicit" else [], path)
+        stability_chart.plot_scheme(
+            scheme,
+            [r for r in stability if r["scheme"] == scheme],
+            limits if scheme == "explicit" else [],
+            path,
+        )
         note(path, "stability")
     if limits:
         stability_chart.plot_explicit_limits(limits, args.out / "explicit_limits.png")
@@ -74,12 +82,26 @@ def main() -> None:
             panels_chart.plot_lambda(lam, mine, path)
             note(path, "paper_panels")
 
-    for name, rows in (("work_precision", rust), ("stability", stability), ("profiles", profiles),
-                       ("scipy_peer/paper_peer", peers), ("fmpy_timing", fmpy)):
+    for name, rows in (
+        ("work_precision", rust),
+        ("stability", stability),
+        ("profiles", profiles),
+        ("scipy_peer/paper_peer", peers),
+        ("fmpy_timing", fmpy),
+    ):
         if not rows:
             print(f"charts: no {name} data in {args.data}: skipped what needs it")
-    summary.write(args.out / "benchmarks.md", rust + peers, read("step_cost"), fmpy, stability, limits, made,
-                  read("fresh_cost"), read("fmpy_whole"))
+    summary.write(
+        args.out / "benchmarks.md",
+        rust + peers,
+        read("step_cost"),
+        fmpy,
+        stability,
+        limits,
+        made,
+        read("fresh_cost"),
+        read("fmpy_whole"),
+    )
     print(args.out / "benchmarks.md")
 
 

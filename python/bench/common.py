@@ -58,7 +58,9 @@ def error(lam: float, radius: np.ndarray) -> float:
     return float(err.max()) if np.all(np.isfinite(err)) else float("inf")
 
 
-def best_cpu(run: Callable[[], np.ndarray], repeats: int, budget: float = 5.0) -> tuple[float, np.ndarray]:
+def best_cpu(
+    run: Callable[[], np.ndarray], repeats: int, budget: float = 5.0
+) -> tuple[float, np.ndarray]:
     """Best CPU time of `repeats` calls of `run` (fewer once `budget` CPU seconds are spent).
 
     Returns (seconds, the last result). One call always happens.
@@ -74,8 +76,16 @@ def best_cpu(run: Callable[[], np.ndarray], repeats: int, budget: float = 5.0) -
     return best, result
 
 
-def sweep_sizes(scheme: str, lam: float, sizes: Sequence[int], setting: str,
-                run: Callable[[int], np.ndarray], repeats: int, slow_run: float, log=print) -> list[tuple]:
+def sweep_sizes(
+    scheme: str,
+    lam: float,
+    sizes: Sequence[int],
+    setting: str,
+    run: Callable[[int], np.ndarray],
+    repeats: int,
+    slow_run: float,
+    log=print,
+) -> list[tuple]:
     """Work-precision rows of `run(n)` (-> R at `times()`) for the grid sizes in ascending
     order, stopping after the first run slower than `slow_run` CPU seconds."""
     rows = []
@@ -83,7 +93,10 @@ def sweep_sizes(scheme: str, lam: float, sizes: Sequence[int], setting: str,
         cpu, radius = best_cpu(lambda: run(n), repeats)
         err = error(lam, radius)
         rows.append((scheme, lam_label(lam), f"N={n} {setting}", n, err, cpu))
-        log(f"{scheme:13s} lambda={lam:<4g} N={n:<6d} {setting:<11s} error={err:.2e} cpu={cpu:.3g} s")
+        log(
+            f"{scheme:13s} lambda={lam:<4g} N={n:<6d} {setting:<11s} error={err:.2e} "
+            f"cpu={cpu:.3g} s"
+        )
         if cpu > slow_run:
             break
     return rows
@@ -131,4 +144,3 @@ def read_rows(path: Path) -> list[dict[str, str]]:
         return []
     with path.open(newline="") as f:
         return list(csv.DictReader(f))
-

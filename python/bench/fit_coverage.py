@@ -13,9 +13,8 @@ import itertools
 import time
 from pathlib import Path
 
-
 from bench.fit_designs import NAMES, clean, covers, draw, truth
-from wound_opening.fitting import fit
+from wound_opening.fitting.single import fit
 
 NOISES = (1e-6, 1e-4, 1e-3, 1e-2, 4e-2)
 LAMBDAS = (0.0, 0.05, 0.5, 5.0, 50.0)
@@ -34,7 +33,11 @@ def cell(design, lam, noise, draws):
         result = fit(radius, profile, outer_radius_um=100.0, derived=False)
         if not result.converged:
             failed += 1
-            print(f"{design} lambda {lam:g} noise {noise:g} draw {k}: not converged: {result.reasons}", flush=True)
+            print(
+                f"{design} lambda {lam:g} noise {noise:g} draw {k}: "
+                f"not converged: {result.reasons}",
+                flush=True,
+            )
             continue
         for n in NAMES:
             rep = result.reports[n]
@@ -45,19 +48,36 @@ def cell(design, lam, noise, draws):
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--draws", type=int, default=200)
     ap.add_argument("--out", default="out/fit_coverage")
-    ap.add_argument("--skip", type=int, default=0, help="leave out the first SKIP cells (to resume a run)")
-    ap.add_argument("--count", type=int, default=None, help="run COUNT cells after the skipped ones (default: all)")
-    ap.add_argument("--designs", default=",".join(DESIGNS), help="only these designs (comma-separated)")
+    ap.add_argument(
+        "--skip", type=int, default=0, help="leave out the first SKIP cells (to resume a run)"
+    )
+    ap.add_argument(
+        "--count",
+        type=int,
+        default=None,
+        help="run COUNT cells after the skipped ones (default: all)",
+    )
+    ap.add_argument(
+        "--designs", default=",".join(DESIGNS), help="only these designs (comma-separated)"
+    )
     args = ap.parse_args()
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     rows = []
     with open(f"{out}.csv", "w") as f:
-        f.write("design,lambda,noise,draws,failed," + ",".join(f"{n}_identified,{n}_covered" for n in NAMES) + ",seconds\n")
-        for lam, noise, design in [c for c in CELLS[args.skip:][:args.count] if c[2] in args.designs.split(",")]:
+        f.write(
+            "design,lambda,noise,draws,failed,"
+            + ",".join(f"{n}_identified,{n}_covered" for n in NAMES)
+            + ",seconds\n"
+        )
+        for lam, noise, design in [
+            c for c in CELLS[args.skip :][: args.count] if c[2] in args.designs.split(",")
+        ]:
             start = time.process_time()
             failed, ident, cover = cell(design, lam, noise, args.draws)
             row = [design, lam, noise, args.draws, failed]
@@ -72,7 +92,10 @@ def main() -> None:
 
 def table(rows, out: Path) -> None:
     """Markdown: per cell, coverage among identified draws (identified / draws) per parameter."""
-    lines = ["| design | lambda | noise | failed | " + " | ".join(NAMES) + " |", "|---" * (4 + len(NAMES)) + "|"]
+    lines = [
+        "| design | lambda | noise | failed | " + " | ".join(NAMES) + " |",
+        "|---" * (4 + len(NAMES)) + "|",
+    ]
     for design, lam, noise, draws, failed, *rest in rows:
         cells = []
         for k in range(len(NAMES)):
@@ -98,8 +121,16 @@ def figure(rows, out: Path) -> None:
                 pts = [(r[2], r[6 + 2 * k] / r[5 + 2 * k]) for r in sel if r[5 + 2 * k]]
                 if pts:
                     x, y = zip(*pts)
-                    ax.semilogx(x, y, marker=marker, color=c, ls="-", lw=0.8, ms=4,
-                                label=f"λ = {lam:g}" if k == 0 else None)
+                    ax.semilogx(
+                        x,
+                        y,
+                        marker=marker,
+                        color=c,
+                        ls="-",
+                        lw=0.8,
+                        ms=4,
+                        label=f"λ = {lam:g}" if k == 0 else None,
+                    )
         ax.axhspan(0.90, 0.99, color="0.9")
         ax.set_title(design)
         ax.set_xlabel("noise / opening")

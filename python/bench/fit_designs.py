@@ -18,12 +18,16 @@ from __future__ import annotations
 import numpy as np
 import wound_exact as we
 
-from wound_opening.data import RadiusSeries, VelocityProfile
+from wound_opening.inputs.series import RadiusSeries, VelocityProfile
 
 R0, SIGMA, OUTER = 10.0, 0.5, 100.0
 NAMES = ("R0_um", "sigma", "lambda", "T_s")
-TIMES = {"radius": np.linspace(0.5, 60, 40), "piv": np.linspace(0.5, 60, 40),
-         "plateau": np.linspace(42, 60, 40), "early": np.linspace(0.5, 5, 40)}
+TIMES = {
+    "radius": np.linspace(0.5, 60, 40),
+    "piv": np.linspace(0.5, 60, 40),
+    "plateau": np.linspace(42, 60, 40),
+    "early": np.linspace(0.5, 5, 40),
+}
 PIV_TIMES = np.array([1.0, 3.0])
 
 
@@ -53,14 +57,20 @@ def clean(design: str, lam: float):
         rows.append((np.full(r.size, time), r, vel))
     times, r, vel = (np.concatenate(c) for c in zip(*rows))
     out = np.isnan(vel)
-    if out.any():  # the velocity at 2 % outside the edge: from the exact field at that material point
+    if (
+        out.any()
+    ):  # the velocity at 2 % outside the edge: from the exact field at that material point
         for k in np.flatnonzero(out):
             lo, hi = 1.0, 1.1
             for _ in range(60):  # bisect the reference radius whose current position is r[k]
                 mid = 0.5 * (lo + hi)
                 u, _ = we.profile(lam, SIGMA, r_inf, np.array([mid]), np.array([times[k] / T]))
                 lo, hi = (mid, hi) if R0 * (mid + u[0, 0]) < r[k] else (lo, mid)
-            vel[k] = R0 / T * we.profile(lam, SIGMA, r_inf, np.array([lo]), np.array([times[k] / T]))[1][0, 0]
+            vel[k] = (
+                R0
+                / T
+                * we.profile(lam, SIGMA, r_inf, np.array([lo]), np.array([times[k] / T]))[1][0, 0]
+            )
     return t, radius, (times, r, vel)
 
 

@@ -17,13 +17,15 @@ import time
 import numpy as np
 
 from bench.fit_designs import clean, draw, truth
-from wound_opening.fitting import _uncertainties, fit
-from wound_opening.local import local_fit
-from wound_opening.objective import Objective, to_z
+from wound_opening.fitting.local import local_fit
+from wound_opening.fitting.objective import Objective, to_z
+from wound_opening.fitting.single import fit
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--design", default="early")
     ap.add_argument("--noise", type=float, default=1e-3)
     ap.add_argument("--draws", type=int, default=80)
@@ -34,14 +36,19 @@ def main() -> None:
         radius, profile = draw(args.design, 0.0, args.noise, 5000 + k, data)
         result = fit(radius, profile, outer_radius_um=100.0, intervals=False)
         obj = Objective(radius, profile, 100.0)
-        _uncertainties(obj, radius, profile)
-        chi2_0 = min(local_fit(obj, z0, fixed=2, value=0.0)[1] for z0 in (z_true, to_z(result.theta)))
+        chi2_0 = min(
+            local_fit(obj, z0, fixed=2, value=0.0)[1] for z0 in (z_true, to_z(result.theta))
+        )
         deltas.append(chi2_0 - result.chi2)
         at_zero += result.theta[2] < 1e-6
     deltas = np.array(deltas)
-    print(f"{args.design}, noise {args.noise:g}, {args.draws} draws: delta chi^2(lambda = 0) > 3.84 in "
-          f"{int(np.sum(deltas > 3.84))} ({np.mean(deltas > 3.84):.1%}), lambda estimated 0 in {at_zero}; "
-          f"{time.process_time() - start:.0f} s CPU")
+    print(
+        f"{args.design}, noise {args.noise:g}, {args.draws} draws: delta chi^2(lambda = 0) > 3.84 "
+        f"in "
+        f"{int(np.sum(deltas > 3.84))} ({np.mean(deltas > 3.84):.1%}), lambda estimated 0 in "
+        f"{at_zero}; "
+        f"{time.process_time() - start:.0f} s CPU"
+    )
 
 
 if __name__ == "__main__":

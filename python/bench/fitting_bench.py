@@ -13,7 +13,8 @@ one run. Writes OUT/benchmarks_fitting.csv and prints a markdown table.
     fit_fmpy_scipy_radii  fmpy + scipy.optimize.least_squares on the same 40 radii (no intervals)
     sweep_1e5_grid      1e5 rows on one process: 100 lambda x 100 sigma x 10 times
     sweep_1e5_pairs     1e5 rows on one process: 10^4 lambda (distinct solves) x 10 times
-    dask_1_worker, dask_2_workers   a 4e5-pair sweep on a LocalCluster of 1 and 2 single-thread workers
+    dask_1_worker, dask_2_workers   a 4e5-pair sweep on a LocalCluster of 1 and 2 single-thread
+    workers
 
 Medians of wall-clock times (time.perf_counter) over repeats, of CPU times (time.process_time)
 for the fits; run on an otherwise idle machine.
@@ -65,8 +66,12 @@ def fmpy_runner(fmu: str):
     vr = {v.name: v.valueReference for v in md.modelVariables}
 
     def run(values, times, outputs):
-        s = FMU2Slave(guid=md.guid, unzipDirectory=unzip, modelIdentifier=md.coSimulation.modelIdentifier,
-                      instanceName="bench")
+        s = FMU2Slave(
+            guid=md.guid,
+            unzipDirectory=unzip,
+            modelIdentifier=md.coSimulation.modelIdentifier,
+            instanceName="bench",
+        )
         s.instantiate()
         s.setupExperiment(startTime=0.0)
         s.setReal([vr[n] for n in ("lambda", "sigma", "R_inf", "R0", "T")], values)
@@ -90,12 +95,24 @@ def fmpy_paths(fmu: str):
     run = fmpy_runner(fmu)
 
     def instance(k):
-        return run([0.5 + 1e-4 * k, 0.5, OUTER / R0, R0, T], TIMES, ["wound_radius", "edge_velocity"])
+        return run(
+            [0.5 + 1e-4 * k, 0.5, OUTER / R0, R0, T], TIMES, ["wound_radius", "edge_velocity"]
+        )
 
     def simulate(k):
-        return simulate_fmu(fmu, start_values={"lambda": 0.5 + 1e-4 * k, "sigma": 0.5, "R_inf": OUTER / R0,
-                                               "R0": R0, "T": T},
-                            stop_time=60.0, output_interval=1.5, output=["wound_radius", "edge_velocity"])
+        return simulate_fmu(
+            fmu,
+            start_values={
+                "lambda": 0.5 + 1e-4 * k,
+                "sigma": 0.5,
+                "R_inf": OUTER / R0,
+                "R0": R0,
+                "T": T,
+            },
+            stop_time=60.0,
+            output_interval=1.5,
+            output=["wound_radius", "edge_velocity"],
+        )
 
     return instance, simulate
 
@@ -117,7 +134,9 @@ def fmpy_fit(fmu: str, radius, outer: float):
     def residuals(z):
         R0_, sigma, lam, T_ = np.exp(z[0]), z[1], z[2], np.exp(z[3])
         runs[0] += 1
-        return (np.array(run([lam, sigma, outer / R0_, R0_, T_], times, ["wound_radius"]))[:, 0] - data) / sd
+        return (
+            np.array(run([lam, sigma, outer / R0_, R0_, T_], times, ["wound_radius"]))[:, 0] - data
+        ) / sd
 
     z0 = np.array([np.log(0.9 * data[0]), 0.3, 1.0, np.log(5.0)])
     lower = [np.log(0.01 * data.min()), -np.inf, 0.0, np.log(1e-3)]
@@ -135,23 +154,42 @@ def fit_rows(record, fmu: str | None = None) -> None:
     cpu = time.process_time
     rng = np.random.default_rng(5)
     clean = R0 * we.edge(0.5, 0.5, OUTER / R0, TIMES / T)[0]
-    draws = [wo.RadiusSeries(TIMES, clean + 0.05 * rng.standard_normal(TIMES.size)) for _ in range(20)]
-    record("fit_4_parameters", median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER, intervals=False), 10, cpu),
-           "CPU: 40 radii, 0.05 um noise (~2 % of the opening, estimated), grid + 4 local starts")
-    record("fit_with_intervals", median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER), 5, cpu),
-           "CPU: the same with the 4 profile likelihoods and 3 of derived values")
-    from bench.fit_designs import clean as design_data, draw
+    draws = [
+        wo.RadiusSeries(TIMES, clean + 0.05 * rng.standard_normal(TIMES.size)) for _ in range(20)
+    ]
+    record(
+        "fit_4_parameters",
+        median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER, intervals=False), 10, cpu),
+        "CPU: 40 radii, 0.05 um noise (~2 % of the opening, estimated), grid + 4 local starts",
+    )
+    record(
+        "fit_with_intervals",
+        median_time(lambda k: wo.fit(draws[k], outer_radius_um=OUTER), 5, cpu),
+        "CPU: the same with the 4 profile likelihoods and 3 of derived values",
+    )
+    from bench.fit_designs import clean as design_data
+    from bench.fit_designs import draw
 
     piv = design_data("piv", 0.5)
     piv_draws = [draw("piv", 0.5, 1e-2, 50 + k, piv) for k in range(10)]
     what = "CPU: 40 radii + 24 PIV vectors (edge ones included), noise 1 % given"
-    record("fit_radius_piv", median_time(lambda k: wo.fit(*piv_draws[k], outer_radius_um=OUTER, intervals=False),
-                                         10, cpu), what + ", no intervals")
-    record("fit_radius_piv_4_intervals",
-           median_time(lambda k: wo.fit(*piv_draws[k], outer_radius_um=OUTER, derived=False), 10, cpu),
-           what + ", the 4 parameter profiles")
-    record("fit_radius_piv_intervals", median_time(lambda k: wo.fit(*piv_draws[k], outer_radius_um=OUTER), 10, cpu),
-           what + ", the 4 parameter profiles and the 3 derived ones")
+    record(
+        "fit_radius_piv",
+        median_time(
+            lambda k: wo.fit(*piv_draws[k], outer_radius_um=OUTER, intervals=False), 10, cpu
+        ),
+        what + ", no intervals",
+    )
+    record(
+        "fit_radius_piv_4_intervals",
+        median_time(lambda k: wo.fit(*piv_draws[k], outer_radius_um=OUTER, derived=False), 10, cpu),
+        what + ", the 4 parameter profiles",
+    )
+    record(
+        "fit_radius_piv_intervals",
+        median_time(lambda k: wo.fit(*piv_draws[k], outer_radius_um=OUTER), 10, cpu),
+        what + ", the 4 parameter profiles and the 3 derived ones",
+    )
     if fmu is None:
         return
     theta = {}
@@ -161,19 +199,29 @@ def fit_rows(record, fmu: str | None = None) -> None:
 
     seconds = median_time(peer, 5, cpu)
     chi2_peer = statistics.median(t[1] for t in theta.values())
-    chi2_own = statistics.median(wo.fit(piv_draws[k][0], outer_radius_um=OUTER, intervals=False).chi2 for k in theta)
-    record("fit_fmpy_scipy_radii", seconds,
-           f"CPU: fmpy + scipy least_squares on the same 40 radii alone (the FMU has no PIV output), no intervals; "
-           f"median {statistics.median(t[2] for t in theta.values())} FMU runs, chi^2 {chi2_peer:.4g} "
-           f"(package's radius-only fit: {chi2_own:.4g})")
+    chi2_own = statistics.median(
+        wo.fit(piv_draws[k][0], outer_radius_um=OUTER, intervals=False).chi2 for k in theta
+    )
+    record(
+        "fit_fmpy_scipy_radii",
+        seconds,
+        f"CPU: fmpy + scipy least_squares on the same 40 radii alone (the FMU has no PIV output), "
+        f"no intervals; "
+        f"median {statistics.median(t[2] for t in theta.values())} FMU runs, chi^2 {chi2_peer:.4g} "
+        f"(package's radius-only fit: {chi2_own:.4g})",
+    )
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--fmu", default=str(ROOT / "target" / "fmu" / "WoundOpening.fmu"))
     ap.add_argument("--out", default=str(ROOT / "docs"))
-    ap.add_argument("--only-fit", action="store_true", help="only the fit rows, printed (nothing written)")
-    ap.add_argument("--fmpy", action="store_true", help="with --only-fit: also the fmpy + SciPy fit")
+    ap.add_argument(
+        "--only-fit", action="store_true", help="only the fit rows, printed (nothing written)"
+    )
+    ap.add_argument(
+        "--fmpy", action="store_true", help="with --only-fit: also the fmpy + SciPy fit"
+    )
     args = ap.parse_args()
     rows = []
 
@@ -183,12 +231,29 @@ def main() -> None:
 
     if args.only_fit:
         return fit_rows(record, args.fmu if args.fmpy else None)
-    wo.simulate(TIMES, lam=0.5, sigma=0.5, R0_um=R0, T_s=T, outer_radius_um=OUTER)  # basis of R_inf = 10 cached
-    record("curve_package", median_time(lambda k: wo.simulate(TIMES, lam=0.5 + 1e-6 * k, sigma=0.5 + 1e-6 * k, R0_um=R0,
-                                                             T_s=T + 1e-6 * k, outer_radius_um=OUTER), 2000),
-           "40 times, new (lambda, sigma, T) each call")
-    record("curve_native", median_time(lambda k: _native.series(0.5 + 1e-6 * k, 0.5, 10.0, TIMES / T), 2000),
-           "wo_series through ctypes")
+    wo.simulate(
+        TIMES, lam=0.5, sigma=0.5, R0_um=R0, T_s=T, outer_radius_um=OUTER
+    )  # basis of R_inf = 10 cached
+    record(
+        "curve_package",
+        median_time(
+            lambda k: wo.simulate(
+                TIMES,
+                lam=0.5 + 1e-6 * k,
+                sigma=0.5 + 1e-6 * k,
+                R0_um=R0,
+                T_s=T + 1e-6 * k,
+                outer_radius_um=OUTER,
+            ),
+            2000,
+        ),
+        "40 times, new (lambda, sigma, T) each call",
+    )
+    record(
+        "curve_native",
+        median_time(lambda k: _native.series(0.5 + 1e-6 * k, 0.5, 10.0, TIMES / T), 2000),
+        "wo_series through ctypes",
+    )
     instance, simulate = fmpy_paths(args.fmu)
     record("curve_fmpy_instance", median_time(instance, 200), "FMU2Slave reused unzip, 40 doStep")
     record("curve_fmpy_simulate", median_time(simulate, 20), "fmpy.simulate_fmu, 40 output points")
@@ -197,22 +262,42 @@ def main() -> None:
 
     times10 = np.array([0.0, 0.1, 0.3, 1, 3, 10, 30, 100, 300, 1000])
     grid = {"lambda": np.linspace(0, 10, 100), "sigma": np.linspace(0.1, 2, 100), "R_inf": [10.0]}
-    record("sweep_1e5_grid", median_time(lambda k: wo.sweep(grid, times=times10, processes=1, progress=False), 3),
-           "100 x 100 x 10 times: 100 solves")
+    record(
+        "sweep_1e5_grid",
+        median_time(lambda k: wo.sweep(grid, times=times10, processes=1, progress=False), 3),
+        "100 x 100 x 10 times: 100 solves",
+    )
     pairs = {"lambda": np.linspace(0, 10, 10_000), "sigma": [1.0], "R_inf": [10.0]}
-    record("sweep_1e5_pairs", median_time(lambda k: wo.sweep(pairs, times=times10, processes=1, progress=False), 3),
-           "10^4 lambda x 10 times: 10^4 solves")
+    record(
+        "sweep_1e5_pairs",
+        median_time(lambda k: wo.sweep(pairs, times=times10, processes=1, progress=False), 3),
+        "10^4 lambda x 10 times: 10^4 solves",
+    )
 
     from distributed import Client, LocalCluster
 
     big = {"lambda": np.linspace(0, 10, 400_000), "sigma": [1.0], "R_inf": [10.0]}
     for n in (1, 2):
-        with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
-                Client(cluster) as client:
-            wo.sweep({"lambda": [1.0], "sigma": [1.0], "R_inf": [10.0]}, times=times10, scheduler=client.scheduler.address)
-            seconds = median_time(lambda k: wo.sweep(big, times=times10, scheduler=cluster.scheduler_address,
-                                                      progress=False), 2)
-        record(f"dask_{n}_worker{'s' if n > 1 else ''}", seconds, "4e5 lambda x 10 times (4e6 rows)")
+        with (
+            LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None
+            ) as cluster,
+            Client(cluster) as client,
+        ):
+            wo.sweep(
+                {"lambda": [1.0], "sigma": [1.0], "R_inf": [10.0]},
+                times=times10,
+                scheduler=client.scheduler.address,
+            )
+            seconds = median_time(
+                lambda k: wo.sweep(
+                    big, times=times10, scheduler=cluster.scheduler_address, progress=False
+                ),
+                2,
+            )
+        record(
+            f"dask_{n}_worker{'s' if n > 1 else ''}", seconds, "4e5 lambda x 10 times (4e6 rows)"
+        )
     speedup = rows[-2][1] / rows[-1][1]
     print(f"dask speed-up 1 -> 2 workers: {speedup:.2f}")
 

@@ -38,12 +38,18 @@ class Fmu:
 
     def start(self, lam: float) -> FMU2Slave:
         """A new instance of the scenario's case, initialized at t = 0."""
-        slave = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
-                          modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName="bench")
+        slave = FMU2Slave(
+            guid=self.md.guid,
+            unzipDirectory=self.dir,
+            modelIdentifier=self.md.coSimulation.modelIdentifier,
+            instanceName="bench",
+        )
         slave.instantiate()
         slave.setupExperiment(startTime=0.0, stopTime=common.T_END)
-        slave.setReal([self.vr["lambda"], self.vr["sigma"], self.vr["R_inf"], self.vr["edge_stress"]],
-                      [lam, common.SIGMA, common.R_INF, 0.0])
+        slave.setReal(
+            [self.vr["lambda"], self.vr["sigma"], self.vr["R_inf"], self.vr["edge_stress"]],
+            [lam, common.SIGMA, common.R_INF, 0.0],
+        )
         slave.enterInitializationMode()
         slave.exitInitializationMode()
         return slave
@@ -90,10 +96,15 @@ def measure(fmu_path: Path, repeats: int = 10, log=print) -> list[tuple]:
         cpu, radius = common.best_cpu(lambda: fmu.scenario(lam), repeats)
         err = common.error(lam, radius)
         step, get = fmu.per_call(lam, repeats)
-        rows += [("fmpy_scenario", label, cpu, err), ("fmpy_doStep", label, step, ""),
-                 ("fmpy_getReal", label, get, "")]
-        log(f"fmpy lambda={lam:<4g} scenario {cpu * 1e3:.2f} ms CPU (error {err:.2e}), "
-            f"doStep {step * 1e6:.2f} us, getReal {get * 1e6:.2f} us")
+        rows += [
+            ("fmpy_scenario", label, cpu, err),
+            ("fmpy_doStep", label, step, ""),
+            ("fmpy_getReal", label, get, ""),
+        ]
+        log(
+            f"fmpy lambda={lam:<4g} scenario {cpu * 1e3:.2f} ms CPU (error {err:.2e}), "
+            f"doStep {step * 1e6:.2f} us, getReal {get * 1e6:.2f} us"
+        )
     return rows
 
 

@@ -1,4 +1,5 @@
-"""Model Exchange accuracy for a given integrator tolerance, over sigma from 2e-5 (above the small-sigma floor at 1e-10, docs/model.md) to 10.
+"""Model Exchange accuracy for a given integrator tolerance, over sigma from 2e-5 (above the
+small-sigma floor at 1e-10, docs/model.md) to 10.
 
 The FMI 2.0 Model Exchange interface of WoundOpening.fmu integrated by three outside
 integrators, each with relative tolerance `rtol` and absolute tolerance `rtol x nominal`
@@ -21,12 +22,12 @@ from ctypes import POINTER, c_double
 from pathlib import Path
 
 import numpy as np
+import wound_exact
 from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi2 import FMU2Model
 from scipy.integrate import solve_ivp
 
 from bench import common  # noqa: F401  (puts python/ on sys.path for wound_exact)
-import wound_exact
 
 R_INF, T_END, DT = 10.0, 10.0, 0.01
 SIGMAS = (2e-5, 1e-4, 1e-2, 1.0, 10.0)
@@ -42,9 +43,16 @@ def relative_error(lam: float, sigma: float, t: np.ndarray, radius: np.ndarray) 
 
 
 def cvode(path: Path, lam: float, sigma: float, rtol: float) -> float:
-    r = simulate_fmu(str(path), fmi_type="ModelExchange", solver="CVode", relative_tolerance=rtol,
-                     start_values={"lambda": lam, "sigma": sigma, "R_inf": R_INF}, stop_time=T_END,
-                     output_interval=DT, output=["wound_radius"])
+    r = simulate_fmu(
+        str(path),
+        fmi_type="ModelExchange",
+        solver="CVode",
+        relative_tolerance=rtol,
+        start_values={"lambda": lam, "sigma": sigma, "R_inf": R_INF},
+        stop_time=T_END,
+        output_interval=DT,
+        output=["wound_radius"],
+    )
     keep = r["time"] >= DT - 1e-12
     return relative_error(lam, sigma, r["time"][keep], r["wound_radius"][keep])
 
@@ -57,11 +65,17 @@ class Model:
         vr = {v.name: v.valueReference for v in md.modelVariables}
         self.nx = md.numberOfContinuousStates
         self.radius_vr = [vr["wound_radius"]]
-        self.fmu = FMU2Model(guid=md.guid, unzipDirectory=unzipped,
-                             modelIdentifier=md.modelExchange.modelIdentifier, instanceName="me")
+        self.fmu = FMU2Model(
+            guid=md.guid,
+            unzipDirectory=unzipped,
+            modelIdentifier=md.modelExchange.modelIdentifier,
+            instanceName="me",
+        )
         self.fmu.instantiate()
         self.fmu.setupExperiment(startTime=0.0)
-        self.fmu.setReal([vr["lambda"], vr["sigma"], vr["R_inf"], vr["edge_stress"]], [lam, sigma, R_INF, 0.0])
+        self.fmu.setReal(
+            [vr["lambda"], vr["sigma"], vr["R_inf"], vr["edge_stress"]], [lam, sigma, R_INF, 0.0]
+        )
         self.fmu.enterInitializationMode()
         self.fmu.exitInitializationMode()
         self.fmu.newDiscreteStates()
@@ -92,11 +106,21 @@ class Model:
         self.fmu.freeInstance()
 
 
-def scipy_method(path: Path, unzipped: str, method: str, lam: float, sigma: float, rtol: float) -> float:
+def scipy_method(
+    path: Path, unzipped: str, method: str, lam: float, sigma: float, rtol: float
+) -> float:
     m = Model(path, unzipped, lam, sigma)
     try:
-        sol = solve_ivp(m.rhs, (0.0, T_END), m.x0, method=method, rtol=rtol, atol=rtol * m.nominals,
-                        t_eval=TIMES, jac=lambda t, x: np.diag(jacobian_diagonal(m, t, x)))
+        sol = solve_ivp(
+            m.rhs,
+            (0.0, T_END),
+            m.x0,
+            method=method,
+            rtol=rtol,
+            atol=rtol * m.nominals,
+            t_eval=TIMES,
+            jac=lambda t, x: np.diag(jacobian_diagonal(m, t, x)),
+        )
         radius = np.array([m.radius(t, x) for t, x in zip(sol.t, sol.y.T)])
     finally:
         m.close()
@@ -119,7 +143,9 @@ def main() -> None:
     parser.add_argument("--sigmas", type=float, nargs="*", default=SIGMAS)
     args = parser.parse_args()
     unzipped = extract(str(args.fmu))
-    print("| rtol | integrator | lambda | " + " | ".join(f"sigma = {s:g}" for s in args.sigmas) + " |")
+    print(
+        "| rtol | integrator | lambda | " + " | ".join(f"sigma = {s:g}" for s in args.sigmas) + " |"
+    )
     print("|---|---|---|" + "---|" * len(args.sigmas))
     for rtol in args.rtols:
         for name in ("CVode", "BDF", "Radau"):
@@ -130,7 +156,12 @@ def main() -> None:
                         errs.append(cvode(args.fmu, lam, sigma, rtol))
                     else:
                         errs.append(scipy_method(args.fmu, unzipped, name, lam, sigma, rtol))
-                print(f"| {rtol:g} | {name} | {lam:g} | " + " | ".join(f"{e:.1e}" for e in errs) + " |", flush=True)
+                print(
+                    f"| {rtol:g} | {name} | {lam:g} | "
+                    + " | ".join(f"{e:.1e}" for e in errs)
+                    + " |",
+                    flush=True,
+                )
 
 
 if __name__ == "__main__":

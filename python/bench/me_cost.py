@@ -22,14 +22,14 @@ import argparse
 import time
 from pathlib import Path
 
+import exact_input
 import numpy as np
+import wound_exact
 from fmpy import extract, read_model_description, simulate_fmu
 from scipy.integrate import solve_ivp
 
 from bench import common  # noqa: F401  (puts python/ on sys.path)
 from bench.me_accuracy import Model
-import exact_input
-import wound_exact
 
 SIGMA, R_INF = 1.0, 10.0
 LAMBDAS = (0.0, 0.1, 1.0, 10.0)
@@ -49,8 +49,16 @@ def fmpy_run(path: Path, lam: float, **options):
     def count(*args):
         calls[0] += "GetDerivatives" in args[-1] or "GetContinuousStateDerivatives" in args[-1]
 
-    run = lambda **extra: simulate_fmu(str(path), fmi_type="ModelExchange", start_values={"lambda": lam},  # noqa: E731
-                                       output=["wound_radius"], **options, **extra)
+    def run(**extra):
+        return simulate_fmu(
+            str(path),
+            fmi_type="ModelExchange",
+            start_values={"lambda": lam},
+            output=["wound_radius"],
+            **options,
+            **extra,
+        )
+
     try:
         run(fmi_call_logger=lambda msg: count(msg))
         start = time.perf_counter()
@@ -58,11 +66,17 @@ def fmpy_run(path: Path, lam: float, **options):
         seconds = time.perf_counter() - start
     except Exception as e:  # noqa: BLE001  (the integrator's failure is the result)
         return calls[0], None, str(e).split(": ")[-1][:60]
-    return calls[0], seconds, error(r["time"], r["wound_radius"], lambda t: wound_exact.edge(lam, SIGMA, R_INF, t)[0])
+    return (
+        calls[0],
+        seconds,
+        error(r["time"], r["wound_radius"], lambda t: wound_exact.edge(lam, SIGMA, R_INF, t)[0]),
+    )
 
 
 def varying(path: Path, lam: float):
-    edge = {v.name: v.valueReference for v in read_model_description(str(path)).modelVariables}["edge_stress"]
+    edge = {v.name: v.valueReference for v in read_model_description(str(path)).modelVariables}[
+        "edge_stress"
+    ]
     m = Model(path, extract(str(path)), lam, SIGMA)
     calls = [0]
 
@@ -73,8 +87,15 @@ def varying(path: Path, lam: float):
 
     try:
         start = time.perf_counter()
-        sol = solve_ivp(rhs, (0.0, 10.0), m.x0, method="BDF", rtol=1e-8, atol=1e-8 * m.nominals,
-                        t_eval=np.arange(1, 1001) * 0.01)
+        sol = solve_ivp(
+            rhs,
+            (0.0, 10.0),
+            m.x0,
+            method="BDF",
+            rtol=1e-8,
+            atol=1e-8 * m.nominals,
+            t_eval=np.arange(1, 1001) * 0.01,
+        )
         seconds = time.perf_counter() - start
         radius = []
         for t, x in zip(sol.t, sol.y.T):
@@ -82,7 +103,11 @@ def varying(path: Path, lam: float):
             radius.append(m.radius(t, x))
     finally:
         m.close()
-    return calls[0], seconds, error(sol.t, radius, lambda t: exact_input.edge(lam, SIGMA, R_INF, t, AMPLITUDE, TAU))
+    return (
+        calls[0],
+        seconds,
+        error(sol.t, radius, lambda t: exact_input.edge(lam, SIGMA, R_INF, t, AMPLITUDE, TAU)),
+    )
 
 
 def best(run, repeat):
@@ -93,13 +118,17 @@ def best(run, repeat):
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--fmu", type=Path, nargs="+", default=[Path("target/fmu/WoundOpening-me.fmu")])
+    parser.add_argument(
+        "--fmu", type=Path, nargs="+", default=[Path("target/fmu/WoundOpening-me.fmu")]
+    )
     parser.add_argument("--lambdas", type=float, nargs="*", default=LAMBDAS)
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
     cases = {
         "defaults": lambda p, lam: fmpy_run(p, lam, stop_time=1000.0),
-        "accuracy": lambda p, lam: fmpy_run(p, lam, relative_tolerance=1e-10, output_interval=0.01, stop_time=10.0),
+        "accuracy": lambda p, lam: fmpy_run(
+            p, lam, relative_tolerance=1e-10, output_interval=0.01, stop_time=10.0
+        ),
         "varying": varying,
     }
     print("| case | lambda | archive | derivative calls | seconds | radius error |")
@@ -110,7 +139,9 @@ def main() -> None:
                 calls, seconds, err = best(lambda: case(path, lam), args.repeat)
                 shown = f"{err:.1e}" if isinstance(err, float) else f"fails: {err}"
                 secs = f"{seconds:.3f}" if seconds is not None else "-"
-                print(f"| {name} | {lam:g} | {path.name} | {calls} | {secs} | {shown} |", flush=True)
+                print(
+                    f"| {name} | {lam:g} | {path.name} | {calls} | {secs} | {shown} |", flush=True
+                )
 
 
 if __name__ == "__main__":

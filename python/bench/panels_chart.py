@@ -1,4 +1,5 @@
-"""The paper's four panels per lambda (docs/model.md, "The paper's figures") from the Rust `profiles.csv`.
+"""The paper's four panels per lambda (docs/model.md, "The paper's figures") from the Rust
+`profiles.csv`.
 
 Columns lambda,t,r,u,v: u(r, t) and v = u_t(r, t) on an r grid of [1, R_inf] at the
 times the file holds, t = 0 being the state just after the cut (u = sigma r / 6, v the
@@ -67,8 +68,12 @@ def plot_lambda(lam: str, rows: list[dict], path) -> None:
     if has_final:
         a.plot(p.r, p.u[final], "k--", label="t = inf (relaxed)", zorder=3)
     a.set(xlabel="r (R0)", ylabel="u (R0)", title="a) displacement u(r, t)")
-    b.set(xlabel="r (R0)", ylabel="v = du/dt (R0/T)", yscale="log",
-          title=f"b) velocity v(r, t), log scale (down to 1e-{FLOOR_DECADES} of its largest value)")
+    b.set(
+        xlabel="r (R0)",
+        ylabel="v = du/dt (R0/T)",
+        yscale="log",
+        title=f"b) velocity v(r, t), log scale (down to 1e-{FLOOR_DECADES} of its largest value)",
+    )
     b.set_ylim(floor, top * 2)
 
     times = p.t[p.live]
@@ -77,19 +82,33 @@ def plot_lambda(lam: str, rows: list[dict], path) -> None:
         j = int(np.abs(p.r - radius).argmin())
         u, v = p.u[p.live, j], p.v[p.live, j]
         if has_zero and has_final:
-            c.plot(times, (u - p.u[zero, j]) / (p.u[final, j] - p.u[zero, j]), color=colour,
-                   label=f"r = {p.r[j]:g}")
+            c.plot(
+                times,
+                (u - p.u[zero, j]) / (p.u[final, j] - p.u[zero, j]),
+                color=colour,
+                label=f"r = {p.r[j]:g}",
+            )
         vmax = np.nanmax(np.r_[v, p.v[zero, j] if has_zero else -np.inf])
         d.plot(times, v / vmax, color=colour, label=f"r = {p.r[j]:g}")
-    c.set(xscale="log", xlabel="t (T)", ylabel="(u - u_i) / (u_f - u_i)",
-          title="c) normalised displacement")
-    d.set(xscale="log", xlabel="t (T)", ylabel="v / v_max",
-          title="d) normalised velocity (v_max at each r)")
+    c.set(
+        xscale="log",
+        xlabel="t (T)",
+        ylabel="(u - u_i) / (u_f - u_i)",
+        title="c) normalised displacement",
+    )
+    d.set(
+        xscale="log",
+        xlabel="t (T)",
+        ylabel="v / v_max",
+        title="d) normalised velocity (v_max at each r)",
+    )
     for ax in (a, b, c, d):
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle(f"Tissue deformation after the cut, lambda = {lam} (R_inf = 10, sigma = 1); "
-                 "time in T = zeta R0^2 / (4 G)")
+    fig.suptitle(
+        f"Tissue deformation after the cut, lambda = {lam} (R_inf = 10, sigma = 1); "
+        "time in T = zeta R0^2 / (4 G)"
+    )
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

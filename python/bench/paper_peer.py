@@ -7,7 +7,8 @@ grid r_i = 1 + (i - 1) dr, i = 1 .. N, dr = (R_inf - 1)/(N - 1); t_n = n dt.
 ```text
 interior, i = 2 .. N-1:
     (-I + (lambda^2 + 2 dt) D2) u^{n+1} = (-I + lambda^2 D2) u^{n-1}
-    D2_{i,i-1} = 1/dr^2 - 1/(2 r_i dr),  D2_{i,i} = -2/dr^2 - 1/r_i^2,  D2_{i,i+1} = 1/dr^2 + 1/(2 r_i dr)
+    D2_{i,i-1} = 1/dr^2 - 1/(2 r_i dr),  D2_{i,i} = -2/dr^2 - 1/r_i^2,  D2_{i,i+1} = 1/dr^2 + 1/(2
+        r_i dr)
 wound edge, i = 1 (sigma_rr = p = 0), first-order one-sided:
     (lambda^2 + 2 dt) D_1 u^{n+1} = lambda^2 D_1 u^{n-1} + 2 dt p
     D_11 = -4/dr + 2/r_1,  D_12 = 4/dr
@@ -45,9 +46,15 @@ def matrices(n: int, lam: float, k: float, p: float = 0.0):
     dr = (common.R_INF - 1.0) / (n - 1)
     r = 1.0 + dr * np.arange(n)
     ri = r[1:-1]
-    d2 = sps.diags([np.r_[1 / dr**2 - 1 / (2 * ri * dr), 0.0],
-                    np.r_[0.0, -2 / dr**2 - 1 / ri**2, 0.0],
-                    np.r_[0.0, 1 / dr**2 + 1 / (2 * ri * dr)]], [-1, 0, 1], format="lil")
+    d2 = sps.diags(
+        [
+            np.r_[1 / dr**2 - 1 / (2 * ri * dr), 0.0],
+            np.r_[0.0, -2 / dr**2 - 1 / ri**2, 0.0],
+            np.r_[0.0, 1 / dr**2 + 1 / (2 * ri * dr)],
+        ],
+        [-1, 0, 1],
+        format="lil",
+    )
     d = sps.lil_matrix((n, n))
     d[0, 0], d[0, 1] = -4 / dr + 2 / r[0], 4 / dr
     d[n - 1, n - 2], d[n - 1, n - 1] = -4 / dr, 4 / dr + 2 / r[-1]
@@ -83,8 +90,16 @@ def sweep(lambdas=common.LAMBDAS, repeats: int = 3, log=print):
     rows = []
     for lam in lambdas:
         for dt in STEPS:
-            rows += common.sweep_sizes("paper_peer", lam, SIZES, f"dt={dt:g}",
-                                       lambda n: solve(lam, n, dt), repeats, SLOW_RUN, log)
+            rows += common.sweep_sizes(
+                "paper_peer",
+                lam,
+                SIZES,
+                f"dt={dt:g}",
+                lambda n: solve(lam, n, dt),
+                repeats,
+                SLOW_RUN,
+                log,
+            )
     return rows
 
 

@@ -49,6 +49,7 @@ SWEEP = {
     "DOP853": ((201, 801, 3201, 12801, 25601), (1e-7, 1e-10), 10.0),
 }
 
+
 def grid(n: int) -> tuple[np.ndarray, float]:
     dr = (common.R_INF - 1.0) / (n - 1)
     return 1.0 + dr * np.arange(n), dr
@@ -84,7 +85,12 @@ def system(n: int, lam: float, p: float = 0.0):
         e[0, 0] = e[n - 1, n - 1] = 0.0
         m = (e.tocsr() - lam**2 * k).tocsc()
         lu = spla.splu(m)
-        return (lambda t, u: lu.solve(k @ u + f)), (lambda: lu.solve(k.toarray())), u0, (lambda y: 1.0 + y[0])
+        return (
+            (lambda t, u: lu.solve(k @ u + f)),
+            (lambda: lu.solve(k.toarray())),
+            u0,
+            (lambda y: 1.0 + y[0]),
+        )
     # lambda = 0: u_0 = (p - d1 u_1 - d2 u_2) / d0 and likewise u_{N-1}; unknowns u_1..u_{N-2}.
     inner = k[1:-1]
     elim = sps.lil_matrix((n, n - 2))
@@ -99,7 +105,9 @@ def system(n: int, lam: float, p: float = 0.0):
     return (lambda t, u: a @ u + g), (lambda: a), u0[1:-1], (lambda y: 1.0 + edge_u(y))
 
 
-def solve(lam: float, n: int, rtol: float, method: str = "BDF", t: np.ndarray | None = None) -> np.ndarray:
+def solve(
+    lam: float, n: int, rtol: float, method: str = "BDF", t: np.ndarray | None = None
+) -> np.ndarray:
     """R at the communication points (whole scenario: operators, factorisation, integration)."""
     t = common.times() if t is None else t
     fun, jacobian, y0, to_radius = system(n, lam)
@@ -129,8 +137,16 @@ def sweep(lambdas=common.LAMBDAS, methods=tuple(SWEEP), repeats: int = 3, log=pr
         sizes, tolerances, slow_run = SWEEP[method]
         for lam in lambdas:
             for rtol in tolerances:
-                rows += common.sweep_sizes(f"scipy_{method}", lam, sizes, f"rtol={rtol:g}",
-                                           lambda n: solve(lam, n, rtol, method), repeats, slow_run, log)
+                rows += common.sweep_sizes(
+                    f"scipy_{method}",
+                    lam,
+                    sizes,
+                    f"rtol={rtol:g}",
+                    lambda n: solve(lam, n, rtol, method),
+                    repeats,
+                    slow_run,
+                    log,
+                )
     return rows
 
 
@@ -152,7 +168,9 @@ def check_convergence(rows: list[tuple], low: float = 1.5) -> None:
     bad = []
     for scheme, lam, setting, n1, n2, order in common.observed_orders(rows):
         if tight.get(scheme) == setting:
-            print(f"{scheme} lambda={lam} {setting}: observed order {order:.2f} from N={n1} to N={n2}")
+            print(
+                f"{scheme} lambda={lam} {setting}: observed order {order:.2f} from N={n1} to N={n2}"
+            )
             bad += [] if order >= low else [(scheme, lam, n1, n2, order)]
     if bad:
         raise SystemExit(f"scipy peer does not converge at second order: {bad}")

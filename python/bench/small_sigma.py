@@ -18,6 +18,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import wound_exact as we  # noqa: E402
+
 from wound_opening import _native  # noqa: E402
 
 LAM, R_INF = 1.0, 10.0
@@ -40,7 +41,10 @@ def main() -> None:
                 continue
             row.append(f"{np.max(np.abs((r - 1.0) - s * ref)) / (s * amplitude):8.1e}")
         print(f"{tol:17.0e} " + " ".join(row))
-    print(f"{'bound 2 eps/sigma':>17} " + " ".join(f"{2 * np.finfo(float).eps / s:8.1e}" for s in SIGMAS))
+    print(
+        f"{'bound 2 eps/sigma':>17} "
+        + " ".join(f"{2 * np.finfo(float).eps / s:8.1e}" for s in SIGMAS)
+    )
 
 
 if __name__ == "__main__":

@@ -48,12 +48,22 @@ def scheme_map(ax, rows: list[dict], limits: list[dict]) -> None:
     for r in rows:
         i, j = lams.index(float(r["lambda"])), int(np.searchsorted(dts, float(r["dt"])))
         grid[i, j] = STATUSES.index(r["status"])
-    ax.pcolormesh(edges(dts), edges(ys), grid, cmap=ListedColormap(COLOURS), vmin=-0.5, vmax=2.5,
-                  edgecolors="white", linewidth=0.3)
+    ax.pcolormesh(
+        edges(dts),
+        edges(ys),
+        grid,
+        cmap=ListedColormap(COLOURS),
+        vmin=-0.5,
+        vmax=2.5,
+        edgecolors="white",
+        linewidth=0.3,
+    )
     ax.set_xscale("log")
     ax.set_yscale("log")
     if zero:
-        ticks = [zero] + [10.0**k for k in range(math.ceil(math.log10(ys[1])), math.floor(math.log10(ys[-1])) + 1)]
+        ticks = [zero] + [
+            10.0**k for k in range(math.ceil(math.log10(ys[1])), math.floor(math.log10(ys[-1])) + 1)
+        ]
         ax.set_yticks(ticks, ["0"] + [f"$10^{{{round(math.log10(t))}}}$" for t in ticks[1:]])
         ax.minorticks_off()
     if limits:
@@ -63,8 +73,13 @@ def scheme_map(ax, rows: list[dict], limits: list[dict]) -> None:
         y = np.where(lam > 0, lam, zero or np.nan)
         order = np.argsort(y)
         ax.plot(dt_max[order], y[order], "k--", lw=1.2, label="theory: dt_max(lambda)")
-        ax.axhline(float(limits[0]["lambda_max_theory"]), color="k", ls=":", lw=1.2,
-                   label="theory: lambda_max")
+        ax.axhline(
+            float(limits[0]["lambda_max_theory"]),
+            color="k",
+            ls=":",
+            lw=1.2,
+            label="theory: lambda_max",
+        )
         ax.legend(fontsize=7, loc="upper right")
     ax.set_xlabel("time step dt (T)")
     ax.set_ylabel("lambda")
@@ -72,7 +87,9 @@ def scheme_map(ax, rows: list[dict], limits: list[dict]) -> None:
 
 def plot_scheme(scheme: str, rows: list[dict], limits: list[dict], path) -> None:
     sizes = sorted({r["points"] for r in rows}, key=int)
-    fig, axes = plt.subplots(1, len(sizes), figsize=(max(5.2 * len(sizes) + 1, 9.0), 4.8), squeeze=False)
+    fig, axes = plt.subplots(
+        1, len(sizes), figsize=(max(5.2 * len(sizes) + 1, 9.0), 4.8), squeeze=False
+    )
     for ax, points in zip(axes[0], sizes):
         mine = [r for r in limits if r["points"] == points]
         scheme_map(ax, [r for r in rows if r["points"] == points], mine)
@@ -93,11 +110,25 @@ def plot_explicit_limits(limits: list[dict], path) -> None:
     sizes = sorted({r["points"] for r in limits}, key=int)
     colours = plt.cm.viridis(np.linspace(0, 0.85, len(sizes)))
     for points, colour in zip(sizes, colours):
-        mine = sorted((r for r in limits if r["points"] == points), key=lambda r: float(r["lambda"]))
+        mine = sorted(
+            (r for r in limits if r["points"] == points), key=lambda r: float(r["lambda"])
+        )
         lam = [float(r["lambda"]) for r in mine]
-        left.plot(lam, [float(r["dt_max_theory"]) for r in mine], "-", color=colour, label=f"N = {points}: theory")
-        left.plot(lam, [float(r["dt_max_measured"]) for r in mine], "o", color=colour, mfc="none",
-                  label=f"N = {points}: measured")
+        left.plot(
+            lam,
+            [float(r["dt_max_theory"]) for r in mine],
+            "-",
+            color=colour,
+            label=f"N = {points}: theory",
+        )
+        left.plot(
+            lam,
+            [float(r["dt_max_measured"]) for r in mine],
+            "o",
+            color=colour,
+            mfc="none",
+            label=f"N = {points}: measured",
+        )
     left.set_yscale("log")
     left.set_xlabel("lambda")
     left.set_ylabel("largest stable dt (T)")
@@ -106,7 +137,9 @@ def plot_explicit_limits(limits: list[dict], path) -> None:
     per_size = [next(r for r in limits if r["points"] == p) for p in sizes]
     n = [int(p) for p in sizes]
     right.loglog(n, [float(r["lambda_max_theory"]) for r in per_size], "k-", label="theory")
-    right.loglog(n, [float(r["lambda_max_measured"]) for r in per_size], "ro", mfc="none", label="measured")
+    right.loglog(
+        n, [float(r["lambda_max_measured"]) for r in per_size], "ro", mfc="none", label="measured"
+    )
     right.set_xlabel("grid points N")
     right.set_ylabel("largest stable lambda (any dt)")
     right.set_title("Explicit scheme: lambda limit against grid size")

@@ -60,32 +60,49 @@ def fmt_s(seconds: float) -> str:
 
 def regime_table(lam: str, rows: list[dict]) -> list[str]:
     ours = [r for r in rows if r["scheme"] == DEFAULT and r["lambda"] == lam]
-    out = ["| method | best error | its CPU time (setting) | default at that error (setting) | speed-up |",
-           "|---|---|---|---|---|"]
+    out = [
+        "| method | best error | its CPU time (setting) | default at that error (setting) | "
+        "speed-up |",
+        "|---|---|---|---|---|",
+    ]
     for scheme in dict.fromkeys(r["scheme"] for r in rows):
         if scheme == DEFAULT:
             continue
         top = best([r for r in rows if r["scheme"] == scheme and r["lambda"] == lam])
         if top is None:
             ran = any(r["scheme"] == scheme and r["lambda"] == lam for r in rows)
-            out.append(f"| {STYLE.get(scheme, (scheme,))[0]} | {'every run blew up' if ran else 'no run'} | | | |")
+            out.append(
+                f"| {STYLE.get(scheme, (scheme,))[0]} | "
+                f"{'every run blew up' if ran else 'no run'} | | | |"
+            )
             continue
         match = cheapest(ours, _num(top, "error"))
         ratio = f"{_num(top, 'cpu_seconds') / _num(match, 'cpu_seconds'):,.0f}x" if match else "n/a"
         where = f"{fmt_s(_num(match, 'cpu_seconds'))} ({match['resolution']})" if match else "n/a"
-        out.append(f"| {STYLE.get(scheme, (scheme,))[0]} | {_num(top, 'error'):.2e} | "
-                   f"{fmt_s(_num(top, 'cpu_seconds'))} ({top['resolution']}) | {where} | {ratio} |")
+        out.append(
+            f"| {STYLE.get(scheme, (scheme,))[0]} | {_num(top, 'error'):.2e} | "
+            f"{fmt_s(_num(top, 'cpu_seconds'))} ({top['resolution']}) | {where} | {ratio} |"
+        )
     return out
 
 
 def targets(rows: list[dict], step_cost: list[dict]) -> list[str]:
-    out = ["| lambda | default tolerance (tol=1e-9): CPU, error | cheapest default run with error <= 1e-9: "
-           "CPU (setting, unknowns, error) | < 1 ms | SciPy peer's best accuracy: run, and how much faster "
-           "the default is there (>= 1000x) |", "|---|---|---|---|---|"]
+    out = [
+        "| lambda | default tolerance (tol=1e-9): CPU, error | cheapest default run with error <= "
+        "1e-9: "
+        "CPU (setting, unknowns, error) | < 1 ms | SciPy peer's best accuracy: run, and how much "
+        "faster "
+        "the default is there (>= 1000x) |",
+        "|---|---|---|---|---|",
+    ]
     for lam in map(common.lam_label, common.LAMBDAS):
         ours = [r for r in rows if r["scheme"] == DEFAULT and r["lambda"] == lam]
         at_tol = next((r for r in ours if r["resolution"] == "tol=1e-9"), None)
-        at_tol = f"{fmt_s(_num(at_tol, 'cpu_seconds'))}, {_num(at_tol, 'error'):.1e}" if at_tol else "no run"
+        at_tol = (
+            f"{fmt_s(_num(at_tol, 'cpu_seconds'))}, {_num(at_tol, 'error'):.1e}"
+            if at_tol
+            else "no run"
+        )
         hit = cheapest(ours, TARGET_ERROR)
         scipy = best([r for r in rows if r["scheme"].startswith("scipy_") and r["lambda"] == lam])
         if hit is None:
@@ -96,24 +113,37 @@ def targets(rows: list[dict], step_cost: list[dict]) -> list[str]:
         if scipy is not None:
             match = cheapest(ours, _num(scipy, "error"))
             ratio = _num(scipy, "cpu_seconds") / _num(match, "cpu_seconds")
-            vs = (f"{scipy['scheme']} {scipy['resolution']}: error {_num(scipy, 'error'):.2e} in "
-                  f"{fmt_s(_num(scipy, 'cpu_seconds'))}; default {fmt_s(_num(match, 'cpu_seconds'))}: "
-                  f"{ratio:,.0f}x {'yes' if ratio >= 1000 else 'NO'}")
-        out.append(f"| {lam} | {at_tol} | {fmt_s(cpu)} ({hit['resolution']}, {hit['unknowns']}, "
-                   f"{_num(hit, 'error'):.1e}) | {'yes' if cpu < 1e-3 else 'NO'} | {vs} |")
+            vs = (
+                f"{scipy['scheme']} {scipy['resolution']}: error {_num(scipy, 'error'):.2e} in "
+                f"{fmt_s(_num(scipy, 'cpu_seconds'))}; default "
+                f"{fmt_s(_num(match, 'cpu_seconds'))}: "
+                f"{ratio:,.0f}x {'yes' if ratio >= 1000 else 'NO'}"
+            )
+        out.append(
+            f"| {lam} | {at_tol} | {fmt_s(cpu)} ({hit['resolution']}, {hit['unknowns']}, "
+            f"{_num(hit, 'error'):.1e}) | {'yes' if cpu < 1e-3 else 'NO'} | {vs} |"
+        )
     per_step = {r["what"]: _num(r, "seconds") for r in step_cost}
     step = per_step.get("modal_doStep_getReal_in_process")
     if step is not None:
-        out += ["", f"Per step in-process (`modal_doStep_getReal_in_process`, step_cost.csv): {fmt_s(step)}: "
-                f"under 1 us: {'yes' if step < 1e-6 else 'NO'}."]
+        out += [
+            "",
+            f"Per step in-process (`modal_doStep_getReal_in_process`, step_cost.csv): "
+            f"{fmt_s(step)}: "
+            f"under 1 us: {'yes' if step < 1e-6 else 'NO'}.",
+        ]
     return out
 
 
 def step_table(step_cost: list[dict], fmpy: list[dict]) -> list[str]:
     out = ["| what | lambda | CPU time |", "|---|---|---|"]
-    out += [f"| {r['what']} (Rust, in-process) | | {fmt_s(_num(r, 'seconds'))} |" for r in step_cost]
-    out += [f"| {r['what']} (Python, fmpy FMU2Slave) | {r['lambda']} | {fmt_s(_num(r, 'seconds'))} |"
-            for r in fmpy]
+    out += [
+        f"| {r['what']} (Rust, in-process) | | {fmt_s(_num(r, 'seconds'))} |" for r in step_cost
+    ]
+    out += [
+        f"| {r['what']} (Python, fmpy FMU2Slave) | {r['lambda']} | {fmt_s(_num(r, 'seconds'))} |"
+        for r in fmpy
+    ]
     return out
 
 
@@ -121,14 +151,20 @@ def fresh_table(fresh: list[dict]) -> list[str]:
     """What a fresh parameter set costs against one step (examples/fresh_cost.rs)."""
     meaning = {
         "step": "`fmi2DoStep` + `fmi2GetReal` of both outputs",
-        "step_without_guard": "the same through the safe `Instance` API (the difference is the C boundary's guard)",
-        "fresh_instance": "`fmi2Instantiate`, a new lambda, initialization, `fmi2GetReal`, `fmi2FreeInstance`",
+        "step_without_guard": "the same through the safe `Instance` API (the difference is the C "
+        "boundary's guard)",
+        "fresh_instance": "`fmi2Instantiate`, a new lambda, initialization, `fmi2GetReal`, "
+        "`fmi2FreeInstance`",
         "reset_new_lambda": "`fmi2Reset`, a new lambda, initialization, `fmi2GetReal`",
-        "fresh_outer_radius": "a new instance at a new R_inf (cache miss: assembly and decomposition, 49 unknowns)",
+        "fresh_outer_radius": "a new instance at a new R_inf (cache miss: assembly and "
+        "decomposition, 49 unknowns)",
     }
     out = ["| what | CPU time | in steps |", "|---|---|---|"]
-    out += [f"| {meaning.get(r['what'], r['what'])} | {fmt_s(_num(r, 'seconds'))} | {_num(r, 'steps'):,.1f} |"
-            for r in fresh]
+    out += [
+        f"| {meaning.get(r['what'], r['what'])} | {fmt_s(_num(r, 'seconds'))} | "
+        f"{_num(r, 'steps'):,.1f} |"
+        for r in fresh
+    ]
     return out
 
 
@@ -137,36 +173,65 @@ def stability_lines(stability: list[dict], limits: list[dict]) -> list[str]:
     for key in dict.fromkeys((r["scheme"], r["points"]) for r in stability):
         mine = [r["status"] for r in stability if (r["scheme"], r["points"]) == key]
         grid = "default mesh" if key[1] == "0" else f"{key[1]} points"
-        out.append(f"| {key[0]} | {grid} | " + " | ".join(str(mine.count(s)) for s in
-                                                            ("bounded", "oscillating", "unbounded")) + " |")
+        out.append(
+            f"| {key[0]} | {grid} | "
+            + " | ".join(str(mine.count(s)) for s in ("bounded", "oscillating", "unbounded"))
+            + " |"
+        )
     if limits:
-        out += ["", "Explicit scheme, measured against theory (relative difference):", "",
-                "| N | lambda | dt_max theory | dt_max measured | diff | lambda_max theory | measured | diff |",
-                "|---|---|---|---|---|---|---|---|"]
+        out += [
+            "",
+            "Explicit scheme, measured against theory (relative difference):",
+            "",
+            "| N | lambda | dt_max theory | dt_max measured | diff | lambda_max theory | measured "
+            "| diff |",
+            "|---|---|---|---|---|---|---|---|",
+        ]
         for r in limits:
             dt_t, dt_m = _num(r, "dt_max_theory"), _num(r, "dt_max_measured")
             l_t, l_m = _num(r, "lambda_max_theory"), _num(r, "lambda_max_measured")
-            out.append(f"| {r['points']} | {_num(r, 'lambda'):.4g} | {dt_t:.4g} | {dt_m:.4g} | "
-                       f"{(dt_m - dt_t) / dt_t:+.1%} | {l_t:.4g} | {l_m:.4g} | {(l_m - l_t) / l_t:+.1%} |")
+            out.append(
+                f"| {r['points']} | {_num(r, 'lambda'):.4g} | {dt_t:.4g} | {dt_m:.4g} | "
+                f"{(dt_m - dt_t) / dt_t:+.1%} | {l_t:.4g} | {l_m:.4g} | {(l_m - l_t) / l_t:+.1%} |"
+            )
     return out
 
 
 def peer_orders(rows: list[dict]) -> list[str]:
     """Observed orders of each peer along its grid sizes, at the setting of its best run."""
     peers = [r for r in rows if r["scheme"].startswith("scipy_") or r["scheme"] == "paper_peer"]
-    as_tuples = [(r["scheme"], r["lambda"], r["resolution"], int(r["unknowns"]), _num(r, "error"),
-                  _num(r, "cpu_seconds")) for r in peers]
+    as_tuples = [
+        (
+            r["scheme"],
+            r["lambda"],
+            r["resolution"],
+            int(r["unknowns"]),
+            _num(r, "error"),
+            _num(r, "cpu_seconds"),
+        )
+        for r in peers
+    ]
     orders = common.observed_orders(as_tuples)
-    out = ["| peer | lambda | setting | N | observed orders between successive N |", "|---|---|---|---|---|"]
+    out = [
+        "| peer | lambda | setting | N | observed orders between successive N |",
+        "|---|---|---|---|---|",
+    ]
     for scheme, lam in dict.fromkeys((r["scheme"], r["lambda"]) for r in peers):
-        finite = [r for r in peers if (r["scheme"], r["lambda"]) == (scheme, lam) and math.isfinite(_num(r, "error"))]
+        finite = [
+            r
+            for r in peers
+            if (r["scheme"], r["lambda"]) == (scheme, lam) and math.isfinite(_num(r, "error"))
+        ]
         if not finite:
             continue
         setting = min(finite, key=lambda r: _num(r, "error"))["resolution"].split(" ", 1)[1]
         mine = [o for o in orders if o[:3] == (scheme, lam, setting)]
         sizes = ", ".join(str(n) for n in [o[3] for o in mine[:1]] + [o[4] for o in mine])
-        out.append(f"| {STYLE.get(scheme, (scheme,))[0]} | {lam} | {setting} | {sizes} | "
-                   + ", ".join(f"{o[5]:.2f}" for o in mine) + " |")
+        out.append(
+            f"| {STYLE.get(scheme, (scheme,))[0]} | {lam} | {setting} | {sizes} | "
+            + ", ".join(f"{o[5]:.2f}" for o in mine)
+            + " |"
+        )
     return out
 
 
@@ -177,27 +242,47 @@ def loading_lines(whole: list[dict]) -> list[str]:
         return []
     from bench.fmpy_whole import PHASES
 
-    lines = ["## Loading the FMU", "",
-             "fmpy's whole co-simulation scenario per archive: parse the model description, extract the "
-             "archive, load the library and instantiate, initialize, 1000 steps of 0.1 at lambda = 1 with "
-             "wound_radius read after each through fmpy's ctypes calls, terminate, free the instance and the "
-             "library and remove the extracted folder (`python -m bench.fmpy_whole target/fmu/WoundOpening.fmu "
-             "--both target/fmu/WoundOpening-me.fmu`). `-both` is one archive declaring both FMI 2.0 "
-             "interfaces (the Model Exchange states and their derivatives included, library deflated); the "
-             "product ships co-simulation and Model Exchange as separate archives so that the co-simulation "
-             "one stays small (Model Exchange: [fmi.md](fmi.md)). Best of the repeats, for the whole and for "
-             "each phase on its own.", "",
-             "| archive | variables | whole scenario | " + " | ".join(PHASES) + " |",
-             "|---" * (3 + len(PHASES)) + "|"]
+    lines = [
+        "## Loading the FMU",
+        "",
+        "fmpy's whole co-simulation scenario per archive: parse the model description, extract the "
+        "archive, load the library and instantiate, initialize, 1000 steps of 0.1 at lambda = 1 "
+        "with "
+        "wound_radius read after each through fmpy's ctypes calls, terminate, free the instance "
+        "and the "
+        "library and remove the extracted folder (`python -m bench.fmpy_whole "
+        "target/fmu/WoundOpening.fmu "
+        "--both target/fmu/WoundOpening-me.fmu`). `-both` is one archive declaring both FMI 2.0 "
+        "interfaces (the Model Exchange states and their derivatives included, library deflated); "
+        "the "
+        "product ships co-simulation and Model Exchange as separate archives so that the "
+        "co-simulation "
+        "one stays small (Model Exchange: [fmi.md](fmi.md)). Best of the repeats, for the whole "
+        "and for "
+        "each phase on its own.",
+        "",
+        "| archive | variables | whole scenario | " + " | ".join(PHASES) + " |",
+        "|---" * (3 + len(PHASES)) + "|",
+    ]
     for r in whole:
         phases = " | ".join(fmt_s(float(r[f"{p}_seconds"])) for p in PHASES)
-        lines.append(f"| {r['archive']} | {r['variables']} | {fmt_s(float(r['seconds']))} | {phases} |")
+        lines.append(
+            f"| {r['archive']} | {r['variables']} | {fmt_s(float(r['seconds']))} | {phases} |"
+        )
     return lines + [""]
 
 
-def write(path: Path, rows: list[dict], step_cost: list[dict], fmpy: list[dict],
-          stability: list[dict], limits: list[dict], charts: list[str], fresh: list[dict],
-          whole: list[dict] = ()) -> None:
+def write(
+    path: Path,
+    rows: list[dict],
+    step_cost: list[dict],
+    fmpy: list[dict],
+    stability: list[dict],
+    limits: list[dict],
+    charts: list[str],
+    fresh: list[dict],
+    whole: list[dict] = (),
+) -> None:
     today = datetime.date.today().isoformat()
     lines = [
         "# Benchmarks: accuracy and speed, methods side by side",
@@ -206,18 +291,26 @@ def write(path: Path, rows: list[dict], step_cost: list[dict], fmpy: list[dict],
         "do not edit by hand: run the command again.",
         "",
         "Scenario: R_inf = 10, sigma = 1, edge stress 0, t in [0, 100] in 1000 communication "
-        "steps of 0.1, lambda = 0.1 (friction), 1, 10 (viscous). Error: max over the 1000 communication "
-        "points of |R - R_exact| / (R_final - R1), R_exact from `python/wound_exact.py` (~1e-14). CPU "
-        "time: the whole scenario including set-up (the basis cache emptied before each repeat), best of several repeats; Rust in-process "
-        "(`examples/work_precision.rs`), the peers with `time.process_time` (single-threaded BLAS).",
+        "steps of 0.1, lambda = 0.1 (friction), 1, 10 (viscous). Error: max over the 1000 "
+        "communication "
+        "points of |R - R_exact| / (R_final - R1), R_exact from `python/wound_exact.py` (~1e-14). "
+        "CPU "
+        "time: the whole scenario including set-up (the basis cache emptied before each repeat), "
+        "best of several repeats; Rust in-process "
+        "(`examples/work_precision.rs`), the peers with `time.process_time` "
+        "(single-threaded BLAS).",
         "",
-        "The Python package's speed (a whole R(t) curve, a fit, a sweep, Dask) is measured side by side "
+        "The Python package's speed (a whole R(t) curve, a fit, a sweep, Dask) is measured side "
+        "by side "
         "with the fmpy path in [benchmarks_fitting.md](benchmarks_fitting.md) "
         "(`python python/bench/fitting_bench.py --out docs`).",
         "",
-        "Peers, written the way a researcher would: `python/bench/scipy_peer.py` (second-order finite "
-        "differences on a uniform grid, `solve_ivp` with BDF, LSODA or DOP853, swept over grid size and "
-        "rtol) and `python/bench/paper_peer.py` (the paper's appendix scheme in NumPy/SciPy, swept over "
+        "Peers, written the way a researcher would: `python/bench/scipy_peer.py` (second-order "
+        "finite "
+        "differences on a uniform grid, `solve_ivp` with BDF, LSODA or DOP853, swept over grid "
+        "size and "
+        "rtol) and `python/bench/paper_peer.py` (the paper's appendix scheme in NumPy/SciPy, "
+        "swept over "
         "grid size and dt).",
         "",
         "## Targets",
@@ -226,23 +319,46 @@ def write(path: Path, rows: list[dict], step_cost: list[dict], fmpy: list[dict],
         "",
         "## Per regime: each method's best run against the default method at the same accuracy",
         "",
-        "Best run: the cheapest run within 10 % of the lowest error the method reached. Default at that "
-        "error: the cheapest `modal` run with an error no larger. Speed-up: the ratio of the two CPU times.",
+        "Best run: the cheapest run within 10 % of the lowest error the method reached. Default "
+        "at that "
+        "error: the cheapest `modal` run with an error no larger. Speed-up: the ratio of the two "
+        "CPU times.",
         "",
     ]
     for lam in map(common.lam_label, common.LAMBDAS):
         lines += [f"### lambda = {lam}", "", *regime_table(lam, rows), ""]
-    lines += ["## The peers converge to the exact solution",
-              "", "Order of the error against the grid spacing, at the setting (rtol or dt) of each "
-              "peer's most accurate run: 2 expected for the SciPy peer (second-order differences), "
-              "1 for the paper's scheme (first-order edge rows); it falls where the time error or "
-              "round-off takes over.", "", *peer_orders(rows), "",
-              "## Cost per step", "", *step_table(step_cost, fmpy), "",
-              "## A fresh parameter set against one step", "",
-              "Through the exported FMI functions, side by side in one run (`examples/fresh_cost.rs`, R_inf = 10, "
-              "tolerance 1e-10). The modal basis does not depend on lambda and is cached per mesh and outer "
-              "radius (`src/solver/basis.rs`), so only a new outer radius pays a decomposition.", "",
-              *fresh_table(fresh), "", *loading_lines(list(whole)),
-              "## Stability map (cells per status)", "", *stability_lines(stability, limits), "",
-              "## Charts", "", *charts, ""]
+    lines += [
+        "## The peers converge to the exact solution",
+        "",
+        "Order of the error against the grid spacing, at the setting (rtol or dt) of each "
+        "peer's most accurate run: 2 expected for the SciPy peer (second-order differences), "
+        "1 for the paper's scheme (first-order edge rows); it falls where the time error or "
+        "round-off takes over.",
+        "",
+        *peer_orders(rows),
+        "",
+        "## Cost per step",
+        "",
+        *step_table(step_cost, fmpy),
+        "",
+        "## A fresh parameter set against one step",
+        "",
+        "Through the exported FMI functions, side by side in one run (`examples/fresh_cost.rs`, "
+        "R_inf = 10, "
+        "tolerance 1e-10). The modal basis does not depend on lambda and is cached per mesh and "
+        "outer "
+        "radius (`src/solver/basis.rs`), so only a new outer radius pays a decomposition.",
+        "",
+        *fresh_table(fresh),
+        "",
+        *loading_lines(list(whole)),
+        "## Stability map (cells per status)",
+        "",
+        *stability_lines(stability, limits),
+        "",
+        "## Charts",
+        "",
+        *charts,
+        "",
+    ]
     path.write_text("\n".join(lines))

@@ -11,22 +11,28 @@ from __future__ import annotations
 import argparse
 
 from bench.tissue_designs import TRUTH, draw
-from wound_opening.fitting import fit
-from wound_opening.result import _fmt
-from wound_opening.tissue import fit_wounds
+from wound_opening.fitting.single import fit
+from wound_opening.fitting.wounds import fit_wounds
+from wound_opening.results.result import fmt
 
 #: The single fit's names of the shared quantities.
-ALONE = {"viscous_length_um": "viscous_length_um", "tension_over_G": "tension_over_G",
-         "zeta_over_G_s_per_um2": "zeta_over_G_s_per_um2", "eta_over_G_s": "tau_s"}
+ALONE = {
+    "viscous_length_um": "viscous_length_um",
+    "tension_over_G": "tension_over_G",
+    "zeta_over_G_s_per_um2": "zeta_over_G_s_per_um2",
+    "eta_over_G_s": "tau_s",
+}
 
 
 def cell(ci, identified: bool) -> str:
     lo, hi = ci
-    return f"[{_fmt(lo)}, {_fmt(hi)}]" + ("" if identified else " (not identified)")
+    return f"[{fmt(lo)}, {fmt(hi)}]" + ("" if identified else " (not identified)")
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--noise", type=float, default=0.04, help="relative to each wound's opening")
     ap.add_argument("--seed", type=int, default=1)
     args = ap.parse_args()
@@ -36,14 +42,20 @@ def main() -> None:
         alone = fit(w.radius, w.profile, outer_radius_um=w.outer_radius_um)
         for name, key in ALONE.items():
             ci = alone.derived_ci95.get(key, (None, None))
-            rows[name].append(cell(ci, alone.derived[key] is not None) if alone.converged else "fit failed")
+            rows[name].append(
+                cell(ci, alone.derived[key] is not None) if alone.converged else "fit failed"
+            )
     together = fit_wounds(wounds)
     head = [w.name.replace("R0=", "R0 = ").replace("um", " µm") + " alone" for w in wounds]
     print("| quantity | truth | " + " | ".join(head) + " | the three together |")
     print("|---" * (3 + len(wounds)) + "|")
     for name, truth in TRUTH.items():
         rep = together.shared[name]
-        print(f"| {name} | {truth:g} | " + " | ".join(rows[name]) + f" | {cell(rep.ci95, rep.identifiable)} |")
+        print(
+            f"| {name} | {truth:g} | "
+            + " | ".join(rows[name])
+            + f" | {cell(rep.ci95, rep.identifiable)} |"
+        )
 
 
 if __name__ == "__main__":

@@ -16,13 +16,17 @@ from pathlib import Path
 
 from bench.fit_designs import covers
 from bench.tissue_designs import OUTERS, R0S, TRUTH, clean, draw
-from wound_opening.fitting import fit
-from wound_opening.tissue import fit_wounds
+from wound_opening.fitting.single import fit
+from wound_opening.fitting.wounds import fit_wounds
 
 NOISES = (1e-3, 1e-2, 4e-2)
 #: The single wound's names of the shared quantities.
-ALONE = {"viscous_length_um": "viscous_length_um", "tension_over_G": "tension_over_G",
-         "zeta_over_G_s_per_um2": "zeta_over_G_s_per_um2", "eta_over_G_s": "tau_s"}
+ALONE = {
+    "viscous_length_um": "viscous_length_um",
+    "tension_over_G": "tension_over_G",
+    "zeta_over_G_s_per_um2": "zeta_over_G_s_per_um2",
+    "eta_over_G_s": "tau_s",
+}
 ALONE_K = R0S.index(10.0)
 
 
@@ -52,11 +56,15 @@ def one_draw(noise: float, seed: int, curves) -> dict:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--draws", type=int, default=30)
     ap.add_argument("--noises", default=",".join(map(str, NOISES)))
     ap.add_argument("--out", default="out/tissue_coverage")
-    ap.add_argument("--table-only", action="store_true", help="write the table from OUT.csv (a run so far)")
+    ap.add_argument(
+        "--table-only", action="store_true", help="write the table from OUT.csv (a run so far)"
+    )
     args = ap.parse_args()
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -66,15 +74,24 @@ def main() -> None:
     curves = [clean(r, o) for r, o in zip(R0S, OUTERS)]
     rows = []
     with open(f"{out}.csv", "w") as f:
-        f.write("noise,seed,failed,alone_failed,seconds," + ",".join(f"{k}_identified,{k}_covered" for k in keys) + "\n")
+        f.write(
+            "noise,seed,failed,alone_failed,seconds,"
+            + ",".join(f"{k}_identified,{k}_covered" for k in keys)
+            + "\n"
+        )
         for level, noise in enumerate(map(float, args.noises.split(","))):
             for draw_no in range(args.draws):
-                seed = 5000 + 1000 * level + draw_no  # other noise vectors at each level: independent samples
+                seed = (
+                    5000 + 1000 * level + draw_no
+                )  # other noise vectors at each level: independent samples
                 row = one_draw(noise, seed, curves)
                 rows.append((noise, row))
                 cells = [row.get(k, ("", "")) for k in keys]
-                f.write(f"{noise},{seed},{row['failed']},{row['alone_failed']},{row['seconds']},"
-                        + ",".join(f"{i},{c}" for i, c in cells) + "\n")
+                f.write(
+                    f"{noise},{seed},{row['failed']},{row['alone_failed']},{row['seconds']},"
+                    + ",".join(f"{i},{c}" for i, c in cells)
+                    + "\n"
+                )
                 f.flush()
     table(rows, keys, args.draws, out)
 
@@ -87,7 +104,11 @@ def read(out: Path, keys) -> list:
     with open(f"{out}.csv") as f:
         for r in csv.DictReader(f):
             row = {"failed": int(r["failed"]), "alone_failed": int(r["alone_failed"])}
-            row |= {k: (int(r[f"{k}_identified"]), int(r[f"{k}_covered"])) for k in keys if r[f"{k}_identified"] != ""}
+            row |= {
+                k: (int(r[f"{k}_identified"]), int(r[f"{k}_covered"]))
+                for k in keys
+                if r[f"{k}_identified"] != ""
+            }
             rows.append((float(r["noise"]), row))
     return rows
 
@@ -95,8 +116,13 @@ def read(out: Path, keys) -> list:
 def table(rows, keys, draws, out: Path) -> None:
     """Per noise: covered / identified (identified / draws) per quantity, three wounds and alone."""
     names = list(TRUTH)
-    head = ("| noise | fits | " + " | ".join(f"{n}: 3 wounds" for n in names) + " | R0 (3 wounds, pooled) | "
-            + " | ".join(f"{n}: 10 µm alone" for n in names) + " |")
+    head = (
+        "| noise | fits | "
+        + " | ".join(f"{n}: 3 wounds" for n in names)
+        + " | R0 (3 wounds, pooled) | "
+        + " | ".join(f"{n}: 10 µm alone" for n in names)
+        + " |"
+    )
     lines = [head, "|---" * (3 + 2 * len(names)) + "|"]
     for noise in sorted({n for n, _ in rows}):
         sel = [r for n, r in rows if n == noise]
@@ -110,7 +136,9 @@ def table(rows, keys, draws, out: Path) -> None:
 
         cells = [cell([n]) for n in names] + [cell([f"R0_{k}" for k in range(len(R0S))])]
         cells += [cell([f"alone_{n}"]) for n in names]
-        lines.append(f"| {noise:g} | {len(sel) - failed}/{len(sel)} converged | " + " | ".join(cells) + " |")
+        lines.append(
+            f"| {noise:g} | {len(sel) - failed}/{len(sel)} converged | " + " | ".join(cells) + " |"
+        )
     Path(f"{out}.md").write_text("\n".join(lines) + "\n")
 
 

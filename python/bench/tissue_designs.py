@@ -15,15 +15,19 @@ from __future__ import annotations
 import numpy as np
 import wound_exact as we
 
-from wound_opening.data import RadiusSeries
-from wound_opening.tissue import Wound
+from wound_opening.fitting.wounds import Wound
+from wound_opening.inputs.series import RadiusSeries
 
 L_UM, SIGMA, ZETA_G = 20.0, 0.5, 0.1
 R0S, OUTERS = (5.0, 10.0, 20.0), (80.0, 100.0, 120.0)
 TIMES = np.linspace(0.5, 60, 40)
 #: The true shared quantities, by their names in TissueFitResult.shared.
-TRUTH = {"viscous_length_um": L_UM, "tension_over_G": SIGMA, "zeta_over_G_s_per_um2": ZETA_G,
-         "eta_over_G_s": L_UM**2 * ZETA_G / 4}
+TRUTH = {
+    "viscous_length_um": L_UM,
+    "tension_over_G": SIGMA,
+    "zeta_over_G_s_per_um2": ZETA_G,
+    "eta_over_G_s": L_UM**2 * ZETA_G / 4,
+}
 
 
 def wound_truth(R0: float) -> dict:

@@ -65,12 +65,24 @@ def plot_regime(lam: str, rust: list[dict], peers: list[dict], fmpy: list[dict],
     stars = [r for r in fmpy if r["what"] == "fmpy_scenario" and r["lambda"] == lam]
     if stars:
         label, colour, marker = STYLE["fmpy"]
-        ax.scatter([float(r["error"]) for r in stars], [float(r["seconds"]) for r in stars],
-                   marker=marker, color=colour, s=160, zorder=5, label=label)
+        ax.scatter(
+            [float(r["error"]) for r in stars],
+            [float(r["seconds"]) for r in stars],
+            marker=marker,
+            color=colour,
+            s=160,
+            zorder=5,
+            label=label,
+        )
     ax.axvline(ERROR_TARGET, color="k", ls=":", lw=1)
     ax.axhline(TIME_TARGET, color="k", ls=":", lw=1)
-    ax.annotate("targets: error 1e-9, 1 ms", (ERROR_TARGET, TIME_TARGET), xytext=(4, 4),
-                textcoords="offset points", fontsize=8)
+    ax.annotate(
+        "targets: error 1e-9, 1 ms",
+        (ERROR_TARGET, TIME_TARGET),
+        xytext=(4, 4),
+        textcoords="offset points",
+        fontsize=8,
+    )
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("error: max over the 1000 communication points of |R - R_exact| / (R_final - R1)")
@@ -78,8 +90,13 @@ def plot_regime(lam: str, rust: list[dict], peers: list[dict], fmpy: list[dict],
     ax.set_title(f"Work-precision, lambda = {lam} (R_inf = 10, sigma = 1)")
     ax.grid(True, which="major", alpha=0.3)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
-    fig.text(0.01, 0.01, "Rust schemes: one point per resolution, in order. Peers: faint points "
-             "= every run, line = runs no other run beats in both error and time.", fontsize=7)
+    fig.text(
+        0.01,
+        0.01,
+        "Rust schemes: one point per resolution, in order. Peers: faint points "
+        "= every run, line = runs no other run beats in both error and time.",
+        fontsize=7,
+    )
     fig.tight_layout(rect=(0, 0.03, 1, 1))
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -88,6 +105,9 @@ def plot_regime(lam: str, rust: list[dict], peers: list[dict], fmpy: list[dict],
 def all_rows(rust: list[dict], peers: list[dict], fmpy: list[dict]) -> list[tuple]:
     """Everything on the charts as rows of docs/work_precision.csv."""
     rows = [tuple(r[c] for c in common.WORK_COLUMNS) for r in rust + peers]
-    rows += [("fmpy", r["lambda"], "default", "", r["error"], r["seconds"])
-             for r in fmpy if r["what"] == "fmpy_scenario"]
+    rows += [
+        ("fmpy", r["lambda"], "default", "", r["error"], r["seconds"])
+        for r in fmpy
+        if r["what"] == "fmpy_scenario"
+    ]
     return rows

@@ -55,41 +55,72 @@ def _connector(variable: ModelVariable) -> ModelVariable:
     """The connection's variableType is written from the component's variable type, which
     is "Real" for FMI 2.0, but the container binary only knows the FMI 3.0 names
     ("Float64"). Hand it a copy that differs only in the type."""
-    return ModelVariable(name=variable.name, valueReference=variable.valueReference,
-                         type="Float64" if variable.type == "Real" else variable.type)
+    return ModelVariable(
+        name=variable.name,
+        valueReference=variable.valueReference,
+        type="Float64" if variable.type == "Real" else variable.type,
+    )
 
 
-def build_container(wound_fmu, purse_fmu, out_path, step_size: float,
-                    wound_params: dict = WOUND_PARAMS, purse_params: dict = PURSE_PARAMS,
-                    stop_time: float = 300.0) -> Path:
+def build_container(
+    wound_fmu,
+    purse_fmu,
+    out_path,
+    step_size: float,
+    wound_params: dict = WOUND_PARAMS,
+    purse_params: dict = PURSE_PARAMS,
+    stop_time: float = 300.0,
+) -> Path:
     """Write the container FMU to `out_path`; `step_size` is its fixed internal step
     (every communication step must be a whole multiple of it). Returns `out_path`."""
     paths = {"wound": Path(wound_fmu).resolve(), "purse": Path(purse_fmu).resolve()}
     if paths["wound"].stem == paths["purse"].stem:
-        raise ValueError("the two FMUs are extracted to resources/<file stem>: the stems must differ")
+        raise ValueError(
+            "the two FMUs are extracted to resources/<file stem>: the stems must differ"
+        )
     mds = {k: read_model_description(str(p)) for k, p in paths.items()}
     comps = {k: Component(name=k, filename=paths[k], modelDescription=mds[k]) for k in paths}
     var = {k: {v.name: v for v in md.modelVariables} for k, md in mds.items()}
 
-    variables = [ModelVariable(name="time", type="Real", causality="independent",
-                               variability="continuous", description="Simulation time")]
+    variables = [
+        ModelVariable(
+            name="time",
+            type="Real",
+            causality="independent",
+            variability="continuous",
+            description="Simulation time",
+        )
+    ]
     mappings = {}
 
     for key, params in (("wound", wound_params), ("purse", purse_params)):
         for name, value in params.items():
             inner = var[key][name]
-            v = ModelVariable(name=name, type="Real", causality="parameter", variability="fixed",
-                              initial="exact", start=repr(float(value)), unit=inner.unit,
-                              description=f"{inner.description} [{key}]")
+            v = ModelVariable(
+                name=name,
+                type="Real",
+                causality="parameter",
+                variability="fixed",
+                initial="exact",
+                start=repr(float(value)),
+                unit=inner.unit,
+                description=f"{inner.description} [{key}]",
+            )
             variables.append(v)
             mappings[v] = [(comps[key], inner)]
 
     outputs = []
     for name, (key, inner_name) in OUTPUTS.items():
         inner = var[key][inner_name]
-        v = ModelVariable(name=name, type="Real", causality="output", variability="continuous",
-                          initial="calculated", unit=inner.unit,
-                          description=f"{inner.description} [{key}]")
+        v = ModelVariable(
+            name=name,
+            type="Real",
+            causality="output",
+            variability="continuous",
+            initial="calculated",
+            unit=inner.unit,
+            description=f"{inner.description} [{key}]",
+        )
         variables.append(v)
         outputs.append(v)
         mappings[v] = [(comps[key], inner)]
@@ -106,12 +137,15 @@ def build_container(wound_fmu, purse_fmu, out_path, step_size: float,
         fmiVersion="2.0",
         modelName="WoundClosure",
         instantiationToken="{" + str(uuid.uuid4()) + "}",
-        description=("WoundOpening and PurseString coupled in an fmpy container FMU; it steps with a fixed "
-                     f"internal step of {step_size:g} s, so every communication step must be a whole "
-                     f"multiple of {step_size:g} s (others are refused); linux64 only"),
+        description=(
+            "WoundOpening and PurseString coupled in an fmpy container FMU; it steps with a fixed "
+            f"internal step of {step_size:g} s, so every communication step must be a whole "
+            f"multiple of {step_size:g} s (others are refused); linux64 only"
+        ),
         generationTool="fmpy.container_fmu (python/coupling/container.py)",
-        defaultExperiment=DefaultExperiment(startTime="0", stopTime=repr(float(stop_time)),
-                                            stepSize=repr(float(step_size))),
+        defaultExperiment=DefaultExperiment(
+            startTime="0", stopTime=repr(float(stop_time)), stepSize=repr(float(step_size))
+        ),
         coSimulation=CoSimulation(fixedInternalStepSize=step_size),
         unitDefinitions=list(units.values()),
         modelVariables=variables,
@@ -128,9 +162,13 @@ def build_container(wound_fmu, purse_fmu, out_path, step_size: float,
     # The binary addresses container variable k + 1 as variableMappings[k] (0 is time),
     # and create_container_fmu numbers modelVariables 0, 1, ...: keep the orders equal.
     assert list(mappings) == variables[1:]
-    config = Configuration(parallelDoStep=False, modelDescription=md,
-                           components=[comps["wound"], comps["purse"]],
-                           connections=connections, variableMappings=mappings)
+    config = Configuration(
+        parallelDoStep=False,
+        modelDescription=md,
+        components=[comps["wound"], comps["purse"]],
+        connections=connections,
+        variableMappings=mappings,
+    )
 
     out_path = Path(out_path)
     staging = Path(tempfile.mkdtemp(prefix="container_"))
@@ -156,7 +194,10 @@ _UNUSED = ("binaries/win64/", "binaries/darwin64/", "Container.zip")
 
 def _keep_real_platforms(archive: Path, out_path: Path) -> None:
     """Copy `archive` to `out_path` without the entries of _UNUSED."""
-    with zipfile.ZipFile(archive) as src, zipfile.ZipFile(out_path, "w", zipfile.ZIP_DEFLATED) as dst:
+    with (
+        zipfile.ZipFile(archive) as src,
+        zipfile.ZipFile(out_path, "w", zipfile.ZIP_DEFLATED) as dst,
+    ):
         for item in src.infolist():
             if not item.filename.startswith(_UNUSED):
                 dst.writestr(item, src.read(item.filename))
@@ -170,24 +211,40 @@ if __name__ == "__main__":
 
     root = Path(__file__).resolve().parents[2]
     parser = argparse.ArgumentParser(
-        description="Build WoundClosure.fmu, an fmpy container of WoundOpening.fmu and PurseString.fmu "
-                    "coupled by wound_radius and edge_stress, then simulate it for 300 s and print a table.")
-    parser.add_argument("--fmu-dir", type=Path, default=root / "target" / "fmu",
-                        help="folder with the two FMUs; the container is written there (default: %(default)s)")
-    parser.add_argument("--step", type=float, default=0.5,
-                        help="the container's fixed internal step in s; communication steps must be whole "
-                             "multiples of it (default: %(default)s)")
+        description="Build WoundClosure.fmu, an fmpy container of WoundOpening.fmu and "
+        "PurseString.fmu "
+        "coupled by wound_radius and edge_stress, then simulate it for 300 s and print a table."
+    )
+    parser.add_argument(
+        "--fmu-dir",
+        type=Path,
+        default=root / "target" / "fmu",
+        help="folder with the two FMUs; the container is written there (default: %(default)s)",
+    )
+    parser.add_argument(
+        "--step",
+        type=float,
+        default=0.5,
+        help="the container's fixed internal step in s; communication steps must be whole "
+        "multiples of it (default: %(default)s)",
+    )
     args = parser.parse_args()
     fmu_dir, step = args.fmu_dir, args.step
-    path = build_container(fmu_dir / "WoundOpening.fmu", fmu_dir / "PurseString.fmu",
-                           fmu_dir / "WoundClosure.fmu", step)
+    path = build_container(
+        fmu_dir / "WoundOpening.fmu",
+        fmu_dir / "PurseString.fmu",
+        fmu_dir / "WoundClosure.fmu",
+        step,
+    )
     print(f"wrote {path}")
     res = simulate_fmu(str(path), stop_time=300.0, output_interval=step)
     r = res["wound_radius"]
     print(f"{'t [s]':>6} {'R [um]':>10} {'v [um/s]':>10} {'p [Pa]':>10} {'T_c [pN]':>10}")
     for t in (0.0, 10.0, 20.0, 50.0, 100.0, 200.0, 300.0):
         i = int(np.argmin(np.abs(res["time"] - t)))
-        print(f"{res['time'][i]:6.1f} {r[i]:10.5f} {res['edge_velocity'][i]:10.5f} "
-              f"{res['edge_stress'][i]:10.4f} {res['line_tension'][i]:10.2f}")
+        print(
+            f"{res['time'][i]:6.1f} {r[i]:10.5f} {res['edge_velocity'][i]:10.5f} "
+            f"{res['edge_stress'][i]:10.4f} {res['line_tension'][i]:10.2f}"
+        )
     k = int(np.argmax(r))
     print(f"max radius {r[k]:.5f} um at t = {res['time'][k]:g} s; at t = 300 s: {r[-1]:.5f} um")

@@ -41,21 +41,40 @@ from fmpy.fmi2 import FMU2Slave
 from wound_opening.material import from_material
 
 
-def fmu_start_values(*, G_pa, eta_pa_s, zeta_pa_s_per_um2, tension_pa, R0_um, outer_radius_um) -> dict:
+def fmu_start_values(
+    *, G_pa, eta_pa_s, zeta_pa_s_per_um2, tension_pa, R0_um, outer_radius_um
+) -> dict:
     """The WoundOpening FMU's start values (lambda, sigma, R_inf, R0, T, G) from material
     constants (Pa, Pa s, Pa s / um^2, Pa, um): wound_opening.from_material."""
-    p = from_material(G_pa=G_pa, eta_pa_s=eta_pa_s, zeta_pa_s_per_um2=zeta_pa_s_per_um2, tension_pa=tension_pa,
-                      R0_um=R0_um)
-    return {"lambda": p["lam"], "sigma": p["sigma"], "R_inf": outer_radius_um / R0_um, "R0": R0_um, "T": p["T_s"],
-            "G": G_pa}
+    p = from_material(
+        G_pa=G_pa,
+        eta_pa_s=eta_pa_s,
+        zeta_pa_s_per_um2=zeta_pa_s_per_um2,
+        tension_pa=tension_pa,
+        R0_um=R0_um,
+    )
+    return {
+        "lambda": p["lam"],
+        "sigma": p["sigma"],
+        "R_inf": outer_radius_um / R0_um,
+        "R0": R0_um,
+        "T": p["T_s"],
+        "G": G_pa,
+    }
 
 
 # The README's worked example: a wound of R0 = 10 um in a tissue with G = 100 Pa,
 # eta = 1000 Pa s (viscous relaxation time eta / G = 10 s) and zeta = 40 Pa s / um^2,
 # so lambda = 2 sqrt(eta / zeta) / R0 = 1 and T = zeta R0^2 / (4 G) = 10 s; homeostatic
 # tension 100 Pa (sigma = 1), outer radius 100 um (R_inf = 10).
-MATERIAL_EXAMPLE = {"G_pa": 100.0, "eta_pa_s": 1000.0, "zeta_pa_s_per_um2": 40.0, "tension_pa": 100.0, "R0_um": 10.0,
-                    "outer_radius_um": 100.0}
+MATERIAL_EXAMPLE = {
+    "G_pa": 100.0,
+    "eta_pa_s": 1000.0,
+    "zeta_pa_s_per_um2": 40.0,
+    "tension_pa": 100.0,
+    "R0_um": 10.0,
+    "outer_radius_um": 100.0,
+}
 WOUND_EXAMPLE = fmu_start_values(**MATERIAL_EXAMPLE)
 # Purse-string: 6.5 nN after a 20 s delay with a 30 s assembly time, 5 um thick sheet
 # (the PurseString FMU's defaults, written out).
@@ -69,8 +88,12 @@ class Unit:
         self.md = read_model_description(path)
         self.dir = extract(path)
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
-        self.fmu = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
-                             modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
+        self.fmu = FMU2Slave(
+            guid=self.md.guid,
+            unzipDirectory=self.dir,
+            modelIdentifier=self.md.coSimulation.modelIdentifier,
+            instanceName=name,
+        )
         self.fmu.instantiate()
         self.initialized = False
 
@@ -107,9 +130,17 @@ class Run:
     line_tension: np.ndarray = field(default=None)  # pN (purse-string runs only)
 
 
-def couple(wound_fmu: str, purse_fmu: str | None, *, step: float, stop: float,
-           wound_params: dict = WOUND_EXAMPLE, purse_params: dict = PURSE_EXAMPLE,
-           edge_stress: float | None = None, interpolate: bool = False) -> Run:
+def couple(
+    wound_fmu: str,
+    purse_fmu: str | None,
+    *,
+    step: float,
+    stop: float,
+    wound_params: dict = WOUND_EXAMPLE,
+    purse_params: dict = PURSE_EXAMPLE,
+    edge_stress: float | None = None,
+    interpolate: bool = False,
+) -> Run:
     """Run the loop from 0 to `stop` with communication step `step` (stop / step must be
     an integer). With `edge_stress` given, that constant is the input and `purse_fmu` is
     not used. With `interpolate`, the edge stress is extrapolated linearly over each step

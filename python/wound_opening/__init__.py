@@ -24,12 +24,30 @@ import importlib
 
 #: Where each public name lives; imported on first use, so that `wound-opening --help`
 #: starts without numpy, scipy or pandas.
-_HOME = {"NativeLibraryMissing": "_native", "SolverError": "_native", "library_path": "_native",
-         "RadiusSeries": "data", "VelocityProfile": "data", "read_radius": "lab_files", "read_profile": "lab_files", "fit": "fitting", "Simulation": "model",
-         "Wound": "tissue", "fit_wounds": "tissue", "read_wounds": "lab_files", "TissueFitResult": "tissue_result",
-         "simulate": "model", "FitResult": "result", "sweep": "sweeping", "fmu_path": "shipped",
-         "Parameters": "parameters", "from_material": "material", "to_material": "material",
-         "write_report": "report"}
+_HOME = {
+    "NativeLibraryMissing": "_native",
+    "SolverError": "_native",
+    "library_path": "_native",
+    "Simulation": "model",
+    "simulate": "model",
+    "from_material": "material",
+    "to_material": "material",
+    "sweep": "sweeping",
+    "fmu_path": "shipped",
+    "RadiusSeries": "inputs.series",
+    "VelocityProfile": "inputs.series",
+    "read_radius": "inputs.lab_files",
+    "read_profile": "inputs.lab_files",
+    "read_wounds": "inputs.lab_files",
+    "Parameters": "fitting.parameters",
+    "fit": "fitting.single",
+    "Wound": "fitting.wounds",
+    "fit_wounds": "fitting.wounds",
+    "FitResult": "results.result",
+    "TissueFitResult": "results.wounds",
+    "write_report": "results.report",
+}
+__all__ = sorted(_HOME)
 
 
 def __getattr__(name):
@@ -46,7 +64,6 @@ def __getattr__(name):
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-__all__ = ["FitResult", "NativeLibraryMissing", "Parameters", "RadiusSeries", "Simulation", "SolverError",
-           "TissueFitResult", "VelocityProfile", "Wound", "fit", "fit_wounds", "fmu_path", "from_material",
-           "library_path", "read_profile", "read_radius", "read_wounds", "simulate", "sweep", "to_material",
-           "write_report"]
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

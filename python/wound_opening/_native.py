@@ -41,7 +41,10 @@ class SolverError(ValueError):
 
 
 class _Problem(ctypes.Structure):
-    _fields_ = [(name, ctypes.c_double) for name in ("lambda_", "sigma", "r_inf", "tolerance", "edge_stress")]
+    _fields_ = [
+        (name, ctypes.c_double)
+        for name in ("lambda_", "sigma", "r_inf", "tolerance", "edge_stress")
+    ]
 
 
 _DOUBLES = ctypes.c_void_p  # float64 arrays, passed by address
@@ -62,7 +65,8 @@ def library_path() -> Path:
         return path
     raise NativeLibraryMissing(
         f"wound_opening: native library not found at {' or '.join(map(str, paths))}; build it with "
-        f"`cargo build --release` in the repository (editable install), install the wheel, or set {ENV_VAR} to its path"
+        f"`cargo build --release` in the repository (editable install), install the wheel, or set "
+        f"{ENV_VAR} to its path"
     )
 
 
@@ -72,7 +76,13 @@ def _load():
         lib = ctypes.CDLL(str(library_path()))
         lib.wo_series.argtypes = [_Problem, _DOUBLES, ctypes.c_size_t, _DOUBLES, _DOUBLES]
         lib.wo_profile_series.argtypes = [
-            _Problem, _DOUBLES, ctypes.c_size_t, _DOUBLES, ctypes.c_size_t, _DOUBLES, _DOUBLES,
+            _Problem,
+            _DOUBLES,
+            ctypes.c_size_t,
+            _DOUBLES,
+            ctypes.c_size_t,
+            _DOUBLES,
+            _DOUBLES,
         ]
         for f in (lib.wo_series, lib.wo_profile_series):
             f.restype = ctypes.c_int
@@ -96,8 +106,16 @@ def _doubles(x) -> np.ndarray:
     return np.ascontiguousarray(x, dtype=np.float64)
 
 
-def series(lam: float, sigma: float, r_inf: float, times, edge_stress: float = 0.0, *,
-           velocity: bool = True, tolerance: float = TOLERANCE):
+def series(
+    lam: float,
+    sigma: float,
+    r_inf: float,
+    times,
+    edge_stress: float = 0.0,
+    *,
+    velocity: bool = True,
+    tolerance: float = TOLERANCE,
+):
     """R(t) and (if `velocity`) dR/dt at ascending dimensionless `times`, in one C call.
     Returns (radius, velocity or None)."""
     lib = _load()
@@ -109,8 +127,17 @@ def series(lam: float, sigma: float, r_inf: float, times, edge_stress: float = 0
     return r, v
 
 
-def profile_series(lam: float, sigma: float, r_inf: float, times, radii, edge_stress: float = 0.0, *,
-                   velocity: bool = True, tolerance: float = TOLERANCE):
+def profile_series(
+    lam: float,
+    sigma: float,
+    r_inf: float,
+    times,
+    radii,
+    edge_stress: float = 0.0,
+    *,
+    velocity: bool = True,
+    tolerance: float = TOLERANCE,
+):
     """u and (if `velocity`) u_t of the material points at CURRENT radii `radii`, at each
     ascending time: arrays (len(times), len(radii)), in one C call."""
     lib = _load()

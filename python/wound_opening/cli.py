@@ -5,28 +5,51 @@ not converge prints why, writes its JSON ("converged": false) and exits with 1."
 from __future__ import annotations
 
 import argparse
+import os
+import shlex
 import sys
 
 
 def _fit(args) -> None:
-    from .fitting import fit
-    from .lab_files import read_profile, read_radius
-    from .parameters import from_options
-    from .tables import InputError, float_list
+    from .fitting.parameters import from_options
+    from .fitting.single import fit
+    from .inputs.columns import InputError, float_list
+    from .inputs.lab_files import read_profile, read_radius
 
-    units = dict(time_unit=args.time_unit, length_unit=args.length_unit, pixel_size_um=args.pixel_size_um,
-                 cut_time=args.cut_time)
+    units = dict(
+        time_unit=args.time_unit,
+        length_unit=args.length_unit,
+        pixel_size_um=args.pixel_size_um,
+        cut_time=args.cut_time,
+    )
     outer = float_list(args.outer_radius_um, "--outer-radius-um")
-    profiles = [read_profile(p, time_col=args.piv_time_col, r_col=args.piv_r_col, velocity_col=args.piv_velocity_col,
-                             sd_col=args.piv_velocity_sd_col, noise_um_s=args.velocity_noise_um_s, **units)
-                for p in args.profile or []]
+    profiles = [
+        read_profile(
+            p,
+            time_col=args.piv_time_col,
+            r_col=args.piv_r_col,
+            velocity_col=args.piv_velocity_col,
+            sd_col=args.piv_velocity_sd_col,
+            noise_um_s=args.velocity_noise_um_s,
+            **units,
+        )
+        for p in args.profile or []
+    ]
     if args.wound_col or len(args.radius_csv) > 1:
         return _fit_wounds(args, units, outer, profiles)
     if len(outer) > 1 or len(profiles) > 1:
-        raise InputError(f"one radius file (one wound) takes one outer radius and at most one --profile, got "
-                         f"{len(outer)} and {len(profiles)}")
-    radius = read_radius(args.radius_csv[0], time_col=args.time_col, radius_col=args.radius_col,
-                         sd_col=args.radius_sd_col, noise_um=args.radius_noise_um, **units)
+        raise InputError(
+            f"one radius file (one wound) takes one outer radius and at most one --profile, got "
+            f"{len(outer)} and {len(profiles)}"
+        )
+    radius = read_radius(
+        args.radius_csv[0],
+        time_col=args.time_col,
+        radius_col=args.radius_col,
+        sd_col=args.radius_sd_col,
+        noise_um=args.radius_noise_um,
+        **units,
+    )
     profile = profiles[0] if profiles else None
     params = from_options(args.fix, args.bound, args.prior)
     result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
@@ -35,7 +58,7 @@ def _fit(args) -> None:
         with open(args.json, "w") as f:
             f.write(result.to_json() + "\n")
     if args.report:
-        from .report import write_report
+        from .results.report import write_report
 
         write_report(args.report, result, radius, profile, command=_command_line())
         print(f"report -> {args.report}")
@@ -44,7 +67,7 @@ def _fit(args) -> None:
             print("no figure and no export: the fit did not converge", file=sys.stderr)
         return 1
     if args.plot:
-        from .plots import fit_figure
+        from .results.plots import fit_figure
 
         fit_figure(result, radius, profile, args.plot)
     if args.export:
@@ -53,39 +76,58 @@ def _fit(args) -> None:
 
 
 def _command_line() -> str:
-    import shlex
-
     return "wound-opening " + " ".join(shlex.quote(a) for a in sys.argv[1:])
 
 
 def _fit_wounds(args, units, outer, profiles) -> int:
     """Several wounds of one tissue: one radius file each, or one long table with --wound-col."""
-    from .lab_files import read_radius, read_wounds
-    from .tables import InputError
-    from .tissue import Wound, fit_wounds
+    from .fitting.wounds import Wound, fit_wounds
+    from .inputs.columns import InputError
+    from .inputs.lab_files import read_radius, read_wounds
 
-    columns = dict(time_col=args.time_col, radius_col=args.radius_col, sd_col=args.radius_sd_col,
-                   noise_um=args.radius_noise_um, **units)
+    columns = dict(
+        time_col=args.time_col,
+        radius_col=args.radius_col,
+        sd_col=args.radius_sd_col,
+        noise_um=args.radius_noise_um,
+        **units,
+    )
     if args.wound_col:
         if len(args.radius_csv) > 1:
-            raise InputError(f"--wound-col reads one long table with every wound: {len(args.radius_csv)} files given")
+            raise InputError(
+                f"--wound-col reads one long table with every wound: {len(args.radius_csv)} files "
+                f"given"
+            )
         series = read_wounds(args.radius_csv[0], wound_col=args.wound_col, **columns)
     else:
         series = {path: read_radius(path, **columns) for path in args.radius_csv}
     names = list(series)
     if len(outer) not in (1, len(names)):
-        raise InputError(f"--outer-radius-um: {len(outer)} values for {len(names)} wounds ({', '.join(names)}): give "
-                         "one for all or one per wound, in this order")
+        raise InputError(
+            f"--outer-radius-um: {len(outer)} values for {len(names)} wounds "
+            f"({', '.join(names)}): give "
+            "one for all or one per wound, in this order"
+        )
     if profiles and len(profiles) != len(names):
-        raise InputError(f"--profile: {len(profiles)} files for {len(names)} wounds ({', '.join(names)}): give one "
-                         "per wound, in this order, or none")
+        raise InputError(
+            f"--profile: {len(profiles)} files for {len(names)} wounds ({', '.join(names)}): give "
+            f"one "
+            "per wound, in this order, or none"
+        )
     if args.plot or args.report or args.export:
-        raise InputError("--plot, --report and --export describe one wound's fit: with several wounds write --json")
+        raise InputError(
+            "--plot, --report and --export describe one wound's fit: with several wounds write "
+            "--json"
+        )
     if args.fix or args.bound or args.prior:
-        raise InputError("--fix, --bound and --prior apply to one wound's fit: the fit of several wounds takes "
-                         "no constraints")
-    wounds = [Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
-              for k, (name, s) in enumerate(series.items())]
+        raise InputError(
+            "--fix, --bound and --prior apply to one wound's fit: the fit of several wounds takes "
+            "no constraints"
+        )
+    wounds = [
+        Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
+        for k, (name, s) in enumerate(series.items())
+    ]
     result = fit_wounds(wounds, loss=args.loss)
     print(result.summary())
     if args.json:
@@ -95,18 +137,27 @@ def _fit_wounds(args, units, outer, profiles) -> int:
 
 
 def _sweep(args) -> None:
+    from .inputs.columns import float_list
     from .sweeping import sweep
-    from .tables import float_list
 
-    grid = {"lambda": float_list(args.lam, "--lambda"), "sigma": float_list(args.sigma, "--sigma"),
-            "R_inf": float_list(args.r_inf, "--R-inf")}
-    df = sweep(grid, times=float_list(args.times, "--times"), R0_um=args.R0_um, T_s=args.T_s,
-               scheduler=args.scheduler, processes=args.processes)
+    grid = {
+        "lambda": float_list(args.lam, "--lambda"),
+        "sigma": float_list(args.sigma, "--sigma"),
+        "R_inf": float_list(args.r_inf, "--R-inf"),
+    }
+    df = sweep(
+        grid,
+        times=float_list(args.times, "--times"),
+        R0_um=args.R0_um,
+        T_s=args.T_s,
+        scheduler=args.scheduler,
+        processes=args.processes,
+    )
     df.to_csv(args.csv, index=False)  # shortest digits that read back to the same doubles
     if args.parquet:
         df.to_parquet(args.parquet)
     if args.plot:
-        from .plots import sweep_figure
+        from .results.plots import sweep_figure
 
         sweep_figure(df, args.plot)
     print(f"{len(df)} rows -> {args.csv}")
@@ -115,22 +166,34 @@ def _sweep(args) -> None:
 def _simulate(args) -> None:
     import numpy as np
 
+    from .inputs.columns import float_list
     from .model import simulate
-    from .tables import float_list
 
-    times = float_list(args.times, "--times") if args.times else np.linspace(0, args.t_end, args.points)
+    times = (
+        float_list(args.times, "--times") if args.times else np.linspace(0, args.t_end, args.points)
+    )
     radii = float_list(args.radii_um, "--radii-um") if args.radii_um else None
-    sim = simulate(times, lam=args.lam, sigma=args.sigma, R0_um=args.R0_um, T_s=args.T_s,
-                   outer_radius_um=args.outer_radius_um, edge_stress_pa=args.edge_stress_pa, G_pa=args.G_pa,
-                   eta_pa_s=args.eta_pa_s, zeta_pa_s_per_um2=args.zeta_pa_s_per_um2, tension_pa=args.tension_pa,
-                   radii_um=radii)
+    sim = simulate(
+        times,
+        lam=args.lam,
+        sigma=args.sigma,
+        R0_um=args.R0_um,
+        T_s=args.T_s,
+        outer_radius_um=args.outer_radius_um,
+        edge_stress_pa=args.edge_stress_pa,
+        G_pa=args.G_pa,
+        eta_pa_s=args.eta_pa_s,
+        zeta_pa_s_per_um2=args.zeta_pa_s_per_um2,
+        tension_pa=args.tension_pa,
+        radii_um=radii,
+    )
     frame = sim.to_frame()
     if args.csv:
         frame.to_csv(args.csv, index=False)  # shortest digits that read back to the same doubles
     else:
         print(frame.to_string(index=False, float_format=lambda x: f"{x:.6g}"))
     if args.plot:
-        from .plots import simulate_figure
+        from .results.plots import simulate_figure
 
         simulate_figure(sim, args.plot)
     if args.csv:
@@ -149,115 +212,303 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
 
 
 def parser() -> argparse.ArgumentParser:
-    top = argparse.ArgumentParser(prog="wound-opening", description=(
-        "Fit laser-ablation experiments, sweep parameters and simulate the wound-opening model "
-        "(docs/fitting.md). Units: um, s, Pa; lambda and sigma dimensionless."))
+    top = argparse.ArgumentParser(
+        prog="wound-opening",
+        description=(
+            "Fit laser-ablation experiments, sweep parameters and simulate the wound-opening model "
+            "(docs/fitting.md). Units: um, s, Pa; lambda and sigma dimensionless."
+        ),
+    )
     sub = top.add_subparsers(dest="command", required=True)
 
-    f = sub.add_parser("fit", help="fit R0_um, sigma, lambda, T_s to a radius series (and a velocity profile); "
-                       "several wounds of one tissue: their shared material and each R0", formatter_class=HelpFormatter)
-    f.add_argument("radius_csv", metavar="RADIUS.csv", nargs="+", help="columns time_s,radius_um (time since the "
-                   "cut), or as named by --time-col, --radius-col; several files: several wounds of one tissue, "
-                   "fitted together (shared viscous length, tension/G, zeta/G, eta/G; each wound its R0)")
-    f.add_argument("--profile", metavar="PROFILE.csv", action="append",
-                   help="columns time_s,r_um,velocity_um_s (r: current distance from the wound centre); with "
-                   "several wounds, repeat it once per wound in their order")
-    f.add_argument("--outer-radius-um", required=True, metavar="UM[,UM..]", help="outer radius of the tissue (um); "
-                   "with several wounds one for all or one per wound in their order (100,120,90)")
-    f.add_argument("--wound-col", metavar="NAME", help="RADIUS.csv is one long table of several wounds, this "
-                   "column naming the wound of each row (times ascending within each wound)")
+    f = sub.add_parser(
+        "fit",
+        help="fit R0_um, sigma, lambda, T_s to a radius series (and a velocity profile); "
+        "several wounds of one tissue: their shared material and each R0",
+        formatter_class=HelpFormatter,
+    )
+    f.add_argument(
+        "radius_csv",
+        metavar="RADIUS.csv",
+        nargs="+",
+        help="columns time_s,radius_um (time since the "
+        "cut), or as named by --time-col, --radius-col; several files: several wounds of one "
+        "tissue, "
+        "fitted together (shared viscous length, tension/G, zeta/G, eta/G; each wound its R0)",
+    )
+    f.add_argument(
+        "--profile",
+        metavar="PROFILE.csv",
+        action="append",
+        help="columns time_s,r_um,velocity_um_s (r: current distance from the wound centre); with "
+        "several wounds, repeat it once per wound in their order",
+    )
+    f.add_argument(
+        "--outer-radius-um",
+        required=True,
+        metavar="UM[,UM..]",
+        help="outer radius of the tissue (um); "
+        "with several wounds one for all or one per wound in their order (100,120,90)",
+    )
+    f.add_argument(
+        "--wound-col",
+        metavar="NAME",
+        help="RADIUS.csv is one long table of several wounds, this "
+        "column naming the wound of each row (times ascending within each wound)",
+    )
     f.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
-    f.add_argument("--plot", metavar="OUT.png", help="data with the fit, residuals, profile likelihoods")
-    f.add_argument("--export", metavar="STEM", help="write STEM_radius.csv (data, model, residual, normalised "
-                   "residual, flagged), STEM_curve.csv (the fitted R(t) on a fine grid) and, with a profile, "
-                   "STEM_profile.csv and STEM_profile_curve.csv; units in the column names (docs/fitting.md)")
-    f.add_argument("--report", metavar="OUT.html", help="a self-contained HTML report: input files and their "
-                   "SHA-256, noise, chi^2, estimates with intervals, flagged points, the figure, versions")
-    f.add_argument("--radius-noise-um", type=float, help="noise of the radii in um (default: column radius_sd_um if "
-                   "present, else from the residuals)")
-    f.add_argument("--velocity-noise-um-s", type=float, help="noise of the velocities in um/s (default: column "
-                   "velocity_sd_um_s if present, else from the residuals)")
-    c = f.add_argument_group("the files' columns and units", "Both files share the units; the times are "
-                             "read from either file as (time - CUT_TIME) in TIME_UNIT. Separators , ; or tab, "
-                             "decimal commas in ;- or tab-separated files, '#' comment lines and a UTF-8 BOM "
-                             "are accepted.")
-    c.add_argument("--time-col", default="time_s", metavar="NAME", help="time column of RADIUS.csv (default time_s)")
-    c.add_argument("--radius-col", default="radius_um", metavar="NAME", help="radius column (default radius_um)")
-    c.add_argument("--radius-sd-col", metavar="NAME", help="per-point standard deviations of the radius "
-                   "(default: the column radius_sd_um if present)")
-    c.add_argument("--piv-time-col", default="time_s", metavar="NAME", help="time column of PROFILE.csv (default time_s)")
-    c.add_argument("--piv-r-col", default="r_um", metavar="NAME", help="distance column of PROFILE.csv (default r_um)")
-    c.add_argument("--piv-velocity-col", default="velocity_um_s", metavar="NAME",
-                   help="velocity column of PROFILE.csv (default velocity_um_s)")
-    c.add_argument("--piv-velocity-sd-col", metavar="NAME", help="per-point standard deviations of the velocity "
-                   "(default: the column velocity_sd_um_s if present)")
-    c.add_argument("--time-unit", choices=("ms", "s", "min"), default="s", help="unit of the times (default s)")
-    c.add_argument("--length-unit", choices=("um", "px"), default="um",
-                   help="unit of radii and distances (default um; px needs --pixel-size-um); velocities are in "
-                   "length unit per time unit")
-    c.add_argument("--pixel-size-um", type=float, metavar="UM", help="size of a pixel in um (with --length-unit px)")
-    c.add_argument("--cut-time", type=float, default=0.0, metavar="TIME",
-                   help="time of the cut in the files' time unit, subtracted from every time (default 0)")
-    f.add_argument("--loss", choices=("linear", "soft_l1", "cauchy"), default="linear",
-                   help="linear: least squares; soft_l1, cauchy: robust to outliers (flagged in the output)")
-    k = f.add_argument_group("what is known before the fit", "Names and units: R0_um (um), sigma (tension / G), "
-                             "lambda (viscous length / R0), T_s (s), G_pa (Pa; not in the model: for the "
-                             "absolute eta, zeta and tension). Repeat an option for several parameters.")
-    k.add_argument("--fix", action="append", default=[], metavar="NAME=VALUE",
-                   help="hold a parameter fixed, e.g. --fix R0_um=10 (the radius of the cut), --fix G_pa=1000")
-    k.add_argument("--bound", action="append", default=[], metavar="NAME=MIN:MAX",
-                   help="bound a parameter, either side may be empty, e.g. --bound lambda=0:5, --bound T_s=1:")
-    k.add_argument("--prior", action="append", default=[], metavar="NAME=MEAN:SD",
-                   help="a Gaussian prior (mean, standard deviation), e.g. --prior G_pa=1200:200 (AFM), "
-                   "--prior T_s=8:2; it enters chi^2 as ((value - MEAN) / SD)^2")
+    f.add_argument(
+        "--plot", metavar="OUT.png", help="data with the fit, residuals, profile likelihoods"
+    )
+    f.add_argument(
+        "--export",
+        metavar="STEM",
+        help="write STEM_radius.csv (data, model, residual, normalised "
+        "residual, flagged), STEM_curve.csv (the fitted R(t) on a fine grid) and, with a profile, "
+        "STEM_profile.csv and STEM_profile_curve.csv; units in the column names (docs/fitting.md)",
+    )
+    f.add_argument(
+        "--report",
+        metavar="OUT.html",
+        help="a self-contained HTML report: input files and their "
+        "SHA-256, noise, chi^2, estimates with intervals, flagged points, the figure, versions",
+    )
+    f.add_argument(
+        "--radius-noise-um",
+        type=float,
+        help="noise of the radii in um (default: column radius_sd_um if "
+        "present, else from the residuals)",
+    )
+    f.add_argument(
+        "--velocity-noise-um-s",
+        type=float,
+        help="noise of the velocities in um/s (default: column "
+        "velocity_sd_um_s if present, else from the residuals)",
+    )
+    c = f.add_argument_group(
+        "the files' columns and units",
+        "Both files share the units; the times are "
+        "read from either file as (time - CUT_TIME) in TIME_UNIT. Separators , ; or tab, "
+        "decimal commas in ;- or tab-separated files, '#' comment lines and a UTF-8 BOM "
+        "are accepted.",
+    )
+    c.add_argument(
+        "--time-col",
+        default="time_s",
+        metavar="NAME",
+        help="time column of RADIUS.csv (default time_s)",
+    )
+    c.add_argument(
+        "--radius-col",
+        default="radius_um",
+        metavar="NAME",
+        help="radius column (default radius_um)",
+    )
+    c.add_argument(
+        "--radius-sd-col",
+        metavar="NAME",
+        help="per-point standard deviations of the radius "
+        "(default: the column radius_sd_um if present)",
+    )
+    c.add_argument(
+        "--piv-time-col",
+        default="time_s",
+        metavar="NAME",
+        help="time column of PROFILE.csv (default time_s)",
+    )
+    c.add_argument(
+        "--piv-r-col",
+        default="r_um",
+        metavar="NAME",
+        help="distance column of PROFILE.csv (default r_um)",
+    )
+    c.add_argument(
+        "--piv-velocity-col",
+        default="velocity_um_s",
+        metavar="NAME",
+        help="velocity column of PROFILE.csv (default velocity_um_s)",
+    )
+    c.add_argument(
+        "--piv-velocity-sd-col",
+        metavar="NAME",
+        help="per-point standard deviations of the velocity "
+        "(default: the column velocity_sd_um_s if present)",
+    )
+    c.add_argument(
+        "--time-unit", choices=("ms", "s", "min"), default="s", help="unit of the times (default s)"
+    )
+    c.add_argument(
+        "--length-unit",
+        choices=("um", "px"),
+        default="um",
+        help="unit of radii and distances (default um; px needs --pixel-size-um); velocities are "
+        "in "
+        "length unit per time unit",
+    )
+    c.add_argument(
+        "--pixel-size-um",
+        type=float,
+        metavar="UM",
+        help="size of a pixel in um (with --length-unit px)",
+    )
+    c.add_argument(
+        "--cut-time",
+        type=float,
+        default=0.0,
+        metavar="TIME",
+        help="time of the cut in the files' time unit, subtracted from every time (default 0)",
+    )
+    f.add_argument(
+        "--loss",
+        choices=("linear", "soft_l1", "cauchy"),
+        default="linear",
+        help="linear: least squares; soft_l1, cauchy: robust to outliers (flagged in the output)",
+    )
+    k = f.add_argument_group(
+        "what is known before the fit",
+        "Names and units: R0_um (um), sigma (tension / G), "
+        "lambda (viscous length / R0), T_s (s), G_pa (Pa; not in the model: for the "
+        "absolute eta, zeta and tension). Repeat an option for several parameters.",
+    )
+    k.add_argument(
+        "--fix",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="hold a parameter fixed, e.g. --fix R0_um=10 (the radius of the cut), --fix G_pa=1000",
+    )
+    k.add_argument(
+        "--bound",
+        action="append",
+        default=[],
+        metavar="NAME=MIN:MAX",
+        help="bound a parameter, either side may be empty, e.g. --bound lambda=0:5, --bound T_s=1:",
+    )
+    k.add_argument(
+        "--prior",
+        action="append",
+        default=[],
+        metavar="NAME=MEAN:SD",
+        help="a Gaussian prior (mean, standard deviation), e.g. --prior G_pa=1200:200 (AFM), "
+        "--prior T_s=8:2; it enters chi^2 as ((value - MEAN) / SD)^2",
+    )
     f.set_defaults(run=_fit)
 
-    s = sub.add_parser("sweep", help="outputs over a lambda x sigma x R_inf grid (dimensionless by default)",
-                       formatter_class=HelpFormatter, description="Columns lambda, sigma, R_inf, time, wound_radius, "
-                       "edge_velocity (lengths in R0, times in T); with --R0-um and --T-s: time_s, wound_radius_um, "
-                       "edge_velocity_um_s.")
-    s.add_argument("--lambda", dest="lam", required=True, metavar="L1,L2,..",
-                   help="viscous length / R0 (dimensionless, >= 0)")
+    s = sub.add_parser(
+        "sweep",
+        help="outputs over a lambda x sigma x R_inf grid (dimensionless by default)",
+        formatter_class=HelpFormatter,
+        description="Columns lambda, sigma, R_inf, time, wound_radius, "
+        "edge_velocity (lengths in R0, times in T); with --R0-um and --T-s: time_s, "
+        "wound_radius_um, "
+        "edge_velocity_um_s.",
+    )
+    s.add_argument(
+        "--lambda",
+        dest="lam",
+        required=True,
+        metavar="L1,L2,..",
+        help="viscous length / R0 (dimensionless, >= 0)",
+    )
     s.add_argument("--sigma", required=True, metavar="S1,S2,..", help="tension / G (dimensionless)")
-    s.add_argument("--R-inf", dest="r_inf", required=True, metavar="R1,R2,..",
-                   help="outer radius / R0 (dimensionless, > 1)")
-    s.add_argument("--times", required=True, metavar="T1,T2,..", help="in T, or in s with --R0-um and --T-s")
-    s.add_argument("--R0-um", type=float, help="radius of the cut in um (with --T-s: physical units; default: "
-                   "none, lengths in R0)")
-    s.add_argument("--T-s", type=float, help="time scale zeta R0^2 / 4G in s (with --R0-um; default: none, times in T)")
-    s.add_argument("--csv", required=True, metavar="OUT.csv",
-                   help="the table (every number with the shortest digits that read back exactly)")
+    s.add_argument(
+        "--R-inf",
+        dest="r_inf",
+        required=True,
+        metavar="R1,R2,..",
+        help="outer radius / R0 (dimensionless, > 1)",
+    )
+    s.add_argument(
+        "--times", required=True, metavar="T1,T2,..", help="in T, or in s with --R0-um and --T-s"
+    )
+    s.add_argument(
+        "--R0-um",
+        type=float,
+        help="radius of the cut in um (with --T-s: physical units; default: none, lengths in R0)",
+    )
+    s.add_argument(
+        "--T-s",
+        type=float,
+        help="time scale zeta R0^2 / 4G in s (with --R0-um; default: none, times in T)",
+    )
+    s.add_argument(
+        "--csv",
+        required=True,
+        metavar="OUT.csv",
+        help="the table (every number with the shortest digits that read back exactly)",
+    )
     s.add_argument("--parquet", metavar="OUT.parquet", help="the table as Parquet (pyarrow)")
-    s.add_argument("--plot", metavar="OUT.png", help="opening fraction R(t) coloured by lambda, half-opening time")
-    s.add_argument("--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:port); default: local processes")
+    s.add_argument(
+        "--plot",
+        metavar="OUT.png",
+        help="opening fraction R(t) coloured by lambda, half-opening time",
+    )
+    s.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="a Dask scheduler (tcp://host:port); default: local processes",
+    )
     s.add_argument("--processes", type=int, help="local processes (default: all cores)")
     s.set_defaults(run=_sweep)
 
-    m = sub.add_parser("simulate", help="radius, edge velocity (and profiles) in um and s: a table, or CSV",
-                       formatter_class=HelpFormatter, description="Give the dimensionless set (--lambda, --sigma, "
-                       "--T-s) or the material set (--G-pa, --eta-pa-s, --zeta-pa-s-per-um2, --tension-pa): "
-                       "lambda = 2 sqrt(eta / zeta) / R0, sigma = tension / G, T = zeta R0^2 / (4 G). Prints a table "
-                       "(time_s, radius_um, edge_velocity_um_s; with --radii-um also r_um, displacement_um, "
-                       "velocity_um_s) or writes it to --csv.")
-    m.add_argument("--lambda", dest="lam", type=float, help="viscous length / R0 (dimensionless set)")
+    m = sub.add_parser(
+        "simulate",
+        help="radius, edge velocity (and profiles) in um and s: a table, or CSV",
+        formatter_class=HelpFormatter,
+        description="Give the dimensionless set (--lambda, --sigma, "
+        "--T-s) or the material set (--G-pa, --eta-pa-s, --zeta-pa-s-per-um2, --tension-pa): "
+        "lambda = 2 sqrt(eta / zeta) / R0, sigma = tension / G, T = zeta R0^2 / (4 G). Prints a "
+        "table "
+        "(time_s, radius_um, edge_velocity_um_s; with --radii-um also r_um, displacement_um, "
+        "velocity_um_s) or writes it to --csv.",
+    )
+    m.add_argument(
+        "--lambda", dest="lam", type=float, help="viscous length / R0 (dimensionless set)"
+    )
     m.add_argument("--sigma", type=float, help="tension / G (dimensionless set)")
-    m.add_argument("--T-s", type=float, help="time scale zeta R0^2 / (4 G) in s (dimensionless set)")
-    m.add_argument("--G-pa", type=float, help="shear modulus in Pa (material set, or with --edge-stress-pa)")
+    m.add_argument(
+        "--T-s", type=float, help="time scale zeta R0^2 / (4 G) in s (dimensionless set)"
+    )
+    m.add_argument(
+        "--G-pa", type=float, help="shear modulus in Pa (material set, or with --edge-stress-pa)"
+    )
     m.add_argument("--eta-pa-s", type=float, help="viscosity in Pa s (material set)")
-    m.add_argument("--zeta-pa-s-per-um2", type=float, help="substrate friction in Pa s/um^2 (material set)")
-    m.add_argument("--tension-pa", type=float, help="homeostatic tension (edge stress before the cut) in Pa "
-                   "(material set)")
+    m.add_argument(
+        "--zeta-pa-s-per-um2", type=float, help="substrate friction in Pa s/um^2 (material set)"
+    )
+    m.add_argument(
+        "--tension-pa",
+        type=float,
+        help="homeostatic tension (edge stress before the cut) in Pa (material set)",
+    )
     m.add_argument("--R0-um", type=float, required=True, help="radius of the cut (um)")
-    m.add_argument("--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)")
-    m.add_argument("--times", metavar="T1,T2,..", help="times in s since the cut (default: --points from 0 to --t-end)")
+    m.add_argument(
+        "--outer-radius-um", type=float, required=True, help="outer radius of the tissue (um)"
+    )
+    m.add_argument(
+        "--times",
+        metavar="T1,T2,..",
+        help="times in s since the cut (default: --points from 0 to --t-end)",
+    )
     m.add_argument("--t-end", type=float, default=60.0, help="last time (s)")
     m.add_argument("--points", type=int, default=61, help="number of times from 0 to --t-end")
-    m.add_argument("--radii-um", metavar="R1,R2,..", help="current distances from the wound centre (um)")
-    m.add_argument("--edge-stress-pa", type=float, help="a constant stress at the wound edge (Pa; default: none, "
-                   "a free edge); needs --G-pa")
-    m.add_argument("--csv", metavar="OUT.csv", help="write the table here (every number with the shortest digits "
-                   "that read back exactly) instead of printing it (6 significant digits)")
-    m.add_argument("--plot", metavar="OUT.png", help="radius and edge velocity against time (and the profiles)")
+    m.add_argument(
+        "--radii-um", metavar="R1,R2,..", help="current distances from the wound centre (um)"
+    )
+    m.add_argument(
+        "--edge-stress-pa",
+        type=float,
+        help="a constant stress at the wound edge (Pa; default: none, a free edge); needs --G-pa",
+    )
+    m.add_argument(
+        "--csv",
+        metavar="OUT.csv",
+        help="write the table here (every number with the shortest digits "
+        "that read back exactly) instead of printing it (6 significant digits)",
+    )
+    m.add_argument(
+        "--plot", metavar="OUT.png", help="radius and edge velocity against time (and the profiles)"
+    )
     m.set_defaults(run=_simulate)
     return top
 
@@ -265,13 +516,13 @@ def parser() -> argparse.ArgumentParser:
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
     from ._native import NativeLibraryMissing
-    from .tables import InputError
+    from .inputs.columns import InputError
 
     try:
         code = args.run(args) or 0
-    except BrokenPipeError:  # the reader of a printed table stopped (| head): not an error of the input
-        import os
-
+    except (
+        BrokenPipeError
+    ):  # the reader of a printed table stopped (| head): not an error of the input
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
     except (InputError, ValueError, OSError, NativeLibraryMissing) as e:

@@ -19,7 +19,8 @@ joint chi^2 of (theta, G) is chi^2_data(theta) + ((G - mu) / sd)^2, and the prof
 eta = tau(theta) G factorises:
 
     delta_eta(e) = min over theta, G with tau(theta) G = e of [chi^2 - chi^2_min]
-                 = min over G > 0 of [ min over theta with tau(theta) = e / G of (chi^2_data - chi^2_min)
+                 = min over G > 0 of [ min over theta with tau(theta) = e / G of (chi^2_data
+                     - chi^2_min)
                                        + ((G - mu) / sd)^2 ]
                  = min over G > 0 of [ delta_tau(e / G) + ((G - mu) / sd)^2 ]
 
@@ -45,11 +46,18 @@ import math
 import numpy as np
 
 #: The reported material values: name -> (the fit's derived value it is, unit).
-RATIOS = {"eta_over_G_s": ("tau_s", "s"), "zeta_over_G_s_per_um2": ("zeta_over_G_s_per_um2", "s/um^2"),
-          "tension_over_G": ("tension_over_G", "1"), "viscous_length_um": ("viscous_length_um", "um")}
+RATIOS = {
+    "eta_over_G_s": ("tau_s", "s"),
+    "zeta_over_G_s_per_um2": ("zeta_over_G_s_per_um2", "s/um^2"),
+    "tension_over_G": ("tension_over_G", "1"),
+    "viscous_length_um": ("viscous_length_um", "um"),
+}
 #: With G: absolute name -> (the ratio it is G times, unit).
-ABSOLUTE = {"eta_pa_s": ("eta_over_G_s", "Pa s"), "zeta_pa_s_per_um2": ("zeta_over_G_s_per_um2", "Pa s/um^2"),
-            "tension_pa": ("tension_over_G", "Pa")}
+ABSOLUTE = {
+    "eta_pa_s": ("eta_over_G_s", "Pa s"),
+    "zeta_pa_s_per_um2": ("zeta_over_G_s_per_um2", "Pa s/um^2"),
+    "tension_pa": ("tension_over_G", "Pa"),
+}
 #: The names `simulate` takes in each set.
 DIMENSIONLESS = ("lam", "sigma", "T_s")
 MATERIAL = ("G_pa", "eta_pa_s", "zeta_pa_s_per_um2", "tension_pa")
@@ -62,12 +70,16 @@ def _value(name: str, x, positive: bool = True, zero: bool = False) -> float:
         raise ValueError(f"{name} = {x!r} is not a number") from None
     ok = math.isfinite(x) and (not positive or x > 0 or (zero and x == 0))
     if not ok:
-        raise ValueError(f"{name} = {x} is invalid: expected a finite value" + (" >= 0" if zero else " > 0" if positive else ""))
+        raise ValueError(
+            f"{name} = {x} is invalid: expected a finite value"
+            + (" >= 0" if zero else " > 0" if positive else "")
+        )
     return x
 
 
-def from_material(*, G_pa: float, eta_pa_s: float, zeta_pa_s_per_um2: float, tension_pa: float,
-                  R0_um: float) -> dict:
+def from_material(
+    *, G_pa: float, eta_pa_s: float, zeta_pa_s_per_um2: float, tension_pa: float, R0_um: float
+) -> dict:
     """The model's parameters {lam, sigma, T_s, R0_um} (simulate's keywords) from material
     constants: lambda = 2 sqrt(eta / zeta) / R0, sigma = tension / G, T = zeta R0^2 / (4 G)."""
     G = _value("G_pa", G_pa)
@@ -75,8 +87,12 @@ def from_material(*, G_pa: float, eta_pa_s: float, zeta_pa_s_per_um2: float, ten
     zeta = _value("zeta_pa_s_per_um2", zeta_pa_s_per_um2)
     tension = _value("tension_pa", tension_pa, positive=False)
     R0 = _value("R0_um", R0_um)
-    return {"lam": 2.0 * math.sqrt(eta / zeta) / R0, "sigma": tension / G, "T_s": zeta * R0 * R0 / (4.0 * G),
-            "R0_um": R0}
+    return {
+        "lam": 2.0 * math.sqrt(eta / zeta) / R0,
+        "sigma": tension / G,
+        "T_s": zeta * R0 * R0 / (4.0 * G),
+        "R0_um": R0,
+    }
 
 
 def to_material(*, lam: float, sigma: float, T_s: float, R0_um: float, G_pa: float) -> dict:
@@ -84,8 +100,13 @@ def to_material(*, lam: float, sigma: float, T_s: float, R0_um: float, G_pa: flo
     model's parameters and G: eta = lambda^2 T G, zeta = 4 T G / R0^2, tension = sigma G."""
     G, T, R0 = _value("G_pa", G_pa), _value("T_s", T_s), _value("R0_um", R0_um)
     lam, sigma = _value("lam", lam, zero=True), _value("sigma", sigma, positive=False)
-    return {"G_pa": G, "eta_pa_s": lam * lam * T * G, "zeta_pa_s_per_um2": 4.0 * T * G / (R0 * R0),
-            "tension_pa": sigma * G, "R0_um": R0}
+    return {
+        "G_pa": G,
+        "eta_pa_s": lam * lam * T * G,
+        "zeta_pa_s_per_um2": 4.0 * T * G / (R0 * R0),
+        "tension_pa": sigma * G,
+        "R0_um": R0,
+    }
 
 
 def model_parameters(given: dict) -> dict:
@@ -95,19 +116,26 @@ def model_parameters(given: dict) -> dict:
     dim = [k for k in DIMENSIONLESS if given.get(k) is not None]
     mat = [k for k in MATERIAL[1:] if given.get(k) is not None]
     if dim and mat:
-        raise ValueError(f"give either the dimensionless parameters ({', '.join(DIMENSIONLESS)}) or the material "
-                         f"constants ({', '.join(MATERIAL)}), not both: got {', '.join(dim + mat)}")
+        raise ValueError(
+            f"give either the dimensionless parameters ({', '.join(DIMENSIONLESS)}) or the "
+            f"material "
+            f"constants ({', '.join(MATERIAL)}), not both: got {', '.join(dim + mat)}"
+        )
     if mat:
         missing = [k for k in MATERIAL if given.get(k) is None]
         if missing:
-            raise ValueError(f"the material constants need {', '.join(missing)} too "
-                             f"(all of {', '.join(MATERIAL)}, with R0_um)")
+            raise ValueError(
+                f"the material constants need {', '.join(missing)} too "
+                f"(all of {', '.join(MATERIAL)}, with R0_um)"
+            )
         p = from_material(**{k: given[k] for k in MATERIAL}, R0_um=given["R0_um"])
         return {k: p[k] for k in DIMENSIONLESS}
     missing = [k for k in DIMENSIONLESS if given.get(k) is None]
     if missing:
-        raise ValueError(f"missing {', '.join(missing)}: give lam, sigma and T_s, or the material constants "
-                         f"{', '.join(MATERIAL)}")
+        raise ValueError(
+            f"missing {', '.join(missing)}: give lam, sigma and T_s, or the material constants "
+            f"{', '.join(MATERIAL)}"
+        )
     return {k: float(given[k]) for k in DIMENSIONLESS}
 
 
@@ -154,8 +182,16 @@ def _delta_function(estimate: float, points, log: bool, bounded=(False, False)):
     return delta
 
 
-def absolute_interval(estimate: float, lower, upper, points, G: tuple[float, float], threshold: float,
-                      log: bool = True, bounded=(False, False)) -> tuple:
+def absolute_interval(
+    estimate: float,
+    lower,
+    upper,
+    points,
+    G: tuple[float, float],
+    threshold: float,
+    log: bool = True,
+    bounded=(False, False),
+) -> tuple:
     """(value, lower, upper) of ratio x G: see the module docstring. `lower`, `upper`: the
     ratio's interval (None = open); `points`: its profile (value, delta chi^2); `G` = (mu, sd),
     sd = 0 for a fixed G. An end is None where open."""
@@ -176,8 +212,12 @@ def absolute_interval(estimate: float, lower, upper, points, G: tuple[float, flo
         vals = [delta_q(e / g) + ((g - mu) / sd) ** 2 for g in grid]
         k = int(np.argmin(vals))
         a, b = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-        best = optimize.minimize_scalar(lambda g: delta_q(e / g) + ((g - mu) / sd) ** 2, bounds=(a, b),
-                                        method="bounded", options={"xatol": 1e-10 * mu})
+        best = optimize.minimize_scalar(
+            lambda g: delta_q(e / g) + ((g - mu) / sd) ** 2,
+            bounds=(a, b),
+            method="bounded",
+            options={"xatol": 1e-10 * mu},
+        )
         return min(float(best.fun), vals[k])
 
     out = []
@@ -194,7 +234,11 @@ def absolute_interval(estimate: float, lower, upper, points, G: tuple[float, flo
         if not delta(far) > threshold:
             out.append(None)
             continue
-        out.append(optimize.brentq(lambda e: delta(e) - threshold, *sorted((value, far)), xtol=1e-12 * abs(value)))
+        out.append(
+            optimize.brentq(
+                lambda e: delta(e) - threshold, *sorted((value, far)), xtol=1e-12 * abs(value)
+            )
+        )
     return value, out[0], out[1]
 
 
@@ -206,8 +250,13 @@ def material_report(result) -> dict:
     out = {}
     for name, (ratio, unit) in RATIOS.items():
         v, ci, ok = derived[ratio]
-        out[name] = {"estimate": v, "ci95": list(ci), "identifiable": bool(ok), "unit": unit,
-                     "interval_computed": computed[ratio]}
+        out[name] = {
+            "estimate": v,
+            "ci95": list(ci),
+            "identifiable": bool(ok),
+            "unit": unit,
+            "interval_computed": computed[ratio],
+        }
     if result.G is None:
         return out
     mu, sd = result.G
@@ -218,12 +267,27 @@ def material_report(result) -> dict:
         profile = profiles.get(RATIOS[ratio][0])
         lo = hi = None
         if profile is not None and not profile.at_bound:
-            if profile.lower is not None and profile.lower == profile.upper:  # the ratio is held fixed
+            if (
+                profile.lower is not None and profile.lower == profile.upper
+            ):  # the ratio is held fixed
                 k = math.sqrt(result.threshold) * sd
                 lo, hi = sorted((q * (mu - k), q * (mu + k)))
             else:
-                _, lo, hi = absolute_interval(q, profile.lower, profile.upper, profile.points, result.G,
-                                              result.threshold, log=ratio != "tension_over_G", bounded=profile.bounded)
-        out[name] = {"estimate": q * mu, "ci95": [lo, hi], "identifiable": lo is not None and hi is not None,
-                     "unit": unit, "interval_computed": out[ratio]["interval_computed"]}
+                _, lo, hi = absolute_interval(
+                    q,
+                    profile.lower,
+                    profile.upper,
+                    profile.points,
+                    result.G,
+                    result.threshold,
+                    log=ratio != "tension_over_G",
+                    bounded=profile.bounded,
+                )
+        out[name] = {
+            "estimate": q * mu,
+            "ci95": [lo, hi],
+            "identifiable": lo is not None and hi is not None,
+            "unit": unit,
+            "interval_computed": out[ratio]["interval_computed"],
+        }
     return out

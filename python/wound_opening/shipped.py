@@ -13,7 +13,13 @@ from pathlib import Path
 PACKAGE_DIR = Path(__file__).resolve().parent
 #: The repository root when the package is imported from a checkout (python/wound_opening).
 CHECKOUT = PACKAGE_DIR.parents[1]
-FMUS = ("WoundOpening.fmu", "WoundOpening-me.fmu", "WoundOpening-fmi3.fmu", "PurseString.fmu", "PurseString-fmi3.fmu")
+FMUS = (
+    "WoundOpening.fmu",
+    "WoundOpening-me.fmu",
+    "WoundOpening-fmi3.fmu",
+    "PurseString.fmu",
+    "PurseString-fmi3.fmu",
+)
 
 
 def candidates(in_package: str, in_target: str) -> list[Path]:
@@ -40,5 +46,7 @@ def fmu_path(name: str = "WoundOpening.fmu") -> Path:
     paths = candidates(f"fmu/{name}", f"fmu/{name}")
     if path := first_file(paths):
         return path
-    raise FileNotFoundError(f"{name} not found at {' or '.join(map(str, paths))}; in a checkout, "
-                            f"write it with `cargo run --release -- fmu`")
+    raise FileNotFoundError(
+        f"{name} not found at {' or '.join(map(str, paths))}; in a checkout, "
+        f"write it with `cargo run --release -- fmu`"
+    )

@@ -39,14 +39,22 @@ def parameter_sets(grid=None, sets=None) -> np.ndarray:
     """An (n, 3) array of (lambda, sigma, R_inf): the product of `grid` = {"lambda": [...],
     "sigma": [...], "R_inf": [...]} (lambda outermost), or the rows of `sets`."""
     if (grid is None) == (sets is None):
-        raise ValueError("sweep: give either grid (lists per parameter) or sets (a list of parameter sets)")
+        raise ValueError(
+            "sweep: give either grid (lists per parameter) or sets (a list of parameter sets)"
+        )
     if grid is not None:
         missing = {"lambda", "sigma", "R_inf"} - set(grid)
         if missing:
             raise ValueError(f"sweep: grid lacks {sorted(missing)}")
-        rows = list(itertools.product(*(np.atleast_1d(np.asarray(grid[k], float)) for k in ("lambda", "sigma", "R_inf"))))
+        rows = list(
+            itertools.product(
+                *(np.atleast_1d(np.asarray(grid[k], float)) for k in ("lambda", "sigma", "R_inf"))
+            )
+        )
     else:
-        rows = [(s["lambda"], s["sigma"], s["R_inf"]) if isinstance(s, dict) else tuple(s) for s in sets]
+        rows = [
+            (s["lambda"], s["sigma"], s["R_inf"]) if isinstance(s, dict) else tuple(s) for s in sets
+        ]
     out = np.asarray(rows, dtype=float).reshape(-1, 3)
     if not np.all(np.isfinite(out)):
         raise ValueError("sweep: every parameter must be finite")
@@ -54,7 +62,8 @@ def parameter_sets(grid=None, sets=None) -> np.ndarray:
 
 
 def solve_chunk(pairs, times):
-    """R(t; sigma = 1) and dR/dt(t; 1) for each (lambda, R_inf) pair: arrays (len(pairs), len(times))."""
+    """R(t; sigma = 1) and dR/dt(t; 1) for each (lambda, R_inf) pair: arrays (len(pairs),
+    len(times))."""
     tau = np.asarray(times, dtype=float)
     order = np.argsort(tau, kind="stable")
     radius = np.empty((len(pairs), tau.size))
@@ -67,7 +76,7 @@ def solve_chunk(pairs, times):
 
 def _chunks(pairs):
     size = max(CHUNK, -(-len(pairs) // MAX_TASKS))
-    return [pairs[i:i + size] for i in range(0, len(pairs), size)]
+    return [pairs[i : i + size] for i in range(0, len(pairs), size)]
 
 
 def _progress(total, enabled):
@@ -92,7 +101,8 @@ def _run_local(chunks, times, processes, bar):
 
 
 def _run_dask(chunks, times, scheduler, bar):
-    from distributed import Client, as_completed as dask_completed
+    from distributed import Client
+    from distributed import as_completed as dask_completed
 
     with Client(scheduler, timeout="30s") as client:
         futures = client.map(solve_chunk, chunks, times=list(times), pure=False)
@@ -104,8 +114,17 @@ def _run_dask(chunks, times, scheduler, bar):
     return results
 
 
-def sweep(grid=None, *, times, sets=None, R0_um: float | None = None, T_s: float | None = None,
-          scheduler: str | None = None, processes: int | None = None, progress: bool | None = None):
+def sweep(
+    grid=None,
+    *,
+    times,
+    sets=None,
+    R0_um: float | None = None,
+    T_s: float | None = None,
+    scheduler: str | None = None,
+    processes: int | None = None,
+    progress: bool | None = None,
+):
     """Outputs of every parameter set at every time, as a pandas DataFrame with columns
     lambda, sigma, R_inf, time, wound_radius, edge_velocity (one row per set and time).
 
@@ -119,7 +138,9 @@ def sweep(grid=None, *, times, sets=None, R0_um: float | None = None, T_s: float
 
     physical = R0_um is not None or T_s is not None
     if physical and (R0_um is None or T_s is None):
-        raise ValueError("sweep: give both R0_um and T_s (physical units) or neither (dimensionless)")
+        raise ValueError(
+            "sweep: give both R0_um and T_s (physical units) or neither (dimensionless)"
+        )
     if not physical:
         R0_um = T_s = 1.0
     if not (math.isfinite(R0_um) and R0_um > 0 and math.isfinite(T_s) and T_s > 0):
@@ -144,8 +165,14 @@ def sweep(grid=None, *, times, sets=None, R0_um: float | None = None, T_s: float
         velocity = np.where(sigma == 0, 0.0, sigma * velocity1)
     n, m = radius.shape
     names = PHYSICAL_COLUMNS if physical else COLUMNS
-    values = [np.repeat(params[:, 0], m), np.repeat(params[:, 1], m), np.repeat(params[:, 2], m), np.tile(t, n),
-              R0_um * radius.ravel(), R0_um / T_s * velocity.ravel()]
+    values = [
+        np.repeat(params[:, 0], m),
+        np.repeat(params[:, 1], m),
+        np.repeat(params[:, 2], m),
+        np.tile(t, n),
+        R0_um * radius.ravel(),
+        R0_um / T_s * velocity.ravel(),
+    ]
     df = pd.DataFrame(dict(zip(names, values)), columns=names)
     if physical:
         df.attrs.update(R0_um=float(R0_um), T_s=float(T_s))

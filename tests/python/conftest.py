@@ -34,8 +34,7 @@ def _built(name: str) -> str:
     path = FMU_DIR / f"{name}.fmu"
     if not path.is_file():
         pytest.fail(
-            f"FMU not found: {path}\n"
-            f"Build it first, from {ROOT}: cargo run --release -- fmu",
+            f"FMU not found: {path}\nBuild it first, from {ROOT}: cargo run --release -- fmu",
             pytrace=False,
         )
     return str(path)

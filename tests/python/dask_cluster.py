@@ -42,12 +42,42 @@ def cluster(workers: int = 2):
     address = f"tcp://127.0.0.1:{port}"
     env = dict(os.environ, DASK_DISTRIBUTED__WORKER__DAEMON="False")
     common = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
-    processes = [subprocess.Popen([DASK, "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                                   "--dashboard-address", "127.0.0.1:0"], **common)]
+    processes = [
+        subprocess.Popen(
+            [
+                DASK,
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                str(port),
+                "--dashboard-address",
+                "127.0.0.1:0",
+            ],
+            **common,
+        )
+    ]
     try:
         for _ in range(workers):
-            processes.append(subprocess.Popen([DASK, "worker", address, "--host", "127.0.0.1", "--nworkers", "1",
-                                               "--nthreads", "1", "--no-dashboard", "--death-timeout", "60"], **common))
+            processes.append(
+                subprocess.Popen(
+                    [
+                        DASK,
+                        "worker",
+                        address,
+                        "--host",
+                        "127.0.0.1",
+                        "--nworkers",
+                        "1",
+                        "--nthreads",
+                        "1",
+                        "--no-dashboard",
+                        "--death-timeout",
+                        "60",
+                    ],
+                    **common,
+                )
+            )
         deadline = time.monotonic() + START_TIMEOUT
         while True:
             try:
@@ -56,7 +86,9 @@ def cluster(workers: int = 2):
                     break
             except (OSError, TimeoutError):
                 if time.monotonic() > deadline or any(p.poll() is not None for p in processes):
-                    raise RuntimeError(f"dask cluster at {address} did not start within {START_TIMEOUT} s")
+                    raise RuntimeError(
+                        f"dask cluster at {address} did not start within {START_TIMEOUT} s"
+                    )
                 time.sleep(0.5)
         yield address
     finally:

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
+import wound_exact
 from fmpy import calloc, free
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (
@@ -35,8 +36,6 @@ from fmpy.fmi2 import (
     fmi2Error,
 )
 from fmpy.logging import addLoggerProxy
-
-import wound_exact
 
 # The paper's case: R_inf = 10, sigma = 1 (lengths in R0, stresses in G, time in T).
 SIGMA = 1.0
@@ -58,6 +57,7 @@ T_MIN = 0.01
 # velocity is again singular like t^(-1/2); 3e-10 elsewhere at lambda = 0).
 VELOCITY_TOL = 1e-7
 VELOCITY_FLOOR = AMPLITUDE / 100.0
+
 
 def PARAMS(lam):
     """The parameter set of the paper's case for one lambda."""
@@ -219,8 +219,9 @@ class InstantiateFailed(Exception):
 class Slave:
     """One co-simulation instance of the FMU, with its own captured log."""
 
-    def __init__(self, unzipdir, model_description, *, instance_name="wound", guid=None,
-                 logging_on=False):
+    def __init__(
+        self, unzipdir, model_description, *, instance_name="wound", guid=None, logging_on=False
+    ):
         md = model_description
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.log: list[LogMessage] = []

@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 from fmpy import simulate_fmu
 from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Terminated
-
 from fmu_harness import (
     PARAMS,
     R1,
@@ -119,7 +118,12 @@ def test_simulate_fmu_edge_stress_step(fmu_path, lam):
     mask &= ~(after & (t - t0 < T_MIN))
     check_against(
         f"simulate_fmu edge_stress step lambda={lam:g}",
-        t, result["wound_radius"], result["edge_velocity"], r_exact, v_exact, mask,
+        t,
+        result["wound_radius"],
+        result["edge_velocity"],
+        r_exact,
+        v_exact,
+        mask,
     )
 
 

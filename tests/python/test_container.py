@@ -20,7 +20,6 @@ import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.validation import validate_fmu
-
 from fmu_harness import record
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -48,8 +47,15 @@ def container_run(container):
     return simulate_fmu(container, stop_time=STOP, output_interval=STEP, output=OUTPUTS)
 
 
-def plain_loop(wound_path, purse_path, step, stop, wound_params=WOUND_PARAMS,
-               purse_params=PURSE_PARAMS, radius_first=True):
+def plain_loop(
+    wound_path,
+    purse_path,
+    step,
+    stop,
+    wound_params=WOUND_PARAMS,
+    purse_params=PURSE_PARAMS,
+    radius_first=True,
+):
     """The container's exchange, written out with two FMU2Slave instances
     (`radius_first=False` swaps the two connections, for the negative check)."""
     n = round(stop / step)
@@ -162,12 +168,16 @@ def test_container_purse_string_outputs(container_run):
     res = container_run
     t = res["time"]
     p = PURSE_PARAMS
-    tc = np.where(t > p["t_delay"],
-                  p["T_max"] * (1.0 - np.exp(-(t - p["t_delay"]) / p["t_assembly"])), 0.0)
+    tc = np.where(
+        t > p["t_delay"], p["T_max"] * (1.0 - np.exp(-(t - p["t_delay"]) / p["t_assembly"])), 0.0
+    )
     np.testing.assert_allclose(res["line_tension"], tc, rtol=1e-12, atol=1e-9)
-    np.testing.assert_allclose(res["edge_stress"],
-                               res["line_tension"] / (p["thickness"] * res["wound_radius"]),
-                               rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(
+        res["edge_stress"],
+        res["line_tension"] / (p["thickness"] * res["wound_radius"]),
+        rtol=1e-12,
+        atol=1e-12,
+    )
 
 
 def test_container_parameters_reach_the_components(container, fmu_path, purse_path):
@@ -175,16 +185,29 @@ def test_container_parameters_reach_the_components(container, fmu_path, purse_pa
     without the purse-string the wound only opens, here with a doubled time scale T (G
     would not do: with no edge stress it changes nothing)."""
     changed = {"T_max": 0.0, "T": 20.0}
-    res = simulate_fmu(container, stop_time=100.0, output_interval=STEP, output=OUTPUTS,
-                       start_values=changed)
-    ref = plain_loop(fmu_path, purse_path, STEP, 100.0,
-                     wound_params={**WOUND_PARAMS, "T": 20.0},
-                     purse_params={**PURSE_PARAMS, "T_max": 0.0})
-    only_purse = simulate_fmu(container, stop_time=100.0, output_interval=STEP, output=OUTPUTS,
-                              start_values={"T_max": 0.0})
+    res = simulate_fmu(
+        container, stop_time=100.0, output_interval=STEP, output=OUTPUTS, start_values=changed
+    )
+    ref = plain_loop(
+        fmu_path,
+        purse_path,
+        STEP,
+        100.0,
+        wound_params={**WOUND_PARAMS, "T": 20.0},
+        purse_params={**PURSE_PARAMS, "T_max": 0.0},
+    )
+    only_purse = simulate_fmu(
+        container,
+        stop_time=100.0,
+        output_interval=STEP,
+        output=OUTPUTS,
+        start_values={"T_max": 0.0},
+    )
     assert np.all(res["line_tension"] == 0.0)
     assert np.all(np.diff(res["wound_radius"]) > 0)
     assert np.max(np.abs(res["wound_radius"] - only_purse["wound_radius"])) > 0.1  # T arrived
-    err = float(np.max(np.abs(res["wound_radius"] - ref["wound_radius"])) / np.max(ref["wound_radius"]))
+    err = float(
+        np.max(np.abs(res["wound_radius"] - ref["wound_radius"])) / np.max(ref["wound_radius"])
+    )
     record("container vs plain loop, wound_radius with start_values (relative)", err)
     assert err <= 1e-12

@@ -20,10 +20,15 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
-from coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE, couple, fmu_start_values, observed_order  # noqa: E402
-
 import fmu_harness  # noqa: E402
 import wound_exact  # noqa: E402
+from coupling.loop import (  # noqa: E402
+    PURSE_EXAMPLE,
+    WOUND_EXAMPLE,
+    couple,
+    fmu_start_values,
+    observed_order,
+)
 
 W = WOUND_EXAMPLE
 R0, T, G, SIGMA = W["R0"], W["T"], W["G"], W["sigma"]
@@ -33,8 +38,14 @@ AMPLITUDE = R_FINAL - R1
 
 
 def test_worked_example_parameters_follow_from_the_material():
-    got = fmu_start_values(G_pa=100.0, eta_pa_s=1000.0, zeta_pa_s_per_um2=40.0, tension_pa=100.0, R0_um=10.0,
-                           outer_radius_um=100.0)
+    got = fmu_start_values(
+        G_pa=100.0,
+        eta_pa_s=1000.0,
+        zeta_pa_s_per_um2=40.0,
+        tension_pa=100.0,
+        R0_um=10.0,
+        outer_radius_um=100.0,
+    )
     assert got["lambda"] == pytest.approx(1.0, rel=1e-15)
     assert got["T"] == pytest.approx(10.0, rel=1e-15)
     assert (got["sigma"], got["R0"], got["G"], got["R_inf"]) == (1.0, 10.0, 100.0, 10.0)
@@ -82,7 +93,9 @@ def test_purse_string_opens_then_closes_the_wound(fmu_path, purse_path):
     s = np.clip(run.time - pe["t_delay"], 0.0, None)
     tc = pe["T_max"] * -np.expm1(-s / pe["t_assembly"])
     np.testing.assert_allclose(run.line_tension, tc, rtol=1e-14, atol=1e-9)
-    np.testing.assert_allclose(run.edge_stress, tc / (pe["thickness"] * run.wound_radius), rtol=1e-14, atol=1e-12)
+    np.testing.assert_allclose(
+        run.edge_stress, tc / (pe["thickness"] * run.wound_radius), rtol=1e-14, atol=1e-12
+    )
 
 
 def test_purse_string_loop_settles_on_the_exact_equilibrium(fmu_path, purse_path):

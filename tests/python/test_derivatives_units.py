@@ -10,8 +10,15 @@ import re
 
 import numpy as np
 import pytest
-
-from fmu_harness import PARAMS, R_INF, assert_logged, expect_error, initial_velocity, names_value, record
+from fmu_harness import (
+    PARAMS,
+    R_INF,
+    assert_logged,
+    expect_error,
+    initial_velocity,
+    names_value,
+    record,
+)
 
 PHYSICAL = {"R0": 10.0, "T": 10.0, "G": 100.0}
 
@@ -53,7 +60,9 @@ def test_wound_derivative_is_refused_at_lambda_zero(make_slave, scales):
     """The exact derivative is infinite at lambda = 0: refused with the reason, not a
     mesh artefact (the mesh gives 22.5 to 264 depending on the tolerance)."""
     s = wound_at(make_slave, 0.0, 0.5, 0.2, scales)
-    messages = expect_error(s, s.fmu.getDirectionalDerivative, [s.vr["edge_velocity"]], [s.vr["edge_stress"]], [1.0])
+    messages = expect_error(
+        s, s.fmu.getDirectionalDerivative, [s.vr["edge_velocity"]], [s.vr["edge_stress"]], [1.0]
+    )
     assert_logged(messages, re.compile(r"infinite at lambda = 0"), s)
 
 
@@ -65,7 +74,9 @@ def test_wound_derivatives_match_difference_quotients(make_slave, lam, scales):
     k = scales or {"R0": 1.0, "T": 1.0, "G": 1.0}
     s = wound_at(make_slave, lam, 0.5 * k["T"], 0.2 * k["G"], scales)
     vr = s.vr
-    d_r, d_v = s.fmu.getDirectionalDerivative([vr["wound_radius"], vr["edge_velocity"]], [vr["edge_stress"]], [1.0])
+    d_r, d_v = s.fmu.getDirectionalDerivative(
+        [vr["wound_radius"], vr["edge_velocity"]], [vr["edge_stress"]], [1.0]
+    )
     r0, v0 = s.outputs()
     dp = 0.25 * k["G"]
     s.set({"edge_stress": 0.2 * k["G"] + dp})
@@ -75,7 +86,9 @@ def test_wound_derivatives_match_difference_quotients(make_slave, lam, scales):
     assert d_v < 0.0
     assert d_v == pytest.approx(fd, rel=1e-9), (d_v, fd)
     # Linear in the seed; several knowns are summed.
-    (d2,) = s.fmu.getDirectionalDerivative([vr["edge_velocity"]], [vr["edge_stress"], vr["edge_stress"]], [2.0, -0.5])
+    (d2,) = s.fmu.getDirectionalDerivative(
+        [vr["edge_velocity"]], [vr["edge_stress"], vr["edge_stress"]], [2.0, -0.5]
+    )
     assert d2 == pytest.approx(1.5 * d_v, rel=1e-15)
 
 
@@ -101,18 +114,26 @@ def test_physical_units_scale_the_dimensionless_run(make_slave):
 def test_derivative_refuses_wrong_roles(make_slave):
     s = wound_at(make_slave, 1.0, 0.5, 0.0)
     vr = s.vr
-    new = expect_error(s, s.fmu.getDirectionalDerivative, [vr["wound_radius"]], [vr["lambda"]], [1.0])
+    new = expect_error(
+        s, s.fmu.getDirectionalDerivative, [vr["wound_radius"]], [vr["lambda"]], [1.0]
+    )
     assert any("must be a Real input" in m.message for m in new), s.log_text()
-    new = expect_error(s, s.fmu.getDirectionalDerivative, [vr["edge_stress"]], [vr["edge_stress"]], [1.0])
+    new = expect_error(
+        s, s.fmu.getDirectionalDerivative, [vr["edge_stress"]], [vr["edge_stress"]], [1.0]
+    )
     assert any("must be a Real output" in m.message for m in new), s.log_text()
-    new = expect_error(s, s.fmu.getDirectionalDerivative, [vr["edge_velocity"]], [vr["edge_stress"]], [math.nan])
+    new = expect_error(
+        s, s.fmu.getDirectionalDerivative, [vr["edge_velocity"]], [vr["edge_stress"]], [math.nan]
+    )
     assert_logged(new, names_value("dvKnown", math.nan), s)
     # The instance goes on.
     s.step_to(1.0)
     assert np.isfinite(s.outputs()).all()
 
 
-@pytest.mark.parametrize("name, bad", [("R0", 0.0), ("T", -1.0), ("G", math.inf), ("R0", -2.5)], ids=str)
+@pytest.mark.parametrize(
+    "name, bad", [("R0", 0.0), ("T", -1.0), ("G", math.inf), ("R0", -2.5)], ids=str
+)
 def test_invalid_scale_is_refused(make_slave, name, bad):
     s = make_slave()
     new = expect_error(s, s.set, {name: bad})
@@ -167,7 +188,11 @@ def test_purse_string_refuses_a_closed_or_invalid_radius(make_purse, bad):
     s.step_to(60.0)  # and goes on
 
 
-@pytest.mark.parametrize("name, bad", [("thickness", 0.0), ("T_max", -1.0), ("t_assembly", math.nan), ("t_delay", -0.5)], ids=str)
+@pytest.mark.parametrize(
+    "name, bad",
+    [("thickness", 0.0), ("T_max", -1.0), ("t_assembly", math.nan), ("t_delay", -0.5)],
+    ids=str,
+)
 def test_purse_string_refuses_invalid_parameters(make_purse, name, bad):
     s = make_purse()
     new = expect_error(s, s.set, {name: bad})
@@ -193,4 +218,6 @@ def test_purse_string_state_round_trip_and_foreign_state(make_purse, make_slave)
     wdata = w.fmu.serializeFMUstate(ws)
     w.fmu.freeFMUstate(ws)
     new = expect_error(s, s.fmu.deSerializeFMUstate, wdata)
-    assert any('of model "WoundOpening" but this instance is "PurseString"' in m.message for m in new), s.log_text()
+    assert any(
+        'of model "WoundOpening" but this instance is "PurseString"' in m.message for m in new
+    ), s.log_text()

@@ -16,7 +16,8 @@ import coupled_example  # noqa: E402
 from coupling.loop import couple  # noqa: E402
 
 SENTENCE = re.compile(
-    r"opens from ([\d.]+) um to ([\d.]+) um at t = ([\d.]+) s,.*?closes to ([\d.]+) um at 300 s \(free opening: ([\d.]+) um[;)]",
+    r"opens from ([\d.]+) um to ([\d.]+) um at t = ([\d.]+) s,"
+    r".*?closes to ([\d.]+) um at 300 s \(free opening: ([\d.]+) um[;)]",
     re.S,
 )
 

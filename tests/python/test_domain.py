@@ -18,7 +18,6 @@ import re
 
 import numpy as np
 import pytest
-
 import wound_exact
 from fmu_harness import expect_error, record
 
@@ -41,7 +40,9 @@ def worst_error(slave, lam, r_inf, tolerance=None, sigma=1.0):
     return float(np.max(np.abs(r - exact_r)) / abs(amplitude))
 
 
-@pytest.mark.parametrize("tol", [1e-3, 1e-6, None, 1e-11], ids=["1e-3", "1e-6", "default 1e-10", "1e-11"])
+@pytest.mark.parametrize(
+    "tol", [1e-3, 1e-6, None, 1e-11], ids=["1e-3", "1e-6", "default 1e-10", "1e-11"]
+)
 @pytest.mark.parametrize("r_inf", EDGE_RADII)
 def test_edges_of_the_domain_meet_the_tolerance(make_slave, tol, r_inf):
     """Every edge lambda at this R_inf, early (t = 0.01) and late (1e14): error <= tolerance."""
@@ -49,7 +50,9 @@ def test_edges_of_the_domain_meet_the_tolerance(make_slave, tol, r_inf):
     worst = 0.0
     for lam in EDGE_LAMBDAS:
         err = worst_error(make_slave(), lam, r_inf, tol)
-        assert err <= promised, f"lambda {lam}, R_inf {r_inf}: error {err:.2e} > tolerance {promised:.0e}"
+        assert err <= promised, (
+            f"lambda {lam}, R_inf {r_inf}: error {err:.2e} > tolerance {promised:.0e}"
+        )
         worst = max(worst, err)
     record(f"domain edges, tolerance {promised:.0e}, R_inf={r_inf:g}: worst error", worst)
 
@@ -84,14 +87,18 @@ def range_pattern(name, accepted):
 def test_values_outside_the_domain_are_refused_with_the_range(make_slave, name, value, accepted):
     s = make_slave()
     messages = expect_error(s, s.set, {name: value})
-    assert any(range_pattern(name, accepted).search(m.message) for m in messages), [str(m) for m in messages]
+    assert any(range_pattern(name, accepted).search(m.message) for m in messages), [
+        str(m) for m in messages
+    ]
 
 
 def test_the_edge_stress_is_bounded_in_units_of_g(make_slave):
     s = make_slave()
     s.initialize({"lambda": 1.0, "G": 100.0})
     messages = expect_error(s, s.set, {"edge_stress": 1.5e8})
-    assert any("outside the accepted range [-1e8, 1e8] Pa" in m.message for m in messages), [str(m) for m in messages]
+    assert any("outside the accepted range [-1e8, 1e8] Pa" in m.message for m in messages), [
+        str(m) for m in messages
+    ]
     s.set({"edge_stress": -1e8})
     s.step_to(1.0)
     assert all(math.isfinite(x) for x in s.outputs())
@@ -124,7 +131,10 @@ def test_a_tolerance_below_the_floor_is_answered_with_the_delivered_accuracy(mak
     OMSimulator), and the run meets it."""
     s = make_slave()
     err = worst_error(s, 0.1, 10.0, tolerance=1e-13)
-    assert any("below what this FMU can deliver: results are accurate to 1e-11" in m.message for m in notes(s)), s.log_text()
+    assert any(
+        "below what this FMU can deliver: results are accurate to 1e-11" in m.message
+        for m in notes(s)
+    ), s.log_text()
     assert warnings(s) == [], s.log_text()
     assert err <= 1e-11, err
     quiet = make_slave()
@@ -143,7 +153,9 @@ def test_methods_for_comparison_say_that_the_tolerance_does_not_bind_them(make_s
     assert any("is for comparison" in m.message for m in warnings(s)), s.log_text()
 
 
-def test_the_infinite_edge_velocity_at_lambda_zero_is_answered_by_the_mean_over_the_next_hundredth(make_slave):
+def test_the_infinite_edge_velocity_at_lambda_zero_is_answered_by_the_mean_over_the_next_hundredth(
+    make_slave,
+):
     """At lambda = 0 the exact edge velocity is infinite at the cut and just after any change
     of the edge stress. The FMU answers, with OK and a note in the log, the mean velocity
     over the next 0.01 T with the edge stress held, (R(0.01) - R(0)) / 0.01 of the exact
@@ -152,7 +164,10 @@ def test_the_infinite_edge_velocity_at_lambda_zero_is_answered_by_the_mean_over_
     s.initialize({"lambda": 0.0})
     before = len(notes(s))
     _, v = s.outputs()
-    assert len(notes(s)) == before + 1 and "infinite in the model at lambda = 0" in notes(s)[-1].message
+    assert (
+        len(notes(s)) == before + 1
+        and "infinite in the model at lambda = 0" in notes(s)[-1].message
+    )
     assert warnings(s) == [], s.log_text()
     r_01, _ = wound_exact.edge(0.0, 1.0, 10.0, np.array([0.01]))
     mean = (r_01[0] - wound_exact.initial_radius(1.0)) / 0.01
@@ -178,7 +193,9 @@ CORNER_R_INF = [1.001, 1e6]
 @pytest.mark.parametrize("lam", CORNER_LAMBDA)
 @pytest.mark.parametrize("sigma", CORNER_SIGMA)
 @pytest.mark.parametrize("r_inf", CORNER_R_INF)
-def test_every_corner_of_the_domain_has_finite_outputs_at_the_largest_scales(make_slave, lam, sigma, r_inf):
+def test_every_corner_of_the_domain_has_finite_outputs_at_the_largest_scales(
+    make_slave, lam, sigma, r_inf
+):
     """lambda = 1e-300 was accepted and gave edge_velocity = +inf with fmi2OK at R0 = 1e12,
     T = 1e-12. Now every corner of the accepted domain (lambda 0, 1e-150, 1e6; sigma just above
     -6 and 1e6; R_inf 1.001 and 1e6; the edge stress at both bounds) with the largest velocity
@@ -188,7 +205,9 @@ def test_every_corner_of_the_domain_has_finite_outputs_at_the_largest_scales(mak
     for g in (1e-12, 1e12):
         for p in (-1e6 * g, 1e6 * g):
             s = make_slave()
-            s.initialize({"lambda": lam, "sigma": sigma, "R_inf": r_inf, "R0": 1e12, "T": 1e-12, "G": g})
+            s.initialize(
+                {"lambda": lam, "sigma": sigma, "R_inf": r_inf, "R0": 1e12, "T": 1e-12, "G": g}
+            )
             s.set({"edge_stress": p})
             assert all(math.isfinite(x) for x in s.outputs()), (g, p)
             for t in [1e-26, 1e-24, 1e-18, 1e-12, 1e-6]:

@@ -6,7 +6,6 @@ released by the cut, so nothing moves.
 
 import numpy as np
 import pytest
-
 from fmu_harness import (
     AMPLITUDE,
     PARAMS,
@@ -44,7 +43,8 @@ def test_constant_edge_stress_scales_the_opening(make_slave, lam):
     assert err_r <= 1e-10
     assert err_v <= 1e-10
 
-    # And against the exact solution with p: the promise of the default tolerance (1e-10) at t >= 0.01.
+    # And against the exact solution with p: the promise of the default tolerance (1e-10) at t >=
+    # 0.01.
     check_free_opening(f"edge_stress={P} lambda={lam:g}", lam, t, rp, vp, p=P)
 
 

@@ -4,7 +4,8 @@ Each must return fmi2Error (fmpy raises fmpy.fmi1.FMICallException with .status 
 any status above fmi2Warning), log a message through the logger callback (errors are
 logged whatever loggingOn says; all instances here have loggingOn=False), and leave the
 instance as it was: the tests go on with the same instance in the same process and check
-its outputs against the exact solution (the promise of the default tolerance, 1e-10).  Reaching those checks is
+its outputs against the exact solution (the promise of the default tolerance, 1e-10).  Reaching
+those checks is
 also the proof that the process did not crash.
 """
 
@@ -13,14 +14,13 @@ import re
 
 import pytest
 from fmpy.fmi2 import fmi2Error, fmi2Terminated
-
 from fmu_harness import (
-    assert_logged,
-    expect_error,
     PARAMS,
     InstantiateFailed,
+    assert_logged,
     check_free_opening,
     communication_grid,
+    expect_error,
     names_value,
     value_regex,
 )

@@ -9,10 +9,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import wound_exact as we
 from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Slave
-
-import wound_exact as we
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "fmi.md"
 TIMES = np.array([0.01, 0.1, 1.0, 10.0, 100.0])
@@ -20,8 +19,12 @@ TIMES = np.array([0.01, 0.1, 1.0, 10.0, 100.0])
 
 def stated_contract():
     text = " ".join(DOC.read_text().split())
-    m = re.search(r"\*\*displacement within (\S+) of the opening R_final - R1; velocity within (\S+) / (\S+) / (\S+) "
-                  r"\(relative to \|u_t\|, floored at the opening / 100 per T\) at lambda = 0.1 / 1 / 10\*\*", text)
+    m = re.search(
+        r"\*\*displacement within (\S+) of the opening R_final - R1; velocity within (\S+) / "
+        r"(\S+) / (\S+) "
+        r"\(relative to \|u_t\|, floored at the opening / 100 per T\) at lambda = 0.1 / 1 / 10\*\*",
+        text,
+    )
     assert m, "docs/fmi.md states the field contract"
     return float(m.group(1)), dict(zip([0.1, 1.0, 10.0], map(float, m.groups()[1:])))
 
@@ -34,7 +37,9 @@ def fmu3(fmu3_path):
 
 def field(fmu3, lam, r_inf, radii):
     md, vr, unzipped = fmu3
-    f = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier="WoundOpening", instanceName="field")
+    f = FMU3Slave(
+        guid=md.guid, unzipDirectory=unzipped, modelIdentifier="WoundOpening", instanceName="field"
+    )
     f.instantiate()
     f.enterConfigurationMode()
     f.setUInt64([vr["n_probes"]], [len(radii)])

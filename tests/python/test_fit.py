@@ -21,18 +21,25 @@ import pytest
 import wound_exact as we
 from bench.fit_designs import NAMES, clean, covers, draw, truth
 
-from wound_opening.data import RadiusSeries
-from wound_opening.fitting import fit
-from wound_opening.objective import Objective, to_z
+from wound_opening.fitting.objective import Objective, to_z
+from wound_opening.fitting.single import fit
+from wound_opening.inputs.series import RadiusSeries
 
 
 def chi2_of(series, model):
     return float(np.sum(((series.radius_um - model) / series.noise_um) ** 2))
 
 
-@pytest.mark.parametrize("lam, sigma, T, outer, noise", [
-    (0.0, 0.5, 10.0, 100.0, 1e-3), (0.05, 0.5, 10.0, 100.0, 1e-3), (0.05, 0.5, 10.0, 100.0, 1e-6),
-    (0.05, 1.0, 1.0, 30.0, 1e-3), (0.5, 0.24, 3.0, 80.0, 1e-4)])
+@pytest.mark.parametrize(
+    "lam, sigma, T, outer, noise",
+    [
+        (0.0, 0.5, 10.0, 100.0, 1e-3),
+        (0.05, 0.5, 10.0, 100.0, 1e-3),
+        (0.05, 0.5, 10.0, 100.0, 1e-6),
+        (0.05, 1.0, 1.0, 30.0, 1e-3),
+        (0.5, 0.24, 3.0, 80.0, 1e-4),
+    ],
+)
 def test_radius_only_fit_reaches_the_optimum_and_covers_the_truth(lam, sigma, T, outer, noise):
     R0 = 10.0
     t = np.linspace(0.5, 60.0, 40) * T / 10
@@ -69,7 +76,12 @@ def test_the_jacobian_matches_differences_of_the_exact_solution():
             e[i] = 1e-4 * (1 if i != 2 else max(theta[2], 0.01))
             ref = (exact(z + e) - exact(z - e)) / (2 * e[i])
             scale = max(np.max(np.abs(ref)), 1e-3 * np.max(np.abs(jac)))
-            assert np.max(np.abs(jac[:, i] - ref)) < 1e-6 * scale, (theta, NAMES[i], np.max(np.abs(jac[:, i] - ref)), scale)
+            assert np.max(np.abs(jac[:, i] - ref)) < 1e-6 * scale, (
+                theta,
+                NAMES[i],
+                np.max(np.abs(jac[:, i] - ref)),
+                scale,
+            )
 
 
 def test_piv_vectors_at_the_edge_and_just_outside_fit_without_a_penalty():
@@ -79,17 +91,28 @@ def test_piv_vectors_at_the_edge_and_just_outside_fit_without_a_penalty():
     for name, value in truth(0.5).items():
         rep = result.reports[name]
         assert rep.identifiable and covers(rep.ci95, value), (name, rep.estimate, rep.ci95)
-    assert 0 <= result.piv_at_edge <= 2  # the vector at the edge may sit on either side of the model's edge
+    assert (
+        0 <= result.piv_at_edge <= 2
+    )  # the vector at the edge may sit on either side of the model's edge
     R0, _, lam, T = truth(0.5).values()
-    derived = {"tau_s": lam**2 * T, "zeta_over_G_s_per_um2": 4 * T / R0**2, "viscous_length_um": lam * R0}
+    derived = {
+        "tau_s": lam**2 * T,
+        "zeta_over_G_s_per_um2": 4 * T / R0**2,
+        "viscous_length_um": lam * R0,
+    }
     for name, value in derived.items():  # their own profile intervals
         lo, hi = result.derived_ci95[name]
         assert lo < value < hi and result.derived[name] is not None, (name, lo, value, hi)
     assert "piv_vectors_at_edge" in result.to_dict()
 
 
-CONFIGS = [("radius", 0.05, 1e-3), ("radius", 0.0, 1e-6), ("piv", 0.5, 1e-4), ("piv", 5.0, 1e-2),
-           ("early", 0.0, 1e-4)]
+CONFIGS = [
+    ("radius", 0.05, 1e-3),
+    ("radius", 0.0, 1e-6),
+    ("piv", 0.5, 1e-4),
+    ("piv", 5.0, 1e-2),
+    ("early", 0.0, 1e-4),
+]
 
 
 @pytest.mark.parametrize("design, lam, noise", CONFIGS)
@@ -107,7 +130,11 @@ def test_small_coverage_sample(design, lam, noise):
             covered[n] += rep.identifiable and covers(rep.ci95, truth(lam)[n])
     for n in NAMES:
         if identified[n]:
-            assert identified[n] - covered[n] <= 2, (n, covered, identified)  # at most 2 misses of 6
+            assert identified[n] - covered[n] <= 2, (
+                n,
+                covered,
+                identified,
+            )  # at most 2 misses of 6
     assert identified["R0_um"] == identified["sigma"] == 6, identified
     if design == "radius":  # lambda's profile reaches its bound 0: flat, not identified
         assert identified["lambda"] <= 2, identified
@@ -117,21 +144,23 @@ def test_profile_interval_ends_lie_on_the_threshold():
     """Each end of a PIV fit's four intervals: chi^2 minimised over the other three there
     (tolerances 1e-12, started at the estimate) exceeds the minimum by the threshold to
     2e-3 of it, the precision likelihood.py locates the crossing to."""
-    from wound_opening.fitting import _uncertainties
-    from wound_opening.local import local_fit
+    from wound_opening.fitting.local import local_fit
 
     radius, profile = draw("piv", 0.5, 1e-2, 7)
     result = fit(radius, profile, outer_radius_um=100.0, derived=False)
     assert result.converged, result.reasons
     obj = Objective(radius, profile, 100.0)
-    _uncertainties(obj, radius, profile)
     z_hat = to_z(result.theta)
     _, chi2_min, _ = local_fit(obj, z_hat)
     for i, name in enumerate(NAMES):
         for end in result.reports[name].ci95:
             value = np.log(end) if i in (0, 3) else end
             _, chi2, _ = local_fit(obj, z_hat, fixed=i, value=value, max_nfev=1000)
-            assert abs(chi2 - chi2_min - result.threshold) < 2e-3 * result.threshold, (name, end, chi2 - chi2_min)
+            assert abs(chi2 - chi2_min - result.threshold) < 2e-3 * result.threshold, (
+                name,
+                end,
+                chi2 - chi2_min,
+            )
 
 
 def test_a_profile_end_past_a_wall_is_not_cut_inside_the_allowed_region():
@@ -140,18 +169,23 @@ def test_a_profile_end_past_a_wall_is_not_cut_inside_the_allowed_region():
     end lies at the wall (to the refinement's bracket), never inside the allowed region."""
     import math
 
-    from wound_opening.likelihood import _crossing
+    from wound_opening.fitting.intervals import crossing
 
     def constrained(v):
         return None, (0.8 if v < 1.5 else 1800.0), False
 
     root = math.sqrt(3.84)
-    end, open_end, _ = _crossing(constrained, [], 0.0, math.sqrt(0.8) - root, 3.0, math.sqrt(1800.0) - root, root)
+    end, open_end, _ = crossing(
+        constrained, [], 0.0, math.sqrt(0.8) - root, 3.0, math.sqrt(1800.0) - root, root
+    )
     assert not open_end and 1.5 <= end < 1.5 + 3.0 / 2**4, end
+
     def mirrored(v):
         return None, (0.8 if v > -1.5 else 1800.0), False
 
-    end, _, _ = _crossing(mirrored, [], 0.0, math.sqrt(0.8) - root, -3.0, math.sqrt(1800.0) - root, root)
+    end, _, _ = crossing(
+        mirrored, [], 0.0, math.sqrt(0.8) - root, -3.0, math.sqrt(1800.0) - root, root
+    )
     assert -1.5 - 3.0 / 2**4 < end <= -1.5, end
 
 
@@ -184,15 +218,15 @@ def test_a_profile_held_by_a_search_bound_is_open():
     sigma ~ 100. Walking sigma up, the fits stay pinned to that bound and the profile rises
     because of it, not of the data: the end is open (sigma not identified), never a finite
     end that an interval around sigma ~ 100 would then report."""
-    from wound_opening.fitting import _uncertainties
-    from wound_opening.likelihood import _side
-    from wound_opening.local import local_fit
+    from wound_opening.fitting.intervals import walk_side
+    from wound_opening.fitting.local import local_fit
 
     radius, _ = draw("plateau", 0.0, 4e-2, 1001)
     obj = Objective(radius, None, 100.0)
-    _uncertainties(obj, radius, None)
     z, chi2, _ = local_fit(obj, to_z((0.2, 100.0, 50.0, 0.004)), max_nfev=40)
-    end, open_end, _ = _side(obj, 1, z, chi2, 3.84, 10.0, 1, z[1] + 10 * abs(z[1]) + 1, np.eye(4)[1], "linear")
+    end, open_end, _ = walk_side(
+        obj, 1, z, chi2, 3.84, 10.0, 1, z[1] + 10 * abs(z[1]) + 1, np.eye(4)[1], "linear"
+    )
     assert end is None and open_end, end
 
 
@@ -203,13 +237,13 @@ def test_a_crossing_on_a_curved_valley_is_confirmed_by_a_tight_fit():
     down must not close R0's interval above the truth."""
     import math
 
-    from wound_opening.fitting import _uncertainties
-    from wound_opening.likelihood import _side
-    from wound_opening.local import local_fit
+    from wound_opening.fitting.intervals import walk_side
+    from wound_opening.fitting.local import local_fit
 
     radius, _ = draw("early", 0.5, 1e-2, 1004)
     obj = Objective(radius, None, 100.0)
-    _uncertainties(obj, radius, None)
     z, chi2, _ = local_fit(obj, to_z((10.39, 0.264, 50.0, 0.0026)))
-    end, _, _ = _side(obj, 0, z, chi2, 3.84, 0.01, -1, z[0] - math.log(3.0), np.eye(4)[0], "linear")
+    end, _, _ = walk_side(
+        obj, 0, z, chi2, 3.84, 0.01, -1, z[0] - math.log(3.0), np.eye(4)[0], "linear"
+    )
     assert end is None or math.exp(end) < 10.0, math.exp(end)

@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.validation import validate_fmu
-
 from fmu_harness import PARAMS, RADIUS_TOL, exact, radius_error, record
 
 ME_RADIUS_TOL = 1e-8
@@ -48,8 +47,15 @@ def test_archive_and_interfaces(fmu3):
 
 @pytest.mark.parametrize("lam", [0.0, 0.1, 1.0, 10.0])
 def test_co_simulation_matches_the_exact_opening(fmu3_path, lam):
-    r = simulate_fmu(fmu3_path, fmi_type="CoSimulation", start_values=PARAMS(lam), stop_time=10.0,
-                     step_size=0.01, output_interval=0.01, output=["wound_radius"])
+    r = simulate_fmu(
+        fmu3_path,
+        fmi_type="CoSimulation",
+        start_values=PARAMS(lam),
+        stop_time=10.0,
+        step_size=0.01,
+        output_interval=0.01,
+        output=["wound_radius"],
+    )
     keep = r["time"] >= 0.01
     r_exact, _ = exact(lam, r["time"][keep])
     err = radius_error(r["wound_radius"][keep], r_exact).max()
@@ -59,8 +65,16 @@ def test_co_simulation_matches_the_exact_opening(fmu3_path, lam):
 
 @pytest.mark.parametrize("lam", [0.0, 0.1, 1.0, 10.0])
 def test_model_exchange_matches_the_exact_opening(fmu3_path, lam):
-    r = simulate_fmu(fmu3_path, fmi_type="ModelExchange", solver="CVode", relative_tolerance=1e-11,
-                     start_values=PARAMS(lam), stop_time=10.0, output_interval=0.01, output=["wound_radius"])
+    r = simulate_fmu(
+        fmu3_path,
+        fmi_type="ModelExchange",
+        solver="CVode",
+        relative_tolerance=1e-11,
+        start_values=PARAMS(lam),
+        stop_time=10.0,
+        output_interval=0.01,
+        output=["wound_radius"],
+    )
     keep = r["time"] >= 0.01
     r_exact, _ = exact(lam, r["time"][keep])
     err = radius_error(r["wound_radius"][keep], r_exact).max()
@@ -70,7 +84,13 @@ def test_model_exchange_matches_the_exact_opening(fmu3_path, lam):
 
 def test_purse_string_fmi3_both_interfaces(purse3_path):
     for kind in ("CoSimulation", "ModelExchange"):
-        r = simulate_fmu(purse3_path, fmi_type=kind, stop_time=100.0, output_interval=10.0, output=["line_tension"])
+        r = simulate_fmu(
+            purse3_path,
+            fmi_type=kind,
+            stop_time=100.0,
+            output_interval=10.0,
+            output=["line_tension"],
+        )
         t = r["time"]
         want = np.where(t > 20.0, 6500.0 * (1 - np.exp(-(t - 20.0) / 30.0)), 0.0)
         np.testing.assert_allclose(r["line_tension"], want, rtol=1e-14, atol=1e-9)
@@ -94,8 +114,12 @@ def _slave3(path):
 
     md = read_model_description(path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    fmu = FMU3Slave(guid=md.guid, unzipDirectory=extract(path), modelIdentifier=md.coSimulation.modelIdentifier,
-                    instanceName="probes")
+    fmu = FMU3Slave(
+        guid=md.guid,
+        unzipDirectory=extract(path),
+        modelIdentifier=md.coSimulation.modelIdentifier,
+        instanceName="probes",
+    )
     fmu.instantiate()
     return fmu, vr
 
@@ -103,7 +127,6 @@ def _slave3(path):
 @pytest.mark.parametrize("lam", [0.1, 1.0, 10.0])
 def test_displacement_field_matches_the_exact_profiles(fmu3_path, lam):
     import wound_exact
-
     from fmu_harness import AMPLITUDE
 
     fmu, vr = _slave3(fmu3_path)
@@ -148,7 +171,9 @@ def test_number_of_probes_is_a_structural_parameter(fmu3_path):
     fmu.exitInitializationMode()
     fmu.doStep(0.0, 1.0)
     u = fmu.getFloat64([vr["displacement"]], nValues=3)
-    assert len(u) == 3 and u[0] == pytest.approx(fmu.getFloat64([vr["wound_radius"]])[0] - 1.0, abs=1e-15)
+    assert len(u) == 3 and u[0] == pytest.approx(
+        fmu.getFloat64([vr["wound_radius"]])[0] - 1.0, abs=1e-15
+    )
     fmu.terminate()
     fmu.freeInstance()
     fmu, vr = _slave3(fmu3_path)
@@ -173,11 +198,30 @@ def _couple3(wound_path, purse_path, step, stop):
     md_w, md_p = read_model_description(wound_path), read_model_description(purse_path)
     vw = {v.name: v.valueReference for v in md_w.modelVariables}
     vp = {v.name: v.valueReference for v in md_p.modelVariables}
-    wound = FMU3Slave(guid=md_w.guid, unzipDirectory=extract(wound_path), modelIdentifier="WoundOpening", instanceName="w")
-    purse = FMU3Slave(guid=md_p.guid, unzipDirectory=extract(purse_path), modelIdentifier="PurseString", instanceName="p")
+    wound = FMU3Slave(
+        guid=md_w.guid,
+        unzipDirectory=extract(wound_path),
+        modelIdentifier="WoundOpening",
+        instanceName="w",
+    )
+    purse = FMU3Slave(
+        guid=md_p.guid,
+        unzipDirectory=extract(purse_path),
+        modelIdentifier="PurseString",
+        instanceName="p",
+    )
     ramp = {"t": 0.0, "p": 0.0, "slope": 0.0}
 
-    def update(env, time, set_requested, get_allowed, finished, can_return_early, early_requested, early_time):
+    def update(
+        env,
+        time,
+        set_requested,
+        get_allowed,
+        finished,
+        can_return_early,
+        early_requested,
+        early_time,
+    ):
         if set_requested:
             wound.setFloat64([vw["edge_stress"]], [ramp["p"] + ramp["slope"] * (time - ramp["t"])])
 
@@ -213,7 +257,7 @@ def test_intermediate_update_gives_second_order_coupling(fmu3_path, purse3_path)
     of the FMI 2.0 loop with fmi2SetRealInputDerivatives."""
     steps = [4.0, 2.0, 1.0, 0.5]
     runs = [_couple3(fmu3_path, purse3_path, h, 300.0) for h in steps]
-    diffs = [np.max(np.abs(fine[:: 2] - coarse)) for coarse, fine in zip(runs, runs[1:])]
+    diffs = [np.max(np.abs(fine[::2] - coarse)) for coarse, fine in zip(runs, runs[1:])]
     orders = [np.log2(a / b) for a, b in zip(diffs, diffs[1:])]
     for h, o in zip(steps[1:], orders):
         record(f"FMI 3.0 intermediate update coupled order, h = {h} s", o)

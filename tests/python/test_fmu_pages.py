@@ -16,14 +16,27 @@ from pathlib import Path
 
 import pytest
 
-FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--enable-logging=stderr", "--v=0", "--virtual-time-budget=5000", "--dump-dom"]
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--enable-logging=stderr",
+    "--v=0",
+    "--virtual-time-budget=5000",
+    "--dump-dom",
+]
 
 CHECK = """<script>
 window.addEventListener("load", () => {
-  const broken = [...document.images].filter(i => !i.complete || i.naturalWidth === 0).map(i => i.src);
-  console.log("page-check: broken=" + JSON.stringify(broken) + " svgs=" + document.querySelectorAll("svg").length);
+  const broken = [...document.images]
+    .filter(i => !i.complete || i.naturalWidth === 0).map(i => i.src);
+  console.log("page-check: broken=" + JSON.stringify(broken)
+    + " svgs=" + document.querySelectorAll("svg").length);
 });
 </script>"""
 
@@ -33,16 +46,25 @@ def render(html: Path, profile: Path, check: str = CHECK):
     DOM after the scripts ran."""
     chromium = shutil.which("chromium")
     if chromium is None:
-        pytest.fail("chromium not found: scripts/test.sh installs it (apt-get install chromium)", pytrace=False)
+        pytest.fail(
+            "chromium not found: scripts/test.sh installs it (apt-get install chromium)",
+            pytrace=False,
+        )
     checked = html.with_name("checked_" + html.name)
     checked.write_text(html.read_text().replace("</body>", check + "</body>"))
-    run = subprocess.run([chromium, *FLAGS, f"--user-data-dir={profile}", checked.as_uri()],
-                         capture_output=True, text=True, timeout=120)
+    run = subprocess.run(
+        [chromium, *FLAGS, f"--user-data-dir={profile}", checked.as_uri()],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     console = [line for line in run.stderr.splitlines() if ":CONSOLE" in line]
     return console, run.stdout
 
 
-@pytest.mark.parametrize("name", ["WoundOpening", "WoundOpening-fmi3", "PurseString", "PurseString-fmi3"])
+@pytest.mark.parametrize(
+    "name", ["WoundOpening", "WoundOpening-fmi3", "PurseString", "PurseString-fmi3"]
+)
 def test_fmu_page_renders_without_errors(tmp_path, name):
     fmu = Path(__file__).resolve().parents[2] / "target" / "fmu" / f"{name}.fmu"
     assert fmu.is_file(), f"{fmu} missing: cargo run --release -- fmu"
@@ -56,7 +78,11 @@ def test_fmu_page_renders_without_errors(tmp_path, name):
     found = re.search(r"broken=(\[.*?\]) svgs=(\d+)", checks[0])
     assert found and found.group(1) == "[]", checks[0]
     with zipfile.ZipFile(fmu) as z:
-        outputs = z.read("extra/org.fmi-standard.fmi-ls-ref/" + name.split("-")[0] + "_out.csv").decode().splitlines()[0]
+        outputs = (
+            z.read("extra/org.fmi-standard.fmi-ls-ref/" + name.split("-")[0] + "_out.csv")
+            .decode()
+            .splitlines()[0]
+        )
         # One plot per output, and one of the paper's cases where the archive carries them.
         cases = any(n.endswith("_ref.csv") for n in z.namelist())
     assert int(found.group(2)) == len(outputs.split(",")) - 1 + cases, (checks[0], outputs)
@@ -66,7 +92,9 @@ def test_fmu_page_renders_without_errors(tmp_path, name):
 def test_the_check_finds_a_broken_image_and_a_console_error(tmp_path):
     """The test above can fail: a page with a missing image and a script error is caught."""
     bad = tmp_path / "bad.html"
-    bad.write_text('<html><body><img src="missing.png"><script>console.error("boom")</script></body></html>')
+    bad.write_text(
+        '<html><body><img src="missing.png"><script>console.error("boom")</script></body></html>'
+    )
     console, _ = render(bad, tmp_path / "profile")
     assert any('"boom"' in line for line in console), console
     assert any("missing.png" in line for line in console if "page-check:" in line), console

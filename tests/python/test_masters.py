@@ -11,11 +11,10 @@ from ctypes import POINTER, c_double
 
 import numpy as np
 import pytest
+import wound_exact
 from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi2 import FMU2Model
 from fmpy.fmi3 import FMU3Model
-
-import wound_exact
 from fmu_harness import R_INF, VELOCITY_TOL, initial_velocity
 
 EPS = np.finfo(float).eps
@@ -27,7 +26,12 @@ class NotOk(AssertionError):
 
 def strict(message):
     """fmiCallLogger of a master that aborts on any status but OK."""
-    if " -> " in message and message.rsplit(" -> ", 1)[1] in ("WARNING", "DISCARD", "ERROR", "FATAL"):
+    if " -> " in message and message.rsplit(" -> ", 1)[1] in (
+        "WARNING",
+        "DISCARD",
+        "ERROR",
+        "FATAL",
+    ):
         raise NotOk(message)
 
 
@@ -41,14 +45,23 @@ def opening_error(lam, sigma, t, r):
 
 @pytest.mark.parametrize("which", ["WoundOpening", "WoundOpening-fmi3"])
 @pytest.mark.parametrize("sigma", [2e-5, 1e-4, 1e-2, 10.0])
-def test_model_exchange_error_relative_to_the_opening_does_not_depend_on_sigma(fmu_me_path, fmu3_path, which, sigma):
+def test_model_exchange_error_relative_to_the_opening_does_not_depend_on_sigma(
+    fmu_me_path, fmu3_path, which, sigma
+):
     """docs/fmi.md: with CVode at rtol (absolute rtol x nominal) the radius is within 100 rtol
     of the opening (plus the rounding of R, 2 eps R / opening) whatever sigma."""
     path = fmu_me_path if which == "WoundOpening" else fmu3_path
     rtol = 1e-10
-    r = simulate_fmu(path, fmi_type="ModelExchange", solver="CVode", relative_tolerance=rtol,
-                     start_values={"lambda": 10.0, "sigma": sigma, "R_inf": R_INF}, stop_time=10.0,
-                     output_interval=0.01, output=["wound_radius"])
+    r = simulate_fmu(
+        path,
+        fmi_type="ModelExchange",
+        solver="CVode",
+        relative_tolerance=rtol,
+        start_values={"lambda": 10.0, "sigma": sigma, "R_inf": R_INF},
+        stop_time=10.0,
+        output_interval=0.01,
+        output=["wound_radius"],
+    )
     keep = r["time"] >= 0.01 - 1e-12
     err, floor = opening_error(10.0, sigma, r["time"][keep], r["wound_radius"][keep])
     assert err <= 100 * rtol + floor, (sigma, err)
@@ -67,8 +80,13 @@ def in_continuous_time(path, params, name):
     md = read_model_description(path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     fmi3 = md.fmiVersion.startswith("3")
-    m = (FMU3Model if fmi3 else FMU2Model)(guid=md.guid, unzipDirectory=extract(path), modelIdentifier="WoundOpening",
-                                           instanceName=name, fmiCallLogger=strict)
+    m = (FMU3Model if fmi3 else FMU2Model)(
+        guid=md.guid,
+        unzipDirectory=extract(path),
+        modelIdentifier="WoundOpening",
+        instanceName=name,
+        fmiCallLogger=strict,
+    )
     m.instantiate()
     if fmi3:
         m.setFloat64([vr[k] for k in params], list(params.values()))
@@ -117,19 +135,33 @@ def test_initial_edge_velocity_is_a_function_of_the_states_fmi3(fmu3_path):
     m.freeInstance()
 
 
-INTERFACES = [("WoundOpening", "CoSimulation"), ("WoundOpening-me", "ModelExchange"),
-              ("WoundOpening-fmi3", "CoSimulation"), ("WoundOpening-fmi3", "ModelExchange")]
+INTERFACES = [
+    ("WoundOpening", "CoSimulation"),
+    ("WoundOpening-me", "ModelExchange"),
+    ("WoundOpening-fmi3", "CoSimulation"),
+    ("WoundOpening-fmi3", "ModelExchange"),
+]
 
 
 @pytest.mark.parametrize("which,interface", INTERFACES)
-def test_lambda_zero_runs_in_a_master_that_aborts_on_warnings(fmu_path, fmu_me_path, fmu3_path, which, interface):
+def test_lambda_zero_runs_in_a_master_that_aborts_on_warnings(
+    fmu_path, fmu_me_path, fmu3_path, which, interface
+):
     """lambda = 0: the edge velocity is infinite at the cut; the FMU answers the mean over the
     next 0.01 T with OK (said in the log), finite, and within the tolerance of the exact
     mean (R(0.01) - R1) / 0.01."""
     path = {"WoundOpening": fmu_path, "WoundOpening-me": fmu_me_path}.get(which, fmu3_path)
-    r = simulate_fmu(path, fmi_type=interface, solver="CVode", relative_tolerance=1e-10,
-                     start_values={"lambda": 0.0, "sigma": 1.0, "R_inf": R_INF}, stop_time=0.1,
-                     output_interval=0.01, output=["wound_radius", "edge_velocity"], fmi_call_logger=strict)
+    r = simulate_fmu(
+        path,
+        fmi_type=interface,
+        solver="CVode",
+        relative_tolerance=1e-10,
+        start_values={"lambda": 0.0, "sigma": 1.0, "R_inf": R_INF},
+        stop_time=0.1,
+        output_interval=0.01,
+        output=["wound_radius", "edge_velocity"],
+        fmi_call_logger=strict,
+    )
     v0 = r["edge_velocity"][0]
     assert np.all(np.isfinite(r["edge_velocity"]))
     r_01, _ = wound_exact.edge(0.0, 1.0, R_INF, np.array([0.01]))
@@ -138,13 +170,23 @@ def test_lambda_zero_runs_in_a_master_that_aborts_on_warnings(fmu_path, fmu_me_p
 
 
 @pytest.mark.parametrize("which,interface", INTERFACES)
-def test_a_tolerance_below_the_floor_runs_in_a_master_that_aborts_on_warnings(fmu_path, fmu_me_path, fmu3_path, which, interface):
+def test_a_tolerance_below_the_floor_runs_in_a_master_that_aborts_on_warnings(
+    fmu_path, fmu_me_path, fmu3_path, which, interface
+):
     """A master handing its integrator's 1e-12 to the FMU gets the floor's accuracy (1e-11
     of the opening in co-simulation) with OK."""
     path = {"WoundOpening": fmu_path, "WoundOpening-me": fmu_me_path}.get(which, fmu3_path)
-    r = simulate_fmu(path, fmi_type=interface, solver="CVode", relative_tolerance=1e-12,
-                     start_values={"lambda": 1.0, "sigma": 1.0, "R_inf": R_INF}, stop_time=1.0,
-                     output_interval=0.1, output=["wound_radius"], fmi_call_logger=strict)
+    r = simulate_fmu(
+        path,
+        fmi_type=interface,
+        solver="CVode",
+        relative_tolerance=1e-12,
+        start_values={"lambda": 1.0, "sigma": 1.0, "R_inf": R_INF},
+        stop_time=1.0,
+        output_interval=0.1,
+        output=["wound_radius"],
+        fmi_call_logger=strict,
+    )
     keep = r["time"] >= 0.1 - 1e-12
     err, floor = opening_error(1.0, 1.0, r["time"][keep], r["wound_radius"][keep])
     assert err <= (1e-11 if interface == "CoSimulation" else 1e-9) + floor, err

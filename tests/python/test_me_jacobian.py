@@ -17,14 +17,13 @@
 
 from ctypes import POINTER, c_double, c_uint
 
+import exact_input
 import numpy as np
 import pytest
 from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi2 import FMU2Model
+from fmu_harness import AMPLITUDE, PARAMS, R_INF, SIGMA, exact, radius_error, record
 from scipy.integrate import solve_ivp
-
-import exact_input
-from fmu_harness import AMPLITUDE, PARAMS, SIGMA, R_INF, exact, radius_error, record
 
 DEFAULT_RTOL = 1e-10  # the DefaultExperiment's tolerance, which fmpy takes
 CVODE_FACTOR = 100  # docs/fmi.md: within 100 rtol of the opening with CVode and BDF
@@ -33,8 +32,13 @@ CVODE_FACTOR = 100  # docs/fmi.md: within 100 rtol of the opening with CVode and
 @pytest.mark.parametrize("which", ["fmi2", "fmi3"])
 def test_cvode_at_fmpys_defaults_runs_lambda_zero_to_1000(fmu_me_path, fmu3_path, which):
     path = fmu_me_path if which == "fmi2" else fmu3_path
-    r = simulate_fmu(path, fmi_type="ModelExchange", start_values=PARAMS(0.0), stop_time=1000.0,
-                     output=["wound_radius"])
+    r = simulate_fmu(
+        path,
+        fmi_type="ModelExchange",
+        start_values=PARAMS(0.0),
+        stop_time=1000.0,
+        output=["wound_radius"],
+    )
     assert r["time"][-1] == 1000.0
     keep = r["time"] > 0
     err = radius_error(r["wound_radius"][keep], exact(0.0, r["time"][keep])[0]).max()
@@ -49,8 +53,12 @@ class Me:
         md = read_model_description(path)
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.nx = md.numberOfContinuousStates
-        self.fmu = FMU2Model(guid=md.guid, unzipDirectory=extract(path), modelIdentifier=md.modelExchange.modelIdentifier,
-                             instanceName="jacobian")
+        self.fmu = FMU2Model(
+            guid=md.guid,
+            unzipDirectory=extract(path),
+            modelIdentifier=md.modelExchange.modelIdentifier,
+            instanceName="jacobian",
+        )
         self.fmu.instantiate()
         self.fmu.setupExperiment(startTime=0.0)
         self.fmu.setReal([self.vr["lambda"]], [lam])
@@ -58,8 +66,12 @@ class Me:
         self.fmu.exitInitializationMode()
         self.fmu.newDiscreteStates()
         self.fmu.enterContinuousTimeMode()
-        self.states = (c_uint * self.nx)(*[self.vr[f"modal_coordinate[{k + 1}]"] for k in range(self.nx)])
-        self.ders = (c_uint * self.nx)(*[self.vr[f"der(modal_coordinate[{k + 1}])"] for k in range(self.nx)])
+        self.states = (c_uint * self.nx)(
+            *[self.vr[f"modal_coordinate[{k + 1}]"] for k in range(self.nx)]
+        )
+        self.ders = (c_uint * self.nx)(
+            *[self.vr[f"der(modal_coordinate[{k + 1}])"] for k in range(self.nx)]
+        )
 
     def vector(self, get):
         v = np.zeros(self.nx)
@@ -79,7 +91,9 @@ class Me:
     def jv(self, knowns, v):
         out = (c_double * self.nx)()
         seed = (c_double * len(v))(*v)
-        self.fmu.fmi2GetDirectionalDerivative(self.fmu.component, self.ders, self.nx, knowns, len(v), seed, out)
+        self.fmu.fmi2GetDirectionalDerivative(
+            self.fmu.component, self.ders, self.nx, knowns, len(v), seed, out
+        )
         return np.array(out[:])
 
     def close(self):
@@ -118,8 +132,16 @@ def test_bdf_with_the_fmus_jacobian_follows_a_varying_edge_stress(fmu_me_path):
             return np.diag([m.jv((c_uint * 1)(m.states[k]), [1.0])[k] for k in range(m.nx)])
 
         times = np.arange(1, 1001) * 0.01
-        sol = solve_ivp(lambda t, x: m.rhs(t, x, p(t)), (0.0, 10.0), m.vector(m.fmu.getContinuousStates), method="BDF",
-                        rtol=rtol, atol=rtol * nominals, t_eval=times, jac=jac)
+        sol = solve_ivp(
+            lambda t, x: m.rhs(t, x, p(t)),
+            (0.0, 10.0),
+            m.vector(m.fmu.getContinuousStates),
+            method="BDF",
+            rtol=rtol,
+            atol=rtol * nominals,
+            t_eval=times,
+            jac=jac,
+        )
         assert sol.status == 0, sol.message
         radius = []
         for t, x in zip(sol.t, sol.y.T):
@@ -131,4 +153,6 @@ def test_bdf_with_the_fmus_jacobian_follows_a_varying_edge_stress(fmu_me_path):
     err = radius_error(radius, r_exact).max()
     record("ME BDF with the FMU's Jacobian, varying edge stress, lambda = 0", err)
     assert err < CVODE_FACTOR * rtol, err
-    assert np.abs(r_exact - exact(lam, sol.t)[0]).max() > 0.1 * AMPLITUDE, "the input moves the radius"
+    assert np.abs(r_exact - exact(lam, sol.t)[0]).max() > 0.1 * AMPLITUDE, (
+        "the input moves the radius"
+    )

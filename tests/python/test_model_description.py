@@ -79,13 +79,23 @@ def test_co_simulation_interface(fmu):
     if name == "WoundOpening":
         # Co-simulation alone: its Model Exchange (217 states) is WoundOpening-me.fmu.
         # 13 published rows and validity_warning (value reference 452, after every other).
-        assert md.modelExchange is None and md.numberOfContinuousStates == 0 and len(md.modelVariables) == 14
+        assert (
+            md.modelExchange is None
+            and md.numberOfContinuousStates == 0
+            and len(md.modelVariables) == 14
+        )
         me = read_model_description(path.replace(".fmu", "-me.fmu"))
-        assert me.coSimulation is None and me.modelExchange.modelIdentifier == name and me.guid == md.guid
+        assert (
+            me.coSimulation is None
+            and me.modelExchange.modelIdentifier == name
+            and me.guid == md.guid
+        )
         named = [(v.name, v.valueReference) for v in me.modelVariables if v.causality != "local"]
         assert named == [(v.name, v.valueReference) for v in md.modelVariables]
     else:
-        assert md.modelExchange is not None and md.modelExchange.modelIdentifier == name, "both interfaces, one library"
+        assert md.modelExchange is not None and md.modelExchange.modelIdentifier == name, (
+            "both interfaces, one library"
+        )
     cs = md.coSimulation
     assert cs is not None and cs.modelIdentifier == name
     assert cs.canHandleVariableCommunicationStepSize
@@ -94,7 +104,9 @@ def test_co_simulation_interface(fmu):
     assert cs.providesDirectionalDerivative
     assert not cs.canBeInstantiatedOnlyOncePerProcess  # the tests run several instances
     categories = {c.name for c in md.logCategories}
-    assert {"logStatusError", "logStatusWarning", "logStatusDiscard", "logCalls"} <= categories, categories
+    assert {"logStatusError", "logStatusWarning", "logStatusDiscard", "logCalls"} <= categories, (
+        categories
+    )
 
 
 def test_variables_and_units(fmu):
@@ -106,7 +118,9 @@ def test_variables_and_units(fmu):
     units = {u.name: u for u in md.unitDefinitions}
     for var, (vr, causality, variability, start, unit) in table.items():
         v = found[var]
-        assert v.type == ("Integer" if var in ("method", "grid_points", "validity_warning") else "Real"), var
+        assert v.type == (
+            "Integer" if var in ("method", "grid_points", "validity_warning") else "Real"
+        ), var
         assert (v.valueReference, v.causality, v.variability) == (vr, causality, variability), var
         if start is not None:
             assert v.start is not None and float(v.start) == start, (var, v.start)

@@ -14,17 +14,19 @@ import wound_exact as we
 from scipy import optimize
 
 import wound_opening as wo
-from wound_opening.derived import Reparametrised
-from wound_opening.local import local_fit
-from wound_opening.objective import Objective, to_z
-from wound_opening.parameters import Parameter, Parameters, from_options
+from wound_opening.fitting.derived import Reparametrised
+from wound_opening.fitting.local import local_fit
+from wound_opening.fitting.objective import Objective, to_z
+from wound_opening.fitting.parameters import Parameter, Parameters, from_options
 
 LAM, SIGMA, R0, T, OUTER, NOISE = 0.5, 0.5, 10.0, 10.0, 100.0, 0.05
 
 
 def series(noise=NOISE, seed=3):
     t = np.linspace(0.5, 60, 30)
-    r = R0 * we.edge(LAM, SIGMA, OUTER / R0, t / T)[0] + noise * np.random.default_rng(seed).standard_normal(t.size)
+    r = R0 * we.edge(LAM, SIGMA, OUTER / R0, t / T)[0] + noise * np.random.default_rng(
+        seed
+    ).standard_normal(t.size)
     return wo.RadiusSeries(t, r, noise_um=noise)
 
 
@@ -42,34 +44,54 @@ def params(**spec):
 
 # --- material in -------------------------------------------------------------------------
 
+
 def test_material_constants_convert_both_ways_and_simulate_takes_them():
     rng = np.random.default_rng(7)
     for _ in range(5):
         G, eta, zeta = 10 ** rng.uniform(1, 4), 10 ** rng.uniform(0, 4), 10 ** rng.uniform(-1, 2)
         tension, r0 = G * rng.uniform(0.1, 2), rng.uniform(3, 30)
-        p = wo.from_material(G_pa=G, eta_pa_s=eta, zeta_pa_s_per_um2=zeta, tension_pa=tension, R0_um=r0)
+        p = wo.from_material(
+            G_pa=G, eta_pa_s=eta, zeta_pa_s_per_um2=zeta, tension_pa=tension, R0_um=r0
+        )
         # lambda = 2 sqrt(eta / zeta) / R0, sigma = tension / G, T = zeta R0^2 / (4 G)
         assert p["lam"] == pytest.approx(2 * math.sqrt(eta / zeta) / r0, rel=1e-14)
         assert p["sigma"] == pytest.approx(tension / G, rel=1e-14)
         assert p["T_s"] == pytest.approx(zeta * r0**2 / (4 * G), rel=1e-14)
         back = wo.to_material(lam=p["lam"], sigma=p["sigma"], T_s=p["T_s"], R0_um=r0, G_pa=G)
-        for name, value in (("eta_pa_s", eta), ("zeta_pa_s_per_um2", zeta), ("tension_pa", tension)):
+        for name, value in (
+            ("eta_pa_s", eta),
+            ("zeta_pa_s_per_um2", zeta),
+            ("tension_pa", tension),
+        ):
             assert back[name] == pytest.approx(value, rel=1e-13), name
     # the worked example: G 100 Pa, eta 1000 Pa s, zeta 40 Pa s/um^2, tension 100 Pa, R0 10 um
     times = np.array([0.5, 3.0, 20.0, 90.0])
-    sim = wo.simulate(times, G_pa=100.0, eta_pa_s=1000.0, zeta_pa_s_per_um2=40.0, tension_pa=100.0, R0_um=10.0,
-                      outer_radius_um=100.0)
+    sim = wo.simulate(
+        times,
+        G_pa=100.0,
+        eta_pa_s=1000.0,
+        zeta_pa_s_per_um2=40.0,
+        tension_pa=100.0,
+        R0_um=10.0,
+        outer_radius_um=100.0,
+    )
     exact = 10.0 * we.edge(1.0, 1.0, 10.0, times / 10.0)[0]
     opening = 10.0 * (we.final_radius(1.0, 10.0) - we.initial_radius(1.0))
     assert np.max(np.abs(sim.radius_um - exact)) < 1e-9 * opening
 
 
-@pytest.mark.parametrize("kwargs, message", [
-    (dict(lam=1.0, sigma=1.0, T_s=10.0, eta_pa_s=1000.0), "not both"),
-    (dict(G_pa=100.0, eta_pa_s=1000.0, zeta_pa_s_per_um2=40.0), "need tension_pa"),
-    (dict(G_pa=100.0, eta_pa_s=1000.0, tension_pa=100.0, zeta_pa_s_per_um2=0.0), "zeta_pa_s_per_um2 = 0.0 is invalid"),
-    (dict(lam=1.0, sigma=1.0), "missing T_s"),
-])
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(lam=1.0, sigma=1.0, T_s=10.0, eta_pa_s=1000.0), "not both"),
+        (dict(G_pa=100.0, eta_pa_s=1000.0, zeta_pa_s_per_um2=40.0), "need tension_pa"),
+        (
+            dict(G_pa=100.0, eta_pa_s=1000.0, tension_pa=100.0, zeta_pa_s_per_um2=0.0),
+            "zeta_pa_s_per_um2 = 0.0 is invalid",
+        ),
+        (dict(lam=1.0, sigma=1.0), "missing T_s"),
+    ],
+)
 def test_simulate_refuses_a_mixed_or_incomplete_set(kwargs, message):
     with pytest.raises(ValueError, match=message):
         wo.simulate([1.0], R0_um=10.0, outer_radius_um=100.0, **kwargs)
@@ -77,23 +99,35 @@ def test_simulate_refuses_a_mixed_or_incomplete_set(kwargs, message):
 
 # --- the specification's refusals ----------------------------------------------------------
 
-@pytest.mark.parametrize("spec, message", [
-    (dict(R_inf=dict(value=10, vary=False)), "'R_inf' is unknown"),
-    ({n: dict(value=v, vary=False) for n, v in (("R0_um", 10), ("sigma", 0.5), ("lambda", 0.5), ("T_s", 10))},
-     "every fit parameter is fixed"),
-    (dict(T_s=dict(min=5, max=5)), "min = 5 is not below max = 5"),
-    (dict(T_s=dict(value=math.inf, vary=False)), "must be finite"),
-    (dict(sigma=dict(prior=(0.5, 0.0))), "sd = 0"),
-    (dict(sigma=dict(prior=(math.nan, 0.1))), "must be finite"),
-    (dict(R0_um=dict(value=150, vary=False)), "outside the accepted range"),
-    (dict(lambda_=dict(value=60, vary=False)), "outside the accepted range"),
-    (dict(T_s=dict(value=-1, vary=False)), "outside the accepted range"),
-    (dict(lambda_=dict(min=51, max=60)), "leave nothing of the accepted range"),
-    (dict(G_pa=dict(min=100, max=2000)), "bounds are not supported"),
-    (dict(G_pa=dict()), "give a fixed value"),
-    (dict(G_pa=dict(value=-5, vary=False)), "must be > 0"),
-    (dict(sigma=dict(value=0.5, vary=False, prior=(0.5, 0.1))), "a fixed parameter takes no bounds and no prior"),
-])
+
+@pytest.mark.parametrize(
+    "spec, message",
+    [
+        (dict(R_inf=dict(value=10, vary=False)), "'R_inf' is unknown"),
+        (
+            {
+                n: dict(value=v, vary=False)
+                for n, v in (("R0_um", 10), ("sigma", 0.5), ("lambda", 0.5), ("T_s", 10))
+            },
+            "every fit parameter is fixed",
+        ),
+        (dict(T_s=dict(min=5, max=5)), "min = 5 is not below max = 5"),
+        (dict(T_s=dict(value=math.inf, vary=False)), "must be finite"),
+        (dict(sigma=dict(prior=(0.5, 0.0))), "sd = 0"),
+        (dict(sigma=dict(prior=(math.nan, 0.1))), "must be finite"),
+        (dict(R0_um=dict(value=150, vary=False)), "outside the accepted range"),
+        (dict(lambda_=dict(value=60, vary=False)), "outside the accepted range"),
+        (dict(T_s=dict(value=-1, vary=False)), "outside the accepted range"),
+        (dict(lambda_=dict(min=51, max=60)), "leave nothing of the accepted range"),
+        (dict(G_pa=dict(min=100, max=2000)), "bounds are not supported"),
+        (dict(G_pa=dict()), "give a fixed value"),
+        (dict(G_pa=dict(value=-5, vary=False)), "must be > 0"),
+        (
+            dict(sigma=dict(value=0.5, vary=False, prior=(0.5, 0.1))),
+            "a fixed parameter takes no bounds and no prior",
+        ),
+    ],
+)
 def test_a_bad_specification_is_refused_with_the_reason(spec, message):
     p = Parameters()
     for name, kw in spec.items():
@@ -105,21 +139,37 @@ def test_a_bad_specification_is_refused_with_the_reason(spec, message):
 def test_an_lmfit_style_object_with_an_expression_is_refused_and_one_without_is_read():
     class LmfitParameter:  # the attributes of lmfit.Parameter
         def __init__(self, name, value=None, vary=True, min=-math.inf, max=math.inf, expr=None):
-            self.name, self.value, self.vary, self.min, self.max, self.expr = name, value, vary, min, max, expr
+            self.name, self.value, self.vary, self.min, self.max, self.expr = (
+                name,
+                value,
+                vary,
+                min,
+                max,
+                expr,
+            )
 
     with pytest.raises(ValueError, match="expressions"):
-        wo.fit(series(), outer_radius_um=OUTER, params={"T_s": LmfitParameter("T_s", expr="2 * R0_um")})
-    result = wo.fit(series(), outer_radius_um=OUTER, intervals=False,
-                    params={"R0_um": LmfitParameter("R0_um", value=10.0, vary=False)})
+        wo.fit(
+            series(), outer_radius_um=OUTER, params={"T_s": LmfitParameter("T_s", expr="2 * R0_um")}
+        )
+    result = wo.fit(
+        series(),
+        outer_radius_um=OUTER,
+        intervals=False,
+        params={"R0_um": LmfitParameter("R0_um", value=10.0, vary=False)},
+    )
     assert result.theta[0] == 10.0 and result.dof == 30 - 3
 
 
-@pytest.mark.parametrize("fix, bound, prior, message", [
-    (["R0_um"], [], [], "expected NAME=VALUE"),
-    (["R0_um=ten"], [], [], "'ten' is not a number"),
-    ([], ["lambda=0-5"], [], "expected NAME=MIN:MAX"),
-    ([], [], ["G=1200:200"], "'G' is unknown"),
-])
+@pytest.mark.parametrize(
+    "fix, bound, prior, message",
+    [
+        (["R0_um"], [], [], "expected NAME=VALUE"),
+        (["R0_um=ten"], [], [], "'ten' is not a number"),
+        ([], ["lambda=0-5"], [], "expected NAME=MIN:MAX"),
+        ([], [], ["G=1200:200"], "'G' is unknown"),
+    ],
+)
 def test_command_line_constraints_are_parsed_or_refused(fix, bound, prior, message):
     with pytest.raises(ValueError, match=message):
         from_options(fix, bound, prior)
@@ -135,11 +185,14 @@ def test_command_line_constraints_build_the_parameters():
 
 # --- fixed, bounded, prior -------------------------------------------------------------------
 
+
 def test_a_fixed_r0_gives_the_other_estimates_of_the_fit_whose_r0_it_is(free):
     """The same optimum with R0 held at the free fit's value: the other three agree to far
     below their standard errors; R0 leaves the degrees of freedom, the Jacobian and the profiles."""
     r0_hat = free.theta[0]
-    held = wo.fit(series(), outer_radius_um=OUTER, params=params(R0_um=dict(value=r0_hat, vary=False)))
+    held = wo.fit(
+        series(), outer_radius_um=OUTER, params=params(R0_um=dict(value=r0_hat, vary=False))
+    )
     assert held.converged and held.theta[0] == r0_hat and held.dof == free.dof + 1
     for i, name in enumerate(("sigma", "lambda", "T_s"), start=1):
         assert abs(held.theta[i] - free.theta[i]) < 1e-3 * free.reports[name].stderr, name
@@ -154,7 +207,9 @@ def test_a_fixed_r0_gives_the_other_estimates_of_the_fit_whose_r0_it_is(free):
 @pytest.mark.parametrize("name, i", [("lambda", 2), ("T_s", 3)])
 def test_a_fixed_lambda_or_t_is_honoured_by_the_global_stage_and_the_fit(name, i):
     value = (LAM, T)[i - 2] * 1.3  # off the truth: the fit must not drift back
-    result = wo.fit(series(), outer_radius_um=OUTER, params=params(**{name: dict(value=value, vary=False)}))
+    result = wo.fit(
+        series(), outer_radius_um=OUTER, params=params(**{name: dict(value=value, vary=False)})
+    )
     assert result.converged, result.reasons
     assert result.theta[i] == value and result.reports[name].ci95 == (value, value)
     other = "T_s" if name == "lambda" else "lambda"
@@ -165,7 +220,9 @@ def test_a_fixed_time_scale_the_data_cannot_have_is_refused_with_the_reason():
     """T held at 1e4 s, a thousand times the truth, with 60 s of data: the model cannot open
     in the minute recorded, no grid point gives a wound inside the tissue, and the fit says
     why (it used to say only "could not be evaluated from any start:")."""
-    with pytest.raises(ValueError, match="no point of the global grid .* with the fixed values and bounds given"):
+    with pytest.raises(
+        ValueError, match="no point of the global grid .* with the fixed values and bounds given"
+    ):
         wo.fit(series(), outer_radius_um=OUTER, params=params(T_s=dict(value=1e4, vary=False)))
 
 
@@ -181,7 +238,12 @@ def test_a_tight_prior_gives_an_interval_of_the_prior_plus_minus_1_96_sd(free):
     precision = 1 / sd**2 + 1 / se**2
     centre = (mean / sd**2 + free.theta[0] / se**2) / precision
     half = root / math.sqrt(precision)
-    assert abs(lo - (centre - half)) < 0.05 * sd and abs(hi - (centre + half)) < 0.05 * sd, (lo, hi, centre, half)
+    assert abs(lo - (centre - half)) < 0.05 * sd and abs(hi - (centre + half)) < 0.05 * sd, (
+        lo,
+        hi,
+        centre,
+        half,
+    )
     assert abs(lo - (mean - root * sd)) < 0.2 * sd and abs(hi - (mean + root * sd)) < 0.2 * sd
     assert result.dof == free.dof + 1  # the prior counts as a datum
     assert result.to_dict()["parameters"]["R0_um"]["prior"] == [mean, sd]
@@ -190,14 +252,21 @@ def test_a_tight_prior_gives_an_interval_of_the_prior_plus_minus_1_96_sd(free):
 def test_a_bound_that_excludes_the_estimate_holds_it_and_ends_the_interval(free):
     lam_hat = free.theta[2]
     top = 0.6 * lam_hat
-    result = wo.fit(series(), outer_radius_um=OUTER, params=params(**{"lambda": dict(min=0.0, max=top)}))
+    result = wo.fit(
+        series(), outer_radius_um=OUTER, params=params(**{"lambda": dict(min=0.0, max=top)})
+    )
     assert result.converged, result.reasons
     assert result.theta[2] == pytest.approx(top, abs=1e-9)
     rep = result.reports["lambda"]
     assert rep.ci95[1] == pytest.approx(top, abs=1e-12) and rep.profile.bounded == (False, True)
     assert not rep.identifiable and "bound you set" in result.advice("lambda")
     # a bound around the estimate changes nothing
-    loose = wo.fit(series(), outer_radius_um=OUTER, intervals=False, params=params(**{"lambda": dict(min=0.0, max=5.0)}))
+    loose = wo.fit(
+        series(),
+        outer_radius_um=OUTER,
+        intervals=False,
+        params=params(**{"lambda": dict(min=0.0, max=5.0)}),
+    )
     assert loose.theta == pytest.approx(free.theta, rel=1e-6)
 
 
@@ -214,27 +283,47 @@ def test_an_interval_reaching_a_bound_ends_at_the_bound(free):
 
 # --- material out --------------------------------------------------------------------------
 
+
 def test_material_ratios_are_reported_with_their_profile_intervals(free):
     m = free.material
-    assert set(m) == {"eta_over_G_s", "zeta_over_G_s_per_um2", "tension_over_G", "viscous_length_um"}
+    assert set(m) == {
+        "eta_over_G_s",
+        "zeta_over_G_s_per_um2",
+        "tension_over_G",
+        "viscous_length_um",
+    }
     R0_hat, sigma, lam, T_hat = free.theta
-    for name, value in (("eta_over_G_s", lam**2 * T_hat), ("zeta_over_G_s_per_um2", 4 * T_hat / R0_hat**2),
-                        ("tension_over_G", sigma), ("viscous_length_um", lam * R0_hat)):
+    for name, value in (
+        ("eta_over_G_s", lam**2 * T_hat),
+        ("zeta_over_G_s_per_um2", 4 * T_hat / R0_hat**2),
+        ("tension_over_G", sigma),
+        ("viscous_length_um", lam * R0_hat),
+    ):
         lo, hi = m[name]["ci95"]
         assert m[name]["estimate"] == pytest.approx(value, rel=1e-12) and lo < value < hi, name
-    truth = {"eta_over_G_s": LAM**2 * T, "zeta_over_G_s_per_um2": 4 * T / R0**2, "tension_over_G": SIGMA,
-             "viscous_length_um": LAM * R0}
+    truth = {
+        "eta_over_G_s": LAM**2 * T,
+        "zeta_over_G_s_per_um2": 4 * T / R0**2,
+        "tension_over_G": SIGMA,
+        "viscous_length_um": LAM * R0,
+    }
     for name, value in truth.items():
         assert m[name]["ci95"][0] < value < m[name]["ci95"][1], name
-    assert "eta_over_G_s = " in free.summary() and free.to_dict()["material"]["tension_over_G"]["unit"] == "1"
+    assert (
+        "eta_over_G_s = " in free.summary()
+        and free.to_dict()["material"]["tension_over_G"]["unit"] == "1"
+    )
 
 
 def test_with_g_fixed_the_absolute_values_are_g_times_the_ratios():
     G = 800.0
     result = wo.fit(series(), outer_radius_um=OUTER, params=params(G_pa=dict(value=G, vary=False)))
     m = result.material
-    for absolute, ratio in (("eta_pa_s", "eta_over_G_s"), ("zeta_pa_s_per_um2", "zeta_over_G_s_per_um2"),
-                            ("tension_pa", "tension_over_G")):
+    for absolute, ratio in (
+        ("eta_pa_s", "eta_over_G_s"),
+        ("zeta_pa_s_per_um2", "zeta_over_G_s_per_um2"),
+        ("tension_pa", "tension_over_G"),
+    ):
         assert m[absolute]["estimate"] == pytest.approx(G * m[ratio]["estimate"], rel=1e-14)
         assert m[absolute]["ci95"] == pytest.approx([G * e for e in m[ratio]["ci95"]], rel=1e-14)
     assert "G_pa = 800 Pa (fixed)" in result.summary()
@@ -259,8 +348,12 @@ def _brute_delta_eta(result, e, mu, sd):
     grid = np.linspace(math.log(lo) - 0.1, math.log(hi) + 0.1, 41)
     values = [at(x) for x in grid]
     k = int(np.argmin(values))
-    best = optimize.minimize_scalar(at, bounds=(grid[max(k - 1, 0)], grid[min(k + 1, 40)]), method="bounded",
-                                    options={"xatol": 1e-8})
+    best = optimize.minimize_scalar(
+        at,
+        bounds=(grid[max(k - 1, 0)], grid[min(k + 1, 40)]),
+        method="bounded",
+        options={"xatol": 1e-8},
+    )
     return min(best.fun, values[k])
 
 
@@ -274,14 +367,18 @@ def test_absolute_eta_with_a_prior_on_g_matches_a_brute_force_profile(sd):
     result = wo.fit(series(), outer_radius_um=OUTER, params=params(G_pa=dict(prior=(mu, sd))))
     eta = result.material["eta_pa_s"]
     lo, hi = eta["ci95"]
-    assert eta["estimate"] == pytest.approx(mu * result.material["eta_over_G_s"]["estimate"], rel=1e-14)
+    assert eta["estimate"] == pytest.approx(
+        mu * result.material["eta_over_G_s"]["estimate"], rel=1e-14
+    )
     # wider than the ratio's interval times mu: G's uncertainty adds
     tau_lo, tau_hi = result.material["eta_over_G_s"]["ci95"]
     assert lo < mu * tau_lo and hi > mu * tau_hi
     for end in (lo, hi):
         delta = _brute_delta_eta(result, end, mu, sd)
-        fmu_harness.record("eta interval end with a prior on G: |brute-force delta chi^2 / threshold - 1|",
-                           abs(delta / result.threshold - 1))
+        fmu_harness.record(
+            "eta interval end with a prior on G: |brute-force delta chi^2 / threshold - 1|",
+            abs(delta / result.threshold - 1),
+        )
         assert abs(delta - result.threshold) < 5e-3 * result.threshold, (end, delta)
 
 
@@ -290,12 +387,22 @@ def test_a_derived_ratio_ends_at_the_bound_of_the_parameter_it_replaces():
     lambda^2 x the bound (the bound is a box in ln tau then), and eta's interval with G
     fixed at G times that."""
     G = 1000.0
-    first = wo.fit(series(), outer_radius_um=OUTER, params=params(**{"lambda": dict(value=LAM, vary=False)}))
+    first = wo.fit(
+        series(), outer_radius_um=OUTER, params=params(**{"lambda": dict(value=LAM, vary=False)})
+    )
     lo_T = first.reports["T_s"].ci95[0]
     floor = 0.5 * (lo_T + first.theta[3])
-    result = wo.fit(series(), outer_radius_um=OUTER, params=params(**{"lambda": dict(value=LAM, vary=False),
-                                                                      "T_s": dict(min=floor),
-                                                                      "G_pa": dict(value=G, vary=False)}))
+    result = wo.fit(
+        series(),
+        outer_radius_um=OUTER,
+        params=params(
+            **{
+                "lambda": dict(value=LAM, vary=False),
+                "T_s": dict(min=floor),
+                "G_pa": dict(value=G, vary=False),
+            }
+        ),
+    )
     tau = result.derived_profiles["tau_s"]
     assert tau.lower == pytest.approx(LAM**2 * floor, rel=1e-12) and tau.bounded == (True, False)
     assert tau.upper == pytest.approx(LAM**2 * result.reports["T_s"].ci95[1], rel=1e-3)

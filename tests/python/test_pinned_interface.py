@@ -1,6 +1,7 @@
 """What importers and saved files rely on stays as it was: the exported symbols of the
 shared object, every archive's GUID / instantiation token and the variables an importer
-names (name, value reference, causality, variability, type), and the serialized FMU-state format (a state
+names (name, value reference, causality, variability, type), and the serialized FMU-state format
+(a state
 saved by an earlier build restores and continues on the exact solution; a state saved now
 has the same layout).
 
@@ -22,7 +23,6 @@ from xml.etree import ElementTree
 
 import numpy as np
 import pytest
-
 import wound_exact
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -49,11 +49,20 @@ def exported_symbols(fmu: Path, folder: str = "linux64") -> list[str]:
         library = Path(tmp) / Path(name).name
         library.write_bytes(data)
         if library.suffix == ".dll":  # the PE export table: "[   0] name" lines
-            out = subprocess.run(["x86_64-w64-mingw32-objdump", "-p", str(library)], capture_output=True, text=True, check=True).stdout
+            out = subprocess.run(
+                ["x86_64-w64-mingw32-objdump", "-p", str(library)],
+                capture_output=True,
+                text=True,
+                check=True,
+            ).stdout
             table = out.split("[Ordinal/Name Pointer] Table", 1)[1].split("\n\n", 1)[0]
-            return sorted(line.split("]", 1)[1].strip() for line in table.splitlines() if "]" in line)
+            return sorted(
+                line.split("]", 1)[1].strip() for line in table.splitlines() if "]" in line
+            )
         nm = "aarch64-linux-gnu-nm" if folder.startswith("aarch64") else "nm"
-        out = subprocess.run([nm, "-D", "--defined-only", str(library)], capture_output=True, text=True, check=True).stdout
+        out = subprocess.run(
+            [nm, "-D", "--defined-only", str(library)], capture_output=True, text=True, check=True
+        ).stdout
     return sorted(line.split()[-1] for line in out.splitlines() if line.strip())
 
 
@@ -67,10 +76,26 @@ def variables(fmu: Path) -> dict:
     if root.get("fmiVersion", "").startswith("2"):
         for v in root.iter("ScalarVariable"):
             kind = next(iter(v)).tag
-            rows.append([v.get("name"), int(v.get("valueReference")), v.get("causality", "local"), v.get("variability", "continuous"), kind])
+            rows.append(
+                [
+                    v.get("name"),
+                    int(v.get("valueReference")),
+                    v.get("causality", "local"),
+                    v.get("variability", "continuous"),
+                    kind,
+                ]
+            )
     else:
         for v in root.find("ModelVariables"):
-            rows.append([v.get("name"), int(v.get("valueReference")), v.get("causality", "local"), v.get("variability", "continuous"), v.tag])
+            rows.append(
+                [
+                    v.get("name"),
+                    int(v.get("valueReference")),
+                    v.get("causality", "local"),
+                    v.get("variability", "continuous"),
+                    v.tag,
+                ]
+            )
     rows = [r for r in rows if r[2] != "local"]
     return {"token": token, "model_identifier": root.get("modelName"), "variables": rows}
 
@@ -83,7 +108,11 @@ def initialized(fmu: Path):
 
     md = read_model_description(str(fmu))
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    slave = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)), modelIdentifier=md.coSimulation.modelIdentifier)
+    slave = FMU2Slave(
+        guid=md.guid,
+        unzipDirectory=extract(str(fmu)),
+        modelIdentifier=md.coSimulation.modelIdentifier,
+    )
     slave.instantiate()
     slave.setupExperiment(startTime=0.0)
     slave.setReal([vr[k] for k in STATE_CASE], list(STATE_CASE.values()))
@@ -113,7 +142,7 @@ def layout(blob: bytes) -> tuple[bytes, np.ndarray]:
     n = struct.unpack_from("<I", blob, solver + 1 + 8)[0]
     coeffs = solver + 1 + 8 + 4
     values = np.frombuffer(blob, dtype="<f8", count=n, offset=coeffs)
-    return blob[:coeffs] + blob[coeffs + 8 * n:-4], values
+    return blob[:coeffs] + blob[coeffs + 8 * n : -4], values
 
 
 @pytest.fixture(scope="module")
@@ -130,7 +159,9 @@ def test_exported_symbols_are_the_pinned_ones(pinned, fmu_dir):
     assert exported_symbols(fmu_dir / "WoundOpening.fmu") == pinned["symbols"]
 
 
-@pytest.mark.parametrize("archive, folder", [(a, f) for a, folders in PLATFORMS.items() for f in folders])
+@pytest.mark.parametrize(
+    "archive, folder", [(a, f) for a, folders in PLATFORMS.items() for f in folders]
+)
 def test_every_platform_binary_exports_the_pinned_symbols(pinned, fmu_dir, archive, folder):
     with zipfile.ZipFile(fmu_dir / archive) as z:
         binaries = sorted({n.split("/")[1] for n in z.namelist() if n.startswith("binaries/")})
@@ -149,6 +180,7 @@ def test_a_state_saved_by_the_pinned_build_restores_and_continues_exactly(pinned
     slave.setFMUstate(slave.deSerializeFMUstate(blob))
     lam, sigma, r_inf = STATE_CASE.values()
     amplitude = wound_exact.final_radius(sigma, r_inf) - wound_exact.initial_radius(sigma)
+    slave_time = STATE_TIME
     for t in (STATE_TIME, 2.5, 10.0):
         if t > STATE_TIME:
             slave.doStep(slave_time, t - slave_time)

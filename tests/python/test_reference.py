@@ -9,7 +9,6 @@ No FMU needed.
 import numpy as np
 import pytest
 import scipy.special as sp
-
 import wound_exact
 from fmu_harness import AMPLITUDE, R_FINAL, R_INF, SIGMA, record
 

@@ -11,13 +11,13 @@ import zipfile
 
 import numpy as np
 import pytest
-from fmpy import simulate_fmu
-
 import wound_exact
+from fmpy import simulate_fmu
 
 FOLDER = "extra/org.fmi-standard.fmi-ls-ref"
 LAMBDAS = ("0.1", "1", "10")
-# The stated accuracy (the archive's page, docs/fmi.md): the default tolerance, of the opening R_final - R1
+# The stated accuracy (the archive's page, docs/fmi.md): the default tolerance, of the opening
+# R_final - R1
 # (measured 7.8e-12 at lambda = 0.1, 1.4e-12 at 1 and 10 over all rows).
 ACCURACY = 1e-10
 
@@ -83,10 +83,15 @@ def test_options_file_rerun_through_fmpy_gives_the_reference(fmu_path, lam):
     _, rows = _csv(_read(fmu_path, f"WoundOpening_lambda_{lam}_ref.csv"))
     opts, starts = _options(_read(fmu_path, f"WoundOpening_lambda_{lam}.opt"))
     assert opts["--interface-type"] == "cs"
-    result = simulate_fmu(fmu_path, start_time=float(opts["--start-time"]), stop_time=float(opts["--stop-time"]),
-                          output_interval=float(opts["--output-interval"]),
-                          relative_tolerance=float(opts["--tolerance"]), start_values=starts,
-                          output=["wound_radius", "edge_velocity"])
+    result = simulate_fmu(
+        fmu_path,
+        start_time=float(opts["--start-time"]),
+        stop_time=float(opts["--stop-time"]),
+        output_interval=float(opts["--output-interval"]),
+        relative_tolerance=float(opts["--tolerance"]),
+        start_values=starts,
+        output=["wound_radius", "edge_velocity"],
+    )
     assert len(result) == len(rows)
     np.testing.assert_allclose(result["time"], rows[:, 0], rtol=0, atol=1e-9)
     np.testing.assert_allclose(result["wound_radius"], rows[:, 1], rtol=1e-13)
@@ -97,5 +102,5 @@ def test_the_page_plots_the_three_cases(fmu_path):
     with zipfile.ZipFile(fmu_path) as z:
         page = z.read("documentation/index.html").decode()
     assert "The paper's three cases" in page
-    section = page[page.index("The paper's three cases"):]
+    section = page[page.index("The paper's three cases") :]
     assert "<svg" in section and all(f"lambda = {lam}" in section for lam in LAMBDAS)

@@ -13,12 +13,12 @@ import numpy as np
 import pandas as pd
 import pytest
 import wound_exact as we
-from test_cli import OUTER, R0, SIGMA, LAM, T, run
+from test_cli import LAM, OUTER, R0, SIGMA, T, run
 from test_fmu_pages import render
 
 import wound_opening as wo
 from wound_opening.model import half_opening_time
-from wound_opening.report import render as report_html
+from wound_opening.results.report import render as report_html
 
 NOISE = 0.05
 OUTLIER_ROW = 12  # 1-based data row made an outlier (+1 um = 20 noise)
@@ -28,9 +28,13 @@ def write_experiment(path):
     """30 radii from the exact solution with 0.05 um noise and one outlier, after a comment
     line (so that file lines and rows differ by 2)."""
     t = np.linspace(0.5, 60, 30)
-    r = R0 * we.edge(LAM, SIGMA, OUTER / R0, t / T)[0] + NOISE * np.random.default_rng(7).standard_normal(t.size)
+    r = R0 * we.edge(LAM, SIGMA, OUTER / R0, t / T)[0] + NOISE * np.random.default_rng(
+        7
+    ).standard_normal(t.size)
     r[OUTLIER_ROW - 1] += 1.0
-    path.write_text("# recorded 2026-11-30\n" + pd.DataFrame({"time_s": t, "radius_um": r}).to_csv(index=False))
+    path.write_text(
+        "# recorded 2026-11-30\n" + pd.DataFrame({"time_s": t, "radius_um": r}).to_csv(index=False)
+    )
 
 
 @pytest.fixture(scope="module")
@@ -55,8 +59,17 @@ def test_the_export_tables_hold_the_data_the_exact_model_and_the_flag(robust, tm
     result, radius, _ = robust
     tabs = result.tables()
     pts = tabs["radius"]
-    assert list(pts.columns) == ["row", "file_line", "time_s", "radius_um", "sd_um", "model_radius_um", "residual_um",
-                                 "normalised_residual", "flagged"]
+    assert list(pts.columns) == [
+        "row",
+        "file_line",
+        "time_s",
+        "radius_um",
+        "sd_um",
+        "model_radius_um",
+        "residual_um",
+        "normalised_residual",
+        "flagged",
+    ]
     np.testing.assert_array_equal(pts.row, np.arange(1, 31))
     np.testing.assert_array_equal(pts.file_line, np.arange(3, 33))  # comment line, header
     np.testing.assert_array_equal(pts.radius_um, radius.radius_um)
@@ -64,17 +77,26 @@ def test_the_export_tables_hold_the_data_the_exact_model_and_the_flag(robust, tm
     # the model column is the model at the estimate, to the solver's accuracy: 1e-10 of the opening
     R0_, sigma = result.theta[:2]
     opening = R0_ * (we.final_radius(sigma, OUTER / R0_) - we.initial_radius(sigma))
-    np.testing.assert_allclose(pts.model_radius_um, exact_radius_um(result.theta, pts.time_s), rtol=0,
-                               atol=1e-10 * opening)
+    np.testing.assert_allclose(
+        pts.model_radius_um, exact_radius_um(result.theta, pts.time_s), rtol=0, atol=1e-10 * opening
+    )
     np.testing.assert_array_equal(pts.residual_um, pts.radius_um - pts.model_radius_um)
     np.testing.assert_array_equal(pts.normalised_residual, pts.residual_um / pts.sd_um)
     assert list(np.flatnonzero(pts.flagged) + 1) == [OUTLIER_ROW] == result.outliers["radius"]
     curve = tabs["curve"]
     assert list(curve.columns) == ["time_s", "radius_um", "edge_velocity_um_s"]
-    assert curve.time_s.iloc[0] == 0 and curve.time_s.iloc[-1] == pytest.approx(60) and len(curve) > 300
-    assert np.all(np.diff(curve.time_s) > 0) and curve.time_s[curve.time_s > 0].min() <= 0.05 + 1e-12
+    assert (
+        curve.time_s.iloc[0] == 0
+        and curve.time_s.iloc[-1] == pytest.approx(60)
+        and len(curve) > 300
+    )
+    assert (
+        np.all(np.diff(curve.time_s) > 0) and curve.time_s[curve.time_s > 0].min() <= 0.05 + 1e-12
+    )
     pick = curve.iloc[::37]
-    np.testing.assert_allclose(pick.radius_um, exact_radius_um(result.theta, pick.time_s), rtol=0, atol=1e-10 * opening)
+    np.testing.assert_allclose(
+        pick.radius_um, exact_radius_um(result.theta, pick.time_s), rtol=0, atol=1e-10 * opening
+    )
     paths = result.export(tmp_path / "out.csv")
     assert [p.name for p in paths] == ["out_radius.csv", "out_curve.csv"]
     for p, name in zip(paths, ("radius", "curve")):  # every double read back exactly
@@ -87,12 +109,23 @@ def test_a_profile_exports_its_points_and_curves():
     u, v = we.profile(LAM, SIGMA, OUTER / R0, x, times / T)
     radius = wo.RadiusSeries(t, R0 * we.edge(LAM, SIGMA, OUTER / R0, t / T)[0], noise_um=1e-3)
     rows = np.repeat(times, x.size)
-    profile = wo.VelocityProfile(rows[::-1], (R0 * (x + u)).ravel()[::-1], (R0 / T * v).ravel()[::-1], noise_um_s=1e-4)
+    profile = wo.VelocityProfile(
+        rows[::-1], (R0 * (x + u)).ravel()[::-1], (R0 / T * v).ravel()[::-1], noise_um_s=1e-4
+    )
     result = wo.fit(radius, profile, outer_radius_um=OUTER, intervals=False)
     tabs = result.tables()
     p = tabs["profile"]
-    assert list(p.columns) == ["row", "time_s", "r_um", "velocity_um_s", "sd_um_s", "model_velocity_um_s",
-                               "residual_um_s", "normalised_residual", "flagged"]
+    assert list(p.columns) == [
+        "row",
+        "time_s",
+        "r_um",
+        "velocity_um_s",
+        "sd_um_s",
+        "model_velocity_um_s",
+        "residual_um_s",
+        "normalised_residual",
+        "flagged",
+    ]
     np.testing.assert_array_equal(p.velocity_um_s, profile.velocity_um_s)  # the input's order
     np.testing.assert_allclose(p.model_velocity_um_s, profile.velocity_um_s, rtol=0, atol=3e-4)
     c = tabs["profile_curve"]
@@ -116,7 +149,11 @@ def test_the_report_records_inputs_noise_estimates_flags_and_versions(robust):
     assert wo.__version__ in text and "SHA-256" in text and "wound-opening fit radius.csv" in text
     assert 'src="data:image/png;base64,' in text
     # self-contained: no reference to anything outside the file
-    assert not re.search(r'(src|href)="(?!data:)', text) and "<script" not in text and "url(" not in text
+    assert (
+        not re.search(r'(src|href)="(?!data:)', text)
+        and "<script" not in text
+        and "url(" not in text
+    )
 
 
 def test_a_failed_fit_is_reported_as_such(robust):
@@ -125,7 +162,9 @@ def test_a_failed_fit_is_reported_as_such(robust):
     result = wo.fit(bad, outer_radius_um=OUTER)
     assert not result.converged
     text = report_html(result, bad)
-    assert "NOT converged" in text and "does not describe the data" in text and "No estimates" in text
+    assert (
+        "NOT converged" in text and "does not describe the data" in text and "No estimates" in text
+    )
     assert "data:image/png" not in text and "given in Python (no file)" in text
     with pytest.raises(ValueError, match="did not converge"):
         result.tables()
@@ -133,7 +172,9 @@ def test_a_failed_fit_is_reported_as_such(robust):
 
 def test_the_report_renders_in_headless_chromium(robust, tmp_path):
     result, radius, _ = robust
-    page = wo.write_report(tmp_path / "report.html", result, radius, command="wound-opening fit radius.csv")
+    page = wo.write_report(
+        tmp_path / "report.html", result, radius, command="wound-opening fit radius.csv"
+    )
     check = """<script>window.addEventListener("load", () => {
       const imgs = [...document.images].map(i => [i.complete, i.naturalWidth, i.naturalHeight]);
       console.log("report-check: images=" + JSON.stringify(imgs));
@@ -151,7 +192,7 @@ def test_the_report_renders_in_headless_chromium(robust, tmp_path):
 def test_the_fit_figure_has_a_log_time_axis_error_bars_flags_estimates_and_fine_profiles(robust):
     from matplotlib.container import ErrorbarContainer
 
-    from wound_opening.plots import PROFILE_POINTS, fit_figure
+    from wound_opening.results.plots import PROFILE_POINTS, fit_figure
 
     result, _, _ = robust
     fig = fit_figure(result)
@@ -164,8 +205,13 @@ def test_the_fit_figure_has_a_log_time_axis_error_bars_flags_estimates_and_fine_
         assert f"{symbol} = {result.reports[name].estimate:.4g}" in text
     labels = [ax.get_xlabel() for ax in fig.axes]
     assert "distance from the wound centre (µm)" not in labels  # no PIV, no velocity panel
-    assert all(ax.get_xlabel() and ax.get_ylabel() for ax in fig.axes[1:])  # [0] shares [1]'s time axis
-    assert fig.axes[1].get_xlabel() == "time since the cut (s)" and fig.axes[1].get_xscale() == "symlog"
+    assert all(
+        ax.get_xlabel() and ax.get_ylabel() for ax in fig.axes[1:]
+    )  # [0] shares [1]'s time axis
+    assert (
+        fig.axes[1].get_xlabel() == "time since the cut (s)"
+        and fig.axes[1].get_xscale() == "symlog"
+    )
     profiles = fig.axes[2:]
     assert len(profiles) == 4
     for ax in profiles:
@@ -182,7 +228,9 @@ def test_profile_at_is_zero_at_the_estimate_and_on_the_threshold_at_the_interval
         np.testing.assert_allclose(d[[0, 2]], result.threshold, rtol=5e-3)
 
 
-@pytest.mark.parametrize("lam, r_inf", [(0.0, 10.0), (0.37, 3.3), (1.0, 10.0), (5.3, 2.0), (30.0, 10.0)])
+@pytest.mark.parametrize(
+    "lam, r_inf", [(0.0, 10.0), (0.37, 3.3), (1.0, 10.0), (5.3, 2.0), (30.0, 10.0)]
+)
 def test_the_half_opening_time_against_the_exact_solution(lam, r_inf):
     t_half = half_opening_time(lam, r_inf)
     r, _ = we.edge(lam, 0.8, r_inf, np.array([t_half]))
@@ -194,36 +242,96 @@ def test_the_summary_says_not_computed_without_intervals(robust):
     _, radius, _ = robust
     result = wo.fit(radius, outer_radius_um=OUTER, loss="soft_l1", intervals=False)
     text = result.summary()
-    assert "[open" not in text and "open]" not in text and text.count("not computed") >= 8  # (the path may hold "popen")
-    assert all(result.to_dict()["parameters"][n]["interval_computed"] is False for n in ("R0_um", "lambda"))
+    assert (
+        "[open" not in text and "open]" not in text and text.count("not computed") >= 8
+    )  # (the path may hold "popen")
+    assert all(
+        result.to_dict()["parameters"][n]["interval_computed"] is False for n in ("R0_um", "lambda")
+    )
 
 
 def test_fit_writes_the_export_and_the_report(tmp_path):
     write_experiment(tmp_path / "radius.csv")
-    done = run("fit", tmp_path / "radius.csv", "--outer-radius-um", OUTER, "--radius-noise-um", NOISE, "--loss",
-               "soft_l1", "--export", tmp_path / "fit", "--report", tmp_path / "fit.html")
+    done = run(
+        "fit",
+        tmp_path / "radius.csv",
+        "--outer-radius-um",
+        OUTER,
+        "--radius-noise-um",
+        NOISE,
+        "--loss",
+        "soft_l1",
+        "--export",
+        tmp_path / "fit",
+        "--report",
+        tmp_path / "fit.html",
+    )
     assert done.returncode == 0, done.stderr
     pts = pd.read_csv(tmp_path / "fit_radius.csv")
-    assert list(np.flatnonzero(pts.flagged) + 1) == [OUTLIER_ROW] and (tmp_path / "fit_curve.csv").is_file()
+    assert (
+        list(np.flatnonzero(pts.flagged) + 1) == [OUTLIER_ROW]
+        and (tmp_path / "fit_curve.csv").is_file()
+    )
     html = (tmp_path / "fit.html").read_text()
-    assert "--report" in html and hashlib.sha256((tmp_path / "radius.csv").read_bytes()).hexdigest() in html
+    assert (
+        "--report" in html
+        and hashlib.sha256((tmp_path / "radius.csv").read_bytes()).hexdigest() in html
+    )
 
 
 def test_simulate_prints_a_table_without_csv_and_sweep_columns_carry_units(tmp_path):
-    done = run("simulate", "--lambda", 0.5, "--sigma", 0.6, "--R0-um", 10, "--T-s", 10, "--outer-radius-um", 100,
-               "--times", "0,0.24,5")
+    done = run(
+        "simulate",
+        "--lambda",
+        0.5,
+        "--sigma",
+        0.6,
+        "--R0-um",
+        10,
+        "--T-s",
+        10,
+        "--outer-radius-um",
+        100,
+        "--times",
+        "0,0.24,5",
+    )
     assert done.returncode == 0, done.stderr
     header, *rows = done.stdout.split("\n")[:4]
     assert header.split() == ["time_s", "radius_um", "edge_velocity_um_s"]
-    assert rows[0].split()[:2] == ["0", "11"] and rows[1].split()[0] == "0.24"  # R1 = 10 (1 + 0.6 / 6)
+    assert (
+        rows[0].split()[:2] == ["0", "11"] and rows[1].split()[0] == "0.24"
+    )  # R1 = 10 (1 + 0.6 / 6)
     r = float(rows[2].split()[1])
-    assert r == pytest.approx(10 * we.edge(0.5, 0.6, 10.0, np.array([0.5]))[0][0], rel=1e-5)  # 6 digits
-    done = run("sweep", "--lambda", "0.24,1", "--sigma", "0.3", "--R-inf", "10", "--times", "0,0.7,3",
-               "--R0-um", 10, "--T-s", 5, "--csv", tmp_path / "s.csv", "--plot", tmp_path / "s.png")
+    assert r == pytest.approx(
+        10 * we.edge(0.5, 0.6, 10.0, np.array([0.5]))[0][0], rel=1e-5
+    )  # 6 digits
+    done = run(
+        "sweep",
+        "--lambda",
+        "0.24,1",
+        "--sigma",
+        "0.3",
+        "--R-inf",
+        "10",
+        "--times",
+        "0,0.7,3",
+        "--R0-um",
+        10,
+        "--T-s",
+        5,
+        "--csv",
+        tmp_path / "s.csv",
+        "--plot",
+        tmp_path / "s.png",
+    )
     assert done.returncode == 0, done.stderr
     text = (tmp_path / "s.csv").read_text()
     assert text.splitlines()[0] == "lambda,sigma,R_inf,time_s,wound_radius_um,edge_velocity_um_s"
-    assert "0.24," in text and "0.7," in text and "999999" not in text.split("\n", 1)[1].split(",0.3,")[0]
+    assert (
+        "0.24," in text
+        and "0.7," in text
+        and "999999" not in text.split("\n", 1)[1].split(",0.3,")[0]
+    )
     df = pd.read_csv(tmp_path / "s.csv")
     np.testing.assert_allclose(df.wound_radius_um[df.time_s == 0], 10 * (1 + 0.3 / 6), rtol=1e-14)
     assert (tmp_path / "s.png").stat().st_size > 10000
@@ -235,7 +343,10 @@ def test_every_option_of_every_subcommand_shows_its_default_and_unit():
     from wound_opening.cli import parser
 
     sub = next(a for a in parser()._actions if a.dest == "command")
-    units = re.compile(r"\bum\b|µm|\(s\)|\bs\b|\bin s\b|Pa\b|um/s|dimensionless|in T\b|time unit|number of|processes")
+    units = re.compile(
+        r"\bum\b|µm|\(s\)|\bs\b|\bin s\b|Pa\b|um/s|dimensionless|in T\b|time unit|number "
+        r"of|processes"
+    )
     checked = 0
     for name, p in sub.choices.items():
         text = " ".join(p.format_help().split())
@@ -245,16 +356,23 @@ def test_every_option_of_every_subcommand_shows_its_default_and_unit():
                 checked += 1
                 assert action.help and units.search(action.help), (name, action.dest, action.help)
             if action.default not in (None, False, "==SUPPRESS=="):
-                default = f"{action.default:g}" if isinstance(action.default, float) else f"{action.default}"
+                default = (
+                    f"{action.default:g}"
+                    if isinstance(action.default, float)
+                    else f"{action.default}"
+                )
                 assert re.search(rf"default:? {re.escape(default)}", text), (name, action.dest)
     assert checked >= 20
 
 
 def test_the_sweep_figure_shows_the_opening_coloured_by_lambda_and_the_half_opening_time(tmp_path):
-    from wound_opening.plots import sweep_figure
+    from wound_opening.results.plots import sweep_figure
 
-    df = wo.sweep({"lambda": [0.0, 0.3, 3.0, 30.0], "sigma": [0.5, 1.0], "R_inf": [10.0]}, times=[0, 1, 10, 100],
-                  processes=1)
+    df = wo.sweep(
+        {"lambda": [0.0, 0.3, 3.0, 30.0], "sigma": [0.5, 1.0], "R_inf": [10.0]},
+        times=[0, 1, 10, 100],
+        processes=1,
+    )
     fig = sweep_figure(df, tmp_path / "s.png")
     a, b = fig.axes[:2]
     assert len({tuple(line.get_color()) for line in a.lines}) == 4  # one colour per lambda
@@ -269,12 +387,22 @@ def test_a_printed_table_cut_short_by_its_reader_is_not_an_error():
 
     from test_cli import EXE
 
-    done = subprocess.run(f"'{EXE}' simulate --lambda 1 --sigma 1 --R0-um 10 --T-s 10 --outer-radius-um 100 "
-                          "--points 20000 | head -1", shell=True, capture_output=True, text=True, timeout=120)
-    assert done.stdout.split() == ["time_s", "radius_um", "edge_velocity_um_s"] and done.stderr == "", done.stderr
+    done = subprocess.run(
+        f"'{EXE}' simulate --lambda 1 --sigma 1 --R0-um 10 --T-s 10 --outer-radius-um 100 "
+        "--points 20000 | head -1",
+        shell=True,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert (
+        done.stdout.split() == ["time_s", "radius_um", "edge_velocity_um_s"] and done.stderr == ""
+    ), done.stderr
 
 
-def test_a_fixed_parameter_is_said_fixed_in_the_summary_figure_and_report(robust, tmp_path, recwarn):
+def test_a_fixed_parameter_is_said_fixed_in_the_summary_figure_and_report(
+    robust, tmp_path, recwarn
+):
     """R0 held at the radius of the cut: no profile to draw (its panel says so, with no
     matplotlib warning about an empty axis range), the summary and the figure's text say
     "fixed", and the report renders."""
@@ -284,11 +412,14 @@ def test_a_fixed_parameter_is_said_fixed_in_the_summary_figure_and_report(robust
     result = wo.fit(radius, outer_radius_um=OUTER, loss="soft_l1", params=params, derived=False)
     assert result.converged, result.reasons
     assert re.search(r"^R0_um\s+10\s+fixed$", result.summary(), re.M), result.summary()
-    from wound_opening.plots import estimates_text, fit_figure
+    from wound_opening.results.plots import estimates_text, fit_figure
 
     assert "R₀ = 10 µm  (fixed)" in estimates_text(result)
     fit_figure(result, radius, None, tmp_path / "fit.png", profile_points=4)
     assert not [w for w in recwarn if "xlim" in str(w.message)], [str(w.message) for w in recwarn]
     wo.write_report(tmp_path / "fit.html", result, radius)
     page = (tmp_path / "fit.html").read_text()
-    assert '<td>R0_um</td><td class="n">10</td><td>—</td><td>—</td><td>—</td><td>fixed (given)</td>' in page, page
+    assert (
+        '<td>R0_um</td><td class="n">10</td><td>—</td><td>—</td><td>—</td><td>fixed (given)</td>'
+        in page
+    ), page

@@ -32,13 +32,26 @@ def ssp_path(fmu_path):
 
 
 def test_ssd_is_valid_and_matches_the_loop(ssp_path, fmu_path, purse_path):
-    ssd = read_ssd(ssp_path, validate=True)  # SSP 1.0 SystemStructureDescription.xsd (shipped with fmpy)
+    ssd = read_ssd(
+        ssp_path, validate=True
+    )  # SSP 1.0 SystemStructureDescription.xsd (shipped with fmpy)
     components = {c.name: c.source for c in ssd.system.elements}
-    assert components == {"wound": "resources/WoundOpening.fmu", "purse": "resources/PurseString.fmu"}
-    connections = {(c.startElement, c.startConnector, c.endElement, c.endConnector) for c in ssd.system.connections}
-    assert connections == {("wound", "wound_radius", "purse", "wound_radius"), ("purse", "edge_stress", "wound", "edge_stress")}
+    assert components == {
+        "wound": "resources/WoundOpening.fmu",
+        "purse": "resources/PurseString.fmu",
+    }
+    connections = {
+        (c.startElement, c.startConnector, c.endElement, c.endConnector)
+        for c in ssd.system.connections
+    }
+    assert connections == {
+        ("wound", "wound_radius", "purse", "wound_radius"),
+        ("purse", "edge_stress", "wound", "edge_stress"),
+    }
     values = {p.name: float(p.value) for p in ssp.parameter_set(ssd).parameters}
-    expected = {f"wound.{k}": v for k, v in WOUND_EXAMPLE.items()} | {f"purse.{k}": v for k, v in PURSE_EXAMPLE.items()}
+    expected = {f"wound.{k}": v for k, v in WOUND_EXAMPLE.items()} | {
+        f"purse.{k}": v for k, v in PURSE_EXAMPLE.items()
+    }
     assert values == pytest.approx(expected, rel=1e-15)
     with zipfile.ZipFile(ssp_path) as z:
         for name, built in (("WoundOpening.fmu", fmu_path), ("PurseString.fmu", purse_path)):
@@ -55,11 +68,15 @@ def test_fmpy_simulate_ssp_stops_on_the_zero_radius_it_starts_with(ssp_path, tmp
 
 
 @pytest.mark.parametrize("step", [1.0, 0.5])
-def test_ssp_run_agrees_with_the_python_loop_at_the_coupling_accuracy(ssp_path, fmu_path, purse_path, step):
+def test_ssp_run_agrees_with_the_python_loop_at_the_coupling_accuracy(
+    ssp_path, fmu_path, purse_path, step
+):
     run = ssp.simulate(ssp_path, step=step, stop=STOP)
     loop = couple(fmu_path, purse_path, step=step, stop=STOP)
     np.testing.assert_array_equal(run["time"], loop.time)
     assert run["wound.wound_radius"][0] == pytest.approx(loop.wound_radius[0], rel=1e-15)
     gap = np.max(np.abs(run["wound.wound_radius"] - loop.wound_radius))
     assert gap <= AGREEMENT_PER_STEP * step, f"step {step} s: {gap:.3e} um"
-    assert np.max(loop.wound_radius) - loop.wound_radius[-1] > 3.0  # it opens and closes: the coupling is live
+    assert (
+        np.max(loop.wound_radius) - loop.wound_radius[-1] > 3.0
+    )  # it opens and closes: the coupling is live

@@ -7,7 +7,6 @@ calls from the same state must reproduce the outputs bit for bit.
 import numpy as np
 import pytest
 from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Terminated
-
 from fmu_harness import PARAMS
 
 T1 = 0.5

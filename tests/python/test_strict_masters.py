@@ -13,10 +13,9 @@ import math
 
 import numpy as np
 import pytest
+import wound_exact
 from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
-
-import wound_exact
 from test_masters import NotOk, strict
 
 CASE = {"lambda": 0.3, "sigma": 2.0, "R_inf": 20.0}
@@ -28,10 +27,18 @@ def opening(sigma, r_inf):
 
 
 @pytest.mark.parametrize("which", ["fmi2", "fmi3"])
-def test_a_strict_master_stops_at_the_crossing_without_validity_warning_0(fmu_path, fmu3_path, which):
+def test_a_strict_master_stops_at_the_crossing_without_validity_warning_0(
+    fmu_path, fmu3_path, which
+):
     with pytest.raises(NotOk, match="DoStep.*WARNING"):
-        simulate_fmu(fmu_path if which == "fmi2" else fmu3_path, start_values=CASE, stop_time=10.0,
-                     output_interval=0.5, output=["wound_radius"], fmi_call_logger=strict)
+        simulate_fmu(
+            fmu_path if which == "fmi2" else fmu3_path,
+            start_values=CASE,
+            stop_time=10.0,
+            output_interval=0.5,
+            output=["wound_radius"],
+            fmi_call_logger=strict,
+        )
 
 
 def test_the_warning_names_the_parameter_and_the_value_to_set(make_slave):
@@ -42,14 +49,24 @@ def test_the_warning_names_the_parameter_and_the_value_to_set(make_slave):
     warned = [m for m in s.log if m.status == 1]
     assert len(warned) == 1 and warned[0].category == "logStatusWarning", s.log_text()
     text = warned[0].message
-    assert "at t = 3 s the run leaves the model's validity: the strain at the wound edge" in text, text
+    assert "at t = 3 s the run leaves the model's validity: the strain at the wound edge" in text, (
+        text
+    )
     assert "the parameter validity_warning is set to 0" in text, text
 
 
 @pytest.mark.parametrize("which", ["fmi2", "fmi3"])
-def test_with_validity_warning_0_a_strict_master_runs_to_the_end_on_the_exact_solution(fmu_path, fmu3_path, which):
-    r = simulate_fmu(fmu_path if which == "fmi2" else fmu3_path, start_values={**CASE, "validity_warning": 0},
-                     stop_time=10.0, output_interval=0.5, output=["wound_radius"], fmi_call_logger=strict)
+def test_with_validity_warning_0_a_strict_master_runs_to_the_end_on_the_exact_solution(
+    fmu_path, fmu3_path, which
+):
+    r = simulate_fmu(
+        fmu_path if which == "fmi2" else fmu3_path,
+        start_values={**CASE, "validity_warning": 0},
+        stop_time=10.0,
+        output_interval=0.5,
+        output=["wound_radius"],
+        fmi_call_logger=strict,
+    )
     assert r["time"][-1] == pytest.approx(10.0)
     t = r["time"][1:]
     exact, _ = wound_exact.edge(CASE["lambda"], CASE["sigma"], CASE["R_inf"], t)
@@ -67,7 +84,10 @@ def test_with_validity_warning_0_the_crossing_is_logged_with_status_ok(make_slav
         s.step_to(t)
     noted = [m for m in s.log if m.category == "logStatusWarning"]
     assert [m.status for m in noted] == [0], s.log_text()
-    assert "at t = 3 s the run leaves the model's validity: the strain at the wound edge" in noted[0].message
+    assert (
+        "at t = 3 s the run leaves the model's validity: the strain at the wound edge"
+        in noted[0].message
+    )
 
 
 def test_a_tolerance_of_0_is_none_given_and_nan_negative_infinite_are_refused(make_slave):
@@ -76,8 +96,11 @@ def test_a_tolerance_of_0_is_none_given_and_nan_negative_infinite_are_refused(ma
     s.fmu.enterInitializationMode()
     s.fmu.exitInitializationMode()
     s.initialized = True
-    assert any("tolerance = 0 with toleranceDefined is taken as no tolerance given" in m.message and m.status == 0
-               for m in s.log), s.log_text()
+    assert any(
+        "tolerance = 0 with toleranceDefined is taken as no tolerance given" in m.message
+        and m.status == 0
+        for m in s.log
+    ), s.log_text()
     s.time = 0.0
     s.step_to(1.0)
     for bad in (math.nan, -1e-6, math.inf):
@@ -92,8 +115,12 @@ def test_fmi3_tolerance_0_is_none_given(fmu3_path):
     from fmpy.fmi3 import FMU3Slave
 
     md = read_model_description(fmu3_path)
-    slave = FMU3Slave(guid=md.guid, unzipDirectory=extract(fmu3_path), modelIdentifier="WoundOpening",
-                      fmiCallLogger=strict)
+    slave = FMU3Slave(
+        guid=md.guid,
+        unzipDirectory=extract(fmu3_path),
+        modelIdentifier="WoundOpening",
+        fmiCallLogger=strict,
+    )
     slave.instantiate()
     slave.enterInitializationMode(tolerance=0.0, startTime=0.0)
     slave.exitInitializationMode()
@@ -117,7 +144,9 @@ def floor(tol):
 def exact_opening_error(sigma, r):
     """max |R - R_exact| / (R_final - R1) over TIMES; R - 1 = sigma (R_ref - 1) exactly (linear)."""
     ref, _ = wound_exact.edge(LAM, 1.0, R_INF, TIMES)
-    return float(np.max(np.abs((np.asarray(r) - 1.0) - sigma * (ref - 1.0)))) / abs(opening(sigma, R_INF))
+    return float(np.max(np.abs((np.asarray(r) - 1.0) - sigma * (ref - 1.0)))) / abs(
+        opening(sigma, R_INF)
+    )
 
 
 def _text(m):
@@ -131,7 +160,9 @@ def refusal_names_the_range(text, tol):
 
 @pytest.mark.parametrize("tol", [1e-10, 1e-3])
 @pytest.mark.parametrize("which", ["fmi2", "fmi3"])
-def test_small_sigma_in_co_simulation_is_refused_with_the_range_or_accurate(fmu_path, fmu3_path, which, tol):
+def test_small_sigma_in_co_simulation_is_refused_with_the_range_or_accurate(
+    fmu_path, fmu3_path, which, tol
+):
     path = fmu_path if which == "fmi2" else fmu3_path
     outcomes = set()
     for sigma in SIGMAS:
@@ -139,8 +170,16 @@ def test_small_sigma_in_co_simulation_is_refused_with_the_range_or_accurate(fmu_
         logger = lambda *args: messages.append(_text(args[-1]))  # noqa: E731
         start = {"lambda": LAM, "sigma": sigma, "R_inf": R_INF, "tolerance": tol}
         try:
-            r = simulate_fmu(path, start_values=start, stop_time=10.0, output_interval=0.01, output=["wound_radius"],
-                             relative_tolerance=tol, logger=logger, debug_logging=False)
+            r = simulate_fmu(
+                path,
+                start_values=start,
+                stop_time=10.0,
+                output_interval=0.01,
+                output=["wound_radius"],
+                relative_tolerance=tol,
+                logger=logger,
+                debug_logging=False,
+            )
         except Exception as e:  # fmpy raises on the refused fmi2ExitInitializationMode
             assert abs(sigma) < floor(tol), (sigma, tol, e)
             assert any(refusal_names_the_range(m, tol) for m in messages), messages
@@ -158,9 +197,13 @@ def test_small_sigma_in_model_exchange_is_refused_with_the_range(fmu_me_path, fm
     for sigma in SIGMAS:
         messages = []
         with pytest.raises(Exception):
-            simulate_fmu(fmu_me_path if which == "fmi2" else fmu3_path, fmi_type="ModelExchange",
-                         start_values={"lambda": LAM, "sigma": sigma, "R_inf": R_INF}, stop_time=1.0,
-                         logger=lambda *args: messages.append(_text(args[-1])))
+            simulate_fmu(
+                fmu_me_path if which == "fmi2" else fmu3_path,
+                fmi_type="ModelExchange",
+                start_values={"lambda": LAM, "sigma": sigma, "R_inf": R_INF},
+                stop_time=1.0,
+                logger=lambda *args: messages.append(_text(args[-1])),
+            )
         assert any(refusal_names_the_range(m, 1e-10) for m in messages), messages
 
 
@@ -170,7 +213,15 @@ def test_small_sigma_in_the_package_is_refused_with_the_range_or_accurate(tol):
 
     for sigma in SIGMAS:
         try:
-            sim = simulate(TIMES, R0_um=1.0, outer_radius_um=R_INF, lam=LAM, sigma=sigma, T_s=1.0, tolerance=tol)
+            sim = simulate(
+                TIMES,
+                R0_um=1.0,
+                outer_radius_um=R_INF,
+                lam=LAM,
+                sigma=sigma,
+                T_s=1.0,
+                tolerance=tol,
+            )
         except Exception as e:
             assert abs(sigma) < floor(tol) and refusal_names_the_range(str(e), tol), (sigma, tol, e)
             continue
@@ -179,6 +230,12 @@ def test_small_sigma_in_the_package_is_refused_with_the_range_or_accurate(tol):
 
 
 def test_sigma_0_is_accepted_and_exact(fmu_path):
-    r = simulate_fmu(fmu_path, start_values={"sigma": 0.0}, stop_time=10.0, output_interval=1.0,
-                     output=["wound_radius"], fmi_call_logger=strict)
+    r = simulate_fmu(
+        fmu_path,
+        start_values={"sigma": 0.0},
+        stop_time=10.0,
+        output_interval=1.0,
+        output=["wound_radius"],
+        fmi_call_logger=strict,
+    )
     assert np.all(r["wound_radius"] == 1.0)

@@ -10,7 +10,6 @@ and the slow end (to t = 1e7, past the viscous relaxation lambda^2 = 1e6 at lamb
 
 import numpy as np
 import pytest
-
 import wound_exact
 from fmu_harness import record
 

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import wound_exact as we
 
 
@@ -29,7 +28,10 @@ TIMES = [0.01, 0.1, 1.0, 10.0, 100.0, 1000.0]
 @pytest.mark.parametrize(
     "params, reason",
     [
-        ({"sigma": -2.0}, "the wound radius is -0."),  # R -> 1 + (2 sigma / 3) R_inf^2 / (R_inf^2 - 1) = -0.35
+        (
+            {"sigma": -2.0},
+            "the wound radius is -0.",
+        ),  # R -> 1 + (2 sigma / 3) R_inf^2 / (R_inf^2 - 1) = -0.35
         ({"sigma": 1.0, "R_inf": 1.01}, "strain at the wound edge"),  # a thin ring opens to 34.8 R0
         ({"sigma": 2.0, "lambda": 0.3}, "strain at the wound edge"),  # R_final - 1 = 1.35
         ({"sigma": -5.9}, "the wound radius is"),  # R1 = 0.017 R0, then closing

@@ -26,9 +26,21 @@ from bench.tissue_designs import TRUTH as TISSUE_TRUTH
 from test_cli import LAM, OUTER, R0, SIGMA, T, check_quick_start, readme_quick_start, write_radius
 
 ROOT = Path(__file__).resolve().parents[2]
-FMUS = ("WoundOpening.fmu", "WoundOpening-me.fmu", "WoundOpening-fmi3.fmu", "PurseString.fmu", "PurseString-fmi3.fmu")
+FMUS = (
+    "WoundOpening.fmu",
+    "WoundOpening-me.fmu",
+    "WoundOpening-fmi3.fmu",
+    "PurseString.fmu",
+    "PurseString-fmi3.fmu",
+)
 #: The README's three-wound fit (python/example_wounds.py wrote the files).
-TISSUE_COMMAND = ("tissue_R5um.csv", "tissue_R10um.csv", "tissue_R20um.csv", "--outer-radius-um", "80,100,120")
+TISSUE_COMMAND = (
+    "tissue_R5um.csv",
+    "tissue_R10um.csv",
+    "tissue_R20um.csv",
+    "--outer-radius-um",
+    "80,100,120",
+)
 #: The FMUs' promise at the default tolerance: |R - R_exact| <= 1e-10 (R_final - R1), t >= 0.01 T.
 FMU_TOL = 1e-10
 
@@ -37,7 +49,8 @@ PROBE = """
 import json, shutil, sys
 import wound_opening
 from fmpy import read_model_description, simulate_fmu
-start = {"lambda": %(lam)r, "sigma": %(sigma)r, "R_inf": %(r_inf)r, "R0": %(r0)r, "T": %(t)r, "G": 100.0}
+start = {"lambda": %(lam)r, "sigma": %(sigma)r, "R_inf": %(r_inf)r, "R0": %(r0)r, "T": %(t)r,
+         "G": 100.0}
 out = {"cargo": shutil.which("cargo"), "sys_path": sys.path, "package": wound_opening.__file__,
        "library": str(wound_opening.library_path()), "fmus": {}, "radius": {}}
 for name in %(fmus)r:
@@ -53,21 +66,44 @@ print(json.dumps(out))
 
 def _without_rust(path: str) -> str:
     """PATH less every folder that holds cargo or rustc."""
-    keep = [d for d in path.split(os.pathsep) if not any((Path(d) / exe).exists() for exe in ("cargo", "rustc"))]
+    keep = [
+        d
+        for d in path.split(os.pathsep)
+        if not any((Path(d) / exe).exists() for exe in ("cargo", "rustc"))
+    ]
     return os.pathsep.join(keep)
 
 
 def _constraints(tmp_path: Path) -> Path:
     """python/requirements.txt as a constraints file (pins only: constraints take no extras)."""
-    pins = re.findall(r"^([A-Za-z0-9_.-]+)(?:\[[^\]]*\])?(==\S+)", (ROOT / "python" / "requirements.txt").read_text(), re.M)
+    pins = re.findall(
+        r"^([A-Za-z0-9_.-]+)(?:\[[^\]]*\])?(==\S+)",
+        (ROOT / "python" / "requirements.txt").read_text(),
+        re.M,
+    )
     path = tmp_path / "constraints.txt"
     path.write_text("".join(f"{name}{version}\n" for name, version in pins))
     return path
 
 
 def build_wheel(dist: Path) -> Path:
-    built = subprocess.run([sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "--quiet",
-                            "--disable-pip-version-check", "-w", str(dist)], capture_output=True, text=True, timeout=900)
+    built = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "wheel",
+            str(ROOT),
+            "--no-deps",
+            "--quiet",
+            "--disable-pip-version-check",
+            "-w",
+            str(dist),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
     assert built.returncode == 0, built.stderr
     (path,) = dist.glob("wound_opening-*.whl")
     return path
@@ -85,50 +121,110 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
 
     venv, work = tmp_path / "venv", tmp_path / "work"
     work.mkdir()
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "WOUND_OPENING_LIB")}
+    env = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in ("PYTHONPATH", "VIRTUAL_ENV", "WOUND_OPENING_LIB")
+    }
     env["PATH"] = _without_rust(os.environ["PATH"])
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=120)
     python = venv / "bin" / "python"
-    installed = subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--no-compile", "--disable-pip-version-check",
-                                "-c", str(_constraints(tmp_path)), str(wheel), "fmpy"],
-                               capture_output=True, text=True, env=env, cwd=work, timeout=600)
+    installed = subprocess.run(
+        [
+            str(python),
+            "-m",
+            "pip",
+            "install",
+            "--quiet",
+            "--no-compile",
+            "--disable-pip-version-check",
+            "-c",
+            str(_constraints(tmp_path)),
+            str(wheel),
+            "fmpy",
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=work,
+        timeout=600,
+    )
     assert installed.returncode == 0, installed.stderr
 
     # The command line: a fit of exact data with noise, as in test_cli.
     write_radius(work / "radius.csv")
-    fit = subprocess.run([str(venv / "bin" / "wound-opening"), "fit", "radius.csv", "--outer-radius-um", str(OUTER),
-                          "--json", "fit.json"], capture_output=True, text=True, env=env, cwd=work, timeout=600)
+    fit = subprocess.run(
+        [
+            str(venv / "bin" / "wound-opening"),
+            "fit",
+            "radius.csv",
+            "--outer-radius-um",
+            str(OUTER),
+            "--json",
+            "fit.json",
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=work,
+        timeout=600,
+    )
     assert fit.returncode == 0, fit.stderr
     parameters = json.loads((work / "fit.json").read_text())["parameters"]
     for name, truth in {"R0_um": R0, "sigma": SIGMA, "lambda": LAM, "T_s": T}.items():
-        assert abs(parameters[name]["estimate"] - truth) < 7 * parameters[name]["stderr"], (name, parameters[name])
+        assert abs(parameters[name]["estimate"] - truth) < 7 * parameters[name]["stderr"], (
+            name,
+            parameters[name],
+        )
 
     # The README's quick start: a microscope export, R0 fixed, a prior on G.
     (work / "examples" / "data").mkdir(parents=True)
     (work / "examples" / "data" / "ablation_export.csv").write_bytes(
-        (ROOT / "examples" / "data" / "ablation_export.csv").read_bytes())
-    quick = subprocess.run([str(venv / "bin" / "wound-opening"), *readme_quick_start()], capture_output=True, text=True,
-                           env=env, cwd=work, timeout=600)
+        (ROOT / "examples" / "data" / "ablation_export.csv").read_bytes()
+    )
+    quick = subprocess.run(
+        [str(venv / "bin" / "wound-opening"), *readme_quick_start()],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=work,
+        timeout=600,
+    )
     assert quick.returncode == 0, quick.stderr
     check_quick_start(work)
     # The README's three-wound fit (examples/data, copied: the checkout stays off the paths).
     for name in TISSUE_COMMAND[:3]:
         shutil.copy(ROOT / "examples" / "data" / name, work)
-    tissue = subprocess.run([str(venv / "bin" / "wound-opening"), "fit", *TISSUE_COMMAND, "--json", "tissue.json"],
-                            capture_output=True, text=True, env=env, cwd=work, timeout=600)
+    tissue = subprocess.run(
+        [str(venv / "bin" / "wound-opening"), "fit", *TISSUE_COMMAND, "--json", "tissue.json"],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=work,
+        timeout=600,
+    )
     assert tissue.returncode == 0, tissue.stderr
     shared = json.loads((work / "tissue.json").read_text())["shared"]
     for name, truth in TISSUE_TRUTH.items():
-        assert shared[name]["identifiable"] and shared[name]["ci95"][0] < truth < shared[name]["ci95"][1], (name, shared)
+        assert (
+            shared[name]["identifiable"]
+            and shared[name]["ci95"][0] < truth < shared[name]["ci95"][1]
+        ), (name, shared)
 
     # The package's files, and fmpy on the shipped archives.
     stop, step = 20.0, 1.0
-    script = PROBE % dict(lam=LAM, sigma=SIGMA, r_inf=OUTER / R0, r0=R0, t=T, fmus=FMUS, stop=stop, step=step)
-    probe = subprocess.run([str(python), "-c", script], capture_output=True, text=True, env=env, cwd=work, timeout=300)
+    script = PROBE % dict(
+        lam=LAM, sigma=SIGMA, r_inf=OUTER / R0, r0=R0, t=T, fmus=FMUS, stop=stop, step=step
+    )
+    probe = subprocess.run(
+        [str(python), "-c", script], capture_output=True, text=True, env=env, cwd=work, timeout=300
+    )
     assert probe.returncode == 0, probe.stderr
     out = json.loads(probe.stdout)
     assert out["cargo"] is None
-    assert not any(Path(p).resolve() == ROOT or ROOT in Path(p).resolve().parents for p in out["sys_path"] if p)
+    assert not any(
+        Path(p).resolve() == ROOT or ROOT in Path(p).resolve().parents for p in out["sys_path"] if p
+    )
     package = Path(out["package"]).parent
     assert package.is_relative_to(venv), package
     assert Path(out["library"]) == package / "libwound_opening.so"
@@ -149,22 +245,33 @@ def test_the_source_distribution_carries_what_builds_the_wheel(tmp_path):
     shared with the wheel test): the sdist holds the crate (manifest, lock file, every
     source file and the models' pages) and the C header, and no build output. Building the
     wheel from it compiles the crate from scratch (minutes): see docs/install.md."""
-    tracked = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True, check=True)
+    tracked = subprocess.run(
+        ["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True, check=True
+    )
     tree = tmp_path / "tree"
     for name in filter(None, tracked.stdout.split("\0")):
         dest = tree / name
         dest.parent.mkdir(parents=True, exist_ok=True)
         dest.write_bytes((ROOT / name).read_bytes())
-    built = subprocess.run([sys.executable, "-m", "build", "--sdist", "-o", str(tmp_path / "dist"), str(tree)],
-                           capture_output=True, text=True, timeout=600)
+    built = subprocess.run(
+        [sys.executable, "-m", "build", "--sdist", "-o", str(tmp_path / "dist"), str(tree)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert built.returncode == 0, built.stdout[-2000:] + built.stderr[-2000:]
     (sdist,) = (tmp_path / "dist").glob("wound_opening-*.tar.gz")
     import tarfile
 
     with tarfile.open(sdist) as tar:
         names = {n.split("/", 1)[1] for n in tar.getnames() if "/" in n}
-    crate = {n for n in tracked.stdout.split("\0") if n.startswith("src/")} | {"Cargo.toml", "Cargo.lock",
-                                                                              "include/wound_opening.h"}
+    crate = {n for n in tracked.stdout.split("\0") if n.startswith("src/")} | {
+        "Cargo.toml",
+        "Cargo.lock",
+        "include/wound_opening.h",
+    }
     assert crate <= names, sorted(crate - names)
     assert {"setup.py", "pyproject.toml", "python/wound_opening/cli.py"} <= names
-    assert not any(n.startswith(("target/", ".venv/", "dist/", "build/")) for n in names), sorted(names)
+    assert not any(n.startswith(("target/", ".venv/", "dist/", "build/")) for n in names), sorted(
+        names
+    )

@@ -14,7 +14,8 @@ The names and attributes are lmfit's (`Parameters.add(name, value=, vary=, min=,
 
 A prior enters the likelihood as one more residual (theta - mean) / sd, so that
 
-    chi^2(theta) = sum over the data of ((model - data) / noise)^2 + sum over priors of ((theta - mean) / sd)^2
+    chi^2(theta) = sum over the data of ((model - data) / noise)^2 + sum over priors of ((theta
+        - mean) / sd)^2
 
 and the profile intervals, the standard errors, the Jacobian's rank check and the degrees of
 freedom (n + priors - free parameters) all count it. A fixed parameter leaves every stage
@@ -34,12 +35,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .objective import LAMBDA_MAX, NAMES, Objective, from_z
+from ..results.names import NAMES
+from .objective import LAMBDA_MAX, Objective, from_z
+from .problem import Problem
 
 #: The fit parameters (NAMES) and G, which only scales the absolute material values.
 G_NAME = "G_pa"
 ACCEPTED = NAMES + (G_NAME,)
-UNITS = {"R0_um": "um", "sigma": "1 (tension / G)", "lambda": "1 (viscous length / R0)", "T_s": "s", G_NAME: "Pa"}
+UNITS = {
+    "R0_um": "um",
+    "sigma": "1 (tension / G)",
+    "lambda": "1 (viscous length / R0)",
+    "T_s": "s",
+    G_NAME: "Pa",
+}
 
 
 @dataclass
@@ -58,8 +67,15 @@ class Parameters(dict):
     """name -> Parameter, filled by `add` as lmfit's Parameters is. `value` of a varied
     parameter is not needed: the global stage finds the start (it is ignored)."""
 
-    def add(self, name: str, value: float | None = None, vary: bool = True, min: float = -math.inf,
-            max: float = math.inf, prior: tuple[float, float] | None = None) -> Parameter:
+    def add(
+        self,
+        name: str,
+        value: float | None = None,
+        vary: bool = True,
+        min: float = -math.inf,
+        max: float = math.inf,
+        prior: tuple[float, float] | None = None,
+    ) -> Parameter:
         self[name] = Parameter(name, value, vary, min, max, prior)
         return self[name]
 
@@ -80,10 +96,15 @@ def from_options(fix=(), bound=(), prior=()) -> Parameters:
         name, sep, rest = text.partition("=")
         name = name.strip()
         if not sep or not rest.strip():
-            raise ValueError(f"{option} {text!r}: expected NAME=" + {"--fix": "VALUE", "--bound": "MIN:MAX",
-                                                                      "--prior": "MEAN:SD"}[option])
+            raise ValueError(
+                f"{option} {text!r}: expected NAME="
+                + {"--fix": "VALUE", "--bound": "MIN:MAX", "--prior": "MEAN:SD"}[option]
+            )
         if name not in ACCEPTED:
-            raise ValueError(f"{option} {text!r}: parameter {name!r} is unknown: expected one of {', '.join(ACCEPTED)}")
+            raise ValueError(
+                f"{option} {text!r}: parameter {name!r} is unknown: expected one of "
+                f"{', '.join(ACCEPTED)}"
+            )
         return params.get(name) or params.add(name), rest.strip()
 
     for text in fix:
@@ -161,13 +182,24 @@ def specification(params, outer_radius_um: float) -> Spec:
     """Check `params` (Parameters, an lmfit.Parameters, a dict name -> Parameter, or None)
     and return a Spec; ValueError naming the parameter and the reason otherwise."""
     fixed, bounds, priors, G = {}, {}, {}, None
-    items = [] if params is None else list(params.values()) if hasattr(params, "values") else list(params)
+    items = (
+        []
+        if params is None
+        else list(params.values())
+        if hasattr(params, "values")
+        else list(params)
+    )
     for p in items:
         name = getattr(p, "name", None)
         if name not in ACCEPTED:
-            raise ValueError(f"parameter {name!r} is unknown: expected one of {', '.join(ACCEPTED)}")
+            raise ValueError(
+                f"parameter {name!r} is unknown: expected one of {', '.join(ACCEPTED)}"
+            )
         if getattr(p, "expr", None):
-            raise ValueError(f"{name}: expressions (expr = {p.expr!r}) are not supported: fix, bound or give a prior")
+            raise ValueError(
+                f"{name}: expressions (expr = {p.expr!r}) are not supported: fix, bound or give a "
+                f"prior"
+            )
         lo = -math.inf if p.min is None else float(p.min)
         hi = math.inf if p.max is None else float(p.max)
         if math.isnan(lo) or math.isnan(hi):
@@ -184,8 +216,10 @@ def specification(params, outer_radius_um: float) -> Spec:
             prior = (mean, sd)
         if name == G_NAME:
             if math.isfinite(lo) or math.isfinite(hi):
-                raise ValueError(f"{name}: bounds are not supported (the data do not depend on G): "
-                                 "give a fixed value or a prior")
+                raise ValueError(
+                    f"{name}: bounds are not supported (the data do not depend on G): "
+                    "give a fixed value or a prior"
+                )
             if not p.vary:
                 if prior is not None:
                     raise ValueError(f"{name}: fixed and with a prior: give one of them")
@@ -193,7 +227,10 @@ def specification(params, outer_radius_um: float) -> Spec:
             elif prior is not None:
                 G = prior
             else:
-                raise ValueError(f"{name}: give a fixed value (vary=False) or a prior (the data do not depend on G)")
+                raise ValueError(
+                    f"{name}: give a fixed value (vary=False) or a prior (the data do not depend "
+                    f"on G)"
+                )
             if not G[0] > 0:
                 raise ValueError(f"{name}: {G[0]:g} Pa: a shear modulus must be > 0")
             continue
@@ -204,20 +241,26 @@ def specification(params, outer_radius_um: float) -> Spec:
                 raise ValueError(f"{name}: a fixed parameter takes no bounds and no prior")
             v = _finite(name, "value", p.value)
             if not (a < v < b or (i == 2 and v == 0.0)):
-                raise ValueError(f"{name} = {v:g}: outside the accepted range ({a:g}, {b:g}) {UNITS[name]}"
-                                 + (" (R0 below the outer radius / 1.001)" if i == 0 else ""))
+                raise ValueError(
+                    f"{name} = {v:g}: outside the accepted range ({a:g}, {b:g}) {UNITS[name]}"
+                    + (" (R0 below the outer radius / 1.001)" if i == 0 else "")
+                )
             fixed[i] = v
             continue
         if math.isfinite(lo) or math.isfinite(hi):
             lo_in, hi_in = max(lo, a), min(hi, b)
             if not lo_in < hi_in:
-                raise ValueError(f"{name}: bounds [{lo:g}, {hi:g}] leave nothing of the accepted range "
-                                 f"({a:g}, {b:g}) {UNITS[name]}")
+                raise ValueError(
+                    f"{name}: bounds [{lo:g}, {hi:g}] leave nothing of the accepted range "
+                    f"({a:g}, {b:g}) {UNITS[name]}"
+                )
             bounds[i] = (lo, hi)
         if prior is not None:
             priors[i] = prior
     if len(fixed) == 4:
-        raise ValueError("every fit parameter is fixed: leave at least one of R0_um, sigma, lambda, T_s free")
+        raise ValueError(
+            "every fit parameter is fixed: leave at least one of R0_um, sigma, lambda, T_s free"
+        )
     return Spec(fixed, bounds, priors, G)
 
 
@@ -226,17 +269,15 @@ def _z(i: int, x: float) -> float:
     return math.log(x) if i in (0, 3) else x
 
 
-class Constrained:
+class Constrained(Problem):
     """The objective of the data with the specification: residuals and Jacobian with one row
     per prior appended, bounds narrowed to the user's, coordinates held fixed (`fixed`, in z,
     honoured by local.local_fit). The data's own objective is `obj`."""
 
-    #: jacobian(z, columns) computes only the columns asked for (local.local_fit).
-    partial_jacobian = True
-
     def __init__(self, obj: Objective, spec: Spec):
         self.obj, self.spec = obj, spec
         self.fixed = {i: _z(i, v) for i, v in spec.fixed.items()}
+        self.user_bounded = frozenset(spec.bounds)
         self.t_sorted, self.radius, self.outer = obj.t_sorted, obj.radius, obj.outer
         self.n_radius, self.n_profile = obj.n_radius, obj.n_profile
 
@@ -255,8 +296,9 @@ class Constrained:
     def residuals(self, z) -> np.ndarray:
         return np.concatenate([self.obj.residuals(z), self.prior_residuals(z)])
 
-    def jacobian(self, z, columns=(0, 1, 2, 3)) -> np.ndarray:
+    def jacobian(self, z, columns=None) -> np.ndarray:
         """The data's Jacobian and, per prior, d theta_i / d z_i / sd in column i."""
+        columns = (0, 1, 2, 3) if columns is None else columns
         theta = from_z(z)
         rows = np.zeros((len(self.spec.priors), 4))
         for k, (i, (_, sd)) in enumerate(self.spec.priors.items()):
@@ -265,13 +307,14 @@ class Constrained:
         return np.vstack([self.obj.jacobian(z, columns), rows])
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """The accepted bounds (local.bounds) narrowed to the user's, in z."""
-        from .local import bounds
-
-        lower, upper = bounds(self.obj)
+        """The accepted bounds (Objective.bounds) narrowed to the user's, in z."""
+        lower, upper = self.obj.bounds()
         for i, (lo, hi) in self.spec.bounds.items():
             if i in (0, 3):
-                lo, hi = (math.log(lo) if lo > 0 else -math.inf), (math.log(hi) if hi > 0 else -math.inf)
+                lo, hi = (
+                    (math.log(lo) if lo > 0 else -math.inf),
+                    (math.log(hi) if hi > 0 else -math.inf),
+                )
             lower[i], upper[i] = max(lower[i], lo), min(upper[i], hi)
         return lower, upper
 
@@ -279,8 +322,6 @@ class Constrained:
         """Whether the limit of coordinate i on `side` (-1 lower, +1 upper) is the user's."""
         if i not in self.spec.bounds:
             return False
-        from .local import bounds
-
-        default = bounds(self.obj)[0 if side < 0 else 1][i]
+        default = self.obj.bounds()[0 if side < 0 else 1][i]
         mine = self.bounds()[0 if side < 0 else 1][i]
         return bool(mine != default)

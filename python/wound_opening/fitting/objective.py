@@ -33,9 +33,9 @@ import math
 
 import numpy as np
 
-from . import _native
+from .. import _native
+from .problem import Problem
 
-NAMES = ("R0_um", "sigma", "lambda", "T_s")
 #: Largest lambda searched: a viscous length of 50 R0, beyond which the tissues of these
 #: experiments (outer radius ~10 R0) move as one and R(t) depends on tau = lambda^2 T only.
 LAMBDA_MAX = 50.0
@@ -56,12 +56,15 @@ def from_z(z) -> tuple[float, float, float, float]:
     return math.exp(z[0]), float(z[1]), abs(float(z[2])), math.exp(z[3])
 
 
-class Objective:
+class Objective(Problem):
     """Residuals (model - data) / uncertainty, radius points first, then profile points.
-    `sd` holds the per-point uncertainties (None where estimated: see `scale`)."""
+    `sd` holds the per-point uncertainties: the data's own where given, else a first guess
+    (`estimated` says which data sets: radius, profile) that `estimate_noise` scales to the
+    residuals."""
 
     def __init__(self, radius, profile, outer_radius_um: float):
         self.outer = float(outer_radius_um)
+        self.inputs = (radius, profile)  # the series read (rows, file lines)
         t = np.asarray(radius.times_s, dtype=float)
         self.order = np.argsort(t, kind="stable")
         self.t_sorted = t[self.order]
@@ -71,14 +74,74 @@ class Objective:
             pt = np.asarray(profile.times_s, dtype=float)
             for time in np.unique(pt):
                 idx = np.flatnonzero(pt == time)
-                self.groups.append((float(time), np.asarray(profile.r_um, float)[idx],
-                                    np.asarray(profile.velocity_um_s, float)[idx], idx))
+                self.groups.append(
+                    (
+                        float(time),
+                        np.asarray(profile.r_um, float)[idx],
+                        np.asarray(profile.velocity_um_s, float)[idx],
+                        idx,
+                    )
+                )
         self.n_radius = self.radius.size
         self.n_profile = sum(g[1].size for g in self.groups)
         self.group_times = np.array([g[0] for g in self.groups])
-        self.sd = np.ones(self.size)  # per-point uncertainty [um or um/s]
+        self.sd, self.estimated = self._uncertainties(radius, profile)  # [um or um/s]
         self.evaluations = 0
         self.inside_edge = 0
+
+    def _uncertainties(self, radius, profile) -> tuple[np.ndarray, list]:
+        """Initial per-point uncertainties and which data sets have theirs estimated: 1 % of
+        the mean radius, a tenth of the velocities' spread."""
+        r_sd = (
+            radius.sd_um
+            if radius.sd_um is not None
+            else np.full(self.n_radius, radius.noise_um or 1.0)
+        )
+        sd = [np.asarray(r_sd, float)[self.order]]
+        estimated = [radius.noise_um is None and radius.sd_um is None, False]
+        if profile is not None:
+            p_sd = (
+                profile.sd_um_s
+                if profile.sd_um_s is not None
+                else np.full(self.n_profile, profile.noise_um_s or 1.0)
+            )
+            sd.append(np.concatenate([np.asarray(p_sd, float)[g[3]] for g in self.groups]))
+            estimated[1] = profile.noise_um_s is None and profile.sd_um_s is None
+            if estimated[1]:
+                sd[1][:] = (
+                    max(float(np.std(np.concatenate([g[2] for g in self.groups]))), 1e-12) * 0.1
+                )
+        if estimated[0]:
+            sd[0][:] = 0.01 * float(np.mean(self.radius))
+        return np.concatenate(sd), estimated
+
+    def estimate_noise(self, z, robust: bool, share: float | None = None) -> None:
+        """Scale the estimated data sets' uncertainties to their residuals at z; `share`: the
+        fraction of each set's points taken by the parameters (default 4 / the points)."""
+        parts = self.split(self.residuals(z))
+        scale = []
+        for k, part in enumerate(parts):
+            if not (self.estimated[k] and part.size):
+                scale.append(np.ones(part.size))
+                continue
+            if robust:
+                factor = 1.4826 * float(np.median(np.abs(part)))
+            else:
+                dof = max(part.size * (1 - (4 / self.size if share is None else share)), 1.0)
+                factor = math.sqrt(float(np.sum(part**2)) / dof)
+            scale.append(np.full(part.size, max(factor, 1e-300)))
+        self.sd = self.sd * np.concatenate(scale)
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Bounds in z: R0 between 1 % of the smallest radius and the outer radius / 1.001
+        (R_inf >= 1.001), sigma free, 0 <= lambda <= LAMBDA_MAX, T within 1e-6 .. 1e6 of the
+        last time."""
+        t_max = float(self.t_sorted[-1]) if self.t_sorted[-1] > 0 else 1.0
+        lower = np.array(
+            [math.log(0.01 * float(np.min(self.radius))), -np.inf, 0.0, math.log(1e-6 * t_max)]
+        )
+        upper = np.array([math.log(self.outer / 1.001), np.inf, LAMBDA_MAX, math.log(1e6 * t_max)])
+        return lower, upper
 
     @property
     def size(self) -> int:
@@ -107,7 +170,9 @@ class Objective:
             v = np.full(x.size, edge_v[k])
             tissue = x > edge_r[k] * (1 + 1e-12)
             if np.any(tissue):
-                _, vt = _native.profile_series(abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=TOLERANCE_FD)
+                _, vt = _native.profile_series(
+                    abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=TOLERANCE_FD
+                )
                 v[tissue] = vt[0]
             inside += int(np.sum(~tissue))
             out.append(R0 / T * v)
@@ -125,13 +190,14 @@ class Objective:
     def residuals(self, z) -> np.ndarray:
         return (self.model(z) - self.data()) / self.sd
 
-    def jacobian(self, z, columns=(0, 1, 2, 3)) -> np.ndarray:
+    def jacobian(self, z, columns=None) -> np.ndarray:
         """d residuals / d z, (size, 4): see the module docstring. Only `columns` are
-        computed (the others are 0): a profile fit holds one coordinate fixed.
+        computed (the others are 0; None: all): a profile fit holds one coordinate fixed.
 
         Every difference in ln R0 is taken between the outer radii rc -+ dr of the radius
         columns, so that one Jacobian needs the modal bases of three outer radii (each new
         outer radius costs a decomposition)."""
+        columns = (0, 1, 2, 3) if columns is None else columns
         R0, sigma, lam, T = theta = from_z(z)
         r_inf = self.outer / R0
         t = self.t_sorted
@@ -140,12 +206,21 @@ class Objective:
         rc = max(r_inf, R_INF_MIN + dr)  # centred inside the solver's range at its edge
         dl = STEP * max(lam, 0.01)
         zero = np.zeros(t.size)
-        dh_dr = (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr) if 0 in columns else zero
-        dh_dl = ((self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
-                 if 2 in columns else zero)
+        dh_dr = (
+            (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr)
+            if 0 in columns
+            else zero
+        )
+        dh_dl = (
+            (self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
+            if 2 in columns
+            else zero
+        )
         with np.errstate(invalid="ignore"):
             dlnT = np.where(t > 0, -(t / T) * R0 * sigma * dh, 0.0)
-        jr = np.column_stack([R0 * (1 + sigma * h) - R0 * sigma * r_inf * dh_dr, R0 * h, R0 * sigma * dh_dl, dlnT])
+        jr = np.column_stack(
+            [R0 * (1 + sigma * h) - R0 * sigma * r_inf * dh_dr, R0 * h, R0 * sigma * dh_dl, dlnT]
+        )
         if self.groups:
             steps = np.array([STEP, STEP * max(1.0, abs(sigma)), dl, STEP])
             cols = []
@@ -159,8 +234,10 @@ class Objective:
                 else:
                     e = np.zeros(4)
                     e[i] = steps[i]
-                    cols.append((self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf))
-                                / (2 * steps[i]))
+                    cols.append(
+                        (self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf))
+                        / (2 * steps[i])
+                    )
             self._profile(theta, r_inf)  # inside_edge at z
             jr = np.vstack([jr, np.column_stack(cols)])
         jr[:, [i for i in range(4) if i not in columns]] = 0.0
@@ -168,4 +245,4 @@ class Objective:
 
     def split(self, res: np.ndarray):
         """(radius part, profile part) of a vector over the data points."""
-        return res[: self.n_radius], res[self.n_radius:]
+        return res[: self.n_radius], res[self.n_radius :]

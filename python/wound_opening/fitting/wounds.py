@@ -37,14 +37,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._native import SolverError
-from .data import RadiusSeries, VelocityProfile, check_against
+from .._native import SolverError
+from ..inputs.series import RadiusSeries, VelocityProfile, check_against
+from ..results.names import ETA, SHARED
+from ..results.profiles import Profile
+from ..results.result import ParameterReport
+from ..results.wounds import TissueFitResult
+from .intervals import walk_side
+from .local import cost
 from .objective import LAMBDA_MAX, Objective, from_z
+from .plausibility import time_scale_warnings
+from .problem import Problem
+from .single import fit
+from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
 
 LN4 = math.log(4.0)
-#: The shared coordinates (y[0], y[1], y[2]) and the derived eta/G, by their names in the result.
-SHARED = ("viscous_length_um", "tension_over_G", "zeta_over_G_s_per_um2")
-ETA = "eta_over_G_s"
 #: Points each wound needs: its start is a fit of its own four parameters (fitting.fit).
 MIN_POINTS = 5
 
@@ -60,7 +67,7 @@ class Wound:
     name: str | None = None
 
 
-class Tissue:
+class Tissue(Problem):
     """The wounds' Objectives as one objective in y (see the module docstring)."""
 
     def __init__(self, parts: list[Objective]):
@@ -86,7 +93,8 @@ class Tissue:
     def residuals(self, y) -> np.ndarray:
         return np.concatenate([p.residuals(self.z(y, k)) for k, p in enumerate(self.parts)])
 
-    def jacobian(self, y) -> np.ndarray:
+    def jacobian(self, y, columns=None) -> np.ndarray:
+        """dr/dy by the chain rule, every column (`columns` is not used)."""
         blocks = []
         for k, p in enumerate(self.parts):
             z = self.z(y, k)
@@ -99,24 +107,29 @@ class Tissue:
         return np.vstack(blocks)
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """Each wound's bounds (local.bounds) on its R0 and T, carried to y: l from 0 to a
+        """Each wound's bounds (Objective.bounds) on its R0 and T, carried to y: l from 0 to a
         viscous length of LAMBDA_MAX outer radii, zeta/G over the union of the wounds' T ranges."""
-        from .local import bounds
-
-        each = [bounds(p) for p in self.parts]
+        each = [p.bounds() for p in self.parts]
         z_lo = min(lo[3] + LN4 - 2 * hi[0] for lo, hi in each)
         z_hi = max(hi[3] + LN4 - 2 * lo[0] for lo, hi in each)
         lower = np.array([0.0, -np.inf, z_lo] + [lo[0] for lo, _ in each])
-        upper = np.array([LAMBDA_MAX * max(p.outer for p in self.parts), np.inf, z_hi] + [hi[0] for _, hi in each])
+        upper = np.array(
+            [LAMBDA_MAX * max(p.outer for p in self.parts), np.inf, z_hi]
+            + [hi[0] for _, hi in each]
+        )
         return lower, upper
 
 
-class EtaCoordinate:
+class EtaCoordinate(Problem):
     """The tissue objective with w_2 = ln eta/G = ln zeta/G + 2 ln l - ln 4 in place of
     ln zeta/G (for its profile; needs l > 0)."""
 
     def __init__(self, tissue: Tissue):
         self.tissue = tissue
+
+    @property
+    def size(self) -> int:
+        return self.tissue.size
 
     @staticmethod
     def to_y(w):
@@ -140,7 +153,8 @@ class EtaCoordinate:
     def residuals(self, w):
         return self.tissue.residuals(self.to_y(w))
 
-    def jacobian(self, w):
+    def jacobian(self, w, columns=None):
+        """dr/dw by the chain rule, every column (`columns` is not used)."""
         dy = np.eye(len(w))
         dy[2, 0] = -2 / w[0]
         return self.tissue.jacobian(self.to_y(w)) @ dy
@@ -156,13 +170,19 @@ def _wounds(experiments) -> list[Wound]:
     wounds = []
     for k, w in enumerate(experiments):
         if not isinstance(w, Wound):
-            raise TypeError(f"fit_wounds: experiment {k + 1} is a {type(w).__name__}, expected a Wound")
-        wounds.append(w if w.name is not None else Wound(w.radius, w.outer_radius_um, w.profile, str(k + 1)))
+            raise TypeError(
+                f"fit_wounds: experiment {k + 1} is a {type(w).__name__}, expected a Wound"
+            )
+        wounds.append(
+            w if w.name is not None else Wound(w.radius, w.outer_radius_um, w.profile, str(k + 1))
+        )
     if not wounds:
         raise ValueError("fit_wounds: no wound given")
     names = [w.name for w in wounds]
     if len(set(names)) < len(names):
-        raise ValueError(f"fit_wounds: wound names repeat ({', '.join(names)}): each wound needs its own")
+        raise ValueError(
+            f"fit_wounds: wound names repeat ({', '.join(names)}): each wound needs its own"
+        )
     for w in wounds:
         try:
             check_against(w.radius, w.profile, w.outer_radius_um)
@@ -170,8 +190,10 @@ def _wounds(experiments) -> list[Wound]:
             raise ValueError(f"wound {w.name}: {e}") from None
         n = np.size(w.radius.radius_um) + (0 if w.profile is None else np.size(w.profile.r_um))
         if n < MIN_POINTS:
-            raise ValueError(f"wound {w.name}: {n} data points: need at least {MIN_POINTS} per wound "
-                             "(its start is a fit of its own four parameters)")
+            raise ValueError(
+                f"wound {w.name}: {n} data points: need at least {MIN_POINTS} per wound "
+                "(its start is a fit of its own four parameters)"
+            )
     return wounds
 
 
@@ -184,8 +206,10 @@ def _combine(tissue: Tissue, singles, cost, count: int = 3) -> list[np.ndarray]:
     if not ok:
         raise ValueError("fit_wounds: no wound could be fitted alone to start from")
     sigma = float(np.median([t[1] for t in ok]))
-    r0 = [t[0] if t is not None else float(np.min(p.radius)) / (1 + sigma / 6)
-          for t, p in zip(singles, tissue.parts)]
+    r0 = [
+        t[0] if t is not None else float(np.min(p.radius)) / (1 + sigma / 6)
+        for t, p in zip(singles, tissue.parts)
+    ]
     ln_r0 = [math.log(r) for r in r0]
     zg = [4 * t[3] / t[0] ** 2 for t in ok]
     ls = [t[2] * t[0] for t in ok]
@@ -220,68 +244,27 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
     zeta/G (and eta/G) with each wound's R0; see the module docstring and docs/fitting.md.
     `experiments`: Wound objects. `loss` and the noise of each data set as in `fit`.
     Returns a TissueFitResult."""
-    from scipy import stats
-
-    from .fitting import OUTLIER, P_FAIL, _best, _estimate_noise, _outliers, _uncertainties, fit
-    from .local import cost
-    from .plausibility import time_scale_warnings
-    from .result import ParameterReport
-    from .tissue_result import TissueFitResult
-
-    if loss not in ("linear", "soft_l1", "cauchy"):
-        raise ValueError(f"loss = {loss!r}: expected linear, soft_l1 or cauchy")
+    check_loss(loss)
     wounds = _wounds(experiments)
     parts = [Objective(w.radius, w.profile, w.outer_radius_um) for w in wounds]
     tissue = Tissue(parts)
-    estimated = [_uncertainties(p, w.radius, w.profile) for p, w in zip(parts, wounds)]
-    singles = []
-    for w in wounds:
-        try:
-            singles.append(fit(w.radius, w.profile, outer_radius_um=w.outer_radius_um, intervals=False, loss=loss).theta)
-        except (ValueError, SolverError):
-            singles.append(None)
-
-    def tissue_cost(y):
-        return cost(tissue.residuals(y), loss)
-
-    best, failures, ends = _best(tissue, _combine(tissue, singles, tissue_cost), loss)
-    if best is None:
-        raise ValueError("fit_wounds: the model could not be evaluated from any start: " + "; ".join(failures[:2]))
-    y = best[0]
-    noise_given = not any(any(e) for e in estimated)
-    if not noise_given:
-        share = tissue.n / tissue.size
-        for _ in range(2):  # noise from the residuals, then refit with those weights
-            for k, p in enumerate(parts):
-                _estimate_noise(p, tissue.z(y, k), estimated[k], loss != "linear", share)
-            best, _, _ = _best(tissue, [y], loss)
-            y = best[0]
+    best, ends = _local_fits(tissue, wounds, loss)
     y, chi2_cost, res = best
+    noise_given = not any(any(p.estimated) for p in parts)
     dof = max(tissue.size - tissue.n, 1)
-    threshold = float(stats.chi2.ppf(0.95, 1)) if noise_given else float(stats.f.ppf(0.95, 1, dof))
-    optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
-    reasons = [] if res.status > 0 else [f"optimiser stopped without converging ({res.message})"]
     residuals = tissue.residuals(y)
-    flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
-    chi2 = float(np.sum(np.delete(residuals, flagged) ** 2))
-    p_value = float(stats.chi2.sf(chi2, max(dof - flagged.size, 1))) if noise_given else None
-    if p_value is not None and p_value < P_FAIL:
-        reasons.append(f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
-                       "the model does not describe the data with the given noise")
-    jac = tissue.jacobian(y)
     # l on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
     free = [i for i in range(tissue.n) if not (i == 0 and y[0] <= 1e-8 * math.exp(max(y[3:])))]
-    sv = np.linalg.svd(jac[:, free], compute_uv=False)
-    cov = np.full((tissue.n, tissue.n), np.nan)
-    if sv.size == len(free) and sv[-1] > 1e-12 * sv[0]:
-        cov[np.ix_(free, free)] = np.linalg.inv(jac[:, free].T @ jac[:, free])
-    else:
-        reasons.append("the Jacobian at the best point is singular: the data do not determine the parameters")
-    alternates = []
-    for e, _ in ends:
-        if all(np.max(np.abs(e - other)) > 1e-2 for other in [y] + [a for a, _ in alternates]):
-            alternates.append((e, cost(tissue.residuals(e), loss) - chi2_cost))
-    profiles = _profiles(tissue, y, chi2_cost, threshold, cov, loss, alternates) if intervals and not reasons else {}
+    judged = verdict(
+        residuals, tissue.jacobian(y), free, res, dof=dof, noise_given=noise_given, loss=loss
+    )
+    reasons, threshold, cov, flagged = judged.reasons, judged.threshold, judged.cov, judged.flagged
+    others = alternates(tissue, y, ends, chi2_cost, loss)
+    profiles = (
+        _profiles(tissue, y, chi2_cost, threshold, cov, loss, others)
+        if intervals and not reasons
+        else {}
+    )
     # standard errors in each quantity's own units: d quantity / d y_i
     own = np.array([1.0, 1.0, math.exp(y[2])] + [math.exp(v) for v in y[3:]])
     with np.errstate(invalid="ignore"):
@@ -291,43 +274,106 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
     if y[0] > 0 and np.all(np.isfinite(cov[np.ix_([0, 2], [0, 2])])):
         g = EtaCoordinate.gradient(y)
         se_eta = eta * math.sqrt(max(float(g @ cov @ g), 0.0))
-    shared = {name: ParameterReport(name, float(v if i != 2 else math.exp(v)), float(se[i]), profiles.get(name))
-              for i, (name, v) in enumerate(zip(SHARED, y[:3]))}
+    shared = {
+        name: ParameterReport(
+            name, float(v if i != 2 else math.exp(v)), float(se[i]), profiles.get(name)
+        )
+        for i, (name, v) in enumerate(zip(SHARED, y[:3]))
+    }
     shared[ETA] = ParameterReport(ETA, eta, se_eta, profiles.get(ETA))
-    r0 = [ParameterReport("R0_um", math.exp(y[3 + k]), float(se[3 + k]), profiles.get(("R0_um", k)))
-          for k in range(len(parts))]
+    r0 = [
+        ParameterReport("R0_um", math.exp(y[3 + k]), float(se[3 + k]), profiles.get(("R0_um", k)))
+        for k in range(len(parts))
+    ]
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(np.sqrt(np.diag(cov)), np.sqrt(np.diag(cov)))
     start = 0
     warnings = []
     wound_rows = []
     for k, (p, w) in enumerate(zip(parts, wounds)):
-        part = residuals[start:start + p.size]
+        part = residuals[start : start + p.size]
         mine = flagged[(flagged >= start) & (flagged < start + p.size)] - start
         start += p.size
         p.residuals(tissue.z(y, k))  # inside_edge at the optimum
         theta = tissue.theta(y, k)
-        warnings += [f"wound {w.name}: {m}" for m in time_scale_warnings(theta, p.outer, w.radius, w.profile)]
+        warnings += [
+            f"wound {w.name}: {m}" for m in time_scale_warnings(theta, p.outer, w.radius, w.profile)
+        ]
         radius_res = p.split(part * p.sd)[0]
-        wound_rows.append({"name": w.name, "theta": theta, "outer_radius_um": p.outer,
-                           "n_points": (p.n_radius, p.n_profile), "chi2": float(np.sum(np.delete(part, mine) ** 2)),
-                           "noise": (float(np.median(p.sd[:p.n_radius])),
-                                     float(np.median(p.sd[p.n_radius:])) if p.n_profile else None),
-                           "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))), "outliers": _outliers(p, mine, w.radius, w.profile),
-                           "piv_vectors_at_edge": p.inside_edge})
-    return TissueFitResult(shared=shared, r0=r0, wounds=wound_rows, correlation=corr, chi2=chi2, dof=dof,
-                           p_value=p_value, threshold=threshold, noise_given=noise_given, loss=loss,
-                           converged=not reasons, reasons=reasons, optimizer=optimizer,
-                           evaluations=tissue.evaluations, plausibility=warnings)
+        wound_rows.append(
+            {
+                "name": w.name,
+                "theta": theta,
+                "outer_radius_um": p.outer,
+                "n_points": (p.n_radius, p.n_profile),
+                "chi2": float(np.sum(np.delete(part, mine) ** 2)),
+                "noise": (
+                    float(np.median(p.sd[: p.n_radius])),
+                    float(np.median(p.sd[p.n_radius :])) if p.n_profile else None,
+                ),
+                "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))),
+                "outliers": outliers(p, mine),
+                "piv_vectors_at_edge": p.inside_edge,
+            }
+        )
+    return TissueFitResult(
+        shared=shared,
+        r0=r0,
+        wounds=wound_rows,
+        correlation=corr,
+        chi2=judged.chi2,
+        dof=dof,
+        p_value=judged.p_value,
+        threshold=threshold,
+        noise_given=noise_given,
+        loss=loss,
+        converged=not reasons,
+        reasons=reasons,
+        optimizer=judged.optimizer,
+        evaluations=tissue.evaluations,
+        plausibility=warnings,
+    )
+
+
+def _local_fits(tissue: Tissue, wounds, loss: str):
+    """The best local fit from the starts the wounds fitted alone give, at the estimated
+    noise where any is estimated; (best (y, cost, result), the ends of every fit)."""
+    singles = []
+    for w in wounds:
+        try:
+            singles.append(
+                fit(
+                    w.radius,
+                    w.profile,
+                    outer_radius_um=w.outer_radius_um,
+                    intervals=False,
+                    loss=loss,
+                ).theta
+            )
+        except (ValueError, SolverError):
+            singles.append(None)
+
+    def tissue_cost(y):
+        return cost(tissue.residuals(y), loss)
+
+    best, failures, ends = best_of(tissue, _combine(tissue, singles, tissue_cost), loss)
+    if best is None:
+        raise ValueError(
+            "fit_wounds: the model could not be evaluated from any start: "
+            + "; ".join(failures[:2])
+        )
+    if any(any(p.estimated) for p in tissue.parts):
+        best = refit_at_noise(
+            tissue, tissue.parts, lambda k, y: tissue.z(y, k), best, loss, tissue.n / tissue.size
+        )
+    return best, ends
 
 
 def _interval(obj, k, centres, chi2_min, threshold, cov, loss, limits, default):
     """One coordinate's profile interval (lower, upper; None where open) and points, walked by
-    likelihood._side from the optimum and from every other optimum below the threshold
-    (`centres`: (y, delta chi^2)), as likelihood.profile_all does; `limits(centre)` gives
+    intervals.walk_side from the optimum and from every other optimum below the threshold
+    (`centres`: (y, delta chi^2)), as intervals.profile_all does; `limits(centre)` gives
     the search range, `cov` the Jacobian's covariance (first step and start prediction)."""
-    from .likelihood import _side
-
     n = centres[0][0].size
     ok = np.all(np.isfinite(cov[:, k])) and cov[k, k] > 0
     se = math.sqrt(cov[k, k]) if ok else math.nan
@@ -342,7 +388,9 @@ def _interval(obj, k, centres, chi2_min, threshold, cov, loss, limits, default):
             if centre[k] == limit:
                 ends.append(None)
                 continue
-            end, _, pts = _side(obj, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0)
+            end, _, pts = walk_side(
+                obj, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0
+            )
             ends.append(end)
             points += pts
     lo = None if None in lows else min(lows)
@@ -355,7 +403,6 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
     (likelihood.py): l from 0 to LAMBDA_MAX times the largest R0 (an interval reaching 0 is
     closed there but does not identify l, as lambda's), sigma within 10 |sigma| + 1, zeta/G
     and eta/G within a factor 100, R0 within a factor 3."""
-    from .likelihood import Profile
 
     lower, upper = tissue.bounds()
     centres = [(y_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
@@ -365,12 +412,20 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
         return lambda c: (max(lo(c), lower[i]), min(hi(c), upper[i]))
 
     l_max = LAMBDA_MAX * math.exp(max(y_hat[3:]))
-    limits = {0: clipped(0, lambda c: 0.0, lambda c: min(l_max, upper[0])),
-              1: clipped(1, lambda c: c[1] - 10 * abs(c[1]) - 1, lambda c: c[1] + 10 * abs(c[1]) + 1),
-              2: clipped(2, lambda c: c[2] - math.log(100.0), lambda c: c[2] + math.log(100.0))}
+    limits = {
+        0: clipped(0, lambda c: 0.0, lambda c: min(l_max, upper[0])),
+        1: clipped(1, lambda c: c[1] - 10 * abs(c[1]) - 1, lambda c: c[1] + 10 * abs(c[1]) + 1),
+        2: clipped(2, lambda c: c[2] - math.log(100.0), lambda c: c[2] + math.log(100.0)),
+    }
     for i in range(tissue.n):
-        lim = limits.get(i) or clipped(i, lambda c, i=i: c[i] - math.log(3.0), lambda c, i=i: c[i] + math.log(3.0))
-        default = (0.1 * math.exp(float(np.median(y_hat[3:]))), 0.05 * abs(y_hat[1]) + 0.01, 0.1)[i] if i < 3 else 0.05
+        lim = limits.get(i) or clipped(
+            i, lambda c, i=i: c[i] - math.log(3.0), lambda c, i=i: c[i] + math.log(3.0)
+        )
+        default = (
+            (0.1 * math.exp(float(np.median(y_hat[3:]))), 0.05 * abs(y_hat[1]) + 0.01, 0.1)[i]
+            if i < 3
+            else 0.05
+        )
         lo, hi, pts = _interval(tissue, i, centres, chi2_min, threshold, cov, loss, lim, default)
         if i == 1 or i == 0:
             at_bound = i == 0 and lo is None
@@ -378,8 +433,12 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
             out[key] = Profile(0.0 if at_bound else lo, hi, at_bound, pts)
         else:
             key = SHARED[2] if i == 2 else ("R0_um", i - 3)
-            out[key] = Profile(None if lo is None else math.exp(lo), None if hi is None else math.exp(hi), False,
-                               [(math.exp(v), d) for v, d in pts])
+            out[key] = Profile(
+                None if lo is None else math.exp(lo),
+                None if hi is None else math.exp(hi),
+                False,
+                [(math.exp(v), d) for v, d in pts],
+            )
     if any(c[0] <= 1e-8 * l_max for c, _ in centres):
         out[ETA] = Profile(0.0, None, True)  # eta/G = 0 is allowed: not identified
         return out
@@ -387,8 +446,21 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
     a = np.eye(tissue.n)
     a[2] = rep.gradient(y_hat)
     eta_centres = [(rep.to_w(c), d) for c, d in centres]
-    lo, hi, pts = _interval(rep, 2, eta_centres, chi2_min, threshold, a @ cov @ a.T, loss,
-                            lambda c: (c[2] - math.log(100.0), c[2] + math.log(100.0)), 0.1)
-    out[ETA] = Profile(None if lo is None else math.exp(lo), None if hi is None else math.exp(hi), False,
-                       [(math.exp(v), d) for v, d in pts])
+    lo, hi, pts = _interval(
+        rep,
+        2,
+        eta_centres,
+        chi2_min,
+        threshold,
+        a @ cov @ a.T,
+        loss,
+        lambda c: (c[2] - math.log(100.0), c[2] + math.log(100.0)),
+        0.1,
+    )
+    out[ETA] = Profile(
+        None if lo is None else math.exp(lo),
+        None if hi is None else math.exp(hi),
+        False,
+        [(math.exp(v), d) for v, d in pts],
+    )
     return out

@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from . import _native
+from .. import _native
 from .objective import Objective, to_z
 
 #: Accuracy of the grid's curves (relative to the opening): far below any noise that matters
@@ -40,7 +40,9 @@ def _linear(obj: Objective, lam: float, T: float, r_inf: float, w: np.ndarray, s
     """(R0, sigma, weighted residual sum of squares) of the linear fit at (lambda, T), R_inf
     held (the grid only has to find the basin), or None. `spec`: fixed R0 or sigma and
     bounds (parameters.Spec)."""
-    h, _ = _native.series(lam, 1.0, r_inf, obj.t_sorted / T, velocity=False, tolerance=GRID_TOLERANCE)
+    h, _ = _native.series(
+        lam, 1.0, r_inf, obj.t_sorted / T, velocity=False, tolerance=GRID_TOLERANCE
+    )
     h = h - 1.0
     fixed = {} if spec is None else spec.fixed
     y = obj.radius * w
@@ -72,7 +74,9 @@ def grid_starts(obj: Objective, cost, count: int = 4, spec=None) -> list[np.ndar
     t_last = float(t[-1]) if t[-1] > 0 else 1.0
     r_inf = obj.outer / float(np.min(obj.radius))
     low = min(float(positive[0]) if positive.size else t_last, t_last / r_inf**2) / 10
-    s_grid = np.logspace(math.log10(low), math.log10(10 * t_last), int(5 * math.log10(100 * t_last / low)) + 1)
+    s_grid = np.logspace(
+        math.log10(low), math.log10(10 * t_last), int(5 * math.log10(100 * t_last / low)) + 1
+    )
     w = 1.0 / obj.sd[: obj.n_radius]
     r_inf0 = obj.outer / (float(np.min(obj.radius)) / 1.05)
     lambdas = LAMBDAS if spec is None else sorted({spec.clip(2, lam) for lam in LAMBDAS})
@@ -89,7 +93,9 @@ def grid_starts(obj: Objective, cost, count: int = 4, spec=None) -> list[np.ndar
                 continue
             if lin is not None and obj.outer / lin[0] > 1.001:
                 theta = (lin[0], lin[1], lam, T)
-                ranked.append((lin[2] + (0.0 if spec is None else spec.prior_chi2(theta)), i, j, to_z(theta)))
+                ranked.append(
+                    (lin[2] + (0.0 if spec is None else spec.prior_chi2(theta)), i, j, to_z(theta))
+                )
     ranked.sort(key=lambda s: s[0])
     scored = []
     for _, i, j, z in ranked[:RESCORED] if obj.n_profile else ranked:

@@ -10,25 +10,28 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .result import ParameterReport, _fmt, chi2_warning, outlier_warning
-from .tissue import ETA, SHARED
+from .names import ETA, SHARED
+from .result import ParameterReport, chi2_warning, fmt, outlier_warning, verdict_fields
 
 #: What would identify a shared quantity that is not.
 ADVICE = {
-    "viscous_length_um": "add smaller wounds (lambda = l / R0 large: the viscous regime) or a velocity profile "
-                         "near the edge early after the cut",
+    "viscous_length_um": "add smaller wounds (lambda = l / R0 large: the viscous regime) or a "
+    "velocity profile "
+    "near the edge early after the cut",
     "tension_over_G": "sample each radius right after the cut (R1) and on the plateau (R_final)",
-    "zeta_over_G_s_per_um2": "add larger wounds (T = zeta R0^2 / 4G grows with R0^2: the friction regime), "
-                             "sampled densely from the first frames",
+    "zeta_over_G_s_per_um2": "add larger wounds (T = zeta R0^2 / 4G grows with R0^2: the friction "
+    "regime), "
+    "sampled densely from the first frames",
     "eta_over_G_s": "add smaller wounds (they open on tau = eta/G alone), sampled to their plateau",
 }
 
 
 @dataclass
 class TissueFitResult:
-    shared: dict            # name -> ParameterReport: SHARED and ETA
-    r0: list                # ParameterReport of each wound's R0_um
-    wounds: list            # per wound: name, theta (R0, sigma, lambda, T), outer radius, points, chi2, noise, ...
+    shared: dict  # name -> ParameterReport: SHARED and ETA
+    r0: list  # ParameterReport of each wound's R0_um
+    # per wound: name, theta (R0, sigma, lambda, T), outer radius, points, chi2, noise, ...
+    wounds: list
     correlation: np.ndarray  # in y = (l, sigma, ln zeta/G, ln R0_1 ...)
     chi2: float
     dof: int
@@ -58,13 +61,17 @@ class TissueFitResult:
         if rep.identifiable or rep.profile is None:
             return ""
         lo, hi = rep.ci95
-        return f"{name}: not identified (95 % interval [{_fmt(lo)}, {_fmt(hi)}]); {ADVICE[name]}"
+        return f"{name}: not identified (95 % interval [{fmt(lo)}, {fmt(hi)}]); {ADVICE[name]}"
 
     @staticmethod
     def _report(rep: ParameterReport) -> dict:
         """identifiable: null when the intervals were not computed (intervals=False)."""
-        return {"estimate": rep.estimate, "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
-                "ci95": list(rep.ci95), "identifiable": rep.identifiable if rep.profile is not None else None}
+        return {
+            "estimate": rep.estimate,
+            "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
+            "ci95": list(rep.ci95),
+            "identifiable": rep.identifiable if rep.profile is not None else None,
+        }
 
     @staticmethod
     def _interval(rep: ParameterReport, width: int) -> str:
@@ -72,21 +79,29 @@ class TissueFitResult:
         if rep.profile is None:
             return f"{'(not computed)':<{2 * width + 5}}  {'-':<3}"
         lo, hi = rep.ci95
-        return f"[{_fmt(lo):>{width}}, {_fmt(hi):>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
+        return f"[{fmt(lo):>{width}}, {fmt(hi):>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
 
     def to_dict(self) -> dict:
-        status = {"converged": self.converged, "reasons": self.reasons, "warnings": self.warnings,
-                  "optimizer": self.optimizer, "chi2": self.chi2, "dof": self.dof, "p_value": self.p_value,
-                  "noise_given": self.noise_given, "loss": self.loss}
+        status = verdict_fields(self)
         wounds = []
         for w, rep in zip(self.wounds, self.r0):
             R0, sigma, lam, T = w["theta"]
-            row = {"name": w["name"], "outer_radius_um": w["outer_radius_um"], "n_points": list(w["n_points"])}
+            row = {
+                "name": w["name"],
+                "outer_radius_um": w["outer_radius_um"],
+                "n_points": list(w["n_points"]),
+            }
             if self.converged:
-                row |= {"R0_um": self._report(rep), "lambda": lam, "T_s": T, "chi2": w["chi2"],
-                        "residual_rms_um": w["residual_rms_um"],
-                        "noise": {"radius_um": w["noise"][0], "velocity_um_s": w["noise"][1]},
-                        "outliers": w["outliers"], "piv_vectors_at_edge": w["piv_vectors_at_edge"]}
+                row |= {
+                    "R0_um": self._report(rep),
+                    "lambda": lam,
+                    "T_s": T,
+                    "chi2": w["chi2"],
+                    "residual_rms_um": w["residual_rms_um"],
+                    "noise": {"radius_um": w["noise"][0], "velocity_um_s": w["noise"][1]},
+                    "outliers": w["outliers"],
+                    "piv_vectors_at_edge": w["piv_vectors_at_edge"],
+                }
             else:
                 row["estimate_at_stop"] = {"R0_um": R0, "sigma": sigma, "lambda": lam, "T_s": T}
             wounds.append(row)
@@ -98,8 +113,12 @@ class TissueFitResult:
             if self.advice(name):
                 shared[name]["advice"] = self.advice(name)
         order = list(SHARED[:2]) + ["ln_" + SHARED[2]] + [f"ln_R0_um[{n}]" for n in self.names]
-        return status | {"shared": shared, "wounds": wounds, "delta_chi2_95": self.threshold,
-                         "correlation": {"order": order, "matrix": np.nan_to_num(self.correlation).tolist()}}
+        return status | {
+            "shared": shared,
+            "wounds": wounds,
+            "delta_chi2_95": self.threshold,
+            "correlation": {"order": order, "matrix": np.nan_to_num(self.correlation).tolist()},
+        }
 
     def to_json(self, **kwargs) -> str:
         return json.dumps(self.to_dict(), **({"indent": 2} | kwargs))
@@ -109,20 +128,33 @@ class TissueFitResult:
             return "FIT FAILED: " + "; ".join(self.reasons)
         head = "95 % interval (profile)  identified"
         n = len(self.wounds)
-        lines = [f"{f'shared by {n} wound' + 's' * (n > 1):<22} {'estimate':>11} {'stderr':>10}   {head}"]
+        lines = [
+            f"{f'shared by {n} wound' + 's' * (n > 1):<22} {'estimate':>11} {'stderr':>10}   {head}"
+        ]
         for name in SHARED + (ETA,):
             rep = self.shared[name]
-            lines.append(f"{name:<22} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {self._interval(rep, 9)}")
+            lines.append(
+                f"{name:<22} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {self._interval(rep, 9)}"
+            )
         lines += [f"  {self.advice(n)}" for n in self.shared if self.advice(n)]
         wide = max([5] + [len(n) for n in self.names])
-        lines.append(f"{'wound':<{wide}} {'outer um':>9} {'points':>7} {'R0_um':>9} {'stderr':>9}   "
-                     f"{'95 % interval':<21} {'identified':<10} {'lambda':>8} {'T_s':>9} {'chi^2':>8}")
+        lines.append(
+            f"{'wound':<{wide}} {'outer um':>9} {'points':>7} {'R0_um':>9} {'stderr':>9}   "
+            f"{'95 % interval':<21} {'identified':<10} {'lambda':>8} {'T_s':>9} {'chi^2':>8}"
+        )
         for w, rep in zip(self.wounds, self.r0):
             _, _, lam, T = w["theta"]
-            lines.append(f"{w['name']:<{wide}} {w['outer_radius_um']:>9.4g} {sum(w['n_points']):>7} {rep.estimate:>9.5g} "
-                         f"{rep.stderr:>9.3g}   {self._interval(rep, 8)}        {lam:>8.4g} {T:>9.4g} {w['chi2']:>8.4g}")
-        fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (f", p = {self.p_value:.3g}" if self.p_value is not None else
-                                                               " (noise estimated from the residuals)")
+            lines.append(
+                f"{w['name']:<{wide}} {w['outer_radius_um']:>9.4g} {sum(w['n_points']):>7} "
+                f"{rep.estimate:>9.5g} "
+                f"{rep.stderr:>9.3g}   {self._interval(rep, 8)}        {lam:>8.4g} {T:>9.4g} "
+                f"{w['chi2']:>8.4g}"
+            )
+        fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (
+            f", p = {self.p_value:.3g}"
+            if self.p_value is not None
+            else " (noise estimated from the residuals)"
+        )
         lines.append(f"{fit}; optimiser: {self.optimizer.get('message', '')}")
         lines += [f"warning: {w}" for w in self.warnings]
         return "\n".join(lines)

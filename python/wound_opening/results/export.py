@@ -2,7 +2,8 @@
 curve on a fine grid, as tables whose column names carry their units.
 
     FitResult.tables()       {"radius": ..., "curve": ..., "profile": ..., "profile_curve": ...}
-    FitResult.export(stem)   stem_radius.csv, stem_curve.csv (+ stem_profile.csv, stem_profile_curve.csv)
+    FitResult.export(stem)   stem_radius.csv, stem_curve.csv (+ stem_profile.csv,
+    stem_profile_curve.csv)
 
 radius (one row per radius in the input's order):
     row                      1 = the first data row as given
@@ -30,31 +31,53 @@ from pathlib import Path
 
 import numpy as np
 
+from ..model import simulate
+
 #: Points of each grid of the curves.
 CURVE_POINTS = 200
 
 
-def data_points(obj, z, flagged, radius, profile, estimated=(False, False)) -> dict:
-    """The data in the input's order with the model at z, the per-point noise used and the
-    flags (objective indices `flagged`): {"radius": columns, "profile": columns or None,
-    "noise_estimated": (radius, profile) whether each noise was estimated from the residuals}."""
+def data_points(obj, z, flagged) -> dict:
+    """The data (`obj.inputs`) in the input's order with the model of the Objective `obj` at
+    z, the per-point noise used and the flags (objective indices `flagged`): {"radius":
+    columns, "profile": columns or None, "noise_estimated": (radius, profile) whether each
+    noise was estimated from the residuals}."""
+    radius, profile = obj.inputs
+    estimated = obj.estimated
     model = obj.model(z)
     mask = np.zeros(obj.size, bool)
     mask[np.asarray(flagged, int)] = True
     n = obj.n_radius
     back = np.empty(n, int)
     back[obj.order] = np.arange(n)
-    out = {"radius": _columns(radius, np.asarray(radius.times_s, float), {}, np.asarray(radius.radius_um, float),
-                              model[:n][back], obj.sd[:n][back], mask[:n][back], ("radius_um", "sd_um",
-                              "model_radius_um", "residual_um")), "profile": None,
-           "noise_estimated": tuple(bool(e) for e in estimated)}
+    out = {
+        "radius": _columns(
+            radius,
+            np.asarray(radius.times_s, float),
+            {},
+            np.asarray(radius.radius_um, float),
+            model[:n][back],
+            obj.sd[:n][back],
+            mask[:n][back],
+            ("radius_um", "sd_um", "model_radius_um", "residual_um"),
+        ),
+        "profile": None,
+        "noise_estimated": tuple(bool(e) for e in estimated),
+    }
     if profile is not None:
         idx = np.concatenate([g[3] for g in obj.groups])
         back = np.empty(idx.size, int)
         back[idx] = np.arange(idx.size)
-        out["profile"] = _columns(profile, np.asarray(profile.times_s, float), {"r_um": np.asarray(profile.r_um, float)},
-                                  np.asarray(profile.velocity_um_s, float), model[n:][back], obj.sd[n:][back],
-                                  mask[n:][back], ("velocity_um_s", "sd_um_s", "model_velocity_um_s", "residual_um_s"))
+        out["profile"] = _columns(
+            profile,
+            np.asarray(profile.times_s, float),
+            {"r_um": np.asarray(profile.r_um, float)},
+            np.asarray(profile.velocity_um_s, float),
+            model[n:][back],
+            obj.sd[n:][back],
+            mask[n:][back],
+            ("velocity_um_s", "sd_um_s", "model_velocity_um_s", "residual_um_s"),
+        )
     return out
 
 
@@ -65,8 +88,19 @@ def _columns(data, t, extra, y, model, sd, flagged, names) -> dict:
     if lines is not None:
         cols["file_line"] = np.asarray(lines, int)
     residual = y - model
-    return cols | {"time_s": t} | extra | {value: y, sd_name: sd, model_name: model, res_name: residual,
-                                           "normalised_residual": residual / sd, "flagged": flagged}
+    return (
+        cols
+        | {"time_s": t}
+        | extra
+        | {
+            value: y,
+            sd_name: sd,
+            model_name: model,
+            res_name: residual,
+            "normalised_residual": residual / sd,
+            "flagged": flagged,
+        }
+    )
 
 
 def curve_times(times_s, points: int = CURVE_POINTS) -> np.ndarray:
@@ -75,7 +109,11 @@ def curve_times(times_s, points: int = CURVE_POINTS) -> np.ndarray:
     t = np.asarray(times_s, dtype=float)
     last = float(t.max()) if t.size and t.max() > 0 else 1.0
     first = float(t[t > 0].min()) if np.any(t > 0) else last / 100
-    return np.unique(np.concatenate([[0.0], np.geomspace(first / 10, last, points), np.linspace(0, last, points)]))
+    return np.unique(
+        np.concatenate(
+            [[0.0], np.geomspace(first / 10, last, points), np.linspace(0, last, points)]
+        )
+    )
 
 
 def tables(result) -> dict:
@@ -83,17 +121,24 @@ def tables(result) -> dict:
     A fit that did not converge has no fitted curve: ValueError with its reasons."""
     import pandas as pd
 
-    from .model import simulate
-
     if not result.converged:
-        raise ValueError("the fit did not converge (" + "; ".join(result.reasons) + "): nothing to export")
+        raise ValueError(
+            "the fit did not converge (" + "; ".join(result.reasons) + "): nothing to export"
+        )
     R0, sigma, lam, T = result.theta
     params = dict(lam=lam, sigma=sigma, R0_um=R0, T_s=T, outer_radius_um=result.outer_radius_um)
     radius = result.points["radius"]
     sim = simulate(curve_times(radius["time_s"]), **params)
-    out = {"radius": pd.DataFrame(radius),
-           "curve": pd.DataFrame({"time_s": sim.times_s, "radius_um": sim.radius_um,
-                                  "edge_velocity_um_s": sim.edge_velocity_um_s})}
+    out = {
+        "radius": pd.DataFrame(radius),
+        "curve": pd.DataFrame(
+            {
+                "time_s": sim.times_s,
+                "radius_um": sim.radius_um,
+                "edge_velocity_um_s": sim.edge_velocity_um_s,
+            }
+        ),
+    }
     profile = result.points.get("profile")
     if profile is not None:
         out["profile"] = pd.DataFrame(profile)
@@ -101,7 +146,9 @@ def tables(result) -> dict:
         for time in np.unique(profile["time_s"]):
             edge = float(simulate([time], **params).radius_um[0])
             far = max(float(np.max(profile["r_um"][profile["time_s"] == time])), 1.01 * edge)
-            r = np.linspace(edge * (1 + 1e-9), min(far, result.outer_radius_um * (1 - 1e-9)), CURVE_POINTS)
+            r = np.linspace(
+                edge * (1 + 1e-9), min(far, result.outer_radius_um * (1 - 1e-9)), CURVE_POINTS
+            )
             v = simulate([time], radii_um=r, **params).velocity_um_s[0]
             rows.append(pd.DataFrame({"time_s": time, "r_um": r, "velocity_um_s": v}))
         out["profile_curve"] = pd.concat(rows, ignore_index=True)

@@ -25,6 +25,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._native import SolverError
+from ..model import simulate
+
 #: Fraction of the opening done by the first sample after the cut above which the opening is
 #: over before it is sampled.
 DONE_AT_FIRST = 0.9
@@ -37,12 +40,11 @@ LONGEST_S = 3600.0
 def time_scale_warnings(theta, outer_radius_um: float, radius, profile=None) -> list[str]:
     """Warnings for the fitted theta = (R0_um, sigma, lambda, T_s) against the sampled times
     [s since the cut] of the radius series and the velocity profile."""
-    from ._native import SolverError
-    from .model import simulate
-
     R0, sigma, lam, T = (float(x) for x in theta)
-    t = np.concatenate([np.asarray(radius.times_s, dtype=float)]
-                       + ([] if profile is None else [np.asarray(profile.times_s, dtype=float)]))
+    t = np.concatenate(
+        [np.asarray(radius.times_s, dtype=float)]
+        + ([] if profile is None else [np.asarray(profile.times_s, dtype=float)])
+    )
     after = t[t > 0]
     out = []
     k = outer_radius_um**2 / (outer_radius_um**2 - R0**2)
@@ -51,26 +53,48 @@ def time_scale_warnings(theta, outer_radius_um: float, radius, profile=None) -> 
         first, last = float(after.min()), float(after.max())
         grid = np.geomspace(first * 1e-3, last * 1e3, 121)
         try:
-            R = np.asarray(simulate(np.concatenate([[0.0], grid]), lam=lam, sigma=sigma, R0_um=R0, T_s=T,
-                                    outer_radius_um=outer_radius_um).radius_um)[1:]
+            R = np.asarray(
+                simulate(
+                    np.concatenate([[0.0], grid]),
+                    lam=lam,
+                    sigma=sigma,
+                    R0_um=R0,
+                    T_s=T,
+                    outer_radius_um=outer_radius_um,
+                ).radius_um
+            )[1:]
         except (SolverError, ValueError):
             R = None
         if R is not None:
             done = (R - R1) / (R_final - R1)
             f_first, f_last = np.interp(np.log([first, last]), np.log(grid), done)
-            half = (f"half-opening time {float(np.exp(np.interp(0.5, done, np.log(grid)))):.3g} s"
-                    if done[0] < 0.5 < done[-1] and np.all(np.diff(done) >= 0) else "")
+            half = (
+                f"half-opening time {float(np.exp(np.interp(0.5, done, np.log(grid)))):.3g} s"
+                if done[0] < 0.5 < done[-1] and np.all(np.diff(done) >= 0)
+                else ""
+            )
             if f_first > DONE_AT_FIRST:
-                out.append(f"the fitted opening is {100 * f_first:.0f} % done at the first sample after the cut "
-                           f"({first:.3g} s{'; ' + half if half else ''}): the data show its end only and its "
-                           "time scale is bounded rather than measured; sample earlier")
+                out.append(
+                    f"the fitted opening is {100 * f_first:.0f} % done at the first sample after "
+                    f"the cut "
+                    f"({first:.3g} s{'; ' + half if half else ''}): the data show its end only "
+                    f"and its "
+                    "time scale is bounded rather than measured; sample earlier"
+                )
             if f_last < DONE_AT_LAST:
-                out.append(f"the fitted opening is {100 * f_last:.0f} % done at the last sample ({last:.3g} s"
-                           f"{'; ' + half if half else ''}): the recording ends during the opening and R_final "
-                           "and the time scale are extrapolated; record longer")
+                out.append(
+                    f"the fitted opening is {100 * f_last:.0f} % done at the last sample "
+                    f"({last:.3g} s"
+                    f"{'; ' + half if half else ''}): the recording ends during the opening and "
+                    f"R_final "
+                    "and the time scale are extrapolated; record longer"
+                )
     tau = lam**2 * T
     name, t_c = ("tau = lambda^2 T", tau) if tau > T else ("T", T)
     if t_c > LONGEST_S:
-        out.append(f"the fitted time scale {name} = {t_c:.3g} s ({t_c / 3600:.3g} h) is long for a laser-ablation "
-                   "recoil (seconds to minutes): are the times in milliseconds? (--time-unit ms)")
+        out.append(
+            f"the fitted time scale {name} = {t_c:.3g} s ({t_c / 3600:.3g} h) is long for a "
+            f"laser-ablation "
+            "recoil (seconds to minutes): are the times in milliseconds? (--time-unit ms)"
+        )
     return out

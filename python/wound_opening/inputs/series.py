@@ -28,7 +28,10 @@ class RadiusSeries:
         _check_noise(self, "radius", self.noise_um, self.sd_um, np.size(self.radius_um))
         bad = np.flatnonzero(~(np.asarray(self.radius_um, dtype=float) > 0))
         if bad.size:
-            raise ValueError(f"{where(self, 'radius', bad[0])}: radius_um = {self.radius_um[bad[0]]:g}: a wound radius must be > 0")
+            raise ValueError(
+                f"{where(self, 'radius', bad[0])}: radius_um = {self.radius_um[bad[0]]:g}: a "
+                f"wound radius must be > 0"
+            )
 
 
 @dataclass(frozen=True)
@@ -50,7 +53,10 @@ class VelocityProfile:
         _check_noise(self, "profile", self.noise_um_s, self.sd_um_s, np.size(self.r_um))
         bad = np.flatnonzero(~(np.asarray(self.r_um, dtype=float) > 0))
         if bad.size:
-            raise ValueError(f"{where(self, 'profile', bad[0])}: r_um = {self.r_um[bad[0]]:g}: a distance from the centre must be > 0")
+            raise ValueError(
+                f"{where(self, 'profile', bad[0])}: r_um = {self.r_um[bad[0]]:g}: a distance from "
+                f"the centre must be > 0"
+            )
 
 
 def where(data, what: str, k: int) -> str:
@@ -79,9 +85,13 @@ def _check_noise(data, what: str, noise, sd, n: int) -> None:
             raise ValueError(f"{what}: {sd.size} uncertainties for {n} points")
         bad = np.flatnonzero(~(np.isfinite(sd) & (sd > 0)))
         if bad.size:
-            raise ValueError(f"{where(data, what, bad[0])}: uncertainty {sd[bad[0]]:g}: must be finite and > 0")
+            raise ValueError(
+                f"{where(data, what, bad[0])}: uncertainty {sd[bad[0]]:g}: must be finite and > 0"
+            )
         if noise is not None:
-            raise ValueError(f"{what}: give either one noise level or per-point uncertainties, not both")
+            raise ValueError(
+                f"{what}: give either one noise level or per-point uncertainties, not both"
+            )
 
 
 #: A data set whose noise is estimated from its residuals needs this many points: with
@@ -95,14 +105,29 @@ def check_against(radius: RadiusSeries, profile: VelocityProfile | None, outer_u
         raise ValueError(f"outer_radius_um = {outer_um:g}: must be finite and > 0")
     r = np.asarray(radius.radius_um, dtype=float)
     if not outer_um > r.max():
-        raise ValueError(f"outer_radius_um = {outer_um:g} is not larger than the largest wound radius "
-                         f"{r.max():g} um ({where(radius, 'radius', int(np.argmax(r)))})")
-    for what, noise, sd, n in (("radius", radius.noise_um, radius.sd_um, r.size),
-                               ("profile", None if profile is None else profile.noise_um_s,
-                                None if profile is None else profile.sd_um_s, 0 if profile is None else np.size(profile.r_um))):
-        if (what == "radius" or profile is not None) and noise is None and sd is None and n < MIN_POINTS_FOR_NOISE:
-            raise ValueError(f"{what}: {n} points are too few to estimate their own noise (need "
-                             f"{MIN_POINTS_FOR_NOISE}): give the noise")
+        raise ValueError(
+            f"outer_radius_um = {outer_um:g} is not larger than the largest wound radius "
+            f"{r.max():g} um ({where(radius, 'radius', int(np.argmax(r)))})"
+        )
+    for what, noise, sd, n in (
+        ("radius", radius.noise_um, radius.sd_um, r.size),
+        (
+            "profile",
+            None if profile is None else profile.noise_um_s,
+            None if profile is None else profile.sd_um_s,
+            0 if profile is None else np.size(profile.r_um),
+        ),
+    ):
+        if (
+            (what == "radius" or profile is not None)
+            and noise is None
+            and sd is None
+            and n < MIN_POINTS_FOR_NOISE
+        ):
+            raise ValueError(
+                f"{what}: {n} points are too few to estimate their own noise (need "
+                f"{MIN_POINTS_FOR_NOISE}): give the noise"
+            )
     if profile is None:
         return
     t = np.asarray(radius.times_s, dtype=float)
@@ -116,12 +141,18 @@ def check_against(radius: RadiusSeries, profile: VelocityProfile | None, outer_u
     inside = np.flatnonzero(pr < edge - slack)
     if inside.size:
         k = inside[0]
-        raise ValueError(f"{where(profile, 'profile', k)}: r_um = {pr[k]:g} is inside the measured wound (radius {edge[k]:.4g} um "
-                         f"at {pt[k]:g} s, less 3 noise = {slack if np.isscalar(slack) else slack[k]:.3g} um)")
+        raise ValueError(
+            f"{where(profile, 'profile', k)}: r_um = {pr[k]:g} is inside the measured wound "
+            f"(radius {edge[k]:.4g} um "
+            f"at {pt[k]:g} s, less 3 noise = {slack if np.isscalar(slack) else slack[k]:.3g} um)"
+        )
     beyond = np.flatnonzero(pr >= outer_um)
     if beyond.size:
         k = beyond[0]
-        raise ValueError(f"{where(profile, 'profile', k)}: r_um = {pr[k]:g} is beyond the tissue (outer radius {outer_um:g} um)")
+        raise ValueError(
+            f"{where(profile, 'profile', k)}: r_um = {pr[k]:g} is beyond the tissue (outer radius "
+            f"{outer_um:g} um)"
+        )
 
 
 def _roughness(r: np.ndarray) -> float:

@@ -8,8 +8,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .objective import NAMES
-from .likelihood import Profile
+from ..material import material_report
+from .export import export as export_csv
+from .export import tables as data_tables
+from .names import NAMES
+from .profiles import Profile
 
 
 @dataclass
@@ -33,15 +36,23 @@ class ParameterReport:
         lambda's interval reaching its bound 0 does not identify it (only bounds it above), nor
         does an end on a bound the user set. A fixed parameter counts as identified."""
         p = self.profile
-        return (p is not None and p.lower is not None and p.upper is not None and not p.at_bound
-                and not any(p.bounded))
+        return (
+            p is not None
+            and p.lower is not None
+            and p.upper is not None
+            and not p.at_bound
+            and not any(p.bounded)
+        )
 
 
 def chi2_warning(result) -> list:
     """A converged fit whose chi^2 p-value (noise given) is below 1e-3."""
     if result.converged and result.p_value is not None and result.p_value < 1e-3:
-        return [f"chi^2 / dof = {result.chi2 / result.dof:.3g} (p = {result.p_value:.2g}): the model describes the "
-                "data worse than the given noise allows"]
+        return [
+            f"chi^2 / dof = {result.chi2 / result.dof:.3g} (p = {result.p_value:.2g}): the model "
+            f"describes the "
+            "data worse than the given noise allows"
+        ]
     return []
 
 
@@ -50,11 +61,31 @@ def outlier_warning(outliers: dict, loss: str) -> list:
     n_out = len(outliers.get("radius", [])) + len(outliers.get("profile", []))
     if not n_out:
         return []
-    return [f"{n_out} points down-weighted by the {loss} loss (|residual| > 3 noise): "
-            + "; ".join(outliers.get("where", []))]
+    return [
+        f"{n_out} points down-weighted by the {loss} loss (|residual| > 3 noise): "
+        + "; ".join(outliers.get("where", []))
+    ]
 
 
-def _fmt(x) -> str:
+#: The verdict's fields that FitResult and TissueFitResult report first in to_dict().
+VERDICT = (
+    "converged",
+    "reasons",
+    "warnings",
+    "optimizer",
+    "chi2",
+    "dof",
+    "p_value",
+    "noise_given",
+    "loss",
+)
+
+
+def verdict_fields(result) -> dict:
+    return {name: getattr(result, name) for name in VERDICT}
+
+
+def fmt(x) -> str:
     return "open" if x is None else f"{x:.4g}"
 
 
@@ -88,14 +119,17 @@ class FitResult:
     #: The data in the input's order with the model, the noise used and the flags (export.py).
     points: dict = field(default_factory=dict)
     #: (objective, z, chi^2 at the optimum, loss): for profiles at more values (profile_at).
-    refit: tuple | None = field(default=None, repr=False, compare=False)
+    #: (i, values of z_i) -> delta chi^2: the profile of coordinate i by constrained fits.
+    refit: object = field(default=None, repr=False, compare=False)
     _profile_cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def warnings(self) -> list:
         """The model fits, but not as well as the given noise says it should; flagged points;
         a time scale at the edge of what the sampling resolves or implausible for a recoil."""
-        return list(self.plausibility) + chi2_warning(self) + outlier_warning(self.outliers, self.loss)
+        return (
+            list(self.plausibility) + chi2_warning(self) + outlier_warning(self.outliers, self.loss)
+        )
 
     def _derived_all(self) -> dict:
         """name -> (value, (lower, upper), identified). tau, zeta/G and the viscous length have
@@ -104,24 +138,44 @@ class FitResult:
         R0, sigma, lam, T = self.theta
         r_inf = self.outer_radius_um / R0
         out = {}
-        for name, value in (("tau_s", lam**2 * T), ("zeta_over_G_s_per_um2", 4 * T / R0**2),
-                            ("viscous_length_um", lam * R0)):
+        for name, value in (
+            ("tau_s", lam**2 * T),
+            ("zeta_over_G_s_per_um2", 4 * T / R0**2),
+            ("viscous_length_um", lam * R0),
+        ):
             p = self.derived_profiles.get(name)
-            ok = p is not None and p.lower is not None and p.upper is not None and not p.at_bound and not any(p.bounded)
+            ok = (
+                p is not None
+                and p.lower is not None
+                and p.upper is not None
+                and not p.at_bound
+                and not any(p.bounded)
+            )
             out[name] = (value, (None, None) if p is None else (p.lower, p.upper), ok)
         s = self.reports["sigma"]
         out["tension_over_G"] = (sigma, s.ci95, s.identifiable)
         both = self.reports["R0_um"].identifiable and s.identifiable
         out["R1_um"] = (R0 * (1 + sigma / 6), (None, None), both)
-        out["R_final_um"] = (R0 * (1 + 2 * sigma / 3 * r_inf**2 / (r_inf**2 - 1)), (None, None), both)
+        out["R_final_um"] = (
+            R0 * (1 + 2 * sigma / 3 * r_inf**2 / (r_inf**2 - 1)),
+            (None, None),
+            both,
+        )
         return out
 
     def _derived_computed(self) -> dict:
-        """name -> whether the profiles that judge it were computed (intervals=True, derived=True)."""
+        """name -> whether the profiles that judge it were computed (intervals=True,
+        derived=True)."""
         has = {n: self.reports[n].profile is not None for n in NAMES}
-        out = {k: k in self.derived_profiles for k in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um")}
-        return out | {"tension_over_G": has["sigma"], "R1_um": has["R0_um"] and has["sigma"],
-                      "R_final_um": has["R0_um"] and has["sigma"]}
+        out = {
+            k: k in self.derived_profiles
+            for k in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um")
+        }
+        return out | {
+            "tension_over_G": has["sigma"],
+            "R1_um": has["R0_um"] and has["sigma"],
+            "R_final_um": has["R0_um"] and has["sigma"],
+        }
 
     @property
     def derived(self) -> dict:
@@ -139,75 +193,94 @@ class FitResult:
         if rep.identifiable or rep.profile is None:
             return ""
         lo, hi = rep.ci95
-        flat = f"{name}: not identified (95 % interval [{_fmt(lo)}, {_fmt(hi)}])"
+        flat = f"{name}: not identified (95 % interval [{fmt(lo)}, {fmt(hi)}])"
         if any(rep.profile.bounded):
-            return f"{flat}: the interval ends at the bound you set, not where the data exclude values"
+            return (
+                f"{flat}: the interval ends at the bound you set, not where the data exclude values"
+            )
         if name == "lambda":
-            where = "within a few viscous lengths (lambda R0) of the edge, as early after the cut as possible"
+            where = (
+                "within a few viscous lengths (lambda R0) of the edge, as early after the cut "
+                "as possible"
+            )
             if self.has_profile:
                 return f"{flat}; measure the velocity profile {where}, with less noise"
             return f"{flat}; add a velocity profile {where}"
         if name == "T_s":
-            return (f"{flat}; sample R(t) densely from the first frames to the plateau, and add a velocity "
-                    "profile to separate lambda and T (in the viscous regime R(t) depends on lambda^2 T only)")
+            return (
+                f"{flat}; sample R(t) densely from the first frames to the plateau, and add a "
+                f"velocity "
+                "profile to separate lambda and T (in the viscous regime R(t) depends on lambda^2 "
+                "T only)"
+            )
         return f"{flat}; sample the radius right after the cut (R1) and on the plateau (R_final)"
 
     def profile_at(self, name: str, values) -> np.ndarray:
         """delta chi^2 of the profile of parameter `name` at `values` (in its own units), by
-        constrained fits (likelihood.profile_at): to draw a profile finely."""
-        from .likelihood import profile_at
-
+        constrained fits (fitting.intervals.profile_at, which `refit` holds): to draw a
+        profile finely."""
         if self.refit is None:
             raise ValueError("profile_at: this result keeps no objective (a failed fit)")
-        obj, z, chi2_min, loss = self.refit
         i = NAMES.index(name)
         v = np.asarray(values, dtype=float)
         key = (name, v.tobytes())
-        if key not in self._profile_cache:  # a report and a figure of one result draw the same values
-            self._profile_cache[key] = profile_at(obj, z, chi2_min, i, np.log(v) if i in (0, 3) else v, loss)
+        if (
+            key not in self._profile_cache
+        ):  # a report and a figure of one result draw the same values
+            self._profile_cache[key] = self.refit(i, np.log(v) if i in (0, 3) else v)
         return self._profile_cache[key].copy()
 
     def tables(self) -> dict:
         """The data with the model, residuals and flags, and the fitted curve, as pandas
         DataFrames with units in the column names (export.py)."""
-        from .export import tables
-
-        return tables(self)
+        return data_tables(self)
 
     def export(self, stem) -> list:
         """Write tables() as stem_radius.csv, stem_curve.csv (and the PIV ones); export.py."""
-        from .export import export
-
-        return export(self, stem)
+        return export_csv(self, stem)
 
     def to_dict(self) -> dict:
-        status = {"converged": self.converged, "reasons": self.reasons, "warnings": self.warnings,
-                  "optimizer": self.optimizer, "chi2": self.chi2, "dof": self.dof, "p_value": self.p_value,
-                  "noise_given": self.noise_given, "loss": self.loss, "outliers": self.outliers,
-                  "piv_vectors_at_edge": self.piv_at_edge}
+        status = verdict_fields(self) | {
+            "outliers": self.outliers,
+            "piv_vectors_at_edge": self.piv_at_edge,
+        }
         if not self.converged:
             return status | {"estimate_at_stop": dict(zip(NAMES, self.theta))}
         params = {}
         for name in NAMES:
             rep = self.reports[name]
-            params[name] = {"estimate": rep.estimate, "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
-                            "ci95": list(rep.ci95), "identifiable": rep.identifiable,
-                            "interval_computed": rep.profile is not None} | rep.constraint
+            params[name] = {
+                "estimate": rep.estimate,
+                "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
+                "ci95": list(rep.ci95),
+                "identifiable": rep.identifiable,
+                "interval_computed": rep.profile is not None,
+            } | rep.constraint
             if self.advice(name):
                 params[name]["advice"] = self.advice(name)
-        return status | {"parameters": params, "derived": self.derived, "derived_ci95": self.derived_ci95,
-                "material": self.material, "residual_rms_um": self.residual_rms_um,
-                "correlation": {"order": list(NAMES), "matrix": np.nan_to_num(self.correlation).tolist()},
-                "outer_radius_um": self.outer_radius_um, "delta_chi2_95": self.threshold,
-                "noise": {"radius_um": self.noise[0], "velocity_um_s": self.noise[1] if self.has_profile else None}}
+        return status | {
+            "parameters": params,
+            "derived": self.derived,
+            "derived_ci95": self.derived_ci95,
+            "material": self.material,
+            "residual_rms_um": self.residual_rms_um,
+            "correlation": {
+                "order": list(NAMES),
+                "matrix": np.nan_to_num(self.correlation).tolist(),
+            },
+            "outer_radius_um": self.outer_radius_um,
+            "delta_chi2_95": self.threshold,
+            "noise": {
+                "radius_um": self.noise[0],
+                "velocity_um_s": self.noise[1] if self.has_profile else None,
+            },
+        }
 
     @property
     def material(self) -> dict:
         """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
         the tension, with profile intervals (material.py): name -> {estimate, ci95,
         identifiable, unit}."""
-        from .material import material_report
-
         return material_report(self)
 
     def to_json(self, **kwargs) -> str:
@@ -216,30 +289,62 @@ class FitResult:
     def summary(self) -> str:
         if not self.converged:
             return "FIT FAILED: " + "; ".join(self.reasons)
-        lines = [f"{'parameter':<10} {'estimate':>11} {'stderr':>10}   95 % interval (profile)   identified"]
+        lines = [
+            f"{'parameter':<10} {'estimate':>11} {'stderr':>10}   95 % interval (profile)   "
+            f"identified"
+        ]
         for name in NAMES:
             rep = self.reports[name]
             lo, hi = rep.ci95
             if rep.constraint.get("fixed"):
                 lines.append(f"{name:<10} {rep.estimate:>11.5g} {'':>10}   fixed")
                 continue
-            note = ("   prior {:g} +- {:g}".format(*rep.constraint["prior"]) if "prior" in rep.constraint else "") + (
-                "   bounds [{:g}, {:g}]".format(*rep.constraint["bounds"]) if "bounds" in rep.constraint else "")
-            interval = (f"[{_fmt(lo):>9}, {_fmt(hi):>9}]        {'yes' if rep.identifiable else 'no'}"
-                        if rep.profile is not None else f"{'not computed':<22}{'not computed':>17}")
+            note = (
+                "   prior {:g} +- {:g}".format(*rep.constraint["prior"])
+                if "prior" in rep.constraint
+                else ""
+            ) + (
+                "   bounds [{:g}, {:g}]".format(*rep.constraint["bounds"])
+                if "bounds" in rep.constraint
+                else ""
+            )
+            interval = (
+                f"[{fmt(lo):>9}, {fmt(hi):>9}]        {'yes' if rep.identifiable else 'no'}"
+                if rep.profile is not None
+                else f"{'not computed':<22}{'not computed':>17}"
+            )
             lines.append(f"{name:<10} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {interval}{note}")
         lines += [f"  {self.advice(n)}" for n in NAMES if self.advice(n)]
         computed = self._derived_computed()
-        radii = {k: d for k, d in self._derived_all().items() if k in ("R1_um", "R_final_um")}  # the rest: material
-        lines.append("derived: " + ", ".join(
-            f"{k} = {_fmt(v)} (not computed)" if not computed[k] else f"{k} = {_fmt(v)}" if ok
-            else f"{k} not identified" for k, (v, ci, ok) in radii.items()))
+        radii = {
+            k: d for k, d in self._derived_all().items() if k in ("R1_um", "R_final_um")
+        }  # the rest: material
+        lines.append(
+            "derived: "
+            + ", ".join(
+                f"{k} = {fmt(v)} (not computed)"
+                if not computed[k]
+                else f"{k} = {fmt(v)}"
+                if ok
+                else f"{k} not identified"
+                for k, (v, ci, ok) in radii.items()
+            )
+        )
         lines += _material_lines(self.material)
-        fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (f", p = {self.p_value:.3g}" if self.p_value is not None else
-                                                               " (noise estimated from the residuals)")
-        lines.append(f"residual rms {self.residual_rms_um:.3g} um; {fit}; optimiser: {self.optimizer.get('message', '')}")
+        fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (
+            f", p = {self.p_value:.3g}"
+            if self.p_value is not None
+            else " (noise estimated from the residuals)"
+        )
+        lines.append(
+            f"residual rms {self.residual_rms_um:.3g} um; {fit}; optimiser: "
+            f"{self.optimizer.get('message', '')}"
+        )
         if self.has_profile:
-            lines.append(f"PIV vectors at or inside the model's wound edge (compared with the edge velocity): {self.piv_at_edge}")
+            lines.append(
+                f"PIV vectors at or inside the model's wound edge (compared with the edge "
+                f"velocity): {self.piv_at_edge}"
+            )
         lines += [f"warning: {w}" for w in self.warnings]
         return "\n".join(lines)
 
@@ -249,11 +354,17 @@ def _material_lines(material: dict) -> list:
     lines = ["material (95 % profile intervals):"]
     for name, m in material.items():
         if name == "G_pa":
-            lines.append(f"  G_pa = {m['estimate']:.5g} Pa " + ("(fixed)" if m["fixed"] else f"(prior, sd {m['sd']:.3g} Pa)"))
+            lines.append(
+                f"  G_pa = {m['estimate']:.5g} Pa "
+                + ("(fixed)" if m["fixed"] else f"(prior, sd {m['sd']:.3g} Pa)")
+            )
             continue
         lo, hi = m["ci95"]
-        interval = ("interval not computed" if not m.get("interval_computed", True) else
-                    f"[{_fmt(lo)}, {_fmt(hi)}]" + ("" if m["identifiable"] else "  not identified"))
+        interval = (
+            "interval not computed"
+            if not m.get("interval_computed", True)
+            else f"[{fmt(lo)}, {fmt(hi)}]" + ("" if m["identifiable"] else "  not identified")
+        )
         unit = "" if m["unit"] == "1" else f" {m['unit']}"
-        lines.append(f"  {name} = {_fmt(m['estimate'])}{unit}  {interval}")
+        lines.append(f"  {name} = {fmt(m['estimate'])}{unit}  {interval}")
     return lines

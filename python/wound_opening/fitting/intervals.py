@@ -10,7 +10,7 @@ sqrt(delta) is close to linear in the parameter near the optimum: the first poin
 at the crossing a quadratic profile with the Jacobian's standard error has (sqrt(threshold)
 standard errors), each next one just beyond the crossing predicted by the line through the
 last two (a move between 1/100 and 4 times the previous one), and the bracketed crossing is
-refined by regula falsi on sqrt(delta) (`_crossing`). Each point is a fit of the other three
+refined by regula falsi on sqrt(delta) (`crossing`). Each point is a fit of the other three
 from a predicted start, at tolerances 1e-7: a looser relative cost change (1e-5) lets fits
 on the flat, curved valleys of plateau-only data stop short and report false crossings.
 lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
@@ -23,11 +23,14 @@ estimate on such a bound gives that end. Parameters the user holds fixed are not
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 
-from .objective import LAMBDA_MAX, NAMES, Objective
+from .._native import SolverError
+from ..results.names import NAMES
+from ..results.profiles import Profile
+from .local import local_fit
+from .objective import LAMBDA_MAX, Objective
 
 #: An interval end is located to where sqrt(delta chi^2) is within this fraction of the
 #: threshold's square root (delta within ~2e-3 of the threshold, relative).
@@ -40,19 +43,6 @@ BRACKET = 0.05
 CONFIRM = 0.01
 #: Refining steps of a bracketed end at most (regula falsi, bisection where it creeps).
 REFINE = 16
-
-
-@dataclass
-class Profile:
-    """One parameter's profile: the interval ends (in the parameter's own units; None where
-    the search limit was reached), whether lambda's lower end is its bound, and the points."""
-
-    lower: float | None
-    upper: float | None
-    at_bound: bool
-    points: list = field(default_factory=list)  # (value, delta chi^2), value in its own units
-    #: (lower, upper): the end is a bound the user set, not a rise of the profile.
-    bounded: tuple = (False, False)
 
 
 def _limits(i: int, z: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> tuple[float, float]:
@@ -73,13 +63,11 @@ def _limits_around(i: int, z: np.ndarray) -> tuple[float, float]:
 
 def _on_search_bound(obj, z: np.ndarray, fixed: int) -> bool:
     """Whether ln R0 or ln T (coordinates 0 and 3, other than the profiled one) lies on its
-    search bound (local.bounds: R0 from 1 % of the smallest radius to the outer radius /
+    search bound (Objective.bounds: R0 from 1 % of the smallest radius to the outer radius /
     1.001, T within 1e-6 .. 1e6 of the last time). Those bounds are not physical: a profile
     fit held there rises because of the bound (plateau-only data with R0 -> 0 and
     sigma -> infinity at fixed R0 sigma), so the rise does not bound the parameter."""
-    from .local import bounds
-
-    lower, upper = obj.bounds() if hasattr(obj, "bounds") else bounds(obj)
+    lower, upper = obj.bounds()
     return any(k != fixed and not (lower[k] + 1e-6 < z[k] < upper[k] - 1e-6) for k in (0, 3))
 
 
@@ -87,14 +75,13 @@ def _own_units(i: int, v: float) -> float:
     return math.exp(v) if i in (0, 3) else v
 
 
-def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, loss, delta0=0.0):
+def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, loss, delta0=0.0):
     """Walk one side; return (end in z coordinates or None, at limit, points).
 
     Each constrained fit starts from a prediction of the other parameters: along the
     Jacobian's regression line `slope` (d z / d z_i) for the first step, then extrapolated
     from the last two profile points (the profile of lambda at fixed tau = lambda^2 T bends
     T strongly: a start at the previous point alone can end in a worse local minimum)."""
-    from .local import local_fit
 
     root = math.sqrt(threshold)
     path = [(z_hat[i], z_hat)]
@@ -125,7 +112,9 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2
             for _ in range(3):  # a crossing stands only where a fit at tolerances 1e-10 confirms it
-                z3, chi2c, res3 = local_fit(obj, z, fixed=i, value=v, loss=loss, tol=1e-10, max_nfev=400)
+                z3, chi2c, res3 = local_fit(
+                    obj, z, fixed=i, value=v, loss=loss, tol=1e-10, max_nfev=400
+                )
                 drop = chi2 - chi2c
                 if chi2c < chi2:
                     z, chi2, res = z3, chi2c, res3
@@ -133,8 +122,6 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
                     break
             unsure = res.status == 0
         return z, max(chi2 - chi2_min, 0.0), unsure or _on_search_bound(obj, z, i)
-
-    from ._native import SolverError
 
     plain = constrained
 
@@ -156,7 +143,7 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
             return None, True, points
         s = math.sqrt(delta)
         if delta >= threshold:
-            return _crossing(constrained, points, prev_v, prev_s - root, v, s - root, root)
+            return crossing(constrained, points, prev_v, prev_s - root, v, s - root, root)
         if v == limit:
             return None, True, points
         slope = (s - prev_s) / abs(v - prev_v)
@@ -168,7 +155,7 @@ def _side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, los
     return None, True, points
 
 
-def _crossing(constrained, points, a, fa, b, fb, root):
+def crossing(constrained, points, a, fa, b, fb, root):
     """The end between a (inside, fa = sqrt(delta) - root < 0) and b (outside, fb >= 0):
     regula falsi with the Illinois modification on sqrt(delta), which is close to linear in
     the parameter, until sqrt(delta) is within ROOT_TOL of the threshold's (delta within
@@ -204,40 +191,51 @@ def _crossing(constrained, points, a, fa, b, fb, root):
     return b, False, points
 
 
-def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: float, cov_z: np.ndarray,
-                loss: str = "linear", alternates=()) -> dict:
+def profile_all(
+    obj: Objective,
+    z_hat: np.ndarray,
+    chi2_min: float,
+    threshold: float,
+    cov_z: np.ndarray,
+    loss: str = "linear",
+    alternates=(),
+) -> dict:
     """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z.
     `alternates`: other local optima (z, delta chi^2) below the threshold. The confidence
     set of a parameter may then be two intervals (a barrier between the valleys rises above
     the threshold): each is walked from its own optimum and the hull is reported."""
-    from .local import bounds_of
-
     out = {}
-    lims = bounds_of(obj)
+    lims = obj.bounds()
     centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for i, name in enumerate(NAMES):
-        if i in getattr(obj, "fixed", {}):
+        if i in obj.fixed:
             continue
-        user_bound = getattr(obj, "user_bound", lambda i, side: False)
+        user_bound = obj.user_bound
         default = (0.05, 0.05 * abs(z_hat[1]) + 0.01, 0.1, 0.1)[i]
         se = math.sqrt(max(cov_z[i, i], 0.0))
         slope = np.nan_to_num(cov_z[:, i] / cov_z[i, i]) if cov_z[i, i] > 0 else np.zeros(4)
         slope[i] = 1.0
-        step = float(np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20))
+        step = float(
+            np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20)
+        )
         lows, highs, points = [], [], [(z_hat[i], 0.0)]
         for centre, delta0 in centres:
             lo_lim, hi_lim = _limits(i, centre, *lims)
             for direction, limit, ends in ((-1, lo_lim, lows), (1, hi_lim, highs)):
                 if ends and (ends[0][0] is None or direction * (centre[i] - ends[0][0]) <= 0):
-                    continue  # an optimum inside the interval found (or an open end): nothing to add
+                    continue  # an optimum inside the interval found (or an open end)
                 mine = user_bound(i, direction) and limit == lims[0 if direction < 0 else 1][i]
                 if centre[i] == limit:
                     ends.append((limit, False) if mine else (None, True))
                     continue
-                end, at_limit, pts = _side(obj, i, centre, chi2_min, threshold, step, direction, limit, slope, loss,
-                                           delta0)
+                end, at_limit, pts = walk_side(
+                    obj, i, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0
+                )
                 if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
-                    end, at_limit = limit, False  # the walk reached the user's bound inside the threshold
+                    end, at_limit = (
+                        limit,
+                        False,
+                    )  # the walk reached the user's bound inside the threshold
                 ends.append((end, at_limit))
                 points += pts
         lo_open = any(e is None for e, _ in lows)
@@ -246,9 +244,13 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
         at_bound = i == 2 and lo_open  # lambda's lower end is its bound 0
         lower = 0.0 if at_bound else (None if lo is None else _own_units(i, lo))
         upper = None if hi is None else _own_units(i, hi)
-        bounded = (lo is not None and user_bound(i, -1) and lo == lims[0][i],
-                   hi is not None and user_bound(i, 1) and hi == lims[1][i])
-        out[name] = Profile(lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)], bounded)
+        bounded = (
+            lo is not None and user_bound(i, -1) and lo == lims[0][i],
+            hi is not None and user_bound(i, 1) and hi == lims[1][i],
+        )
+        out[name] = Profile(
+            lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)], bounded
+        )
     return out
 
 
@@ -257,20 +259,25 @@ def profile_all(obj: Objective, z_hat: np.ndarray, chi2_min: float, threshold: f
 JUMP = 1.0
 
 
-def profile_at(obj: Objective, z_hat: np.ndarray, chi2_min: float, i: int, values, loss: str = "linear",
-               max_nfev: int = 100) -> np.ndarray:
+def profile_at(
+    obj: Objective,
+    z_hat: np.ndarray,
+    chi2_min: float,
+    i: int,
+    values,
+    loss: str = "linear",
+    max_nfev: int = 100,
+) -> np.ndarray:
     """delta chi^2 at the given values of coordinate i of z (ln R0, sigma, lambda, ln T):
     each a fit of the other three with coordinate i fixed, as the walks above make them.
     The values are visited outward from the estimate on each side; each is fitted from two
     starts, the previous value's optimum and that optimum moved along the line through the
-    last two (as `_side` predicts), keeping the lower, and from the estimate too when delta
+    last two (as `walk_side` predicts), keeping the lower, and from the estimate too when delta
     jumps by more than JUMP from the previous value: one start alone can end in a higher
     valley and draw a spike. A value whose fits both stop without converging within
     `max_nfev` evaluations, or that the solver refuses, gives nan (its chi^2 would only
     bound the profile from above). For drawing a profile finely; the intervals come from
     `profile_all`."""
-    from ._native import SolverError
-    from .local import local_fit
 
     values = np.asarray(values, dtype=float)
     out = np.full(values.size, np.nan)
@@ -281,13 +288,23 @@ def profile_at(obj: Objective, z_hat: np.ndarray, chi2_min: float, i: int, value
         for k in side:
             v = values[k]
             (v1, z1) = path[-1]
-            move = (z1 - path[-2][1]) * (v - v1) / (v1 - path[-2][0]) if len(path) >= 2 and path[-2][0] != v1 else 0
+            move = (
+                (z1 - path[-2][1]) * (v - v1) / (v1 - path[-2][0])
+                if len(path) >= 2 and path[-2][0] != v1
+                else 0
+            )
             best = None
             for start in (z1 + np.clip(move, -1.0, 1.0), z1, z_hat):
-                if start is z_hat and best is not None and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0):
+                if (
+                    start is z_hat
+                    and best is not None
+                    and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0)
+                ):
                     break
                 try:
-                    z, chi2, res = local_fit(obj, start, fixed=i, value=v, loss=loss, tol=1e-7, max_nfev=max_nfev)
+                    z, chi2, res = local_fit(
+                        obj, start, fixed=i, value=v, loss=loss, tol=1e-7, max_nfev=max_nfev
+                    )
                 except SolverError:
                     continue
                 if res.status > 0 and (best is None or chi2 < best[1]):

@@ -58,9 +58,17 @@ def _declared_separator(text: str) -> str | None:
     return s[4] if len(s) == 5 and s.lower().startswith("sep=") else None
 
 
-def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None = None, cut_time: float = 0.0,
-                 ascending: bool = True, min_rows: int = MIN_POINTS, optional: tuple[str, ...] = (),
-                 label: str | None = None) -> Table:
+def read_columns(
+    path: str,
+    columns: tuple[str, ...],
+    *,
+    time_column: str | None = None,
+    cut_time: float = 0.0,
+    ascending: bool = True,
+    min_rows: int = MIN_POINTS,
+    optional: tuple[str, ...] = (),
+    label: str | None = None,
+) -> Table:
     """The named columns of a CSV file, checked: every cell a finite number, the time column
     (default: the first of `columns`) >= `cut_time` and (if `ascending`) non-decreasing, at least
     `min_rows` rows. Columns in `optional` are read too when the header has them. `label`: a
@@ -76,55 +84,98 @@ def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None
     if declared is not None:
         numbered = numbered[1:]
         if not numbered:
-            raise InputError(f"{path}: no header after the 'sep=' line: expected the columns {', '.join(map(repr, columns))}")
+            raise InputError(
+                f"{path}: no header after the 'sep=' line: expected the columns "
+                f"{', '.join(map(repr, columns))}"
+            )
     header_line, header_text = numbered[0]
     sep = declared or next((c for c in ("\t", ";", ",") if c in header_text), ",")
     body = numbered[1:]
     try:
-        frame = pd.read_csv(path, sep=sep, comment=COMMENT, encoding="utf-8-sig", dtype=str, na_filter=False,
-                            skip_blank_lines=True, skipinitialspace=True, engine="python",
-                            skiprows=range(header_line - 1))
+        frame = pd.read_csv(
+            path,
+            sep=sep,
+            comment=COMMENT,
+            encoding="utf-8-sig",
+            dtype=str,
+            na_filter=False,
+            skip_blank_lines=True,
+            skipinitialspace=True,
+            engine="python",
+            skiprows=range(header_line - 1),
+        )
     except pd.errors.ParserError:
         frame = None
     width = len(next(csv.reader([header_text], delimiter=sep)))
     for n, s in body:  # pandas fills short rows and refuses long ones without a usable line number
         cells = len(next(csv.reader([s], delimiter=sep)))
         if cells != width:
-            hint = (" (with ',' as the separator a decimal comma splits a number in two: separate the "
-                    "columns with ';' or a tab)") if sep == "," and cells > width else ""
-            raise InputError(f"{path}: line {n}: {cells} cell{'' if cells == 1 else 's'}, expected {width} as in the header (line "
-                             f"{header_line}){hint}")
+            hint = (
+                (
+                    " (with ',' as the separator a decimal comma splits a number in two: separate "
+                    "the "
+                    "columns with ';' or a tab)"
+                )
+                if sep == "," and cells > width
+                else ""
+            )
+            raise InputError(
+                f"{path}: line {n}: {cells} cell{'' if cells == 1 else 's'}, expected {width} as "
+                f"in the header (line "
+                f"{header_line}){hint}"
+            )
     if frame is None or len(frame) != len(body):
         raise InputError(f"{path}: cannot be read as a table separated by {sep!r}")
     frame.columns = [str(c).strip() for c in frame.columns]
     header = list(frame.columns)
     for name in columns + ((label,) if label else ()):
         if name not in header:
-            raise InputError(f"{path}: line {header_line}: no column {name!r} (the header has "
-                             f"{', '.join(map(repr, header))})")
-    columns = tuple(columns) + tuple(name for name in optional if name in header and name not in columns)
+            raise InputError(
+                f"{path}: line {header_line}: no column {name!r} (the header has "
+                f"{', '.join(map(repr, header))})"
+            )
+    columns = tuple(columns) + tuple(
+        name for name in optional if name in header and name not in columns
+    )
     cells = {name: frame[name].astype(str).str.strip() for name in columns}
     lines = np.array([n for n, _ in body], dtype=int)
     decimal_comma = False
     if sep != ",":
-        comma = [(lines[i], name) for name in columns for i in np.flatnonzero(cells[name].str.contains(",", regex=False))]
-        dot = [(lines[i], name) for name in columns for i in np.flatnonzero(cells[name].str.contains(".", regex=False))]
+        comma = [
+            (lines[i], name)
+            for name in columns
+            for i in np.flatnonzero(cells[name].str.contains(",", regex=False))
+        ]
+        dot = [
+            (lines[i], name)
+            for name in columns
+            for i in np.flatnonzero(cells[name].str.contains(".", regex=False))
+        ]
         if comma and dot:
             (lc, nc), (ld, nd) = min(comma), min(dot)
-            raise InputError(f"{path}: both decimal commas (line {lc}, {nc}) and decimal points (line {ld}, {nd}): "
-                             "ambiguous, use one of them")
+            raise InputError(
+                f"{path}: both decimal commas (line {lc}, {nc}) and decimal points (line {ld}, "
+                f"{nd}): "
+                "ambiguous, use one of them"
+            )
         decimal_comma = bool(comma)
     data = {}
     for name in columns:
         raw = cells[name]
-        values = pd.to_numeric(raw.str.replace(",", ".", regex=False) if decimal_comma else raw,
-                               errors="coerce").to_numpy(dtype=float)
+        values = pd.to_numeric(
+            raw.str.replace(",", ".", regex=False) if decimal_comma else raw, errors="coerce"
+        ).to_numpy(dtype=float)
         bad = np.flatnonzero(~np.isfinite(values))
         if bad.size:
             k = bad[0]
             cell = raw.iloc[k]
-            what = ("is empty" if cell == "" else "is not a finite number"
-                    if np.isinf(values[k]) or cell.lower().lstrip("+-") == "nan" else "is not a number")
+            what = (
+                "is empty"
+                if cell == ""
+                else "is not a finite number"
+                if np.isinf(values[k]) or cell.lower().lstrip("+-") == "nan"
+                else "is not a number"
+            )
             raise InputError(f"{path}: line {lines[k]}: {name} = {raw.iloc[k]!r} {what}")
         data[name] = values
     ids = np.zeros(len(lines), dtype=int)
@@ -132,20 +183,29 @@ def read_columns(path: str, columns: tuple[str, ...], *, time_column: str | None
         names = frame[label].astype(str).str.strip()
         empty = np.flatnonzero(names == "")
         if empty.size:
-            raise InputError(f"{path}: line {lines[empty[0]]}: {label} is empty (every row needs its name)")
+            raise InputError(
+                f"{path}: line {lines[empty[0]]}: {label} is empty (every row needs its name)"
+            )
         data[label] = names.to_numpy(dtype=str)
         ids = pd.factorize(names)[0]
     t = data[time_column]
     if t.size and np.any(t < cut_time):
         k = int(np.flatnonzero(t < cut_time)[0])
-        raise InputError(f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before the cut at {cut_time:g} "
-                         "(times are since the cut, or from the cut time given; remove the rows before the cut)")
-    back = [(rows[j + 1], rows[j]) for rows in (np.flatnonzero(ids == g) for g in range(ids.max(initial=0) + 1))
-            for j in np.flatnonzero(np.diff(t[rows]) < 0)[:1]]
+        raise InputError(
+            f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before the cut at {cut_time:g} "
+            "(times are since the cut, or from the cut time given; remove the rows before the cut)"
+        )
+    back = [
+        (rows[j + 1], rows[j])
+        for rows in (np.flatnonzero(ids == g) for g in range(ids.max(initial=0) + 1))
+        for j in np.flatnonzero(np.diff(t[rows]) < 0)[:1]
+    ]
     if ascending and back:
         k, prev = min(back)
-        raise InputError(f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before line {lines[prev]}'s "
-                         f"{t[prev]:g} (times must be ascending{' within each ' + label if label else ''})")
+        raise InputError(
+            f"{path}: line {lines[k]}: {time_column} = {t[k]:g} is before line {lines[prev]}'s "
+            f"{t[prev]:g} (times must be ascending{' within each ' + label if label else ''})"
+        )
     if t.size < min_rows:
         raise InputError(f"{path}: {t.size} data rows: too few points, need at least {min_rows}")
     return Table(path, data, lines)

@@ -12,7 +12,8 @@ y = (ln R0, -, ln lambda, ln T):
 The coordinate k it replaces becomes w_k = ln q, the others stay (w_i = z_i), and
 
     y_k = (w_k - c - sum_{i != k} a_i y_i) / a_k,
-    d z_k / d w_k = (d z_k / d y_k) / a_k,   d z_k / d w_i = -(a_i / a_k) (d y_i / d w_i) (d z_k / d y_k),
+    d z_k / d w_k = (d z_k / d y_k) / a_k,
+    d z_k / d w_i = -(a_i / a_k) (d y_i / d w_i) (d z_k / d y_k),
     d w_k / d z_i = a_i d y_i / d z_i,
 
 with d z / d y = 1 for ln R0, ln T and lambda for lambda (d y2 / d z2 = 1 / lambda). The
@@ -31,38 +32,47 @@ import math
 
 import numpy as np
 
-from .likelihood import Profile, _side
+from ..results.profiles import Profile
+from .intervals import walk_side
+from .problem import Problem
 
 #: kind -> (c, {i: a_i}, the coordinates it may replace, in order of preference)
-MONOMIALS = {"tau_s": (0.0, {2: 2.0, 3: 1.0}, (3, 2)),
-             "zeta_over_G_s_per_um2": (math.log(4.0), {0: -2.0, 3: 1.0}, (3, 0)),
-             "viscous_length_um": (0.0, {0: 1.0, 2: 1.0}, (2, 0))}
+MONOMIALS = {
+    "tau_s": (0.0, {2: 2.0, 3: 1.0}, (3, 2)),
+    "zeta_over_G_s_per_um2": (math.log(4.0), {0: -2.0, 3: 1.0}, (3, 0)),
+    "viscous_length_um": (0.0, {0: 1.0, 2: 1.0}, (2, 0)),
+}
 
 
 def _y(i: int, z_i: float) -> float:
     return math.log(max(z_i, 1e-300)) if i == 2 else z_i
 
 
-class Reparametrised:
+class Reparametrised(Problem):
     """The objective in coordinates w (one coordinate replaced), for local_fit; `fixed` are
     the user's held coordinates (unchanged by the reparametrisation)."""
 
     def __init__(self, obj, kind: str):
         self.obj, self.kind = obj, kind
         self.c, self.a, choices = MONOMIALS[kind]
-        self.fixed = dict(getattr(obj, "fixed", {}))
-        spec = getattr(obj, "spec", None)
-        bounded = set() if spec is None else set(spec.bounds)
+        self.fixed = dict(obj.fixed)
+        bounded = obj.user_bounded
         free = [k for k in choices if k not in self.fixed]
-        # The user's bound on the replaced coordinate would not be a box in w: prefer an unbounded one.
+        # The user's bound on the replaced coordinate would not be a box in w: prefer an unbounded
+        # one.
         free.sort(key=lambda k: k in bounded)
         self.k = free[0] if free else None  # None: the quantity is held fixed
         #: The replaced coordinate carries a bound of the user's that is not a box in w (the
         #: others it depends on are not all fixed): the walk could not honour it.
-        self.unenforceable = (bool(free) and free[0] in bounded
-                              and any(i not in self.fixed for i in self.a if i != free[0]))
-        for name in ("t_sorted", "radius", "outer", "size"):
-            setattr(self, name, getattr(obj, name))
+        self.unenforceable = (
+            bool(free)
+            and free[0] in bounded
+            and any(i not in self.fixed for i in self.a if i != free[0])
+        )
+
+    @property
+    def size(self) -> int:
+        return self.obj.size
 
     def value(self, z) -> float:
         return math.exp(self.c + sum(a * _y(i, z[i]) for i, a in self.a.items()))
@@ -82,7 +92,8 @@ class Reparametrised:
     def residuals(self, w):
         return self.obj.residuals(self.to_z(w))
 
-    def jacobian(self, w):
+    def jacobian(self, w, columns=None):
+        """dr/dw by the chain rule, every column (`columns` is not used)."""
         z = self.to_z(w)
         k, dz = self.k, np.eye(4)
         dzk_dyk = z[k] if k == 2 else 1.0
@@ -101,16 +112,19 @@ class Reparametrised:
 
     def bounds(self):
         """The objective's bounds, w_k free; lambda > 0 where ln lambda enters (k != 2)."""
-        from .local import bounds_of
-
-        lower, upper = bounds_of(self.obj)
+        lower, upper = self.obj.bounds()
         k = self.k
         if all(i in self.fixed for i in self.a if i != k):  # w_k = const + a_k y_k: a box in w too
             ends = []
             for zk in (lower[k], upper[k]):
                 yk = (math.log(zk) if zk > 0 else -np.inf) if k == 2 else zk
-                ends.append(self.c + sum(a * _y(i, self.fixed[i]) for i, a in self.a.items() if i != k)
-                            + self.a[k] * yk if math.isfinite(yk) else math.copysign(np.inf, self.a[k] * yk))
+                ends.append(
+                    self.c
+                    + sum(a * _y(i, self.fixed[i]) for i, a in self.a.items() if i != k)
+                    + self.a[k] * yk
+                    if math.isfinite(yk)
+                    else math.copysign(np.inf, self.a[k] * yk)
+                )
             lower[k], upper[k] = min(ends), max(ends)
         else:
             lower[k], upper[k] = -np.inf, np.inf
@@ -119,8 +133,9 @@ class Reparametrised:
         return lower, upper
 
 
-def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = "linear", alternates=(),
-                     cov_z=None) -> dict:
+def derived_profiles(
+    obj, z_hat, chi2_min: float, threshold: float, loss: str = "linear", alternates=(), cov_z=None
+) -> dict:
     """Profile (interval in the quantity's units) of tau, zeta/G and the viscous length;
     with other optima below the threshold (`alternates`: (z, delta chi^2)), the hull of the
     intervals walked from each (as likelihood.profile_all does). `cov_z`, the Jacobian's
@@ -129,8 +144,10 @@ def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = 
     out = {}
     centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for kind in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um"):
-        if kind != "zeta_over_G_s_per_um2" and getattr(obj, "fixed", {}).get(2) == 0.0:
-            out[kind] = Profile(0.0, 0.0, False, [(0.0, 0.0)])  # lambda held at 0: the quantity is 0
+        if kind != "zeta_over_G_s_per_um2" and obj.fixed.get(2) == 0.0:
+            out[kind] = Profile(
+                0.0, 0.0, False, [(0.0, 0.0)]
+            )  # lambda held at 0: the quantity is 0
             continue
         if kind != "zeta_over_G_s_per_um2" and any(c[2] <= 1e-6 for c, _ in centres):
             out[kind] = Profile(0.0, None, True)
@@ -153,7 +170,6 @@ def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = 
                 slope = cov_w[:, k] / cov_w[k, k]
         lows, highs, points, bounded = [], [], [], [False, False]
         box = rep.bounds()
-        user_bound = getattr(obj, "user_bound", lambda i, side: False)
         for centre, delta0 in centres:
             w = rep.to_w(centre)
             for side, (direction, ends) in enumerate(((-1, lows), (1, highs))):
@@ -161,18 +177,29 @@ def derived_profiles(obj, z_hat, chi2_min: float, threshold: float, loss: str = 
                     continue  # an optimum inside the interval found (or an open end)
                 limit = w[k] + direction * math.log(100.0)
                 edge = box[side][k]  # finite only for a bound mapped from the replaced coordinate's
-                mine = math.isfinite(edge) and direction * (edge - limit) < 0 and user_bound(k, direction)
+                mine = (
+                    math.isfinite(edge)
+                    and direction * (edge - limit) < 0
+                    and obj.user_bound(k, direction)
+                )
                 limit = edge if mine else limit
                 if mine and direction * (limit - w[k]) <= 0:  # the estimate on the user's bound
                     ends.append(limit)
                     bounded[side] = True
                     continue
-                end, _, pts = _side(rep, k, w, chi2_min, threshold, step, direction, limit, slope, loss, delta0)
+                end, _, pts = walk_side(
+                    rep, k, w, chi2_min, threshold, step, direction, limit, slope, loss, delta0
+                )
                 if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
-                    end, bounded[side] = limit, True  # the walk reached the user's bound inside the threshold
+                    end, bounded[side] = (
+                        limit,
+                        True,
+                    )  # the walk reached the user's bound inside the threshold
                 ends.append(end)
                 points += pts
         lo = None if None in lows else math.exp(min(lows))
         hi = None if None in highs else math.exp(max(highs))
-        out[kind] = Profile(lo, hi, False, sorted((math.exp(v), d) for v, d in points), tuple(bounded))
+        out[kind] = Profile(
+            lo, hi, False, sorted((math.exp(v), d) for v, d in points), tuple(bounded)
+        )
     return out

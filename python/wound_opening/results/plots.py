@@ -23,8 +23,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib import ticker  # noqa: E402
 
-from .objective import NAMES  # noqa: E402
+from ..model import half_opening_time, opening_fraction  # noqa: E402
+from .names import NAMES  # noqa: E402
 
 LABELS = {"R0_um": "R₀ (µm)", "sigma": "σ", "lambda": "λ", "T_s": "T (s)"}
 SYMBOLS = {"R0_um": ("R₀", " µm"), "sigma": ("σ", ""), "lambda": ("λ", ""), "T_s": ("T", " s")}
@@ -39,12 +41,12 @@ def _g(x) -> str:
 def plain_ticks(axis, linthresh: float | None = None) -> None:
     """Ticks at 1, 2 and 5 per decade labelled as plain numbers (0.5, 2, 20) on a log or
     symlog axis, rather than powers of ten whose minor labels collide."""
-    from matplotlib import ticker
-
     if linthresh is None:
         axis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     else:
-        axis.set_major_locator(ticker.SymmetricalLogLocator(base=10, linthresh=linthresh, subs=(1.0, 2.0, 5.0)))
+        axis.set_major_locator(
+            ticker.SymmetricalLogLocator(base=10, linthresh=linthresh, subs=(1.0, 2.0, 5.0))
+        )
     axis.set_major_formatter(ticker.FuncFormatter(lambda x, _: f"{x:g}"))
     axis.set_minor_formatter(ticker.NullFormatter())
 
@@ -85,12 +87,23 @@ def _errorbars(ax, x, y, sd, flagged, label):
     bars = ax.errorbar(x, y, yerr=sd, fmt="o", ms=3, lw=0.8, capsize=0, label=label, zorder=2)
     if np.any(flagged):
         named = "flagged (down-weighted)" in ax.get_legend_handles_labels()[1]
-        ax.plot(x[flagged], y[flagged], "o", ms=9, mfc="none", mec="C3", mew=1.5,
-                label=None if named else "flagged (down-weighted)", zorder=3)
+        ax.plot(
+            x[flagged],
+            y[flagged],
+            "o",
+            ms=9,
+            mfc="none",
+            mec="C3",
+            mew=1.5,
+            label=None if named else "flagged (down-weighted)",
+            zorder=3,
+        )
     return bars[0].get_color()
 
 
-def fit_figure(result, radius=None, profile=None, path=None, *, profile_points: int = PROFILE_POINTS):
+def fit_figure(
+    result, radius=None, profile=None, path=None, *, profile_points: int = PROFILE_POINTS
+):
     """The figure of a converged fit to `path` (a file name or a binary file object), returned
     (closed). The data come from the result (radius, profile: accepted for the callers that
     pass them)."""
@@ -99,21 +112,33 @@ def fit_figure(result, radius=None, profile=None, path=None, *, profile_points: 
     has_piv = "profile" in tabs
     profiles = [n for n in NAMES if result.reports[n].profile is not None]
     fig = plt.figure(figsize=(12, 8.5 if profiles else 5.5), layout="constrained")
-    grid = fig.add_gridspec(3 if profiles else 2, 4, height_ratios=[3, 1.2, 2.4][: 3 if profiles else 2])
+    grid = fig.add_gridspec(
+        3 if profiles else 2, 4, height_ratios=[3, 1.2, 2.4][: 3 if profiles else 2]
+    )
     width = slice(0, 2) if has_piv else slice(0, 4)
     ax = fig.add_subplot(grid[0, width])
     t, flagged = pts.time_s.to_numpy(), pts.flagged.to_numpy(bool)
     estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
     noise = "estimated" if estimated[0] else "given"
-    _errorbars(ax, t, pts.radius_um.to_numpy(), pts.sd_um.to_numpy(), flagged, f"data ± noise ({noise})")
+    _errorbars(
+        ax, t, pts.radius_um.to_numpy(), pts.sd_um.to_numpy(), flagged, f"data ± noise ({noise})"
+    )
     ax.plot(curve.time_s, curve.radius_um, "-", c="C1", label="fit", zorder=1)
     R0, sigma = result.theta[:2]
     ax.axhline(R0 * (1 + sigma / 6), ls=":", c="gray", lw=0.8, label="R₁ = R₀(1 + σ/6)")
     time_axis(ax, t)
     ax.set(ylabel="wound radius (µm)")
     ax.legend(loc="lower right", fontsize="small")
-    ax.text(0.02, 0.97, estimates_text(result), transform=ax.transAxes, va="top", fontsize="small",
-            family="monospace", bbox={"fc": "white", "ec": "0.7", "alpha": 0.9})
+    ax.text(
+        0.02,
+        0.97,
+        estimates_text(result),
+        transform=ax.transAxes,
+        va="top",
+        fontsize="small",
+        family="monospace",
+        bbox={"fc": "white", "ec": "0.7", "alpha": 0.9},
+    )
     res = fig.add_subplot(grid[1, width], sharex=ax)
     _errorbars(res, t, pts.residual_um.to_numpy(), pts.sd_um.to_numpy(), flagged, None)
     res.axhline(0, c="gray", lw=0.8)
@@ -123,13 +148,21 @@ def fit_figure(result, radius=None, profile=None, path=None, *, profile_points: 
         pax = fig.add_subplot(grid[0:2, 2:])
         for time in np.unique(pv.time_s):
             sel = (pv.time_s == time).to_numpy()
-            colour = _errorbars(pax, pv.r_um.to_numpy()[sel], pv.velocity_um_s.to_numpy()[sel],
-                                pv.sd_um_s.to_numpy()[sel], pv.flagged.to_numpy(bool)[sel],
-                                f"t = {time:g} s ± noise ({'estimated' if estimated[1] else 'given'})")
+            colour = _errorbars(
+                pax,
+                pv.r_um.to_numpy()[sel],
+                pv.velocity_um_s.to_numpy()[sel],
+                pv.sd_um_s.to_numpy()[sel],
+                pv.flagged.to_numpy(bool)[sel],
+                f"t = {time:g} s ± noise ({'estimated' if estimated[1] else 'given'})",
+            )
             c = pc[pc.time_s == time]
             pax.plot(c.r_um, c.velocity_um_s, "-", c=colour)
-        pax.set(xlabel="distance from the wound centre (µm)", ylabel="tissue velocity (µm/s)",
-                title="PIV velocity profile and fit")
+        pax.set(
+            xlabel="distance from the wound centre (µm)",
+            ylabel="tissue velocity (µm/s)",
+            title="PIV velocity profile and fit",
+        )
         pax.legend(loc="upper right", fontsize="small")
     for k, name in enumerate(profiles):
         profile_panel(fig.add_subplot(grid[2, k]), result, name, profile_points)
@@ -171,28 +204,44 @@ def _values(left, right, scale, n):
         return np.geomspace(left, right, n)
     if scale == "symlog":
         thresh = _linthresh(right)
-        return np.concatenate([np.linspace(left, thresh, n // 4, endpoint=False), np.geomspace(thresh, right, n - n // 4)])
+        return np.concatenate(
+            [
+                np.linspace(left, thresh, n // 4, endpoint=False),
+                np.geomspace(thresh, right, n - n // 4),
+            ]
+        )
     return np.linspace(left, right, n)
 
 
 def profile_panel(ax, result, name, n=PROFILE_POINTS):
     rep = result.reports[name]
     if rep.constraint.get("fixed"):  # no profile: say so in the panel
-        ax.text(0.5, 0.5, f"{LABELS[name]} fixed at {rep.estimate:.6g}", ha="center", va="center",
-                transform=ax.transAxes)
+        ax.text(
+            0.5,
+            0.5,
+            f"{LABELS[name]} fixed at {rep.estimate:.6g}",
+            ha="center",
+            va="center",
+            transform=ax.transAxes,
+        )
         ax.set(xticks=[], yticks=[], title=f"{LABELS[name]}: fixed")
         ax.title.set_fontsize("small")
         return
     left, right, scale = profile_span(result, name)
     values = _values(left, right, scale, n) if n and result.refit is not None else np.empty(0)
     delta = result.profile_at(name, values) if values.size else values
-    pts = sorted([(rep.estimate, 0.0)] + [(float(a), float(b)) for a, b in zip(values, delta) if np.isfinite(b)])
+    pts = sorted(
+        [(rep.estimate, 0.0)]
+        + [(float(a), float(b)) for a, b in zip(values, delta) if np.isfinite(b)]
+    )
     x, y = np.array(pts).T
     ax.plot(x, y, "o-", ms=2.5, lw=1, label="profile")
     walk = np.array(rep.profile.points).reshape(-1, 2)
     ax.plot(walk[:, 0], walk[:, 1], "x", c="C2", ms=4, label="interval search")
     y = np.concatenate([y, walk[:, 1]])
-    ax.axhline(result.threshold, ls="--", c="gray", lw=0.8, label=f"95 % threshold {result.threshold:.3g}")
+    ax.axhline(
+        result.threshold, ls="--", c="gray", lw=0.8, label=f"95 % threshold {result.threshold:.3g}"
+    )
     ax.axvline(rep.estimate, c="k", ls=":", lw=0.8)
     for end in rep.ci95:
         if end is not None:
@@ -207,17 +256,21 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
     ax.set_ylim(0, max(1.5 * result.threshold, min(float(y.max()) * 1.05, 4 * result.threshold)))
     lo, hi = rep.ci95
     verdict = "identified" if rep.identifiable else "not identified"
-    ax.set(xlabel=LABELS[name], ylabel="Δχ² (profile)", title=f"{LABELS[name]}: [{_g(lo)}, {_g(hi)}], {verdict}")
+    ax.set(
+        xlabel=LABELS[name],
+        ylabel="Δχ² (profile)",
+        title=f"{LABELS[name]}: [{_g(lo)}, {_g(hi)}], {verdict}",
+    )
     ax.title.set_fontsize("small")
-    if name == next(n for n in NAMES if not result.reports[n].constraint.get("fixed")):  # the first drawn
+    if name == next(
+        n for n in NAMES if not result.reports[n].constraint.get("fixed")
+    ):  # the first drawn
         ax.legend(loc="upper center", fontsize="x-small")
 
 
 def sweep_figure(df, path, *, R0_um: float | None = None, T_s: float | None = None):
     """The sweep's opening fraction and half-opening time (module docstring). Physical
     columns (time_s, wound_radius_um) need R0_um and T_s, taken from df.attrs by default."""
-    from .model import half_opening_time, opening_fraction
-
     physical = "time_s" in df.columns
     R0 = R0_um or df.attrs.get("R0_um", 1.0)
     T = T_s or df.attrs.get("T_s", 1.0)
@@ -227,11 +280,18 @@ def sweep_figure(df, path, *, R0_um: float | None = None, T_s: float | None = No
     fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.8), layout="constrained")
     lams = np.unique(df["lambda"])
     positive = lams[lams > 0]
-    if positive.size > 1 and positive.max() > 10 * positive.min():  # lambda spanning decades: log colours
-        norm = (matplotlib.colors.SymLogNorm(positive.min(), linscale=0.5, vmin=0, vmax=lams.max()) if lams.min() == 0
-                else matplotlib.colors.LogNorm(lams.min(), lams.max()))
+    if (
+        positive.size > 1 and positive.max() > 10 * positive.min()
+    ):  # lambda spanning decades: log colours
+        norm = (
+            matplotlib.colors.SymLogNorm(positive.min(), linscale=0.5, vmin=0, vmax=lams.max())
+            if lams.min() == 0
+            else matplotlib.colors.LogNorm(lams.min(), lams.max())
+        )
     else:
-        norm = matplotlib.colors.Normalize(lams.min(), lams.max() if lams.max() > lams.min() else lams.min() + 1)
+        norm = matplotlib.colors.Normalize(
+            lams.min(), lams.max() if lams.max() > lams.min() else lams.min() + 1
+        )
     cmap = plt.get_cmap("viridis")
     t_all = np.unique(df[time]) / T
     last = max(t_all.max(), 1e-12)
@@ -248,8 +308,11 @@ def sweep_figure(df, path, *, R0_um: float | None = None, T_s: float | None = No
         Rf = R0 * (1 + 2 / 3 * first.sigma.to_numpy() * r_inf**2 / (r_inf**2 - 1))
         a.plot(first[time], (first[radius] - R1) / (Rf - R1), "o", ms=4, c=colour)
     time_axis(a, tau * T)
-    a.set(xlabel="time since the cut" + t_unit, ylabel="opening fraction (R − R₁)/(R_final − R₁)",
-          title="the sweep's values (markers) on the model's curves")
+    a.set(
+        xlabel="time since the cut" + t_unit,
+        ylabel="opening fraction (R − R₁)/(R_final − R₁)",
+        title="the sweep's values (markers) on the model's curves",
+    )
     fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), ax=a, label="λ")
     if r_infs.size > 1:
         for k, r_inf in enumerate(r_infs[: len(styles)]):
@@ -259,14 +322,32 @@ def sweep_figure(df, path, *, R0_um: float | None = None, T_s: float | None = No
     if positive.size and lams.size > 1:
         fine = np.unique(np.concatenate([lams, np.geomspace(positive.min(), lams.max(), 60)]))
     for k, r_inf in enumerate(r_infs):
-        b.plot(fine, [half_opening_time(lam, r_inf) * T for lam in fine], "-", c=f"C{k}", label=f"R_inf = {r_inf:g}")
-        b.plot(lams, [half_opening_time(lam, r_inf) * T for lam in lams], "o", ms=5, c=f"C{k}",
-               label="the sweep's λ" if k == 0 else None)
+        b.plot(
+            fine,
+            [half_opening_time(lam, r_inf) * T for lam in fine],
+            "-",
+            c=f"C{k}",
+            label=f"R_inf = {r_inf:g}",
+        )
+        b.plot(
+            lams,
+            [half_opening_time(lam, r_inf) * T for lam in lams],
+            "o",
+            ms=5,
+            c=f"C{k}",
+            label="the sweep's λ" if k == 0 else None,
+        )
     if positive.size and lams.max() > 10 * positive.min():
-        b.set_xscale("symlog" if lams.min() == 0 else "log", **({"linthresh": positive.min()} if lams.min() == 0 else {}))
+        b.set_xscale(
+            "symlog" if lams.min() == 0 else "log",
+            **({"linthresh": positive.min()} if lams.min() == 0 else {}),
+        )
         b.set_yscale("log")
-    b.set(xlabel="λ (viscous length / R₀)", ylabel="half-opening time" + t_unit,
-          title="time to half the final opening (any σ)")
+    b.set(
+        xlabel="λ (viscous length / R₀)",
+        ylabel="half-opening time" + t_unit,
+        title="time to half the final opening (any σ)",
+    )
     b.legend(loc="upper left", fontsize="small")
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -281,7 +362,9 @@ def simulate_figure(sim, path):
     axes[0].plot(sim.times_s, sim.radius_um, "-o", ms=3)
     axes[0].set(xlabel="time since the cut (s)", ylabel="wound radius (µm)")
     finite = np.isfinite(sim.edge_velocity_um_s)
-    axes[1].plot(np.asarray(sim.times_s)[finite], np.asarray(sim.edge_velocity_um_s)[finite], "-o", ms=3)
+    axes[1].plot(
+        np.asarray(sim.times_s)[finite], np.asarray(sim.edge_velocity_um_s)[finite], "-o", ms=3
+    )
     axes[1].set(xlabel="time since the cut (s)", ylabel="edge velocity dR/dt (µm/s)")
     for ax in axes[:2]:
         time_axis(ax, sim.times_s)

@@ -1,0 +1,180 @@
+"""`fit`: weighted least squares of the model on a wound radius series and/or a PIV velocity
+profile, for R0_um, sigma, lambda (>= 0) and T_s, with profile-likelihood intervals.
+
+1. Global stage (start.py): a lambda x time-scale grid with R0 and sigma solved linearly at
+   each point; the four best distinct points start local fits.
+2. Local fits (local.py): scipy.optimize.least_squares with the objective's Jacobian
+   (objective.py), tolerances 1e-12; the best of the starts is kept.
+3. Noise: given (one level or per point), or estimated per data set from its residuals
+   (degrees of freedom shared in proportion to the points; 1.4826 x the median absolute
+   residual with a robust loss); with an estimated noise the intervals use the F(1, dof)
+   quantile instead of chi^2(1) (3.84).
+4. Intervals: profile likelihood (likelihood.py), also of tau, zeta/G and the viscous length
+   (derived.py); standard errors from the Jacobian.
+5. Verdict: converged only if the optimiser reports convergence, the Jacobian has full rank
+   and, with the noise given, chi^2 is consistent with its degrees of freedom (p >= 1e-6).
+
+`params` (parameters.py): parameters held fixed, bounded or given a Gaussian prior, and G
+for the absolute material values (material.py). Fixed parameters leave every stage; each
+prior is one more residual; the degrees of freedom are n + priors - free parameters.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import numpy as np
+
+from ..inputs.series import RadiusSeries, VelocityProfile, check_against
+from ..results.export import data_points
+from ..results.names import NAMES
+from ..results.profiles import Profile
+from ..results.result import FitResult, ParameterReport
+from .derived import derived_profiles
+from .intervals import profile_all, profile_at
+from .local import cost
+from .objective import Objective, from_z
+from .parameters import Constrained, specification
+from .plausibility import time_scale_warnings
+from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
+from .starts import grid_starts
+
+
+def fit(
+    radius: RadiusSeries,
+    profile: VelocityProfile | None = None,
+    *,
+    outer_radius_um: float,
+    intervals: bool = True,
+    loss: str = "linear",
+    derived: bool = True,
+    params=None,
+) -> FitResult:
+    """Fit R0_um, sigma, lambda and T_s; see the module docstring and docs/fitting.md.
+    `loss`: "linear" (least squares), or "soft_l1" / "cauchy" (robust to outliers).
+    `intervals`: the parameters' profile likelihoods; `derived`: also those of tau, zeta/G
+    and the viscous length (without them these are reported not identified).
+    `params`: a Parameters (parameters.py; or an lmfit.Parameters) fixing, bounding or
+    giving a prior to R0_um, sigma, lambda, T_s, and G_pa fixed or with a prior."""
+    check_loss(loss)
+    check_against(radius, profile, outer_radius_um)
+    spec = specification(params, outer_radius_um)
+    data = Objective(radius, profile, outer_radius_um)
+    n_free = len(spec.free)
+    if data.size < n_free + 1:
+        raise ValueError(
+            f"fit: {data.size} data points for {n_free} free parameters: need at least {n_free + 1}"
+        )
+    obj = Constrained(data, spec)  # the data with the priors, bounds and fixed parameters
+    best, ends = _local_fits(obj, data, spec, loss)
+    z, chi2_cost, res = best  # residuals, Jacobian and chi^2 below at the point reported
+    residuals = data.residuals(z)
+    # lambda on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
+    free = [i for i in spec.free if not (i == 2 and z[2] <= 1e-8)]
+    judged = verdict(
+        residuals,
+        obj.jacobian(z),
+        free,
+        res,
+        dof=max(obj.size - n_free, 1),  # the priors count as data
+        noise_given=not any(data.estimated),
+        loss=loss,
+        extra_chi2=float(np.sum(obj.prior_residuals(z) ** 2)),
+        what=f"the {n_free} free parameters",
+    )
+    cov_z = judged.cov
+    held = list(spec.fixed)
+    cov_z[held, :], cov_z[:, held] = 0.0, 0.0  # no variance
+    theta = tuple(
+        spec.fixed.get(i, v) for i, v in enumerate(from_z(z))
+    )  # a fixed value as given, not exp(ln v)
+    scale = np.array([theta[0], 1.0, 1.0, theta[3]])  # d theta / d z
+    cov = cov_z * np.outer(scale, scale)
+    with np.errstate(invalid="ignore"):
+        se = np.sqrt(np.diag(cov))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(se, se)
+    others = alternates(obj, z, ends, chi2_cost, loss)  # other local optima a profile may reach
+    profiles = (
+        _profiles(obj, z, chi2_cost, judged.threshold, cov_z, loss, others, derived)
+        if intervals and not judged.reasons
+        else {}
+    )
+    reports = {
+        name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name), spec.describe(i))
+        for i, name in enumerate(NAMES)
+    }
+    data.residuals(z)  # inside_edge at the optimum
+    radius_res = data.split(residuals * data.sd)[0]
+    return FitResult(
+        theta=theta,
+        reports=reports,
+        correlation=corr,
+        chi2=judged.chi2,
+        threshold=judged.threshold,
+        outer_radius_um=data.outer,
+        residual_rms_um=float(np.sqrt(np.mean(radius_res**2))),
+        noise=(
+            float(np.median(data.sd[: data.n_radius])),
+            float(np.median(data.sd[data.n_radius :])) if data.n_profile else None,
+        ),
+        n_points=(data.n_radius, data.n_profile),
+        has_profile=profile is not None,
+        evaluations=data.evaluations,
+        G=spec.G,
+        converged=not judged.reasons,
+        reasons=judged.reasons,
+        optimizer=judged.optimizer,
+        dof=max(obj.size - n_free, 1),
+        p_value=judged.p_value,
+        noise_given=not any(data.estimated),
+        loss=loss,
+        outliers=outliers(data, judged.flagged),
+        piv_at_edge=data.inside_edge,
+        derived_profiles={name: p for name, p in profiles.items() if name not in NAMES},
+        plausibility=time_scale_warnings(theta, obj.outer, radius, profile),
+        points=data_points(data, z, judged.flagged),
+        refit=partial(profile_at, obj, z, chi2_cost, loss=loss) if not judged.reasons else None,
+    )
+
+
+def _local_fits(obj: Constrained, data: Objective, spec, loss: str):
+    """The best local fit from the grid's starts, at the estimated noise where it is
+    estimated; (best (z, cost, result), the ends of every fit)."""
+
+    def objective_cost(z):
+        return cost(obj.residuals(z), loss)
+
+    starts = grid_starts(data, objective_cost, spec=spec)
+    if not starts:
+        raise ValueError(
+            "fit: no point of the global grid (lambda x time scale, R0 and sigma solved linearly) "
+            "gives a wound with R0 > 0 inside the outer radius"
+            + (
+                " with the fixed values and bounds given: the data cannot be described with them"
+                if spec.fixed or spec.bounds
+                else ""
+            )
+        )
+    best, failures, ends = best_of(obj, starts, loss)
+    if best is None:
+        raise ValueError(
+            "fit: the model could not be evaluated from any start: " + "; ".join(failures[:2])
+        )
+    if any(data.estimated):
+        best = refit_at_noise(obj, [data], lambda k, z: z, best, loss, len(spec.free) / data.size)
+    return best, ends
+
+
+def _profiles(
+    obj: Constrained, z, chi2_min: float, threshold: float, cov_z, loss: str, others, derived: bool
+):
+    """The parameters' profiles (and the derived values' with `derived`); a fixed
+    parameter's is its value."""
+    profiles = profile_all(obj, z, chi2_min, threshold, cov_z, loss, others)
+    if profiles and derived:
+        profiles |= derived_profiles(obj, z, chi2_min, threshold, loss, others, cov_z)
+    if profiles:
+        for i, v in obj.spec.fixed.items():
+            profiles[NAMES[i]] = Profile(v, v, False, [(v, 0.0)])
+    return profiles

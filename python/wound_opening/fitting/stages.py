@@ -1,0 +1,183 @@
+"""The stages of a fit, shared by one wound (single.py) and several (wounds.py): the best of
+local fits from several starts continued side by side (`best_of`), the noise estimated from
+the residuals and the fit repeated at it (`refit_at_noise`), the verdict (optimiser, chi^2
+and its p-value, rank of the Jacobian and the covariance: `verdict`), the other local optima
+a profile may reach (`alternates`) and the flagged points as input rows (`outliers`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from .._native import SolverError
+from ..inputs.series import where
+from .local import cost, local_fit
+from .objective import Objective
+from .problem import Problem
+
+#: chi^2 p-value below which the model is said not to describe the data (fit failed), and
+#: below which a warning is given.
+P_FAIL, P_WARN = 1e-6, 1e-3
+#: A cost drop this small (chi^2 units) moves a 95 % interval end (chi^2 + 3.84) negligibly:
+#: a fit that ran out of evaluations on a flat valley is converged if a restart drops less.
+FLAT = 0.01
+#: |residual| / noise above which a point is flagged as down-weighted by a robust loss.
+OUTLIER = 3.0
+LOSSES = ("linear", "soft_l1", "cauchy")
+
+
+def check_loss(loss: str) -> None:
+    if loss not in LOSSES:
+        raise ValueError(f"loss = {loss!r}: expected linear, soft_l1 or cauchy")
+
+
+def best_of(obj, starts, loss, rounds: int = 6):
+    """The lowest-cost local fit from `starts`. Fits that run out of evaluations (a narrow,
+    curved valley they crawl along, as plateau data at low noise give) continue side by side
+    in rounds of 400 evaluations, until the optimiser converges, a round lowers the cost by
+    less than FLAT (at its minimum for the intervals: status 1, said in the message), or
+    `rounds` are spent (status 0); a fit whose cost lies above the best converged one by more
+    than its last drop times the rounds left is abandoned (it cannot overtake it). `obj`:
+    a Problem (problem.py)."""
+    fits, failures = [], []
+    for z0 in starts:
+        try:
+            z, c, res = local_fit(obj, z0, loss=loss)
+        except SolverError as e:
+            failures.append(str(e))
+            continue
+        fits.append([z, c, res, math.inf])  # z, cost, result, last drop
+    for left in range(rounds, 0, -1):
+        done = [f[1] for f in fits if f[2].status > 0]
+        live = [
+            f for f in fits if f[2].status == 0 and not (done and f[1] - min(done) > f[3] * left)
+        ]
+        if not live:
+            break
+        for f in live:
+            try:
+                z2, c2, res2 = local_fit(obj, f[0], loss=loss, max_nfev=400)
+            except SolverError:
+                f[3] = 0.0
+                continue
+            f[3] = f[1] - c2
+            if c2 < f[1]:
+                f[0], f[1] = z2, c2
+            if res2.status > 0:
+                f[2] = res2
+            elif f[3] < FLAT:
+                f[2].status = 1
+                f[2].message += (
+                    f" The last restart lowered the cost by {max(f[3], 0):.2g} (< {FLAT}): at its "
+                    "minimum for the intervals, the parameters moving along a flat valley."
+                )
+    ends = [(f[0], f[1]) for f in fits]
+    best = min(fits, key=lambda f: f[1])[:3] if fits else None
+    return (tuple(best) if best else None), failures, ends
+
+
+def refit_at_noise(problem: Problem, parts, z_of, best, loss: str, share: float):
+    """Noise from the residuals, then the fit again with those weights, twice: each
+    Objective of `parts` scales its estimated uncertainties at its coordinates `z_of(k, z)`."""
+    z = best[0]
+    for _ in range(2):
+        for k, part in enumerate(parts):
+            part.estimate_noise(z_of(k, z), loss != "linear", share)
+        best, _, _ = best_of(problem, [z], loss)
+        z = best[0]
+    return best
+
+
+@dataclass
+class Verdict:
+    """Whether a fit stands: `reasons` it does not (empty: converged), chi^2 without the
+    flagged points (plus `extra_chi2`), its p-value (None with an estimated noise), the
+    threshold of delta chi^2 for 95 % intervals, and the covariance of the coordinates
+    (nan where the Jacobian does not determine them)."""
+
+    reasons: list
+    optimizer: dict
+    flagged: np.ndarray
+    chi2: float
+    p_value: float | None
+    threshold: float
+    cov: np.ndarray
+
+
+def verdict(
+    residuals,
+    jac,
+    free,
+    res,
+    *,
+    dof: int,
+    noise_given: bool,
+    loss: str,
+    extra_chi2: float = 0.0,
+    what: str = "the parameters",
+) -> Verdict:
+    """The verdict at the best point: `residuals` and `jac` there, `free` the columns judged
+    (a coordinate on a bound where its column vanishes left out), `res` the optimiser's
+    result; `what` the singular Jacobian leaves undetermined."""
+    threshold = float(stats.chi2.ppf(0.95, 1)) if noise_given else float(stats.f.ppf(0.95, 1, dof))
+    optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
+    reasons = [] if res.status > 0 else [f"optimiser stopped without converging ({res.message})"]
+    flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
+    chi2 = float(np.sum(np.delete(residuals, flagged) ** 2) + extra_chi2)
+    p_value = float(stats.chi2.sf(chi2, max(dof - flagged.size, 1))) if noise_given else None
+    if p_value is not None and p_value < P_FAIL:
+        reasons.append(
+            f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
+            "the model does not describe the data with the given noise"
+        )
+    n = jac.shape[1]
+    sv = np.linalg.svd(jac[:, free], compute_uv=False)
+    cov = np.full((n, n), np.nan)
+    singular = not (sv.size == len(free) and sv[-1] > 1e-12 * sv[0])
+    if not singular:
+        try:
+            cov[np.ix_(free, free)] = np.linalg.inv(jac[:, free].T @ jac[:, free])
+        except np.linalg.LinAlgError:
+            singular = True
+    if singular:
+        reasons.append(
+            f"the Jacobian at the best point is singular: the data do not determine {what}"
+        )
+    return Verdict(reasons, optimizer, flagged, chi2, p_value, threshold, cov)
+
+
+def alternates(problem: Problem, z, ends, chi2_min: float, loss: str) -> list:
+    """Other local optima among the fits' ends (z, delta chi^2 refitted at the final noise),
+    more than 1e-2 apart in every coordinate: a profile may reach them."""
+    out = []
+    for e, _ in ends:
+        if all(np.max(np.abs(e - other)) > 1e-2 for other in [z] + [a for a, _ in out]):
+            out.append((e, cost(problem.residuals(e), loss) - chi2_min))
+    return out
+
+
+def outliers(obj: Objective, flagged) -> dict:
+    """Flagged points as rows of the input (1 = first row), and under "where" each as its
+    file and file line when read from a file (inputs.series.where), else as its row."""
+    rows = {"radius": [], "profile": []}
+    for k in flagged:
+        if k < obj.n_radius:
+            rows["radius"].append(int(obj.order[k]))
+        else:
+            j = k - obj.n_radius
+            for _, r, _, idx in obj.groups:
+                if j < r.size:
+                    rows["profile"].append(int(idx[j]))
+                    break
+                j -= r.size
+    out = {key: sorted(k + 1 for k in v) for key, v in rows.items()}
+    out["where"] = [
+        where(data, key, k)
+        for key, data in zip(("radius", "profile"), obj.inputs)
+        for k in sorted(rows[key])
+    ]
+    return out

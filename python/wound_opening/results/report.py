@@ -1,0 +1,293 @@
+"""A fit's report: one self-contained HTML file (the figure embedded as a base64 PNG, the
+style inline, no script and no external resource) that records what was fitted, how, and
+what came out, so that it can be archived with the data and read in any browser:
+
+- the input files with their SHA-256 and number of points (or "given in Python");
+- the noise, given or estimated, per data set; the loss; chi^2 / dof and its p-value;
+- the verdict (converged or not, the reasons, the optimiser's message) and the warnings;
+- every estimate with its standard error and 95 % profile-likelihood interval, whether it is
+  identified (or that its interval was not computed) and the advice; the derived values;
+- the points flagged by a robust loss; the figure (plots.fit_figure) of a converged fit;
+- the software: wound_opening's version, the native library's path and SHA-256 (the C API
+  has no version call: the hash identifies the build), Python, numpy and scipy; the command
+  line and the date (UTC).
+"""
+
+from __future__ import annotations
+
+import base64
+import datetime
+import hashlib
+import html
+import io
+import platform
+import sys
+from pathlib import Path
+
+import numpy
+import scipy
+
+from .._native import library_path
+from .names import NAMES
+
+STYLE = """body{font-family:sans-serif;max-width:70em;margin:1em auto;padding:0 1em;color:#222}
+table{border-collapse:collapse;margin:.5em 0}
+td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}
+th{background:#eee}td.n{text-align:right;font-family:monospace}.bad{color:#a00;font-weight:bold}
+.ok{color:#060;font-weight:bold}img{max-width:100%}code{background:#f4f4f4}"""
+
+
+def sha256(path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _n(x, digits: int = 5) -> str:
+    return "—" if x is None else f"{x:.{digits}g}"
+
+
+def _table(header, rows) -> str:
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
+    body = "".join(
+        "<tr>"
+        + "".join(c if c.startswith("<td") else f"<td>{html.escape(c)}</td>" for c in row)
+        + "</tr>"
+        for row in rows
+    )
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def _num(x, digits: int = 5) -> str:
+    return f'<td class="n">{html.escape(_n(x, digits))}</td>'
+
+
+def software() -> dict:
+    """Versions of the package and its numerics, and the native library that is loaded."""
+    from .. import __version__  # the installed distribution's (the package's __getattr__)
+
+    lib = library_path()
+    return {
+        "wound_opening": __version__,
+        "native library": f"{lib} (SHA-256 {sha256(lib)})",
+        "Python": platform.python_version(),
+        "numpy": numpy.__version__,
+        "scipy": scipy.__version__,
+    }
+
+
+def inputs(radius, profile) -> list:
+    """(what, file, SHA-256, points) of each data set."""
+    out = []
+    for what, data, n in (
+        ("radius", radius, len(radius.times_s)),
+        ("velocity profile", profile, 0 if profile is None else len(profile.times_s)),
+    ):
+        if data is None:
+            continue
+        source = getattr(data, "source", None)
+        if source:
+            out.append((what, str(source), sha256(source), n))
+        else:
+            out.append((what, "given in Python (no file)", "—", n))
+    return out
+
+
+def figure_png(result) -> bytes:
+    from .plots import fit_figure
+
+    buf = io.BytesIO()
+    fit_figure(result, path=buf)
+    return buf.getvalue()
+
+
+def render(result, radius, profile=None, *, command: str | None = None, now=None) -> str:
+    """The report as an HTML string (module docstring)."""
+    now = now or datetime.datetime.now(datetime.timezone.utc)
+    command = command if command is not None else " ".join(sys.argv)
+    parts = [
+        f"<h1>Wound-opening fit</h1><p>{html.escape(now.strftime('%Y-%m-%d %H:%M:%S UTC'))}</p>",
+        "<h2>Input</h2>",
+        _table(
+            ["data", "file", "SHA-256", "points"],
+            [(w, f, h, str(n)) for w, f, h, n in inputs(radius, profile)],
+        ),
+    ]
+    estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
+    how = ["estimated from the residuals" if e else "given" for e in estimated]
+    noise = [f"radius {_n(result.noise[0], 4)} µm ({how[0]})"]
+    if result.has_profile:
+        noise.append(f"velocity {_n(result.noise[1], 4)} µm/s ({how[1]})")
+    parts += [
+        "<p>Noise (the median of the per-point standard deviations): "
+        + ", ".join(noise)
+        + f". Loss: {html.escape(result.loss)}. Outer radius {_n(result.outer_radius_um)} µm.</p>"
+    ]
+    verdict = (
+        '<span class="ok">converged</span>'
+        if result.converged
+        else '<span class="bad">NOT converged</span>: ' + html.escape("; ".join(result.reasons))
+    )
+    p = "" if result.p_value is None else f", p = {_n(result.p_value, 3)}"
+    dof = f"{result.chi2 / result.dof:.4g}" if result.dof else "—"
+    parts += [
+        "<h2>Fit</h2>",
+        f"<p>Status: {verdict}. Optimiser: {html.escape(result.optimizer.get('message', ''))}</p>",
+        f"<p>χ² = {_n(result.chi2)} for {result.dof} degrees of freedom (χ²/dof = {dof}{p}); "
+        f"residual rms {_n(result.residual_rms_um, 4)} µm; {result.n_points[0]} radii, "
+        f"{result.n_points[1]} velocities.</p>",
+    ]
+    if result.warnings:
+        parts.append(
+            "<ul>"
+            + "".join(f"<li>warning: {html.escape(w)}</li>" for w in result.warnings)
+            + "</ul>"
+        )
+    parts.append("<h2>Estimates</h2>" + _estimates(result))
+    parts.append(_flagged(result))
+    if result.converged:
+        png = base64.b64encode(figure_png(result)).decode("ascii")
+        parts.append(
+            '<h2>Figure</h2><img alt="data, fit, residuals and profile likelihoods" '
+            f'src="data:image/png;base64,{png}">'
+        )
+    parts += [
+        "<h2>Software and command</h2>",
+        _table(["component", "version"], list(software().items())),
+        f"<p>Command: <code>{html.escape(command)}</code></p>",
+    ]
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>Wound-opening '
+        "fit</title>"
+        f"<style>{STYLE}</style></head><body>\n" + "\n".join(parts) + "\n</body></html>\n"
+    )
+
+
+def _estimates(result) -> str:
+    if not result.converged:
+        theta = dict(zip(NAMES, result.theta))
+        return (
+            "<p>No estimates: the fit did not converge. Where it stopped: "
+            + html.escape(", ".join(f"{k} = {_n(v)}" for k, v in theta.items()))
+            + "</p>"
+        )
+    rows = []
+    for name in NAMES:
+        rep = result.reports[name]
+        lo, hi = rep.ci95
+        c = rep.constraint
+        if c.get("fixed"):
+            rows.append((name, _num(rep.estimate), "—", "—", "—", "fixed (given)", ""))
+            continue
+        computed = rep.profile is not None
+        state = (
+            ("identified" if rep.identifiable else "not identified")
+            if computed
+            else "interval not computed"
+        )
+        state += ("; prior {:g} ± {:g}".format(*c["prior"]) if "prior" in c else "") + (
+            "; bounds [{:g}, {:g}]".format(*c["bounds"]) if "bounds" in c else ""
+        )
+        rows.append(
+            (
+                name,
+                _num(rep.estimate),
+                _num(rep.stderr, 3),
+                _num(lo) if computed else "—",
+                _num(hi) if computed else "—",
+                state,
+                result.advice(name),
+            )
+        )
+    out = _table(
+        ["parameter", "estimate", "stderr", "95 % lower", "95 % upper", "", "advice"], rows
+    )
+    rows = []
+    for k, m in result.material.items():
+        if k == "G_pa":
+            rows.append(
+                (
+                    k,
+                    _num(m["estimate"]),
+                    "—",
+                    "—",
+                    "Pa",
+                    "fixed (given)" if m["fixed"] else f"Gaussian prior, sd {_num(m['sd'], 3)} Pa",
+                )
+            )
+            continue
+        computed = m.get("interval_computed", True)
+        state = (
+            ("identified" if m["identifiable"] else "not identified")
+            if computed
+            else "interval not computed"
+        )
+        lo, hi = m["ci95"]
+        rows.append(
+            (
+                k,
+                _num(m["estimate"]),
+                _num(lo) if computed else "—",
+                _num(hi) if computed else "—",
+                m["unit"],
+                state,
+            )
+        )
+    out += "<h3>Material values</h3>" + _table(
+        ["quantity", "value", "95 % lower", "95 % upper", "unit", ""], rows
+    )
+    computed = result._derived_computed()
+    rows = []
+    for k, (v, (lo, hi), ok) in result._derived_all().items():
+        if k not in ("R1_um", "R_final_um"):  # the others are material values
+            continue
+        state = (
+            "interval not computed" if not computed[k] else "identified" if ok else "not identified"
+        )
+        rows.append((k, _num(v), _num(lo), _num(hi), state))
+    return (
+        out
+        + "<h3>Derived values</h3>"
+        + _table(["quantity", "value", "95 % lower", "95 % upper", ""], rows)
+    )
+
+
+def _flagged(result) -> str:
+    tabs = result.points
+    rows = []
+    for what, key, value, unit in (
+        ("radius", "radius", "radius_um", "µm"),
+        ("velocity", "profile", "velocity_um_s", "µm/s"),
+    ):
+        cols = tabs.get(key)
+        if not cols:
+            continue
+        res = "residual_um" if key == "radius" else "residual_um_s"
+        for k in [i for i, f in enumerate(cols["flagged"]) if f]:
+            line = str(cols["file_line"][k]) if "file_line" in cols else "—"
+            rows.append(
+                (
+                    what,
+                    str(cols["row"][k]),
+                    line,
+                    _num(cols["time_s"][k]),
+                    f"{_n(cols[value][k])} {unit}",
+                    f"{_n(cols[res][k], 3)} {unit}",
+                    _num(cols["normalised_residual"][k], 3),
+                )
+            )
+    if not rows:
+        why = "no robust loss" if result.loss == "linear" else "none beyond 3 noise"
+        return f"<p>Flagged points: none ({why}).</p>"
+    return "<h3>Flagged points (down-weighted by the robust loss)</h3>" + _table(
+        ["data", "row", "file line", "time (s)", "value", "data − fit", "/ noise"], rows
+    )
+
+
+def write_report(path, result, radius, profile=None, *, command: str | None = None) -> Path:
+    """Write render(...) to `path` (UTF-8); returns the path."""
+    path = Path(path)
+    path.write_text(render(result, radius, profile, command=command), encoding="utf-8")
+    return path
