@@ -21,7 +21,10 @@ const STEPS: usize = 200;
 fn scheme(name: &str, points: usize, lambda: f64, dt: f64) -> Scheme {
     match name {
         "modal" => Scheme::Modal(Settings::for_tolerance(&Params { lambda, sigma: SIGMA, r_inf: R_INF }, 1e-10).expect("valid")),
-        "trbdf2" => Scheme::TrBdf2 { mesh: Settings::for_tolerance(&Params { lambda, sigma: SIGMA, r_inf: R_INF }, 1e-6).expect("valid").mesh, max_step: dt },
+        "trbdf2" => Scheme::TrBdf2 {
+            mesh: Settings::for_tolerance(&Params { lambda, sigma: SIGMA, r_inf: R_INF }, 1e-6).expect("valid").mesh,
+            max_step: dt,
+        },
         "paper" => Scheme::Paper { points, max_step: dt },
         _ => Scheme::Explicit { points, max_step: dt },
     }
@@ -70,7 +73,9 @@ fn main() {
                 classify(lambda, &Scheme::Explicit { points, max_step: dt }, dt, long) == Status::Unbounded
             });
             writeln!(lim, "{points},{lambda:e},{dt_theory:e},{dt_measured:e},{lambda_max:e},{lambda_measured:e}").unwrap();
-            println!("explicit N={points} lambda={lambda:.4}: dt_max theory {dt_theory:.4e} measured {dt_measured:.4e}; lambda_max theory {lambda_max:.4} measured {lambda_measured:.4}");
+            println!(
+                "explicit N={points} lambda={lambda:.4}: dt_max theory {dt_theory:.4e} measured {dt_measured:.4e}; lambda_max theory {lambda_max:.4} measured {lambda_measured:.4}"
+            );
         }
     }
 }

@@ -12,6 +12,7 @@ if ! command -v chromium >/dev/null; then
     echo "== installing chromium (for tests/python/test_fmu_pages.py)"
     apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium </dev/null
 fi
+cargo fmt --check  # the crate's format (rustfmt.toml)
 cargo test --release
 cargo build --release  # the library the Python package loads
 cargo run --release --quiet -- fmu

@@ -14,10 +14,10 @@
 //! boundary      what both C interfaces share: panic boundary, handle tables
 //! ```
 
-pub mod solver;
-pub mod purse_string;
-pub mod units;
-pub mod models;
-pub mod fmi;
-pub mod capi;
 pub mod boundary;
+pub mod capi;
+pub mod fmi;
+pub mod models;
+pub mod purse_string;
+pub mod solver;
+pub mod units;

@@ -86,9 +86,9 @@ pub fn check_time(name: &str, value: f64) -> Result<f64, String> {
 /// Check a wound radius input against [`RADIUS`]. A radius at or below zero means the
 /// wound has closed, which this linear model does not describe.
 pub fn check_radius(radius: f64) -> Result<f64, String> {
-    RADIUS.check("wound_radius", radius).map_err(|e| {
-        if radius <= 0.0 { format!("{e} (the purse-string stress T_c/(h R) needs an open wound)") } else { e }
-    })
+    RADIUS
+        .check("wound_radius", radius)
+        .map_err(|e| if radius <= 0.0 { format!("{e} (the purse-string stress T_c/(h R) needs an open wound)") } else { e })
 }
 
 impl PurseString {

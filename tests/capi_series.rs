@@ -43,8 +43,7 @@ fn a_series_is_the_handle_api_bit_for_bit() {
     for (lambda, p) in [(0.3, 0.0), (2.0, 0.4), (0.0, 1.0)] {
         let (want_r, want_v) = stepwise(lambda, 1.0, 10.0, p, &times);
         let (mut r, mut v) = (vec![0.0; 6], vec![0.0; 6]);
-        let status =
-            unsafe { wo_series(pb(lambda, 1.0, 10.0, TOL, p), times.as_ptr(), 6, r.as_mut_ptr(), v.as_mut_ptr()) };
+        let status = unsafe { wo_series(pb(lambda, 1.0, 10.0, TOL, p), times.as_ptr(), 6, r.as_mut_ptr(), v.as_mut_ptr()) };
         assert_eq!(status, WoStatus::WoOk, "{}", last_error());
         assert_eq!(r, want_r);
         assert_eq!(v, want_v);
@@ -144,7 +143,8 @@ fn current_radii_inside_the_wound_or_beyond_the_tissue_are_refused() {
     let times = [0.0, 5.0];
     let mut u = [3.0; 2];
     let mut refuse = |r: f64, needle: &str| {
-        let status = unsafe { wo_profile_series(pb(1.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 2, [r].as_ptr(), 1, u.as_mut_ptr(), null_mut()) };
+        let status =
+            unsafe { wo_profile_series(pb(1.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 2, [r].as_ptr(), 1, u.as_mut_ptr(), null_mut()) };
         assert_eq!(status, WoStatus::WoInvalidArgument, "{r}");
         let msg = last_error();
         assert!(msg.contains(needle), "{msg} lacks {needle}");

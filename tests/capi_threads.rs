@@ -104,10 +104,7 @@ fn alone<T>(k: usize, new: fn(usize) -> T, advance: fn(&T, usize, usize, &mut f6
 /// All instances at once: thread `j` owns instances `j, j + 8, ...` and advances them in
 /// turns, one step each, so that every thread's instances are interleaved in time with
 /// every other thread's.
-fn together<T: Send + 'static>(
-    new: fn(usize) -> T,
-    advance: fn(&T, usize, usize, &mut f64) -> [u64; 2],
-) -> Vec<(usize, T, Vec<[u64; 2]>)> {
+fn together<T: Send + 'static>(new: fn(usize) -> T, advance: fn(&T, usize, usize, &mut f64) -> [u64; 2]) -> Vec<(usize, T, Vec<[u64; 2]>)> {
     let start = Arc::new(Barrier::new(THREADS));
     let handles: Vec<_> = (0..THREADS)
         .map(|j| {

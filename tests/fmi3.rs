@@ -6,21 +6,34 @@
 
 mod common;
 
-use common::fmi::{OK, ERROR, WOUND, PURSE};
+use common::fmi::{ERROR, OK, PURSE, WOUND};
 use std::ffi::CString;
 use wound_opening::boundary::caught_panics;
 use wound_opening::fmi::fmi2::functions::*;
-use wound_opening::fmi::fmi3::functions::*;
-use wound_opening::fmi::fmi3::exchange::*;
-use wound_opening::fmi::fmi3::unsupported::*;
 use wound_opening::fmi::fmi2::types::fmi2Component;
+use wound_opening::fmi::fmi3::exchange::*;
+use wound_opening::fmi::fmi3::functions::*;
 use wound_opening::fmi::fmi3::types::*;
+use wound_opening::fmi::fmi3::unsupported::*;
 use wound_opening::models::wound::variables::{MODEL_EXCHANGE_STATES, Vr};
 
 fn cs(token: &str, event_mode: u8) -> fmi3Instance {
     let (name, token) = (CString::new("cs3").unwrap(), CString::new(token).unwrap());
     unsafe {
-        fmi3InstantiateCoSimulation(name.as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, event_mode, 0, std::ptr::null(), 0, std::ptr::null_mut(), None, None)
+        fmi3InstantiateCoSimulation(
+            name.as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            0,
+            0,
+            event_mode,
+            0,
+            std::ptr::null(),
+            0,
+            std::ptr::null_mut(),
+            None,
+            None,
+        )
     }
 }
 
@@ -45,7 +58,18 @@ fn instantiation_checks_the_token_and_refuses_event_mode() {
     };
     assert!(null.is_null(), "required intermediate variables");
     let se = unsafe {
-        fmi3InstantiateScheduledExecution(c"x".as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, std::ptr::null_mut(), None, None, None, None)
+        fmi3InstantiateScheduledExecution(
+            c"x".as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            0,
+            0,
+            std::ptr::null_mut(),
+            None,
+            None,
+            None,
+            None,
+        )
     };
     assert!(se.is_null());
     let (a, b) = (cs(WOUND, 0), me(PURSE));
@@ -179,7 +203,10 @@ fn every_call3(i: fmi2Component) -> Vec<(&'static str, fmi3Status)> {
             ("fmi3FreeFMUState", fmi3FreeFMUState(i, &mut (1 as fmi3FMUState))),
             ("fmi3SerializedFMUStateSize", fmi3SerializedFMUStateSize(i, 1 as fmi3FMUState, &mut u)),
             ("fmi3DeserializeFMUState", fmi3DeserializeFMUState(i, b.as_ptr(), 6, &mut st)),
-            ("fmi3GetDirectionalDerivative", fmi3GetDirectionalDerivative(i, vr.as_ptr(), 1, vr.as_ptr(), 1, r.as_ptr(), 1, r.as_mut_ptr(), 1)),
+            (
+                "fmi3GetDirectionalDerivative",
+                fmi3GetDirectionalDerivative(i, vr.as_ptr(), 1, vr.as_ptr(), 1, r.as_ptr(), 1, r.as_mut_ptr(), 1),
+            ),
             ("fmi3DoStep", fmi3DoStep(i, 0.0, 1.0, 0, &mut b[0], &mut b[1], &mut b[2], &mut t)),
             ("fmi3EnterContinuousTimeMode", fmi3EnterContinuousTimeMode(i)),
             ("fmi3SetTime", fmi3SetTime(i, 0.0)),
@@ -261,7 +288,20 @@ mod intermediate {
         let token = CString::new(WOUND).unwrap();
         let es = Vr::EdgeStress as u32;
         let i = unsafe {
-            fmi3InstantiateCoSimulation(c"iu".as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, 0, 0, &es, 1, std::ptr::null_mut(), None, Some(update))
+            fmi3InstantiateCoSimulation(
+                c"iu".as_ptr(),
+                token.as_ptr(),
+                std::ptr::null(),
+                0,
+                0,
+                0,
+                0,
+                &es,
+                1,
+                std::ptr::null_mut(),
+                None,
+                Some(update),
+            )
         };
         assert!(!i.is_null());
         INSTANCE.store(i as usize, Ordering::SeqCst);
@@ -304,12 +344,38 @@ mod intermediate {
         let token = CString::new(WOUND).unwrap();
         let lambda = Vr::Lambda as u32;
         let refused = unsafe {
-            fmi3InstantiateCoSimulation(c"x".as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, 0, 0, &lambda, 1, std::ptr::null_mut(), None, Some(update))
+            fmi3InstantiateCoSimulation(
+                c"x".as_ptr(),
+                token.as_ptr(),
+                std::ptr::null(),
+                0,
+                0,
+                0,
+                0,
+                &lambda,
+                1,
+                std::ptr::null_mut(),
+                None,
+                Some(update),
+            )
         };
         assert!(refused.is_null(), "a parameter is no intermediate variable");
         let es = Vr::EdgeStress as u32;
         let refused = unsafe {
-            fmi3InstantiateCoSimulation(c"x".as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, 0, 0, &es, 1, std::ptr::null_mut(), None, None)
+            fmi3InstantiateCoSimulation(
+                c"x".as_ptr(),
+                token.as_ptr(),
+                std::ptr::null(),
+                0,
+                0,
+                0,
+                0,
+                &es,
+                1,
+                std::ptr::null_mut(),
+                None,
+                None,
+            )
         };
         assert!(refused.is_null(), "no callback");
     }

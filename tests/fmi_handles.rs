@@ -40,8 +40,13 @@ fn null_and_forged_components_are_errors() {
     let mut solver = std::ptr::null_mut();
     let made = unsafe { wound_opening::capi::solver_c::wo_solver_new(1.0, 1.0, 10.0, 1e-6, &mut solver) };
     assert_eq!(made, wound_opening::capi::error::WoStatus::WoOk);
-    let forged: [fmi2Component; 5] =
-        [std::ptr::null_mut(), 0xdead_beef as fmi2Component, own.as_mut_ptr() as fmi2Component, usize::MAX as fmi2Component, solver as fmi2Component];
+    let forged: [fmi2Component; 5] = [
+        std::ptr::null_mut(),
+        0xdead_beef as fmi2Component,
+        own.as_mut_ptr() as fmi2Component,
+        usize::MAX as fmi2Component,
+        solver as fmi2Component,
+    ];
     for c in forged {
         for (name, status) in every_call(c) {
             assert_eq!(status, ERROR, "{name} on component {c:p}");

@@ -3,9 +3,9 @@
 //! tests/python.)
 
 use std::sync::{Arc, Mutex};
-use wound_opening::models::wound::WoundModel;
 use wound_opening::fmi::common::instance::{Call, Instance, Logger, Status};
 use wound_opening::fmi::common::machine::Machine;
+use wound_opening::models::wound::WoundModel;
 use wound_opening::models::wound::variables::Vr;
 
 #[derive(Clone, Default)]

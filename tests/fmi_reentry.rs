@@ -8,11 +8,11 @@ mod common;
 use common::fmi::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
+use wound_opening::fmi::common::instance::{Instance, Logger, Status};
 use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::fmi2::types::*;
 use wound_opening::fmi::frame::{self, BUSY};
 use wound_opening::models::wound::WoundModel;
-use wound_opening::fmi::common::instance::{Instance, Logger, Status};
-use wound_opening::fmi::fmi2::types::*;
 
 /// A logger that records every message and, on a `logCalls` message, runs `reenter` on
 /// the component (once, or always) from inside the callback.

@@ -62,10 +62,10 @@ fn run_threads(c: fmi2Component, extra: impl FnOnce() + Send + 'static) -> Seen 
         .collect();
     start.wait();
     extra();
-    workers.into_iter().map(|w| w.join().expect("a worker panicked")).fold(Seen::default(), |a, b| Seen {
-        steps: a.steps + b.steps,
-        refused: a.refused + b.refused,
-    })
+    workers
+        .into_iter()
+        .map(|w| w.join().expect("a worker panicked"))
+        .fold(Seen::default(), |a, b| Seen { steps: a.steps + b.steps, refused: a.refused + b.refused })
 }
 
 /// Guards against a data race on one instance (two `fmi2DoStep` at once corrupted the heap

@@ -7,8 +7,8 @@ mod common;
 
 use common::fmi::*;
 use wound_opening::fmi::fmi2::functions::*;
-use wound_opening::models::purse_string::variables::Vr as P;
 use wound_opening::fmi::fmi2::types::*;
+use wound_opening::models::purse_string::variables::Vr as P;
 use wound_opening::models::wound::variables::Vr as W;
 
 /// Guards against refusing a master that computes its points as t_n = n h: the instance

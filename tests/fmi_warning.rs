@@ -7,10 +7,10 @@ mod common;
 
 use common::fmi::*;
 use std::sync::{Arc, Mutex};
-use wound_opening::fmi::fmi2::functions::*;
-use wound_opening::fmi::frame;
 use wound_opening::fmi::common::instance::{Call, Instance, Logger, Status};
 use wound_opening::fmi::common::model::{Description, Experiment, FmuModel, Rejected, Variable};
+use wound_opening::fmi::fmi2::functions::*;
+use wound_opening::fmi::frame;
 
 static VARIABLES: [Variable; 1] = [Variable::output("steps", 0, "1", "Steps taken")];
 static DESCRIPTION: Description = Description {

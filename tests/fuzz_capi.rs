@@ -14,10 +14,10 @@ mod common;
 use common::fuzz::{Budget, Rng};
 use std::collections::BTreeMap;
 use std::ffi::CStr;
+use wound_opening::boundary::caught_panics;
 use wound_opening::capi::error::WoStatus;
 use wound_opening::capi::solver::live_handles;
 use wound_opening::capi::solver_c::*;
-use wound_opening::boundary::caught_panics;
 
 struct World {
     rng: Rng,
@@ -191,7 +191,8 @@ impl World {
         let mut n = 0usize;
         let counted = unsafe { wo_solver_node_count(s, &mut n) } == WoStatus::WoOk;
         let count = if counted && self.rng.chance(0.7) { n } else { self.rng.below(12) };
-        let mut radii: Vec<f64> = (0..count).map(|_| if self.rng.chance(0.9) { 1.0 + 9.0 * self.rng.unit() } else { self.rng.real() }).collect();
+        let mut radii: Vec<f64> =
+            (0..count).map(|_| if self.rng.chance(0.9) { 1.0 + 9.0 * self.rng.unit() } else { self.rng.real() }).collect();
         let mut out = vec![0.0; count];
         let null_in = self.rng.chance(0.05);
         let null_out = self.rng.chance(0.05);
@@ -211,7 +212,8 @@ impl World {
 #[test]
 fn random_direct_api_call_sequences_are_refused_cleanly_or_succeed() {
     let budget = Budget::from_env(0xCA_2024);
-    let mut world = World { rng: Rng::new(budget.seed), solvers: Vec::new(), states: Vec::new(), freed: Vec::new(), stats: BTreeMap::new() };
+    let mut world =
+        World { rng: Rng::new(budget.seed), solvers: Vec::new(), states: Vec::new(), freed: Vec::new(), stats: BTreeMap::new() };
     let mut iterations = 0u64;
     while budget.left() {
         world.step();

@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::fuzz::{Budget, NULL_CALLBACKS, MESH_FIELDS, Rng, mutated, reseal_crc};
+use common::fuzz::{Budget, MESH_FIELDS, NULL_CALLBACKS, Rng, mutated, reseal_crc};
 use std::collections::BTreeMap;
 use std::ffi::CString;
 use wound_opening::boundary::caught_panics;

@@ -15,8 +15,8 @@ use common::fuzz::{Budget, NULL_CALLBACKS, Rng, mutated};
 use std::collections::BTreeMap;
 use std::ffi::{CString, c_char};
 use wound_opening::boundary::caught_panics;
-use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::exchange::*;
+use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::MODELS;
 
@@ -43,7 +43,15 @@ struct World {
 impl World {
     fn new(seed: u64) -> Self {
         let names = ["fuzz", "", "%s%n%p", "logCalls", "\u{e9}t\u{e9}"].iter().map(|s| CString::new(*s).unwrap()).collect();
-        Self { rng: Rng::new(seed), live: Vec::new(), gone: Vec::new(), blobs: Vec::new(), stats: BTreeMap::new(), callbacks: NULL_CALLBACKS, names }
+        Self {
+            rng: Rng::new(seed),
+            live: Vec::new(),
+            gone: Vec::new(),
+            blobs: Vec::new(),
+            stats: BTreeMap::new(),
+            callbacks: NULL_CALLBACKS,
+            names,
+        }
     }
 
     fn record(&mut self, call: &'static str, status: fmi2Status) {
@@ -117,7 +125,9 @@ impl World {
             3 => {
                 let i = self.target();
                 let args = (self.rng.below(2) as i32, self.rng.real(), self.rng.real(), self.rng.below(2) as i32, self.rng.real());
-                let s = unsafe { fmi2SetupExperiment(self.component(i), args.0, args.1, if self.rng.chance(0.7) { 0.0 } else { args.2 }, args.3, args.4) };
+                let s = unsafe {
+                    fmi2SetupExperiment(self.component(i), args.0, args.1, if self.rng.chance(0.7) { 0.0 } else { args.2 }, args.3, args.4)
+                };
                 self.record("fmi2SetupExperiment", s);
             }
             4..=6 => {
@@ -150,8 +160,8 @@ impl World {
     /// calls whose arguments differ from FMI 2.0's, with random counts and values, and an
     /// FMI 3.0 instantiation now and then.
     fn fmi3(&mut self) {
-        use wound_opening::fmi::fmi3::functions::*;
         use wound_opening::fmi::fmi3::exchange::*;
+        use wound_opening::fmi::fmi3::functions::*;
         use wound_opening::fmi::fmi3::unsupported::*;
         if self.rng.chance(0.1) && self.live.len() < 6 {
             let guid = CString::new(MODELS[self.rng.below(MODELS.len())].0.guid).unwrap();
@@ -160,7 +170,20 @@ impl World {
             } else {
                 let event = self.rng.below(2) as u8;
                 unsafe {
-                    fmi3InstantiateCoSimulation(c"f3".as_ptr(), guid.as_ptr(), std::ptr::null(), 0, 0, event, 0, std::ptr::null(), 0, std::ptr::null_mut(), None, None)
+                    fmi3InstantiateCoSimulation(
+                        c"f3".as_ptr(),
+                        guid.as_ptr(),
+                        std::ptr::null(),
+                        0,
+                        0,
+                        event,
+                        0,
+                        std::ptr::null(),
+                        0,
+                        std::ptr::null_mut(),
+                        None,
+                        None,
+                    )
                 }
             };
             self.record("fmi3Instantiate*", if c.is_null() { 3 } else { 0 });
@@ -174,14 +197,14 @@ impl World {
         let nvr = self.rng.below(4);
         // The FMI 3.0-only references too: time (447), n_probes (448), probe_radii,
         // displacement, velocity (449..451), and the states and derivatives (13..446).
-        let vrs: Vec<u32> = (0..nvr)
-            .map(|_| if self.rng.chance(0.5) { 440 + self.rng.below(14) as u32 } else { self.value_reference() })
-            .collect();
+        let vrs: Vec<u32> =
+            (0..nvr).map(|_| if self.rng.chance(0.5) { 440 + self.rng.below(14) as u32 } else { self.value_reference() }).collect();
         let n_values = if self.rng.chance(0.8) { nvr } else { self.rng.below(6) };
         let x: Vec<f64> = (0..n_values.max(nvr)).map(|_| self.rng.real()).collect();
         let mut k: Vec<i32> = (0..n_values.max(nvr)).map(|_| self.rng.next_u64() as i32).collect();
         let (mut b, mut t) = ([0u8; 5], 0.0);
-        let mut big: Vec<u64> = (0..n_values.max(nvr)).map(|_| if self.rng.chance(0.8) { self.rng.below(12) as u64 } else { self.rng.next_u64() }).collect();
+        let mut big: Vec<u64> =
+            (0..n_values.max(nvr)).map(|_| if self.rng.chance(0.8) { self.rng.below(12) as u64 } else { self.rng.next_u64() }).collect();
         let (name, s) = match self.rng.below(12) {
             8 => ("fmi3EnterConfigurationMode", unsafe { fmi3EnterConfigurationMode(c) }),
             9 => ("fmi3ExitConfigurationMode", unsafe { fmi3ExitConfigurationMode(c) }),
@@ -199,7 +222,9 @@ impl World {
             4 => {
                 let (tol, stop) = (self.rng.real(), self.rng.real());
                 let tol_defined = self.rng.below(2) as u8;
-                ("fmi3EnterInitializationMode", unsafe { fmi3EnterInitializationMode(c, tol_defined, tol, 0.0, self.rng.below(2) as u8, stop) })
+                ("fmi3EnterInitializationMode", unsafe {
+                    fmi3EnterInitializationMode(c, tol_defined, tol, 0.0, self.rng.below(2) as u8, stop)
+                })
             }
             5 => {
                 let (mut now, h) = (0.0, self.rng.unit() * 10.0);
@@ -275,8 +300,9 @@ impl World {
     fn debug_logging(&mut self) {
         let i = self.target();
         let n = self.rng.below(4);
-        let choices: Vec<*const c_char> =
-            (0..n).map(|_| if self.rng.chance(0.1) { std::ptr::null() } else { self.names[self.rng.below(self.names.len())].as_ptr() }).collect();
+        let choices: Vec<*const c_char> = (0..n)
+            .map(|_| if self.rng.chance(0.1) { std::ptr::null() } else { self.names[self.rng.below(self.names.len())].as_ptr() })
+            .collect();
         let (ptr, n) = if self.rng.chance(0.05) { (std::ptr::null(), n.max(1)) } else { (choices.as_ptr(), n) };
         let s = unsafe { fmi2SetDebugLogging(self.component(i), self.rng.below(2) as i32, n, ptr) };
         self.record("fmi2SetDebugLogging", s);
@@ -457,18 +483,17 @@ impl World {
                 let knowns: Vec<u32> = (0..nk).map(|_| self.value_reference()).collect();
                 let seed: Vec<f64> = (0..nk).map(|_| self.rng.real()).collect();
                 let mut out = vec![0.0; nu];
-                let s = unsafe {
-                    fmi2GetDirectionalDerivative(c, unknowns.as_ptr(), nu, knowns.as_ptr(), nk, seed.as_ptr(), out.as_mut_ptr())
-                };
+                let s =
+                    unsafe { fmi2GetDirectionalDerivative(c, unknowns.as_ptr(), nu, knowns.as_ptr(), nk, seed.as_ptr(), out.as_mut_ptr()) };
                 if s == 0 {
                     assert!(out.iter().all(|v| v.is_finite()), "a derivative accepted with OK is finite: {out:?}");
                 }
                 ("fmi2GetDirectionalDerivative", s)
             }
             1 => ("fmi2SetRealInputDerivatives", unsafe { fmi2SetRealInputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_ptr()) }),
-            2 => ("fmi2GetRealOutputDerivatives", unsafe {
-                fmi2GetRealOutputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_mut_ptr())
-            }),
+            2 => {
+                ("fmi2GetRealOutputDerivatives", unsafe { fmi2GetRealOutputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_mut_ptr()) })
+            }
             _ => ("fmi2CancelStep", unsafe { fmi2CancelStep(c) }),
         };
         self.record(name, s);
@@ -478,7 +503,10 @@ impl World {
 fn report(what: &str, seed: u64, iterations: u64, stats: &BTreeMap<&'static str, [u64; 5]>) {
     println!("{what}: seed {seed}, {iterations} iterations");
     for (call, counts) in stats {
-        println!("  {call:32} ok {:7}  error {:7}  (warning {}, discard {}, fatal {})", counts[0], counts[3], counts[1], counts[2], counts[4]);
+        println!(
+            "  {call:32} ok {:7}  error {:7}  (warning {}, discard {}, fatal {})",
+            counts[0], counts[3], counts[1], counts[2], counts[4]
+        );
     }
 }
 
@@ -500,4 +528,3 @@ fn random_fmi_call_sequences_never_reach_the_panic_boundary() {
     let ok_restores = world.stats.get("fmi2DeSerializeFMUstate").map_or(0, |c| c[0]);
     assert!(iterations < 2000 || (ok_steps > 0 && ok_restores > 0), "the fuzzer should reach steps and accepted states");
 }
-

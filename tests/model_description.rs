@@ -5,9 +5,9 @@
 use quick_xml::Reader;
 use quick_xml::events::Event;
 use std::collections::BTreeMap;
-use wound_opening::models::MODELS;
 use wound_opening::fmi::common::model::{Causality, Description, LOG_CATEGORIES};
 use wound_opening::fmi::fmi2::xml;
+use wound_opening::models::MODELS;
 
 type Elements = Vec<(String, BTreeMap<String, String>)>;
 
@@ -95,10 +95,8 @@ fn variables_match_the_table_one_for_one() {
         let nx = d.state_count();
         assert_eq!(all_svs.len(), d.variables.len() + 2 * nx, "the table, the states and their derivatives");
         // The type element of each ScalarVariable, in document order.
-        let all_typed: Vec<(&str, &BTreeMap<String, String>)> = all
-            .iter()
-            .filter_map(|(p, a)| p.strip_prefix("fmiModelDescription/ModelVariables/ScalarVariable/").map(|k| (k, a)))
-            .collect();
+        let all_typed: Vec<(&str, &BTreeMap<String, String>)> =
+            all.iter().filter_map(|(p, a)| p.strip_prefix("fmiModelDescription/ModelVariables/ScalarVariable/").map(|k| (k, a))).collect();
         assert_eq!(all_typed.len(), all_svs.len(), "one type element per variable");
         // The rows numbered by position, the states and derivatives, then the rows added later.
         let (first, later) = (d.first_state() as usize, d.later_rows().len());
@@ -116,8 +114,7 @@ fn variables_match_the_table_one_for_one() {
                 assert_eq!(sv["name"], format!("der({})", all_svs[state - 1]["name"]));
             }
         }
-        let units: Vec<&str> =
-            find(&all, "fmiModelDescription/UnitDefinitions/Unit").iter().map(|a| a["name"].as_str()).collect();
+        let units: Vec<&str> = find(&all, "fmiModelDescription/UnitDefinitions/Unit").iter().map(|a| a["name"].as_str()).collect();
         for (i, ((sv, (kind, ty)), var)) in svs.iter().zip(typed).zip(d.variables).enumerate() {
             assert!(var.value_reference as usize == i || i >= first, "{}: value references are table indices", var.name);
             assert_eq!(sv["name"], var.name);
@@ -160,7 +157,8 @@ fn units_are_defined_in_si_base_units() {
             if name == "1" {
                 continue;
             }
-            let (_, attrs) = want.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("{}: unexpected unit {name}", d.model_identifier));
+            let (_, attrs) =
+                want.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("{}: unexpected unit {name}", d.model_identifier));
             let got = b.next().expect("a BaseUnit per unit");
             let got: Vec<(&str, &str)> = got.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
             let mut want: Vec<(&str, &str)> = attrs.to_vec();
@@ -282,7 +280,12 @@ fn value_references_are_table_positions() {
         let first = d.first_state() as usize;
         for (i, v) in d.variables.iter().enumerate() {
             let after_all = 2 + first + 2 * d.state_count() + d.arrays.map_or(0, |a| a.arrays.len());
-            assert!(v.value_reference as usize == i || (i >= first && v.value_reference as usize >= after_all), "{}: {}", d.model_identifier, v.name);
+            assert!(
+                v.value_reference as usize == i || (i >= first && v.value_reference as usize >= after_all),
+                "{}: {}",
+                d.model_identifier,
+                v.name
+            );
         }
     }
 }

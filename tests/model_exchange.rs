@@ -8,8 +8,8 @@ mod common;
 
 use common::fmi::*;
 use std::ffi::CString;
-use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::exchange::*;
+use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::{MODEL_EXCHANGE_STATES as NX, Vr};
 use wound_opening::solver::{Params, Settings, Solver};
@@ -139,7 +139,9 @@ fn derivative_vr(k: usize) -> u32 {
 
 fn directional(c: fmi2Component, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
     let mut out = vec![f64::NAN; unknowns.len()];
-    let s = unsafe { fmi2GetDirectionalDerivative(c, unknowns.as_ptr(), unknowns.len(), knowns.as_ptr(), knowns.len(), seed.as_ptr(), out.as_mut_ptr()) };
+    let s = unsafe {
+        fmi2GetDirectionalDerivative(c, unknowns.as_ptr(), unknowns.len(), knowns.as_ptr(), knowns.len(), seed.as_ptr(), out.as_mut_ptr())
+    };
     (s, out)
 }
 
@@ -333,7 +335,11 @@ fn stiffness_of_the_default_mesh() {
         let solver = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
         let nu = solver.ode(0.0).unwrap().relaxation_times;
         let (fast, slow) = nu.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
-        println!("lambda = {lambda}: {} modes, fastest relaxation time {fast:.3e} T, slowest {slow:.3e} T, ratio {:.1e}", nu.len(), slow / fast);
+        println!(
+            "lambda = {lambda}: {} modes, fastest relaxation time {fast:.3e} T, slowest {slow:.3e} T, ratio {:.1e}",
+            nu.len(),
+            slow / fast
+        );
         if lambda == 0.0 {
             assert!((2.2e-6..9.1e-6).contains(&fast), "{fast}");
         } else {

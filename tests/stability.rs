@@ -2,7 +2,6 @@
 //! its von Neumann theory (src/solver/explicit.rs); and the shipped scheme, bounded and
 //! monotone over the whole map of lambda and step size.
 
-
 use wound_opening::solver::stability::{self, RunStatus as Status};
 use wound_opening::solver::{Params, Scheme, Settings, explicit_stability_limits};
 

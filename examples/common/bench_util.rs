@@ -57,10 +57,7 @@ pub fn best_cpu<T>(mut f: impl FnMut() -> T) -> (f64, T) {
 /// Rows of a headerless numeric CSV.
 pub fn read_csv(path: &Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    text.lines()
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| l.split(',').map(|x| x.trim().parse().expect("number")).collect())
-        .collect()
+    text.lines().filter(|l| !l.trim().is_empty()).map(|l| l.split(',').map(|x| x.trim().parse().expect("number")).collect()).collect()
 }
 
 pub const SCENARIO_STEPS: usize = 1000;

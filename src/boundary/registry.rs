@@ -24,8 +24,8 @@
 //! released, so a program that frees everything leaves no allocation behind.
 
 use std::collections::BTreeMap;
-use std::hash::{BuildHasher, RandomState};
 use std::fmt;
+use std::hash::{BuildHasher, RandomState};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, OnceLock, RwLock, RwLockReadGuard, RwLockWriteGuard};
 

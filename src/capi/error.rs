@@ -112,9 +112,8 @@ pub fn last_error_ptr() -> *const c_char {
 /// refusal its status, and the thread's last error is set to `"name: reason"` (or
 /// cleared on success).
 pub fn run(name: &str, body: impl FnOnce() -> Result<(), Failure>) -> WoStatus {
-    let outcome = guard(body).unwrap_or_else(|panic| {
-        Err(Failure::new(WoStatus::WoInternalError, format!("internal error (caught panic: {panic})")))
-    });
+    let outcome =
+        guard(body).unwrap_or_else(|panic| Err(Failure::new(WoStatus::WoInternalError, format!("internal error (caught panic: {panic})"))));
     match outcome {
         Ok(()) => {
             set_last_error("");

@@ -47,12 +47,7 @@ pub fn check_times(times: &[f64]) -> Result<(), Failure> {
 }
 
 /// Advance `solver` to each time in turn and call `visit(i, solver)` there.
-fn walk(
-    solver: &mut Solver,
-    p: f64,
-    times: &[f64],
-    mut visit: impl FnMut(usize, &Solver) -> Result<(), Failure>,
-) -> Result<(), Failure> {
+fn walk(solver: &mut Solver, p: f64, times: &[f64], mut visit: impl FnMut(usize, &Solver) -> Result<(), Failure>) -> Result<(), Failure> {
     for (i, &t) in times.iter().enumerate() {
         if t > solver.time() {
             solver.advance(t - solver.time(), p)?;

@@ -4,7 +4,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 use super::error::{Failure, WoStatus, run};
-use super::series::{self, ProfileOut, Problem};
+use super::series::{self, Problem, ProfileOut};
 use super::solver_c::{input, output};
 use crate::solver::Params;
 
@@ -39,13 +39,7 @@ fn optional<'a>(p: *mut f64, count: usize, what: &str) -> Result<Option<&'a mut 
 /// nothing is written. One solver is built (O(modes) when the basis of this R_inf is
 /// cached) and advanced from time to time, exactly.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_series(
-    problem: WoProblem,
-    times: *const f64,
-    count: usize,
-    radius: *mut f64,
-    velocity: *mut f64,
-) -> WoStatus {
+pub unsafe extern "C" fn wo_series(problem: WoProblem, times: *const f64, count: usize, radius: *mut f64, velocity: *mut f64) -> WoStatus {
     run("wo_series", || {
         let t = input(times, count, "times")?;
         let r = output(radius, count, "radius")?;
@@ -70,9 +64,9 @@ pub unsafe extern "C" fn wo_profile_series(
     v: *mut f64,
 ) -> WoStatus {
     run("wo_profile_series", || {
-        let count = n_times.checked_mul(n_radii).ok_or_else(|| {
-            Failure::new(WoStatus::WoInvalidArgument, format!("n_times * n_radii = {n_times} * {n_radii} overflows"))
-        })?;
+        let count = n_times
+            .checked_mul(n_radii)
+            .ok_or_else(|| Failure::new(WoStatus::WoInvalidArgument, format!("n_times * n_radii = {n_times} * {n_radii} overflows")))?;
         let t = input(times, n_times, "times")?;
         let r = input(radii, n_radii, "radii")?;
         let out = ProfileOut { displacement: optional(u, count, "u")?, velocity: optional(v, count, "v")? };

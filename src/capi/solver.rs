@@ -144,10 +144,7 @@ fn with_solver<R>(handle: u64, recovering: bool, f: impl FnOnce(&mut Live) -> Re
 pub fn advance(solver: u64, t_end: f64, p: f64) -> Result<(), Failure> {
     with_solver(solver, false, |s| {
         if !(t_end.is_finite() && t_end >= s.time) {
-            return Err(Failure::invalid(format!(
-                "t_end = {t_end} is invalid: expected a finite time >= the solver's time {}",
-                s.time
-            )));
+            return Err(Failure::invalid(format!("t_end = {t_end} is invalid: expected a finite time >= the solver's time {}", s.time)));
         }
         check_edge_stress(p).map_err(|e| Failure::invalid(e.to_string()))?;
         let r_inf = s.params.r_inf;
@@ -220,10 +217,7 @@ pub fn nodes(solver: u64, out: &mut [f64]) -> Result<(), Failure> {
 fn check_radii(radii: &[f64], r_inf: f64) -> Result<(), Failure> {
     match radii.iter().position(|r| !(1.0..=r_inf).contains(r)) {
         None => Ok(()),
-        Some(i) => Err(Failure::invalid(format!(
-            "radii[{i}] = {} is outside the tissue: expected 1 <= r <= R_inf = {r_inf}",
-            radii[i]
-        ))),
+        Some(i) => Err(Failure::invalid(format!("radii[{i}] = {} is outside the tissue: expected 1 <= r <= R_inf = {r_inf}", radii[i]))),
     }
 }
 

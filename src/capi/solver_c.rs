@@ -7,9 +7,9 @@
 //! same array (the input is copied first).
 #![allow(clippy::missing_safety_doc)]
 
-use crate::boundary::pointers::{self, NullArray};
 use super::error::{Failure, WoStatus, last_error_ptr, run};
 use super::solver;
+use crate::boundary::pointers::{self, NullArray};
 use crate::solver::{MeshSpec, Params};
 use std::ffi::{c_char, c_int};
 
@@ -226,8 +226,14 @@ pub extern "C" fn wo_last_error() -> *const c_char {
 #[unsafe(no_mangle)]
 pub extern "C" fn wo_status_name(status: c_int) -> *const c_char {
     let names = [
-        c"WO_OK", c"WO_NULL_POINTER", c"WO_INVALID_ARGUMENT", c"WO_UNKNOWN_HANDLE",
-        c"WO_INCOMPATIBLE_STATE", c"WO_SOLVER_FAILED", c"WO_INTERNAL_ERROR", c"WO_UNDEFINED",
+        c"WO_OK",
+        c"WO_NULL_POINTER",
+        c"WO_INVALID_ARGUMENT",
+        c"WO_UNKNOWN_HANDLE",
+        c"WO_INCOMPATIBLE_STATE",
+        c"WO_SOLVER_FAILED",
+        c"WO_INTERNAL_ERROR",
+        c"WO_UNDEFINED",
         c"WO_OUTSIDE_VALIDITY",
     ];
     usize::try_from(status).ok().and_then(|i| names.get(i)).map_or(c"unknown status".as_ptr(), |n| n.as_ptr())

@@ -19,11 +19,11 @@
 //! never under it. A second `fmi2FreeInstance` of the same handle finds nothing and is
 //! ignored.
 
+use crate::boundary::guard;
 use crate::boundary::pointers::{self, NullArray};
+use crate::boundary::registry::Table;
 use crate::fmi::common::instance::{Call, Dialect, Instance, Logger, Rejected, Status};
 use crate::fmi::fmi2::types::*;
-use crate::boundary::guard;
-use crate::boundary::registry::Table;
 use std::ffi::CString;
 use std::sync::{Arc, Mutex, TryLockError};
 
@@ -91,7 +91,10 @@ pub fn with_instance(
             Err(TryLockError::Poisoned(poisoned)) => {
                 entry.instance.clear_poison();
                 let mut inst = poisoned.into_inner();
-                inst.fail(&format!("{}: an earlier call on this instance was interrupted by an internal error", (entry.dialect.name)(call)));
+                inst.fail(&format!(
+                    "{}: an earlier call on this instance was interrupted by an internal error",
+                    (entry.dialect.name)(call)
+                ));
                 inst
             }
         };

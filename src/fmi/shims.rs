@@ -33,60 +33,88 @@ fn null(what: &str) -> String {
 /// `fmi2GetFMUstate` / `fmi3GetFMUState`: save into `*out` if it names one of the
 /// instance's states, else into a new one.
 pub unsafe fn get_fmu_state(c: *mut c_void, out: *mut *mut c_void, n: Names) -> StatusCode {
-    with_instance(c, Call::GetFmuState, || n.function.into(), |i| {
-        let slot = unsafe { out.as_mut() }.ok_or_else(|| null(n.state))?;
-        *slot = i.get_fmu_state(handle(*slot))? as *mut c_void;
-        OK
-    })
+    with_instance(
+        c,
+        Call::GetFmuState,
+        || n.function.into(),
+        |i| {
+            let slot = unsafe { out.as_mut() }.ok_or_else(|| null(n.state))?;
+            *slot = i.get_fmu_state(handle(*slot))? as *mut c_void;
+            OK
+        },
+    )
 }
 
 pub unsafe fn set_fmu_state(c: *mut c_void, state: *mut c_void, n: Names) -> StatusCode {
-    with_instance(c, Call::SetFmuState, || n.function.into(), |i| {
-        i.set_fmu_state(handle(state).ok_or_else(|| null(n.state))?).map(|_| Status::Ok)
-    })
+    with_instance(
+        c,
+        Call::SetFmuState,
+        || n.function.into(),
+        |i| i.set_fmu_state(handle(state).ok_or_else(|| null(n.state))?).map(|_| Status::Ok),
+    )
 }
 
 /// Frees `*state` and sets it to NULL; freeing a NULL state is a no-op, as for free().
 /// `null_slot_ok`: FMI 3.0 also accepts a NULL pointer to the state.
 pub unsafe fn free_fmu_state(c: *mut c_void, state: *mut *mut c_void, null_slot_ok: bool, n: Names) -> StatusCode {
-    with_instance(c, Call::FreeFmuState, || n.function.into(), |i| {
-        let Some(slot) = (unsafe { state.as_mut() }) else {
-            return if null_slot_ok { OK } else { Err(null(n.state)) };
-        };
-        if let Some(h) = handle(*slot) {
-            i.free_fmu_state(h)?;
-            *slot = std::ptr::null_mut();
-        }
-        OK
-    })
+    with_instance(
+        c,
+        Call::FreeFmuState,
+        || n.function.into(),
+        |i| {
+            let Some(slot) = (unsafe { state.as_mut() }) else {
+                return if null_slot_ok { OK } else { Err(null(n.state)) };
+            };
+            if let Some(h) = handle(*slot) {
+                i.free_fmu_state(h)?;
+                *slot = std::ptr::null_mut();
+            }
+            OK
+        },
+    )
 }
 
 pub unsafe fn serialized_fmu_state_size(c: *mut c_void, state: *mut c_void, size: *mut usize, n: Names) -> StatusCode {
-    with_instance(c, Call::SerializeFmuState, || n.function.into(), |i| {
-        let out = unsafe { size.as_mut() }.ok_or("size is NULL")?;
-        *out = i.serialize_fmu_state(handle(state).ok_or_else(|| null(n.state))?)?.len();
-        OK
-    })
+    with_instance(
+        c,
+        Call::SerializeFmuState,
+        || n.function.into(),
+        |i| {
+            let out = unsafe { size.as_mut() }.ok_or("size is NULL")?;
+            *out = i.serialize_fmu_state(handle(state).ok_or_else(|| null(n.state))?)?.len();
+            OK
+        },
+    )
 }
 
 pub unsafe fn serialize_fmu_state(c: *mut c_void, state: *mut c_void, bytes_out: *mut u8, size: usize, n: Names) -> StatusCode {
-    with_instance(c, Call::SerializeFmuState, || format!("{}(size={size})", n.function), |i| {
-        let bytes = i.serialize_fmu_state(handle(state).ok_or_else(|| null(n.state))?)?;
-        if size < bytes.len() {
-            return Err(format!("buffer of {size} bytes is too small: the state needs {}", bytes.len()));
-        }
-        unsafe { slice_mut(bytes_out, bytes.len(), "serializedState") }?.copy_from_slice(&bytes);
-        OK
-    })
+    with_instance(
+        c,
+        Call::SerializeFmuState,
+        || format!("{}(size={size})", n.function),
+        |i| {
+            let bytes = i.serialize_fmu_state(handle(state).ok_or_else(|| null(n.state))?)?;
+            if size < bytes.len() {
+                return Err(format!("buffer of {size} bytes is too small: the state needs {}", bytes.len()));
+            }
+            unsafe { slice_mut(bytes_out, bytes.len(), "serializedState") }?.copy_from_slice(&bytes);
+            OK
+        },
+    )
 }
 
 pub unsafe fn deserialize_fmu_state(c: *mut c_void, bytes: *const u8, size: usize, out: *mut *mut c_void, n: Names) -> StatusCode {
-    with_instance(c, Call::DeSerializeFmuState, || format!("{}(size={size})", n.function), |i| {
-        let slot = unsafe { out.as_mut() }.ok_or_else(|| null(n.state))?;
-        let bytes = unsafe { slice(bytes, size, "serializedState") }?;
-        *slot = i.deserialize_fmu_state(bytes, handle(*slot))? as *mut c_void;
-        OK
-    })
+    with_instance(
+        c,
+        Call::DeSerializeFmuState,
+        || format!("{}(size={size})", n.function),
+        |i| {
+            let slot = unsafe { out.as_mut() }.ok_or_else(|| null(n.state))?;
+            let bytes = unsafe { slice(bytes, size, "serializedState") }?;
+            *slot = i.deserialize_fmu_state(bytes, handle(*slot))? as *mut c_void;
+            OK
+        },
+    )
 }
 
 /// A transition without arguments (`fmi2EnterContinuousTimeMode`, ...).
@@ -99,9 +127,12 @@ pub fn set_time(c: *mut c_void, time: f64, function: &'static str) -> StatusCode
 }
 
 pub unsafe fn set_continuous_states(c: *mut c_void, x: *const f64, nx: usize, function: &'static str) -> StatusCode {
-    with_instance(c, Call::SetContinuousStates, || format!("{function}(n={nx})"), |i| {
-        i.set_continuous_states(unsafe { slice(x, nx, "the states") }?).map(|_| Status::Ok)
-    })
+    with_instance(
+        c,
+        Call::SetContinuousStates,
+        || format!("{function}(n={nx})"),
+        |i| i.set_continuous_states(unsafe { slice(x, nx, "the states") }?).map(|_| Status::Ok),
+    )
 }
 
 /// A getter of `n` values into `out` (derivatives, states, nominals).
@@ -113,11 +144,16 @@ pub unsafe fn get_vector(
     method: fn(&mut Instance, usize) -> Result<Vec<f64>, String>,
     function: &'static str,
 ) -> StatusCode {
-    with_instance(c, call, || format!("{function}(n={n})"), |i| {
-        let values = method(i, n)?;
-        unsafe { slice_mut(out, n, "the output array") }?.copy_from_slice(&values);
-        OK
-    })
+    with_instance(
+        c,
+        call,
+        || format!("{function}(n={n})"),
+        |i| {
+            let values = method(i, n)?;
+            unsafe { slice_mut(out, n, "the output array") }?.copy_from_slice(&values);
+            OK
+        },
+    )
 }
 
 pub fn get_event_indicators(c: *mut c_void, ni: usize, function: &'static str) -> StatusCode {

@@ -17,7 +17,5 @@ pub mod wound;
 use crate::fmi::common::model::{Description, FmuModel};
 
 /// The models of this library: description and a constructor of a fresh model.
-pub static MODELS: [(&Description, fn() -> Box<dyn FmuModel>); 2] = [
-    (&wound::variables::DESCRIPTION, wound::WoundModel::fresh),
-    (&purse_string::variables::DESCRIPTION, purse_string::PurseModel::fresh),
-];
+pub static MODELS: [(&Description, fn() -> Box<dyn FmuModel>); 2] =
+    [(&wound::variables::DESCRIPTION, wound::WoundModel::fresh), (&purse_string::variables::DESCRIPTION, purse_string::PurseModel::fresh)];

@@ -20,12 +20,7 @@ type BoxError = Box<dyn std::error::Error>;
 /// The model whose archives carry the cases.
 const MODEL: &str = "WoundOpening";
 pub const LAMBDAS: [f64; 3] = [0.1, 1.0, 10.0];
-const EXPERIMENT: Experiment = Experiment {
-    start: 0.0,
-    stop: 500.0,
-    step: 0.5,
-    tolerance: 1e-10,
-};
+const EXPERIMENT: Experiment = Experiment { start: 0.0, stop: 500.0, step: 0.5, tolerance: 1e-10 };
 
 fn values(lambda: f64) -> [(&'static str, f64); 3] {
     [("lambda", lambda), ("sigma", 1.0), ("R_inf", 10.0)]
@@ -39,10 +34,7 @@ pub struct Case {
 }
 
 /// The cases of model `d` (none for a model other than WoundOpening).
-pub fn simulate(
-    d: &'static Description,
-    fresh: fn() -> Box<dyn FmuModel>,
-) -> Result<Vec<Case>, String> {
+pub fn simulate(d: &'static Description, fresh: fn() -> Box<dyn FmuModel>) -> Result<Vec<Case>, String> {
     if d.model_identifier != MODEL {
         return Ok(Vec::new());
     }
@@ -50,11 +42,7 @@ pub fn simulate(
         .iter()
         .map(|&lambda| {
             let results = reference::simulate_with(d, fresh, &values(lambda), EXPERIMENT)?;
-            Ok(Case {
-                stem: format!("{MODEL}_lambda_{lambda}"),
-                lambda,
-                results,
-            })
+            Ok(Case { stem: format!("{MODEL}_lambda_{lambda}"), lambda, results })
         })
         .collect()
 }
@@ -62,7 +50,10 @@ pub fn simulate(
 /// fmusim's command-line options that reproduce the case, one a line.
 fn options(lambda: f64) -> String {
     let e = EXPERIMENT;
-    let mut out = format!("--interface-type cs\n--start-time {}\n--stop-time {}\n--output-interval {}\n--tolerance {:e}\n", e.start, e.stop, e.step, e.tolerance);
+    let mut out = format!(
+        "--interface-type cs\n--start-time {}\n--stop-time {}\n--output-interval {}\n--tolerance {:e}\n",
+        e.start, e.stop, e.step, e.tolerance
+    );
     for (name, value) in values(lambda) {
         out.push_str(&format!("--start-value {name} {value}\n"));
     }
@@ -79,14 +70,8 @@ pub fn entries(cases: &[Case]) -> (Vec<(String, Vec<u8>)>, String) {
             "  <Related type=\"text/csv\" source=\"{csv}\" role=\"result\" description=\"The paper's case lambda = {l}, sigma = 1, R_inf = 10, edge_stress = 0, run with the options of {opt}\"/>\n  <Related type=\"text/plain\" source=\"{opt}\" role=\"experiment\" description=\"fmusim options that made {csv}\"/>\n",
             l = c.lambda
         ));
-        files.push((
-            format!("{}/{csv}", reference::FOLDER),
-            c.results.csv().into_bytes(),
-        ));
-        files.push((
-            format!("{}/{opt}", reference::FOLDER),
-            options(c.lambda).into_bytes(),
-        ));
+        files.push((format!("{}/{csv}", reference::FOLDER), c.results.csv().into_bytes()));
+        files.push((format!("{}/{opt}", reference::FOLDER), options(c.lambda).into_bytes()));
     }
     (files, related)
 }
@@ -100,18 +85,9 @@ pub fn section_html(cases: &[Case]) -> Result<String, BoxError> {
     {
         let root = SVGBackend::with_string(&mut svg, (720, 420)).into_drawing_area();
         root.fill(&WHITE)?;
-        let column = cases[0]
-            .results
-            .names
-            .iter()
-            .position(|n| *n == "wound_radius")
-            .ok_or("no wound_radius output")?
-            + 1;
+        let column = cases[0].results.names.iter().position(|n| *n == "wound_radius").ok_or("no wound_radius output")? + 1;
         let mut chart = ChartBuilder::on(&root)
-            .caption(
-                "wound_radius, the paper's three cases (reference results)",
-                ("sans-serif", 20),
-            )
+            .caption("wound_radius, the paper's three cases (reference results)", ("sans-serif", 20))
             .margin(14)
             .x_label_area_size(56)
             .y_label_area_size(80)
@@ -125,24 +101,13 @@ pub fn section_html(cases: &[Case]) -> Result<String, BoxError> {
             .x_label_formatter(&|t| format!("{t}"))
             .draw()?;
         // Okabe-Ito colours.
-        let colours = [
-            RGBColor(0, 114, 178),
-            RGBColor(213, 94, 0),
-            RGBColor(0, 158, 115),
-        ];
+        let colours = [RGBColor(0, 114, 178), RGBColor(213, 94, 0), RGBColor(0, 158, 115)];
         for (c, colour) in cases.iter().zip(colours) {
-            let points = c
-                .results
-                .rows
-                .iter()
-                .filter(|r| r[0] > 0.0)
-                .map(|r| (r[0], r[column]));
+            let points = c.results.rows.iter().filter(|r| r[0] > 0.0).map(|r| (r[0], r[column]));
             chart
                 .draw_series(LineSeries::new(points, colour.stroke_width(3)))?
                 .label(format!("lambda = {}", c.lambda))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3))
-                });
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3)));
         }
         chart
             .configure_series_labels()
@@ -153,10 +118,7 @@ pub fn section_html(cases: &[Case]) -> Result<String, BoxError> {
             .draw()?;
         root.present()?;
     }
-    let files: Vec<String> = cases
-        .iter()
-        .map(|c| format!("<code>{}_ref.csv</code>", c.stem))
-        .collect();
+    let files: Vec<String> = cases.iter().map(|c| format!("<code>{}_ref.csv</code>", c.stem)).collect();
     Ok(format!(
         "<h2>The paper's three cases</h2>\n<p>lambda = 0.1, 1 and 10 with sigma = 1, R_inf = 10, edge_stress = 0, from 0 to {stop} T at an output interval of {step} T: {files} in <code>{folder}/</code>, each with the fmusim options that made it (<code>.opt</code>). They agree with the exact solution (Laplace transform, python/wound_exact.py) within the default tolerance, 1e-10 of the opening R_final - R1 (measured: at most 7.8e-12, at lambda = 0.1).</p>\n{svg}\n",
         stop = EXPERIMENT.stop,

@@ -43,12 +43,7 @@ fn plot_svg(results: &Results, column: usize, unit: &str) -> Result<String, BoxE
 
 /// How to run this FMU with fmpy, for its outputs.
 fn usage(d: &Description, file: &str) -> String {
-    let outputs: Vec<String> = d
-        .variables
-        .iter()
-        .filter(|v| v.causality.as_str() == "output")
-        .map(|v| format!("'{}'", v.name))
-        .collect();
+    let outputs: Vec<String> = d.variables.iter().filter(|v| v.causality.as_str() == "output").map(|v| format!("'{}'", v.name)).collect();
     let e = d.default_experiment;
     format!(
         "<h2>Usage with fmpy</h2>\n<pre>from fmpy import simulate_fmu\n\nresult = simulate_fmu('{file}', stop_time={stop}, output_interval={step},\n                      output=[{outputs}])\nprint(result['time'][-1], result[{first}][-1])</pre>\n",
@@ -88,8 +83,7 @@ fn variable_rows(variables: &[Variable]) -> String {
 }
 
 const STYLE: &str = "body{font-family:sans-serif;font-size:16px;max-width:60em;margin:2em auto}td,th{padding:.2em .6em;border-bottom:1px solid #ccc}pre{background:#f4f4f4;padding:.6em;overflow-x:auto}svg{max-width:100%;height:auto}";
-const TABLE_HEAD: &str =
-    "<tr><th>name</th><th>value reference</th><th>causality</th><th>start</th><th>unit</th><th>description</th></tr>";
+const TABLE_HEAD: &str = "<tr><th>name</th><th>value reference</th><th>causality</th><th>start</th><th>unit</th><th>description</th></tr>";
 
 /// The page of one archive; `interfaces` says which FMI version and interface types it has.
 /// `more` is HTML appended after the reference results (the paper's cases, [`super::cases`]).

@@ -73,7 +73,10 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
             entries.extend(binary_entries(&binaries, version, id));
             entries.extend([
                 ("documentation/index.html".into(), docs.into_bytes()),
-                (format!("{}/fmi-ls-manifest.xml", reference::FOLDER), reference::manifest(description, &csv_name, &case_related).into_bytes()),
+                (
+                    format!("{}/fmi-ls-manifest.xml", reference::FOLDER),
+                    reference::manifest(description, &csv_name, &case_related).into_bytes(),
+                ),
                 (format!("{}/{csv_name}", reference::FOLDER), results.csv().into_bytes()),
             ]);
             entries.extend(case_files.iter().cloned());

@@ -96,9 +96,7 @@ fn target_installed(triple: &str) -> bool {
     match libdir {
         Ok(out) if out.status.success() => {
             let dir = PathBuf::from(String::from_utf8_lossy(&out.stdout).trim());
-            std::fs::read_dir(dir).is_ok_and(|entries| {
-                entries.flatten().any(|e| e.file_name().to_string_lossy().starts_with("libstd-"))
-            })
+            std::fs::read_dir(dir).is_ok_and(|entries| entries.flatten().any(|e| e.file_name().to_string_lossy().starts_with("libstd-")))
         }
         _ => false,
     }

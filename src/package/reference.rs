@@ -9,9 +9,9 @@
 //! ```
 
 use std::sync::Arc;
-use wound_opening::fmi::common::xml;
 use wound_opening::fmi::common::instance::{Instance, Logger, Status};
 use wound_opening::fmi::common::model::{Causality, Description, Experiment, FmuModel};
+use wound_opening::fmi::common::xml;
 
 pub const FOLDER: &str = "extra/org.fmi-standard.fmi-ls-ref";
 

@@ -20,12 +20,7 @@ pub const FILE: &str = "WoundClosure.ssp";
 const STOP: f64 = 300.0;
 
 /// (component, archive, connectors (name, kind), parameters (name, value)).
-type Component = (
-    &'static str,
-    &'static str,
-    &'static [(&'static str, &'static str)],
-    &'static [(&'static str, f64)],
-);
+type Component = (&'static str, &'static str, &'static [(&'static str, &'static str)], &'static [(&'static str, f64)]);
 
 /// The worked example of python/coupling/loop.py (WOUND_EXAMPLE, PURSE_EXAMPLE):
 /// tests/python/test_ssp.py checks that they agree.
@@ -33,42 +28,20 @@ const COMPONENTS: [Component; 2] = [
     (
         "wound",
         "WoundOpening.fmu",
-        &[
-            ("edge_stress", "input"),
-            ("wound_radius", "output"),
-            ("edge_velocity", "output"),
-        ],
-        &[
-            ("lambda", 1.0),
-            ("sigma", 1.0),
-            ("R_inf", 10.0),
-            ("R0", 10.0),
-            ("T", 10.0),
-            ("G", 100.0),
-        ],
+        &[("edge_stress", "input"), ("wound_radius", "output"), ("edge_velocity", "output")],
+        &[("lambda", 1.0), ("sigma", 1.0), ("R_inf", 10.0), ("R0", 10.0), ("T", 10.0), ("G", 100.0)],
     ),
     (
         "purse",
         "PurseString.fmu",
-        &[
-            ("wound_radius", "input"),
-            ("edge_stress", "output"),
-            ("line_tension", "output"),
-        ],
-        &[
-            ("T_max", 6500.0),
-            ("t_assembly", 30.0),
-            ("t_delay", 20.0),
-            ("thickness", 5.0),
-        ],
+        &[("wound_radius", "input"), ("edge_stress", "output"), ("line_tension", "output")],
+        &[("T_max", 6500.0), ("t_assembly", 30.0), ("t_delay", 20.0), ("thickness", 5.0)],
     ),
 ];
 
 /// (start element, start connector, end element, end connector).
-const CONNECTIONS: [(&str, &str, &str, &str); 2] = [
-    ("wound", "wound_radius", "purse", "wound_radius"),
-    ("purse", "edge_stress", "wound", "edge_stress"),
-];
+const CONNECTIONS: [(&str, &str, &str, &str); 2] =
+    [("wound", "wound_radius", "purse", "wound_radius"), ("purse", "edge_stress", "wound", "edge_stress")];
 
 /// SystemStructure.ssd (valid against SSP 1.0's SystemStructureDescription.xsd).
 pub fn ssd() -> String {
@@ -84,12 +57,16 @@ pub fn ssd() -> String {
         }
         elements.push_str("        </ssd:Connectors>\n      </ssd:Component>\n");
         for (parameter, value) in values {
-            parameters.push_str(&format!("              <ssv:Parameter name=\"{name}.{parameter}\"><ssv:Real value=\"{value}\"/></ssv:Parameter>\n"));
+            parameters.push_str(&format!(
+                "              <ssv:Parameter name=\"{name}.{parameter}\"><ssv:Real value=\"{value}\"/></ssv:Parameter>\n"
+            ));
         }
     }
     let connections: String = CONNECTIONS
         .iter()
-        .map(|(a, ac, b, bc)| format!("      <ssd:Connection startElement=\"{a}\" startConnector=\"{ac}\" endElement=\"{b}\" endConnector=\"{bc}\"/>\n"))
+        .map(|(a, ac, b, bc)| {
+            format!("      <ssd:Connection startElement=\"{a}\" startConnector=\"{ac}\" endElement=\"{b}\" endConnector=\"{bc}\"/>\n")
+        })
         .collect();
     format!(
         r#"<?xml version="1.0" encoding="UTF-8"?>
@@ -121,8 +98,7 @@ pub fn write_ssp(out_dir: &Path) -> Result<PathBuf, BoxError> {
     let mut entries = vec![("SystemStructure.ssd".to_string(), ssd().into_bytes())];
     for (_, archive, _, _) in COMPONENTS {
         let path = out_dir.join(archive);
-        let bytes = std::fs::read(&path)
-            .map_err(|e| format!("cannot read {} for {FILE}: {e}", path.display()))?;
+        let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {} for {FILE}: {e}", path.display()))?;
         entries.push((format!("resources/{archive}"), bytes));
     }
     let path = out_dir.join(FILE);

@@ -30,16 +30,16 @@ pub mod validity;
 
 pub use mesh::{Mesh, MeshSpec};
 pub use modal::ModalError;
-pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy, sigma_floor};
 pub use params::{
-    EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, SIGMA_MIN, check_edge_stress, check_lambda,
-    check_r_inf, check_sigma,
+    EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, SIGMA_MIN, check_edge_stress,
+    check_lambda, check_r_inf, check_sigma,
 };
+pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy, sigma_floor};
 
 pub use explicit::stability_limits as explicit_stability_limits;
 
-pub use engine::Ode;
 use engine::Engine;
+pub use engine::Ode;
 use exact_time::{ModalEngine, Operator};
 use std::sync::Arc;
 
@@ -75,14 +75,23 @@ pub enum SolverError {
     Tolerance(f64),
     /// A sigma so small that the rounding of the wound radius misses the tolerance
     /// ([`tolerance::sigma_floor`]).
-    Unresolved { sigma: f64, tolerance: f64, floor: f64 },
+    Unresolved {
+        sigma: f64,
+        tolerance: f64,
+        floor: f64,
+    },
     /// A communication step that would need more internal work than allowed
     /// (its work, the limit).
     TooManySteps(f64, f64),
     /// The explicit scheme blew up in this step (state left as before the step).
     Diverged,
     /// A step of the explicit scheme beyond its von Neumann limits, refused before it is taken.
-    Unstable { lambda: f64, lambda_max: f64, dt: f64, dt_max: f64 },
+    Unstable {
+        lambda: f64,
+        lambda_max: f64,
+        dt: f64,
+        dt_max: f64,
+    },
     /// An edge stress varying within a step asked of a scheme that holds it constant.
     NotLinearInTime,
 }
@@ -113,9 +122,15 @@ impl std::fmt::Display for SolverError {
             ),
             Self::Unstable { lambda, lambda_max, dt, dt_max } => {
                 if lambda >= lambda_max {
-                    write!(f, "the explicit scheme is unstable for lambda = {lambda} >= {lambda_max:.4e} (about dr/2 on this grid), whatever the step: use method 0")
+                    write!(
+                        f,
+                        "the explicit scheme is unstable for lambda = {lambda} >= {lambda_max:.4e} (about dr/2 on this grid), whatever the step: use method 0"
+                    )
                 } else {
-                    write!(f, "the explicit scheme's internal step {dt:.4e} breaks its stability limit dt < {dt_max:.4e} (2/kappa_max - 2 lambda^2): lower internal_step or take shorter communication steps")
+                    write!(
+                        f,
+                        "the explicit scheme's internal step {dt:.4e} breaks its stability limit dt < {dt_max:.4e} (2/kappa_max - 2 lambda^2): lower internal_step or take shorter communication steps"
+                    )
                 }
             }
             Self::Diverged => write!(

@@ -129,7 +129,15 @@ mod tests {
             Params { r_inf: f64::NAN, ..Params::default() },
         ];
         let names = ["lambda = -0.5", "lambda = NaN", "sigma = inf", "R_inf = 1 ", "R_inf = NaN"];
-        let bounds = [Params { lambda: 1.0000001e6, ..Params::default() }, Params { sigma: -6.0, ..Params::default() }, Params { lambda: 1e-300, ..Params::default() }, Params { lambda: 0.99e-150, ..Params::default() }, Params { sigma: 1.0000001e6, ..Params::default() }, Params { r_inf: 1.000999, ..Params::default() }, Params { r_inf: 1.0000001e6, ..Params::default() }];
+        let bounds = [
+            Params { lambda: 1.0000001e6, ..Params::default() },
+            Params { sigma: -6.0, ..Params::default() },
+            Params { lambda: 1e-300, ..Params::default() },
+            Params { lambda: 0.99e-150, ..Params::default() },
+            Params { sigma: 1.0000001e6, ..Params::default() },
+            Params { r_inf: 1.000999, ..Params::default() },
+            Params { r_inf: 1.0000001e6, ..Params::default() },
+        ];
         for p in bounds {
             let msg = p.validate().unwrap_err().to_string();
             assert!(msg.contains("outside the accepted range"), "{msg}");

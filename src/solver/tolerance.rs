@@ -38,18 +38,8 @@
 use super::{MeshSpec, Params, Settings, SolverError};
 
 /// `(tolerance, largest element width dxi)` pairs, tolerance decreasing.
-const MAX_DXI: [(f64, f64); 10] = [
-    (1e-2, 3.2),
-    (1e-3, 2.5),
-    (1e-4, 2.2),
-    (1e-5, 1.75),
-    (1e-6, 1.5),
-    (1e-7, 1.25),
-    (1e-8, 1.05),
-    (1e-9, 0.9),
-    (1e-10, 0.8),
-    (1e-11, 0.6),
-];
+const MAX_DXI: [(f64, f64); 10] =
+    [(1e-2, 3.2), (1e-3, 2.5), (1e-4, 2.2), (1e-5, 1.75), (1e-6, 1.5), (1e-7, 1.25), (1e-8, 1.05), (1e-9, 0.9), (1e-10, 0.8), (1e-11, 0.6)];
 
 /// Polynomial degree of the tolerance-driven meshes.
 pub const DEGREE: usize = 8;

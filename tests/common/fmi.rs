@@ -5,8 +5,8 @@
 #![allow(dead_code)]
 
 use std::ffi::CString;
-use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::exchange::*;
+use wound_opening::fmi::fmi2::functions::*;
 use wound_opening::fmi::fmi2::types::*;
 
 pub const OK: fmi2Status = 0;

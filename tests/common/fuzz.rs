@@ -58,8 +58,24 @@ impl Rng {
     /// ordinary values, any magnitude, or any bit pattern.
     pub fn real(&mut self) -> f64 {
         const SPECIAL: [f64; 18] = [
-            0.0, -0.0, 1.0, -1.0, 0.5, 2.0, 10.0, 1.0 + f64::EPSILON, 1e-300, -1e-300, 1e300, -1e300,
-            f64::NAN, f64::INFINITY, f64::NEG_INFINITY, f64::MIN_POSITIVE, f64::MAX, 5e-324,
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            2.0,
+            10.0,
+            1.0 + f64::EPSILON,
+            1e-300,
+            -1e-300,
+            1e300,
+            -1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            5e-324,
         ];
         match self.below(4) {
             0 => self.pick(&SPECIAL),

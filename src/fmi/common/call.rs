@@ -72,10 +72,20 @@ impl Call {
     pub fn interface(self) -> Option<Interface> {
         use Call::*;
         match self {
-            DoStep | FinishStep | CancelStep | GetStatus | SetRealInputDerivatives | GetRealOutputDerivatives => Some(Interface::CoSimulation),
-            EnterEventMode | NewDiscreteStates | EnterContinuousTimeMode | CompletedIntegratorStep | SetTime
-            | SetContinuousStates | GetDerivatives | GetEventIndicators | GetContinuousStates
-            | GetNominalsOfContinuousStates | GetNumberOf => Some(Interface::ModelExchange),
+            DoStep | FinishStep | CancelStep | GetStatus | SetRealInputDerivatives | GetRealOutputDerivatives => {
+                Some(Interface::CoSimulation)
+            }
+            EnterEventMode
+            | NewDiscreteStates
+            | EnterContinuousTimeMode
+            | CompletedIntegratorStep
+            | SetTime
+            | SetContinuousStates
+            | GetDerivatives
+            | GetEventIndicators
+            | GetContinuousStates
+            | GetNominalsOfContinuousStates
+            | GetNumberOf => Some(Interface::ModelExchange),
             _ => None,
         }
     }
@@ -83,7 +93,8 @@ impl Call {
     /// States in which `dialect` allows the call: FMI 2.0's table ([`Call::allowed`]), and
     /// where the dialect differs, its rules.
     pub fn allowed_in(self, m: Machine, dialect: &Dialect) -> bool {
-        self.allowed(m) || (dialect.get_before_initialization && self == Call::Get && matches!(m, Machine::Instantiated | Machine::ConfigurationMode))
+        self.allowed(m)
+            || (dialect.get_before_initialization && self == Call::Get && matches!(m, Machine::Instantiated | Machine::ConfigurationMode))
     }
 
     /// States in which FMI 2.0 allows the call (FMI 3.0's extra states included: an FMI 2.0
@@ -100,9 +111,18 @@ impl Call {
             // After an internal failure only recovery and inspection remain.
             return matches!(
                 self,
-                Call::SetDebugLogging | Call::Reset | Call::Get | Call::GetFmuState | Call::SetFmuState | Call::FreeFmuState
-                    | Call::SerializeFmuState | Call::DeSerializeFmuState | Call::GetDerivatives | Call::GetEventIndicators
-                    | Call::GetContinuousStates | Call::GetNominalsOfContinuousStates
+                Call::SetDebugLogging
+                    | Call::Reset
+                    | Call::Get
+                    | Call::GetFmuState
+                    | Call::SetFmuState
+                    | Call::FreeFmuState
+                    | Call::SerializeFmuState
+                    | Call::DeSerializeFmuState
+                    | Call::GetDerivatives
+                    | Call::GetEventIndicators
+                    | Call::GetContinuousStates
+                    | Call::GetNominalsOfContinuousStates
             );
         }
         match self {

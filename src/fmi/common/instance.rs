@@ -9,11 +9,11 @@
 //! master may go on with the instance as it was, restore a saved FMU state, or reset.
 
 pub use crate::fmi::common::call::{Call, Dialect};
-pub use crate::fmi::common::log::{Logger, Status};
-pub use crate::fmi::common::model::Rejected;
 use crate::fmi::common::log::Log;
-use crate::fmi::common::model::{Causality, Description, FmuModel, Kind, Named, Variability};
+pub use crate::fmi::common::log::{Logger, Status};
 pub use crate::fmi::common::machine::{Clock, Interface, Machine, time_slack};
+pub use crate::fmi::common::model::Rejected;
+use crate::fmi::common::model::{Causality, Description, FmuModel, Kind, Named, Variability};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -190,7 +190,9 @@ impl Instance {
         }
         // 0 is "none given": OMSimulator passes it when an SSP sets no tolerance.
         if tolerance == Some(0.0) {
-            self.log.note("tolerance = 0 with toleranceDefined is taken as no tolerance given: the model's own (its tolerance parameter) is in force");
+            self.log.note(
+                "tolerance = 0 with toleranceDefined is taken as no tolerance given: the model's own (its tolerance parameter) is in force",
+            );
         }
         let tolerance = tolerance.filter(|&t| t != 0.0);
         self.clock = Clock { start, stop, time: start };
@@ -305,12 +307,13 @@ impl Instance {
                 state => {
                     let name = d.state_name(state);
                     return Err(format!(
-                        "{name} (value reference {v}) is a continuous state or derivative: states are set with {}", self.name_of(Call::SetContinuousStates)
+                        "{name} (value reference {v}) is a continuous state or derivative: states are set with {}",
+                        self.name_of(Call::SetContinuousStates)
                     ));
                 }
             };
-            let fixed_now = var.variability == Variability::Fixed
-                && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
+            let fixed_now =
+                var.variability == Variability::Fixed && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
             if var.causality == Causality::Output {
                 return Err(format!("{} (value reference {v}) is an output and cannot be set", var.name));
             }
@@ -402,7 +405,11 @@ impl Instance {
                         (true, true) => " or a continuous state",
                         (true, false) => " or a state derivative",
                     };
-                    Err(format!("{} (value reference {v}) is {article} {role} but a {what} must be a Real {}{also}", d.state_name(named), want.as_str()))
+                    Err(format!(
+                        "{} (value reference {v}) is {article} {role} but a {what} must be a Real {}{also}",
+                        d.state_name(named),
+                        want.as_str()
+                    ))
                 }
             }
         };

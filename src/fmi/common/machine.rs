@@ -93,4 +93,3 @@ impl Clock {
 pub fn time_slack(h: f64, t: f64) -> f64 {
     1e-6 * h + 4.0 * f64::EPSILON * t.abs()
 }
-

@@ -111,9 +111,7 @@ impl<'a> Reader<'a> {
 /// state's value)` must agree to the bit.
 pub fn same_parameters(pairs: &[(&str, f64, f64)]) -> Result<(), String> {
     match pairs.iter().find(|(_, mine, theirs)| mine.to_bits() != theirs.to_bits()) {
-        Some((name, mine, theirs)) => {
-            Err(format!("serialized FMU state has {name} = {theirs} but this instance has {name} = {mine}"))
-        }
+        Some((name, mine, theirs)) => Err(format!("serialized FMU state has {name} = {theirs} but this instance has {name} = {mine}")),
         None => Ok(()),
     }
 }
@@ -130,17 +128,11 @@ pub fn decode<'a>(model_identifier: &str, bytes: &'a [u8]) -> Result<(Machine, C
     let mut r = Reader { bytes: &bytes[..bytes.len().saturating_sub(4)], at: 8 };
     let version = r.u32()?;
     if version != FORMAT_VERSION {
-        return Err(format!(
-            "serialized FMU state has format version {version}; this FMU reads version {FORMAT_VERSION}"
-        ));
+        return Err(format!("serialized FMU state has format version {version}; this FMU reads version {FORMAT_VERSION}"));
     }
     let payload = r.u32()? as usize;
     if bytes.len() != HEADER + payload + 4 {
-        return Err(format!(
-            "serialized FMU state is {} bytes but its header announces {}",
-            bytes.len(),
-            HEADER + payload + 4
-        ));
+        return Err(format!("serialized FMU state is {} bytes but its header announces {}", bytes.len(), HEADER + payload + 4));
     }
     let stored = u32::from_le_bytes(bytes[HEADER + payload..].try_into().expect("4 bytes"));
     let actual = crc32fast::hash(&bytes[..HEADER + payload]);

@@ -2,10 +2,10 @@
 //! [`crate::fmi::common::exchange`], framed like every other function by [`with_instance`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use crate::fmi::frame::with_instance;
-use crate::fmi::shims;
 use crate::fmi::common::instance::{Call, Instance, Status};
 use crate::fmi::fmi2::types::*;
+use crate::fmi::frame::with_instance;
+use crate::fmi::shims;
 
 const OK: Result<Status, String> = Ok(Status::Ok);
 
@@ -21,19 +21,24 @@ pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: *mut fmi2EventInfo) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::NewDiscreteStates, || "fmi2NewDiscreteStates".into(), |i| {
-            let out = fmi2eventInfo.as_mut().ok_or("fmi2eventInfo is NULL")?;
-            let info = i.new_discrete_states()?;
-            *out = fmi2EventInfo {
-                newDiscreteStatesNeeded: flag(info.new_discrete_states_needed),
-                terminateSimulation: flag(info.terminate_simulation),
-                nominalsOfContinuousStatesChanged: flag(info.nominals_changed),
-                valuesOfContinuousStatesChanged: flag(info.values_changed),
-                nextEventTimeDefined: flag(info.next_event_time.is_some()),
-                nextEventTime: info.next_event_time.unwrap_or(0.0),
-            };
-            OK
-        })
+        with_instance(
+            c,
+            Call::NewDiscreteStates,
+            || "fmi2NewDiscreteStates".into(),
+            |i| {
+                let out = fmi2eventInfo.as_mut().ok_or("fmi2eventInfo is NULL")?;
+                let info = i.new_discrete_states()?;
+                *out = fmi2EventInfo {
+                    newDiscreteStatesNeeded: flag(info.new_discrete_states_needed),
+                    terminateSimulation: flag(info.terminate_simulation),
+                    nominalsOfContinuousStatesChanged: flag(info.nominals_changed),
+                    valuesOfContinuousStatesChanged: flag(info.values_changed),
+                    nextEventTimeDefined: flag(info.next_event_time.is_some()),
+                    nextEventTime: info.next_event_time.unwrap_or(0.0),
+                };
+                OK
+            },
+        )
     }
 }
 
@@ -50,13 +55,18 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
     terminateSimulation: *mut fmi2Boolean,
 ) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::CompletedIntegratorStep, || "fmi2CompletedIntegratorStep".into(), |i| {
-            let enter = enterEventMode.as_mut().ok_or("enterEventMode is NULL")?;
-            let terminate = terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
-            let (e, t) = i.completed_integrator_step()?;
-            (*enter, *terminate) = (flag(e), flag(t));
-            OK
-        })
+        with_instance(
+            c,
+            Call::CompletedIntegratorStep,
+            || "fmi2CompletedIntegratorStep".into(),
+            |i| {
+                let enter = enterEventMode.as_mut().ok_or("enterEventMode is NULL")?;
+                let terminate = terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
+                let (e, t) = i.completed_integrator_step()?;
+                (*enter, *terminate) = (flag(e), flag(t));
+                OK
+            },
+        )
     }
 }
 
@@ -88,6 +98,13 @@ pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2R
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, x_nominal: *mut fmi2Real, nx: usize) -> fmi2Status {
     unsafe {
-        shims::get_vector(c, Call::GetNominalsOfContinuousStates, x_nominal, nx, Instance::get_nominals, "fmi2GetNominalsOfContinuousStates")
+        shims::get_vector(
+            c,
+            Call::GetNominalsOfContinuousStates,
+            x_nominal,
+            nx,
+            Instance::get_nominals,
+            "fmi2GetNominalsOfContinuousStates",
+        )
     }
 }

@@ -4,12 +4,12 @@
 //! instance, by [`guard`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use crate::fmi::shims::{self, Names};
-use crate::fmi::frame::{CallbackLogger, register, slice, slice_mut, text, unregister, with_instance};
 use crate::boundary::guard;
 use crate::fmi::common::instance::{Call, Instance, Interface, Status};
 use crate::fmi::fmi2::types::*;
-use std::ffi::{c_char, CString};
+use crate::fmi::frame::{CallbackLogger, register, slice, slice_mut, text, unregister, with_instance};
+use crate::fmi::shims::{self, Names};
+use std::ffi::{CString, c_char};
 use std::sync::Arc;
 
 const OK: Result<Status, String> = Ok(Status::Ok);
@@ -66,7 +66,14 @@ pub unsafe extern "C" fn fmi2Instantiate(
             Err(msg) => return fail(msg),
         };
         let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
-        Some(register(Instance::of_interface(interface, crate::fmi::fmi2::names::FMI2, fresh, &name, Arc::new(sink), loggingOn != FMI2_FALSE)))
+        Some(register(Instance::of_interface(
+            interface,
+            crate::fmi::fmi2::names::FMI2,
+            fresh,
+            &name,
+            Arc::new(sink),
+            loggingOn != FMI2_FALSE,
+        )))
     });
     made.ok().flatten().unwrap_or(std::ptr::null_mut())
 }
@@ -85,11 +92,16 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     categories: *const fmi2String,
 ) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::SetDebugLogging, || format!("fmi2SetDebugLogging(loggingOn={loggingOn}, nCategories={nCategories})"), |i| {
-            let names = slice(categories, nCategories, "categories")?;
-            let names: Vec<String> = names.iter().map(|&p| text(p).unwrap_or_default()).collect();
-            i.set_debug_logging(loggingOn != FMI2_FALSE, &names).map(|_| Status::Ok)
-        })
+        with_instance(
+            c,
+            Call::SetDebugLogging,
+            || format!("fmi2SetDebugLogging(loggingOn={loggingOn}, nCategories={nCategories})"),
+            |i| {
+                let names = slice(categories, nCategories, "categories")?;
+                let names: Vec<String> = names.iter().map(|&p| text(p).unwrap_or_default()).collect();
+                i.set_debug_logging(loggingOn != FMI2_FALSE, &names).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
@@ -104,9 +116,12 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 ) -> fmi2Status {
     let tol = (toleranceDefined != FMI2_FALSE).then_some(tolerance);
     let stop = (stopTimeDefined != FMI2_FALSE).then_some(stopTime);
-    with_instance(c, Call::SetupExperiment, || format!("fmi2SetupExperiment(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"), |i| {
-        i.setup_experiment(tol, startTime, stop).map(|_| Status::Ok)
-    })
+    with_instance(
+        c,
+        Call::SetupExperiment,
+        || format!("fmi2SetupExperiment(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"),
+        |i| i.setup_experiment(tol, startTime, stop).map(|_| Status::Ok),
+    )
 }
 
 /// A call without arguments that only moves the state machine: `fmi2EnterInitializationMode`,
@@ -139,22 +154,32 @@ pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Real) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::Get, || format!("fmi2GetReal(nvr={nvr})"), |i| {
-            let vr = slice(vr, nvr, "vr")?;
-            let out = slice_mut(value, nvr, "value")?;
-            i.get_real(vr, out).map(|_| Status::Ok)
-        })
+        with_instance(
+            c,
+            Call::Get,
+            || format!("fmi2GetReal(nvr={nvr})"),
+            |i| {
+                let vr = slice(vr, nvr, "vr")?;
+                let out = slice_mut(value, nvr, "value")?;
+                i.get_real(vr, out).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Real) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::Set, || format!("fmi2SetReal(nvr={nvr})"), |i| {
-            let vr = slice(vr, nvr, "vr")?;
-            let values = slice(value, nvr, "value")?;
-            i.set_real(vr, values).map(|_| Status::Ok)
-        })
+        with_instance(
+            c,
+            Call::Set,
+            || format!("fmi2SetReal(nvr={nvr})"),
+            |i| {
+                let vr = slice(vr, nvr, "vr")?;
+                let values = slice(value, nvr, "value")?;
+                i.set_real(vr, values).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
@@ -163,23 +188,45 @@ pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueRefer
 ///
 /// # Safety
 /// `vr` is NULL or points to `nvr` value references.
-unsafe fn no_such_variables(c: fmi2Component, call: Call, fname: &str, kind: &str, vr: *const fmi2ValueReference, nvr: usize) -> fmi2Status {
+unsafe fn no_such_variables(
+    c: fmi2Component,
+    call: Call,
+    fname: &str,
+    kind: &str,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+) -> fmi2Status {
     unsafe { with_instance(c, call, || format!("{fname}(nvr={nvr})"), |_| no_variables(kind, slice(vr, nvr, "vr")?)) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Integer) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetInteger(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    value: *mut fmi2Integer,
+) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::Get, || format!("fmi2GetInteger(nvr={nvr})"), |i| {
-            let vr = slice(vr, nvr, "vr")?;
-            let out = slice_mut(value, nvr, "value")?;
-            i.get_integer(vr, out).map(|_| Status::Ok)
-        })
+        with_instance(
+            c,
+            Call::Get,
+            || format!("fmi2GetInteger(nvr={nvr})"),
+            |i| {
+                let vr = slice(vr, nvr, "vr")?;
+                let out = slice_mut(value, nvr, "value")?;
+                i.get_integer(vr, out).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *mut fmi2Boolean) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetBoolean(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    _value: *mut fmi2Boolean,
+) -> fmi2Status {
     unsafe { no_such_variables(c, Call::Get, "fmi2GetBoolean", "Boolean", vr, nvr) }
 }
 
@@ -189,23 +236,43 @@ pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueRef
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Integer) -> fmi2Status {
+pub unsafe extern "C" fn fmi2SetInteger(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    value: *const fmi2Integer,
+) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::Set, || format!("fmi2SetInteger(nvr={nvr})"), |i| {
-            let vr = slice(vr, nvr, "vr")?;
-            let values = slice(value, nvr, "value")?;
-            i.set_integer(vr, values).map(|_| Status::Ok)
-        })
+        with_instance(
+            c,
+            Call::Set,
+            || format!("fmi2SetInteger(nvr={nvr})"),
+            |i| {
+                let vr = slice(vr, nvr, "vr")?;
+                let values = slice(value, nvr, "value")?;
+                i.set_integer(vr, values).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *const fmi2Boolean) -> fmi2Status {
+pub unsafe extern "C" fn fmi2SetBoolean(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    _value: *const fmi2Boolean,
+) -> fmi2Status {
     unsafe { no_such_variables(c, Call::Set, "fmi2SetBoolean", "Boolean", vr, nvr) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *const fmi2String) -> fmi2Status {
+pub unsafe extern "C" fn fmi2SetString(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    _value: *const fmi2String,
+) -> fmi2Status {
     unsafe { no_such_variables(c, Call::Set, "fmi2SetString", "String", vr, nvr) }
 }
 
@@ -234,12 +301,22 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: 
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate, serializedState: *mut fmi2Byte, size: usize) -> fmi2Status {
+pub unsafe extern "C" fn fmi2SerializeFMUstate(
+    c: fmi2Component,
+    FMUstate: fmi2FMUstate,
+    serializedState: *mut fmi2Byte,
+    size: usize,
+) -> fmi2Status {
     unsafe { shims::serialize_fmu_state(c, FMUstate, serializedState as *mut u8, size, names("fmi2SerializeFMUstate")) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2DeSerializeFMUstate(c: fmi2Component, serializedState: *const fmi2Byte, size: usize, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+    c: fmi2Component,
+    serializedState: *const fmi2Byte,
+    size: usize,
+    FMUstate: *mut fmi2FMUstate,
+) -> fmi2Status {
     unsafe { shims::deserialize_fmu_state(c, serializedState as *const u8, size, FMUstate, names("fmi2DeSerializeFMUstate")) }
 }
 
@@ -254,40 +331,75 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     dvUnknown: *mut fmi2Real,
 ) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::GetDirectionalDerivative, || format!("fmi2GetDirectionalDerivative(nUnknown={nUnknown}, nKnown={nKnown})"), |i| {
-            let unknowns = slice(vUnknown_ref, nUnknown, "vUnknown_ref")?;
-            let knowns = slice(vKnown_ref, nKnown, "vKnown_ref")?;
-            let seed = slice(dvKnown, nKnown, "dvKnown")?;
-            let out = slice_mut(dvUnknown, nUnknown, "dvUnknown")?;
-            let got = i.directional_derivative(unknowns, knowns, seed)?;
-            out.copy_from_slice(&got);
-            OK
-        })
+        with_instance(
+            c,
+            Call::GetDirectionalDerivative,
+            || format!("fmi2GetDirectionalDerivative(nUnknown={nUnknown}, nKnown={nKnown})"),
+            |i| {
+                let unknowns = slice(vUnknown_ref, nUnknown, "vUnknown_ref")?;
+                let knowns = slice(vKnown_ref, nKnown, "vKnown_ref")?;
+                let seed = slice(dvKnown, nKnown, "dvKnown")?;
+                let out = slice_mut(dvUnknown, nUnknown, "dvUnknown")?;
+                let got = i.directional_derivative(unknowns, knowns, seed)?;
+                out.copy_from_slice(&got);
+                OK
+            },
+        )
     }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, order: *const fmi2Integer, value: *const fmi2Real) -> fmi2Status {
+pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    order: *const fmi2Integer,
+    value: *const fmi2Real,
+) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::SetRealInputDerivatives, || format!("fmi2SetRealInputDerivatives(nvr={nvr})"), |i| {
-            let vr = slice(vr, nvr, "vr")?;
-            let order = slice(order, nvr, "order")?;
-            let value = slice(value, nvr, "value")?;
-            i.set_real_input_derivatives(vr, order, value).map(|_| Status::Ok)
-        })
+        with_instance(
+            c,
+            Call::SetRealInputDerivatives,
+            || format!("fmi2SetRealInputDerivatives(nvr={nvr})"),
+            |i| {
+                let vr = slice(vr, nvr, "vr")?;
+                let order = slice(order, nvr, "order")?;
+                let value = slice(value, nvr, "value")?;
+                i.set_real_input_derivatives(vr, order, value).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(c: fmi2Component, _vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer, _value: *mut fmi2Real) -> fmi2Status {
-    with_instance(c, Call::GetRealOutputDerivatives, || "fmi2GetRealOutputDerivatives".into(), |_| not_supported("fmi2GetRealOutputDerivatives (maxOutputDerivativeOrder = 0)"))
+pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
+    c: fmi2Component,
+    _vr: *const fmi2ValueReference,
+    _nvr: usize,
+    _order: *const fmi2Integer,
+    _value: *mut fmi2Real,
+) -> fmi2Status {
+    with_instance(
+        c,
+        Call::GetRealOutputDerivatives,
+        || "fmi2GetRealOutputDerivatives".into(),
+        |_| not_supported("fmi2GetRealOutputDerivatives (maxOutputDerivativeOrder = 0)"),
+    )
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2DoStep(c: fmi2Component, currentCommunicationPoint: fmi2Real, communicationStepSize: fmi2Real, _noSetFMUStatePriorToCurrentPoint: fmi2Boolean) -> fmi2Status {
-    with_instance(c, Call::DoStep, || format!("fmi2DoStep(currentCommunicationPoint={currentCommunicationPoint}, communicationStepSize={communicationStepSize})"), |i| {
-        i.do_step(currentCommunicationPoint, communicationStepSize).map(|_| Status::Ok)
-    })
+pub unsafe extern "C" fn fmi2DoStep(
+    c: fmi2Component,
+    currentCommunicationPoint: fmi2Real,
+    communicationStepSize: fmi2Real,
+    _noSetFMUStatePriorToCurrentPoint: fmi2Boolean,
+) -> fmi2Status {
+    with_instance(
+        c,
+        Call::DoStep,
+        || format!("fmi2DoStep(currentCommunicationPoint={currentCommunicationPoint}, communicationStepSize={communicationStepSize})"),
+        |i| i.do_step(currentCommunicationPoint, communicationStepSize).map(|_| Status::Ok),
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -320,13 +432,18 @@ pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, _val
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::GetStatus, || format!("fmi2GetRealStatus({s})"), |i| {
-            if s != FMI2_LAST_SUCCESSFUL_TIME {
-                return status_not_provided(i, "fmi2GetRealStatus", s);
-            }
-            *value.as_mut().ok_or("value is NULL")? = i.last_successful_time();
-            OK
-        })
+        with_instance(
+            c,
+            Call::GetStatus,
+            || format!("fmi2GetRealStatus({s})"),
+            |i| {
+                if s != FMI2_LAST_SUCCESSFUL_TIME {
+                    return status_not_provided(i, "fmi2GetRealStatus", s);
+                }
+                *value.as_mut().ok_or("value is NULL")? = i.last_successful_time();
+                OK
+            },
+        )
     }
 }
 
@@ -338,13 +455,18 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, s: fmi2StatusKin
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status {
     unsafe {
-        with_instance(c, Call::GetStatus, || format!("fmi2GetBooleanStatus({s})"), |i| {
-            if s != FMI2_TERMINATED {
-                return status_not_provided(i, "fmi2GetBooleanStatus", s);
-            }
-            *value.as_mut().ok_or("value is NULL")? = if i.wants_to_terminate() { FMI2_TRUE } else { FMI2_FALSE };
-            OK
-        })
+        with_instance(
+            c,
+            Call::GetStatus,
+            || format!("fmi2GetBooleanStatus({s})"),
+            |i| {
+                if s != FMI2_TERMINATED {
+                    return status_not_provided(i, "fmi2GetBooleanStatus", s);
+                }
+                *value.as_mut().ok_or("value is NULL")? = if i.wants_to_terminate() { FMI2_TRUE } else { FMI2_FALSE };
+                OK
+            },
+        )
     }
 }
 

@@ -7,7 +7,7 @@
 //! come after the derivatives. One archive declares both interfaces:
 //! `<ModelExchange>` and `<CoSimulation>` with the same `modelIdentifier`.
 
-use crate::fmi::common::model::{Causality, Description, Named, ContinuousStates, Variable};
+use crate::fmi::common::model::{Causality, ContinuousStates, Description, Named, Variable};
 use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 

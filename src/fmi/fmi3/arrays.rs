@@ -45,7 +45,10 @@ impl Instance {
                     let is_output = self.arrays().is_some_and(|a| a.arrays[j].causality == Causality::Output);
                     if is_output {
                         if self.before_initialization() {
-                            return Err(format!("{} is an output: it has no value before fmi3EnterInitializationMode", self.arrays().map_or("", |a| a.arrays[j].name)));
+                            return Err(format!(
+                                "{} is an output: it has no value before fmi3EnterInitializationMode",
+                                self.arrays().map_or("", |a| a.arrays[j].name)
+                            ));
                         }
                         self.prepare()?;
                     }
@@ -140,7 +143,10 @@ impl Instance {
                 return Err(format!("no UInt64 variable has value reference {vr}"));
             }
             if self.machine != Machine::ConfigurationMode {
-                return Err(format!("{} is a structural parameter: set it in Configuration Mode (fmi3EnterConfigurationMode)", a.length_name));
+                return Err(format!(
+                    "{} is a structural parameter: set it in Configuration Mode (fmi3EnterConfigurationMode)",
+                    a.length_name
+                ));
             }
             if !(1..=a.length_max).contains(&n) {
                 return Err(format!("{} = {n} is invalid: it must be in 1 ..= {}", a.length_name, a.length_max));
@@ -163,4 +169,3 @@ impl Instance {
         Ok(())
     }
 }
-

@@ -6,10 +6,10 @@
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
 use crate::fmi::common::exchange::EventInfo;
-use crate::fmi::shims;
-use crate::fmi::frame::with_instance;
 use crate::fmi::common::instance::{Call, Instance, Status};
 use crate::fmi::fmi3::types::*;
+use crate::fmi::frame::with_instance;
+use crate::fmi::shims;
 
 fn flag(b: bool) -> fmi3Boolean {
     if b { FMI3_TRUE } else { FMI3_FALSE }
@@ -26,29 +26,74 @@ pub unsafe extern "C" fn fmi3SetTime(instance: fmi3Instance, time: fmi3Float64) 
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetContinuousStates(instance: fmi3Instance, continuousStates: *const fmi3Float64, nContinuousStates: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetContinuousStates(
+    instance: fmi3Instance,
+    continuousStates: *const fmi3Float64,
+    nContinuousStates: usize,
+) -> fmi3Status {
     unsafe { shims::set_continuous_states(instance, continuousStates, nContinuousStates, "fmi3SetContinuousStates") }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetContinuousStateDerivatives(instance: fmi3Instance, derivatives: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
-    unsafe { shims::get_vector(instance, Call::GetDerivatives, derivatives, nContinuousStates, Instance::get_derivatives, "fmi3GetContinuousStateDerivatives") }
+pub unsafe extern "C" fn fmi3GetContinuousStateDerivatives(
+    instance: fmi3Instance,
+    derivatives: *mut fmi3Float64,
+    nContinuousStates: usize,
+) -> fmi3Status {
+    unsafe {
+        shims::get_vector(
+            instance,
+            Call::GetDerivatives,
+            derivatives,
+            nContinuousStates,
+            Instance::get_derivatives,
+            "fmi3GetContinuousStateDerivatives",
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetEventIndicators(instance: fmi3Instance, _eventIndicators: *mut fmi3Float64, nEventIndicators: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetEventIndicators(
+    instance: fmi3Instance,
+    _eventIndicators: *mut fmi3Float64,
+    nEventIndicators: usize,
+) -> fmi3Status {
     shims::get_event_indicators(instance, nEventIndicators, "fmi3GetEventIndicators")
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetContinuousStates(instance: fmi3Instance, continuousStates: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
-    unsafe { shims::get_vector(instance, Call::GetContinuousStates, continuousStates, nContinuousStates, Instance::get_continuous_states, "fmi3GetContinuousStates") }
+pub unsafe extern "C" fn fmi3GetContinuousStates(
+    instance: fmi3Instance,
+    continuousStates: *mut fmi3Float64,
+    nContinuousStates: usize,
+) -> fmi3Status {
+    unsafe {
+        shims::get_vector(
+            instance,
+            Call::GetContinuousStates,
+            continuousStates,
+            nContinuousStates,
+            Instance::get_continuous_states,
+            "fmi3GetContinuousStates",
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(instance: fmi3Instance, nominals: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(
+    instance: fmi3Instance,
+    nominals: *mut fmi3Float64,
+    nContinuousStates: usize,
+) -> fmi3Status {
     unsafe {
-        shims::get_vector(instance, Call::GetNominalsOfContinuousStates, nominals, nContinuousStates, Instance::get_nominals, "fmi3GetNominalsOfContinuousStates")
+        shims::get_vector(
+            instance,
+            Call::GetNominalsOfContinuousStates,
+            nominals,
+            nContinuousStates,
+            Instance::get_nominals,
+            "fmi3GetNominalsOfContinuousStates",
+        )
     }
 }
 
@@ -60,13 +105,18 @@ pub unsafe extern "C" fn fmi3CompletedIntegratorStep(
     terminateSimulation: *mut fmi3Boolean,
 ) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::CompletedIntegratorStep, || "fmi3CompletedIntegratorStep".into(), |i| {
-            let enter = enterEventMode.as_mut().ok_or("enterEventMode is NULL")?;
-            let terminate = terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
-            let (e, t) = i.completed_integrator_step()?;
-            (*enter, *terminate) = (flag(e), flag(t));
-            Ok(Status::Ok)
-        })
+        with_instance(
+            instance,
+            Call::CompletedIntegratorStep,
+            || "fmi3CompletedIntegratorStep".into(),
+            |i| {
+                let enter = enterEventMode.as_mut().ok_or("enterEventMode is NULL")?;
+                let terminate = terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
+                let (e, t) = i.completed_integrator_step()?;
+                (*enter, *terminate) = (flag(e), flag(t));
+                Ok(Status::Ok)
+            },
+        )
     }
 }
 
@@ -81,28 +131,44 @@ pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
     nextEventTime: *mut fmi3Float64,
 ) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::NewDiscreteStates, || "fmi3UpdateDiscreteStates".into(), |i| {
-            let outs = [discreteStatesNeedUpdate, terminateSimulation, nominalsOfContinuousStatesChanged, valuesOfContinuousStatesChanged, nextEventTimeDefined];
-            if outs.iter().any(|p| p.is_null()) || nextEventTime.is_null() {
-                return Err("an out-argument is NULL".into());
-            }
-            let EventInfo { new_discrete_states_needed, terminate_simulation, nominals_changed, values_changed, next_event_time } =
-                i.new_discrete_states()?;
-            let flags = [new_discrete_states_needed, terminate_simulation, nominals_changed, values_changed, next_event_time.is_some()];
-            outs.iter().zip(flags).for_each(|(p, f)| **p = flag(f));
-            *nextEventTime = next_event_time.unwrap_or(0.0);
-            Ok(Status::Ok)
-        })
+        with_instance(
+            instance,
+            Call::NewDiscreteStates,
+            || "fmi3UpdateDiscreteStates".into(),
+            |i| {
+                let outs = [
+                    discreteStatesNeedUpdate,
+                    terminateSimulation,
+                    nominalsOfContinuousStatesChanged,
+                    valuesOfContinuousStatesChanged,
+                    nextEventTimeDefined,
+                ];
+                if outs.iter().any(|p| p.is_null()) || nextEventTime.is_null() {
+                    return Err("an out-argument is NULL".into());
+                }
+                let EventInfo { new_discrete_states_needed, terminate_simulation, nominals_changed, values_changed, next_event_time } =
+                    i.new_discrete_states()?;
+                let flags = [new_discrete_states_needed, terminate_simulation, nominals_changed, values_changed, next_event_time.is_some()];
+                outs.iter().zip(flags).for_each(|(p, f)| **p = flag(f));
+                *nextEventTime = next_event_time.unwrap_or(0.0);
+                Ok(Status::Ok)
+            },
+        )
     }
 }
 
 /// `fmi3GetNumberOfContinuousStates` and `fmi3GetNumberOfEventIndicators` (0).
 unsafe fn number_of(instance: fmi3Instance, out: *mut usize, name: &'static str, states: bool) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::GetNumberOf, || name.into(), |i| {
-            *out.as_mut().ok_or("the out-argument is NULL")? = if states { i.description().state_count() } else { 0 };
-            Ok(Status::Ok)
-        })
+        with_instance(
+            instance,
+            Call::GetNumberOf,
+            || name.into(),
+            |i| {
+                *out.as_mut().ok_or("the out-argument is NULL")? = if states { i.description().state_count() } else { 0 };
+                Ok(Status::Ok)
+            },
+        )
     }
 }
 

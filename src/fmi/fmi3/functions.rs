@@ -8,11 +8,11 @@
 //! the other variable types) are in [`crate::fmi::fmi3::unsupported`].
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use crate::fmi::shims::{self, Names};
-use crate::fmi::frame::{register, slice, slice_mut, text, unregister, with_instance};
+use crate::boundary::guard;
 use crate::fmi::common::instance::{Call, Instance, Interface, Logger, Status};
 use crate::fmi::fmi3::types::*;
-use crate::boundary::guard;
+use crate::fmi::frame::{register, slice, slice_mut, text, unregister, with_instance};
+use crate::fmi::shims::{self, Names};
 use std::ffi::{CString, c_char};
 use std::sync::Arc;
 
@@ -71,7 +71,8 @@ fn instantiate(
             Ok(fresh) => fresh,
             Err(msg) => return fail(msg),
         };
-        let instance = Instance::of_interface(interface, crate::fmi::fmi3::names::FMI3, fresh, &name, Arc::new(sink), loggingOn != FMI3_FALSE);
+        let instance =
+            Instance::of_interface(interface, crate::fmi::fmi3::names::FMI3, fresh, &name, Arc::new(sink), loggingOn != FMI3_FALSE);
         Some(register(instance))
     });
     made.ok().flatten().unwrap_or(std::ptr::null_mut())
@@ -93,7 +94,8 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
 /// The importer's `intermediateUpdate` callback, asked for the inputs at the end of each
 /// step (see [`crate::fmi::fmi3::intermediate`]).
 struct IntermediateUpdate {
-    callback: unsafe extern "C" fn(fmi3InstanceEnvironment, f64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut f64),
+    callback:
+        unsafe extern "C" fn(fmi3InstanceEnvironment, f64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut f64),
     env: fmi3InstanceEnvironment,
 }
 
@@ -141,12 +143,17 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     if nRequiredIntermediateVariables == 0 {
         return c;
     }
-    let required = with_instance(c, Call::Unsupported, || "fmi3InstantiateCoSimulation(requiredIntermediateVariables)".into(), |i| {
-        let vrs = unsafe { slice(requiredIntermediateVariables, nRequiredIntermediateVariables, "requiredIntermediateVariables")? };
-        let requester = Arc::new(IntermediateUpdate { callback, env: instanceEnvironment });
-        let set = i.set_intermediate_update(requester, vrs);
-        set.map(|_| Status::Ok).map_err(|why| format!("fmi3InstantiateCoSimulation: requiredIntermediateVariables: {why}"))
-    });
+    let required = with_instance(
+        c,
+        Call::Unsupported,
+        || "fmi3InstantiateCoSimulation(requiredIntermediateVariables)".into(),
+        |i| {
+            let vrs = unsafe { slice(requiredIntermediateVariables, nRequiredIntermediateVariables, "requiredIntermediateVariables")? };
+            let requester = Arc::new(IntermediateUpdate { callback, env: instanceEnvironment });
+            let set = i.set_intermediate_update(requester, vrs);
+            set.map(|_| Status::Ok).map_err(|why| format!("fmi3InstantiateCoSimulation: requiredIntermediateVariables: {why}"))
+        },
+    );
     if required == Status::Ok as fmi3Status {
         c
     } else {
@@ -162,13 +169,23 @@ pub unsafe extern "C" fn fmi3FreeInstance(instance: fmi3Instance) {
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetDebugLogging(instance: fmi3Instance, loggingOn: fmi3Boolean, nCategories: usize, categories: *const fmi3String) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetDebugLogging(
+    instance: fmi3Instance,
+    loggingOn: fmi3Boolean,
+    nCategories: usize,
+    categories: *const fmi3String,
+) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::SetDebugLogging, || format!("fmi3SetDebugLogging(loggingOn={loggingOn}, nCategories={nCategories})"), |i| {
-            let names = slice(categories, nCategories, "categories")?;
-            let names: Vec<String> = names.iter().map(|&p| text(p).unwrap_or_default()).collect();
-            i.set_debug_logging(loggingOn != FMI3_FALSE, &names).map(|_| Status::Ok)
-        })
+        with_instance(
+            instance,
+            Call::SetDebugLogging,
+            || format!("fmi3SetDebugLogging(loggingOn={loggingOn}, nCategories={nCategories})"),
+            |i| {
+                let names = slice(categories, nCategories, "categories")?;
+                let names: Vec<String> = names.iter().map(|&p| text(p).unwrap_or_default()).collect();
+                i.set_debug_logging(loggingOn != FMI3_FALSE, &names).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
@@ -184,10 +201,15 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
 ) -> fmi3Status {
     let tol = (toleranceDefined != FMI3_FALSE).then_some(tolerance);
     let stop = (stopTimeDefined != FMI3_FALSE).then_some(stopTime);
-    with_instance(instance, Call::EnterInitializationMode, || format!("fmi3EnterInitializationMode(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"), |i| {
-        i.setup_experiment(tol, startTime, stop)?;
-        i.enter_initialization_mode().map(|_| Status::Ok)
-    })
+    with_instance(
+        instance,
+        Call::EnterInitializationMode,
+        || format!("fmi3EnterInitializationMode(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"),
+        |i| {
+            i.setup_experiment(tol, startTime, stop)?;
+            i.enter_initialization_mode().map(|_| Status::Ok)
+        },
+    )
 }
 
 fn transition(instance: fmi3Instance, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi3Status {
@@ -222,49 +244,93 @@ fn scalars(nvr: usize, n_values: usize) -> Result<(), String> {
 
 /// Scalars, `time` and whole arrays (one value reference each, values concatenated).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetFloat64(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *mut fmi3Float64, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetFloat64(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    values: *mut fmi3Float64,
+    nValues: usize,
+) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::Get, || format!("fmi3GetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
-            let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-            let got = i.get_float64(vr, nValues)?;
-            slice_mut(values, nValues, "values")?.copy_from_slice(&got);
-            OK
-        })
+        with_instance(
+            instance,
+            Call::Get,
+            || format!("fmi3GetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"),
+            |i| {
+                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
+                let got = i.get_float64(vr, nValues)?;
+                slice_mut(values, nValues, "values")?.copy_from_slice(&got);
+                OK
+            },
+        )
     }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetFloat64(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *const fmi3Float64, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetFloat64(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    values: *const fmi3Float64,
+    nValues: usize,
+) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::Set, || format!("fmi3SetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
-            let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-            i.set_float64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-        })
+        with_instance(
+            instance,
+            Call::Set,
+            || format!("fmi3SetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"),
+            |i| {
+                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
+                i.set_float64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
 /// The structural parameter (the number of probes).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetUInt64(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *mut fmi3UInt64, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetUInt64(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    values: *mut fmi3UInt64,
+    nValues: usize,
+) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::Get, || format!("fmi3GetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
-            scalars(nValueReferences, nValues)?;
-            let got = i.get_uint64(slice(valueReferences, nValueReferences, "valueReferences")?)?;
-            slice_mut(values, nValues, "values")?.copy_from_slice(&got);
-            OK
-        })
+        with_instance(
+            instance,
+            Call::Get,
+            || format!("fmi3GetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"),
+            |i| {
+                scalars(nValueReferences, nValues)?;
+                let got = i.get_uint64(slice(valueReferences, nValueReferences, "valueReferences")?)?;
+                slice_mut(values, nValues, "values")?.copy_from_slice(&got);
+                OK
+            },
+        )
     }
 }
 
 /// In Configuration Mode only.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetUInt64(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *const fmi3UInt64, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetUInt64(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    values: *const fmi3UInt64,
+    nValues: usize,
+) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::Set, || format!("fmi3SetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
-            scalars(nValueReferences, nValues)?;
-            let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-            i.set_uint64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-        })
+        with_instance(
+            instance,
+            Call::Set,
+            || format!("fmi3SetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"),
+            |i| {
+                scalars(nValueReferences, nValues)?;
+                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
+                i.set_uint64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
@@ -280,24 +346,46 @@ pub unsafe extern "C" fn fmi3ExitConfigurationMode(instance: fmi3Instance) -> fm
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetInt32(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *mut fmi3Int32, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetInt32(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    values: *mut fmi3Int32,
+    nValues: usize,
+) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::Get, || format!("fmi3GetInt32(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
-            scalars(nValueReferences, nValues)?;
-            let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-            i.get_integer(vr, slice_mut(values, nValues, "values")?).map(|_| Status::Ok)
-        })
+        with_instance(
+            instance,
+            Call::Get,
+            || format!("fmi3GetInt32(nValueReferences={nValueReferences}, nValues={nValues})"),
+            |i| {
+                scalars(nValueReferences, nValues)?;
+                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
+                i.get_integer(vr, slice_mut(values, nValues, "values")?).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetInt32(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, values: *const fmi3Int32, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetInt32(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    values: *const fmi3Int32,
+    nValues: usize,
+) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::Set, || format!("fmi3SetInt32(nValueReferences={nValueReferences}, nValues={nValues})"), |i| {
-            scalars(nValueReferences, nValues)?;
-            let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-            i.set_integer(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-        })
+        with_instance(
+            instance,
+            Call::Set,
+            || format!("fmi3SetInt32(nValueReferences={nValueReferences}, nValues={nValues})"),
+            |i| {
+                scalars(nValueReferences, nValues)?;
+                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
+                i.set_integer(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
+            },
+        )
     }
 }
 
@@ -329,12 +417,22 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(instance: fmi3Instance, FMUS
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SerializeFMUState(instance: fmi3Instance, FMUState: fmi3FMUState, serializedState: *mut fmi3Byte, size: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SerializeFMUState(
+    instance: fmi3Instance,
+    FMUState: fmi3FMUState,
+    serializedState: *mut fmi3Byte,
+    size: usize,
+) -> fmi3Status {
     unsafe { shims::serialize_fmu_state(instance, FMUState, serializedState, size, names("fmi3SerializeFMUState")) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3DeserializeFMUState(instance: fmi3Instance, serializedState: *const fmi3Byte, size: usize, FMUState: *mut fmi3FMUState) -> fmi3Status {
+pub unsafe extern "C" fn fmi3DeserializeFMUState(
+    instance: fmi3Instance,
+    serializedState: *const fmi3Byte,
+    size: usize,
+    FMUState: *mut fmi3FMUState,
+) -> fmi3Status {
     unsafe { shims::deserialize_fmu_state(instance, serializedState, size, FMUState, names("fmi3DeserializeFMUState")) }
 }
 
@@ -350,20 +448,27 @@ unsafe fn derivative_of(
     (sensitivity, n_sensitivity): (*mut fmi3Float64, usize),
 ) -> fmi3Status {
     unsafe {
-        with_instance(instance, Call::GetDirectionalDerivative, || format!("{name}(nUnknowns={n_unknowns}, nKnowns={n_knowns})"), |i| {
-            let (seeds, sensitivities) = if adjoint { (n_unknowns, n_knowns) } else { (n_knowns, n_unknowns) };
-            if n_seed != seeds || n_sensitivity != sensitivities {
-                let (a, b) = if adjoint { ("nUnknowns", "nKnowns") } else { ("nKnowns", "nUnknowns") };
-                return Err(format!("nSeed = {n_seed} and nSensitivity = {n_sensitivity} must equal {a} = {seeds} and {b} = {sensitivities} (scalar variables)"));
-            }
-            let u = slice(unknowns, n_unknowns, "unknowns")?;
-            let k = slice(knowns, n_knowns, "knowns")?;
-            let s = slice(seed, n_seed, "seed")?;
-            let out = slice_mut(sensitivity, n_sensitivity, "sensitivity")?;
-            let got = if adjoint { i.adjoint_derivative(u, k, s)? } else { i.directional_derivative(u, k, s)? };
-            out.copy_from_slice(&got);
-            OK
-        })
+        with_instance(
+            instance,
+            Call::GetDirectionalDerivative,
+            || format!("{name}(nUnknowns={n_unknowns}, nKnowns={n_knowns})"),
+            |i| {
+                let (seeds, sensitivities) = if adjoint { (n_unknowns, n_knowns) } else { (n_knowns, n_unknowns) };
+                if n_seed != seeds || n_sensitivity != sensitivities {
+                    let (a, b) = if adjoint { ("nUnknowns", "nKnowns") } else { ("nKnowns", "nUnknowns") };
+                    return Err(format!(
+                        "nSeed = {n_seed} and nSensitivity = {n_sensitivity} must equal {a} = {seeds} and {b} = {sensitivities} (scalar variables)"
+                    ));
+                }
+                let u = slice(unknowns, n_unknowns, "unknowns")?;
+                let k = slice(knowns, n_knowns, "knowns")?;
+                let s = slice(seed, n_seed, "seed")?;
+                let out = slice_mut(sensitivity, n_sensitivity, "sensitivity")?;
+                let got = if adjoint { i.adjoint_derivative(u, k, s)? } else { i.directional_derivative(u, k, s)? };
+                out.copy_from_slice(&got);
+                OK
+            },
+        )
     }
 }
 

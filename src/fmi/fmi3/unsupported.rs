@@ -6,20 +6,34 @@
 //! framed like every other function and refused with the reason under `logStatusError`.
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
-use crate::fmi::frame::{slice, with_instance};
 use crate::fmi::common::instance::{Call, Status};
 use crate::fmi::fmi3::types::*;
+use crate::fmi::frame::{slice, with_instance};
 
 /// A getter or setter of a type this FMU has no variables of.
 ///
 /// # Safety
 /// `vr` is NULL or points to `nvr` value references.
-unsafe fn no_variables(instance: fmi3Instance, call: Call, name: &'static str, kind: &str, vr: *const fmi3ValueReference, nvr: usize) -> fmi3Status {
+unsafe fn no_variables(
+    instance: fmi3Instance,
+    call: Call,
+    name: &'static str,
+    kind: &str,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+) -> fmi3Status {
     unsafe {
-        with_instance(instance, call, || format!("{name}(nValueReferences={nvr})"), |_| match slice(vr, nvr, "valueReferences")?.first() {
-            None => Ok(Status::Ok),
-            Some(v) => Err(format!("{name}: no {kind} variable has value reference {v} (this FMU has Float64, Int32 and UInt64 variables only)")),
-        })
+        with_instance(
+            instance,
+            call,
+            || format!("{name}(nValueReferences={nvr})"),
+            |_| match slice(vr, nvr, "valueReferences")?.first() {
+                None => Ok(Status::Ok),
+                Some(v) => Err(format!(
+                    "{name}: no {kind} variable has value reference {v} (this FMU has Float64, Int32 and UInt64 variables only)"
+                )),
+            },
+        )
     }
 }
 
@@ -54,69 +68,143 @@ typed_access! {
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetBinary(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, _valueSizes: *mut usize, _values: *mut fmi3Binary, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetBinary(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    _valueSizes: *mut usize,
+    _values: *mut fmi3Binary,
+    _nValues: usize,
+) -> fmi3Status {
     unsafe { no_variables(instance, Call::Get, "fmi3GetBinary", "Binary", valueReferences, nValueReferences) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetBinary(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, _valueSizes: *const usize, _values: *const fmi3Binary, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetBinary(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    _valueSizes: *const usize,
+    _values: *const fmi3Binary,
+    _nValues: usize,
+) -> fmi3Status {
     unsafe { no_variables(instance, Call::Set, "fmi3SetBinary", "Binary", valueReferences, nValueReferences) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetClock(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, _values: *mut fmi3Clock) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetClock(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    _values: *mut fmi3Clock,
+) -> fmi3Status {
     unsafe { no_variables(instance, Call::Get, "fmi3GetClock", "Clock", valueReferences, nValueReferences) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetClock(instance: fmi3Instance, valueReferences: *const fmi3ValueReference, nValueReferences: usize, _values: *const fmi3Clock) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetClock(
+    instance: fmi3Instance,
+    valueReferences: *const fmi3ValueReference,
+    nValueReferences: usize,
+    _values: *const fmi3Clock,
+) -> fmi3Status {
     unsafe { no_variables(instance, Call::Set, "fmi3SetClock", "Clock", valueReferences, nValueReferences) }
 }
 
 const NO_CLOCKS: &str = "it has no clocks";
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetIntervalDecimal(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _intervals: *mut f64, _qualifiers: *mut fmi3IntervalQualifier) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetIntervalDecimal(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _intervals: *mut f64,
+    _qualifiers: *mut fmi3IntervalQualifier,
+) -> fmi3Status {
     unsupported(instance, "fmi3GetIntervalDecimal", NO_CLOCKS)
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetIntervalFraction(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _counters: *mut u64, _resolutions: *mut u64, _qualifiers: *mut fmi3IntervalQualifier) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetIntervalFraction(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _counters: *mut u64,
+    _resolutions: *mut u64,
+    _qualifiers: *mut fmi3IntervalQualifier,
+) -> fmi3Status {
     unsupported(instance, "fmi3GetIntervalFraction", NO_CLOCKS)
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetShiftDecimal(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _shifts: *mut f64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetShiftDecimal(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _shifts: *mut f64,
+) -> fmi3Status {
     unsupported(instance, "fmi3GetShiftDecimal", NO_CLOCKS)
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetShiftFraction(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _counters: *mut u64, _resolutions: *mut u64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetShiftFraction(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _counters: *mut u64,
+    _resolutions: *mut u64,
+) -> fmi3Status {
     unsupported(instance, "fmi3GetShiftFraction", NO_CLOCKS)
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetIntervalDecimal(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _intervals: *const f64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetIntervalDecimal(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _intervals: *const f64,
+) -> fmi3Status {
     unsupported(instance, "fmi3SetIntervalDecimal", NO_CLOCKS)
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetIntervalFraction(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _counters: *const u64, _resolutions: *const u64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetIntervalFraction(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _counters: *const u64,
+    _resolutions: *const u64,
+) -> fmi3Status {
     unsupported(instance, "fmi3SetIntervalFraction", NO_CLOCKS)
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetShiftDecimal(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _shifts: *const f64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetShiftDecimal(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _shifts: *const f64,
+) -> fmi3Status {
     unsupported(instance, "fmi3SetShiftDecimal", NO_CLOCKS)
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetShiftFraction(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _counters: *const u64, _resolutions: *const u64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetShiftFraction(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _counters: *const u64,
+    _resolutions: *const u64,
+) -> fmi3Status {
     unsupported(instance, "fmi3SetShiftFraction", NO_CLOCKS)
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(instance: fmi3Instance, _vr: fmi3ValueReference, _n: *mut usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(
+    instance: fmi3Instance,
+    _vr: fmi3ValueReference,
+    _n: *mut usize,
+) -> fmi3Status {
     unsupported(instance, "fmi3GetNumberOfVariableDependencies", "the dependencies are those of modelDescription.xml")
 }
 
@@ -144,12 +232,23 @@ pub unsafe extern "C" fn fmi3EnterStepMode(instance: fmi3Instance) -> fmi3Status
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetOutputDerivatives(instance: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _orders: *const fmi3Int32, _values: *mut f64, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetOutputDerivatives(
+    instance: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _orders: *const fmi3Int32,
+    _values: *mut f64,
+    _nValues: usize,
+) -> fmi3Status {
     unsupported(instance, "fmi3GetOutputDerivatives", "maxOutputDerivativeOrder = 0")
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3ActivateModelPartition(instance: fmi3Instance, _clockReference: fmi3ValueReference, _activationTime: f64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3ActivateModelPartition(
+    instance: fmi3Instance,
+    _clockReference: fmi3ValueReference,
+    _activationTime: f64,
+) -> fmi3Status {
     unsupported(instance, "fmi3ActivateModelPartition", "it does not provide scheduled execution")
 }
 
@@ -169,6 +268,10 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
 ) -> fmi3Instance {
     use crate::fmi::common::instance::Logger;
     let sink = crate::fmi::fmi3::functions::LogMessage { callback: logMessage, env: instanceEnvironment };
-    if crate::boundary::guard(|| sink.log(Status::Error, "logStatusError", "fmi3InstantiateScheduledExecution: this FMU does not provide scheduled execution")).is_err() {}
+    if crate::boundary::guard(|| {
+        sink.log(Status::Error, "logStatusError", "fmi3InstantiateScheduledExecution: this FMU does not provide scheduled execution")
+    })
+    .is_err()
+    {}
     std::ptr::null_mut()
 }

@@ -4,7 +4,7 @@
 //! references `table + k` and `table + count + k`, as in FMI 2.0), then the independent
 //! variable `time` (FMI 3.0 wants exactly one). `ModelStructure` names value references.
 
-use crate::fmi::common::model::{Arrays, Causality, Description, Kind, Named, ContinuousStates, Variability, Variable};
+use crate::fmi::common::model::{Arrays, Causality, ContinuousStates, Description, Kind, Named, Variability, Variable};
 use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
 use std::fmt::Write;
 

@@ -104,9 +104,7 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
     let (method, grid_points) = (r.u32()?, r.u32()?);
     let internal_step = r.finite("internal_step")?;
     if method > 3 || !(3..=100_000).contains(&grid_points) || internal_step <= 0.0 {
-        return Err(format!(
-            "serialized FMU state has method {method}, grid_points {grid_points}, internal_step {internal_step}"
-        ));
+        return Err(format!("serialized FMU state has method {method}, grid_points {grid_points}, internal_step {internal_step}"));
     }
     let scheme = SchemeChoice { method: method as i32, grid_points: grid_points as i32, internal_step };
     let solver = if r.flag("solver")? {

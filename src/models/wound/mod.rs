@@ -19,10 +19,12 @@ pub use codec::SchemeChoice;
 
 use crate::fmi::common::model::{Description, FmuModel, Rejected};
 use crate::fmi::common::serialized::same_parameters;
-use crate::solver::{EDGE_STRESS_MAX, Params, Settings, Solver, check_edge_stress, delivered_accuracy, check_lambda, check_r_inf, check_sigma};
+use crate::solver::{
+    EDGE_STRESS_MAX, Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma, delivered_accuracy,
+};
 use crate::units::{Scales, check_scale};
-use std::cell::RefCell;
 use probes::Probes;
+use std::cell::RefCell;
 use variables::{DESCRIPTION, MODEL_EXCHANGE_STATES, Vr};
 
 /// Where the edge velocity is infinite in the model (`lambda = 0`, at the cut and just

@@ -2,7 +2,7 @@
 //! from ([`crate::fmi::fmi2::xml`]), and that the code uses.
 
 pub use crate::fmi::common::model::{
-    ArrayVariable, Arrays, Causality, Description, Experiment, Kind, LOG_CATEGORIES, ContinuousStates, Unit, Variability, Variable,
+    ArrayVariable, Arrays, Causality, ContinuousStates, Description, Experiment, Kind, LOG_CATEGORIES, Unit, Variability, Variable,
 };
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).

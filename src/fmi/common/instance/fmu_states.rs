@@ -79,9 +79,13 @@ impl Instance {
         let (machine, clock, payload) = serialized::decode(self.description().model_identifier, bytes)?;
         // Intermediate Update Mode exists only inside a step (no state is saved there),
         // Configuration Mode only in the dialects that have it.
-        let transient = machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && !self.dialect.configuration_mode);
+        let transient =
+            machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && !self.dialect.configuration_mode);
         if transient || !machine.belongs_to(self.interface) {
-            return Err(format!("serialized FMU state is in state {machine:?}, which this instance ({:?}) is never saved in", self.interface));
+            return Err(format!(
+                "serialized FMU state is in state {machine:?}, which this instance ({:?}) is never saved in",
+                self.interface
+            ));
         }
         let model = self.model.decode(payload)?;
         let handle = target.unwrap_or_else(fresh_handle);
