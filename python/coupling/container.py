@@ -187,8 +187,9 @@ def build_container(
 
 
 # What fmpy 0.3.32's container template carries that this container does not use: its
-# binaries for platforms whose inner FMUs have none (ours are built for linux64 only), and
-# a stray, empty template archive.
+# binaries for win64 (the inner FMUs have Windows binaries, but the template's own DLL was
+# never run here: the container stays linux64 only) and darwin64, and a stray, empty
+# template archive.
 _UNUSED = ("binaries/win64/", "binaries/darwin64/", "Container.zip")
 
 

@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from ..results.profiles import Profile
-from .intervals import walk_side
+from .intervals import hull
 from .problem import Problem
 
 #: kind -> (c, {i: a_i}, the coordinates it may replace, in order of preference)
@@ -168,37 +168,25 @@ def derived_profiles(
             if cov_w[k, k] > 0:
                 step = float(np.clip(math.sqrt(cov_w[k, k]), 5e-4, 1.0))
                 slope = cov_w[:, k] / cov_w[k, k]
-        lows, highs, points, bounded = [], [], [], [False, False]
         box = rep.bounds()
-        for centre, delta0 in centres:
-            w = rep.to_w(centre)
-            for side, (direction, ends) in enumerate(((-1, lows), (1, highs))):
-                if ends and (ends[0] is None or direction * (w[k] - ends[0]) <= 0):
-                    continue  # an optimum inside the interval found (or an open end)
-                limit = w[k] + direction * math.log(100.0)
-                edge = box[side][k]  # finite only for a bound mapped from the replaced coordinate's
-                mine = (
-                    math.isfinite(edge)
-                    and direction * (edge - limit) < 0
-                    and obj.user_bound(k, direction)
-                )
-                limit = edge if mine else limit
-                if mine and direction * (limit - w[k]) <= 0:  # the estimate on the user's bound
-                    ends.append(limit)
-                    bounded[side] = True
-                    continue
-                end, _, pts = walk_side(
-                    rep, k, w, chi2_min, threshold, step, direction, limit, slope, loss, delta0
-                )
-                if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
-                    end, bounded[side] = (
-                        limit,
-                        True,
-                    )  # the walk reached the user's bound inside the threshold
-                ends.append(end)
-                points += pts
-        lo = None if None in lows else math.exp(min(lows))
-        hi = None if None in highs else math.exp(max(highs))
+
+        def side_limit(w, direction, k=k, box=box):
+            limit = w[k] + direction * math.log(100.0)
+            # finite only for a user's bound mapped from the replaced coordinate's
+            edge = box[0 if direction < 0 else 1][k]
+            mine = (
+                math.isfinite(edge)
+                and direction * (edge - limit) < 0
+                and obj.user_bound(k, direction)
+            )
+            return (edge if mine else limit), mine
+
+        w_centres = [(rep.to_w(c), d) for c, d in centres]
+        lo, hi, points, bounded = hull(
+            rep, k, w_centres, chi2_min, threshold, step, slope, loss, side_limit
+        )
+        lo = None if lo is None else math.exp(lo)
+        hi = None if hi is None else math.exp(hi)
         out[kind] = Profile(
             lo, hi, False, sorted((math.exp(v), d) for v, d in points), tuple(bounded)
         )

@@ -191,6 +191,42 @@ def crossing(constrained, points, a, fa, b, fb, root):
     return b, False, points
 
 
+def hull(problem, k, centres, chi2_min, threshold, step, slope, loss, side_limit):
+    """The profile interval of coordinate k of `problem`, walked by walk_side down and up
+    from every optimum of `centres` ((coordinates, delta chi^2), the best first; another
+    optimum below the threshold may lie in a second valley, past a barrier above it): an
+    optimum inside the interval found so far adds nothing, and the hull of the ends is
+    reported. `side_limit(centre, direction)` gives the search limit of that side and
+    whether it is the user's bound (an end there is the user's, not the data's).
+
+    Returns (lower, upper, points, (lower end by the user's bound, upper end by it)); an
+    end is None where that side is open."""
+    ends = {-1: [], 1: []}
+    bounded = {-1: False, 1: False}
+    points = []
+    for centre, delta0 in centres:
+        for direction in (-1, 1):
+            got = ends[direction]
+            if got and (got[0] is None or direction * (centre[k] - got[0]) <= 0):
+                continue  # an optimum inside the interval found (or an open end)
+            limit, mine = side_limit(centre, direction)
+            if direction * (limit - centre[k]) <= 0:  # the optimum on its limit
+                got.append(limit if mine else None)
+                bounded[direction] |= mine
+                continue
+            end, _, pts = walk_side(
+                problem, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0
+            )
+            if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
+                end = limit  # the walk reached the user's bound inside the threshold
+                bounded[direction] = True
+            got.append(end)
+            points += pts
+    lower = None if None in ends[-1] else min(ends[-1])
+    upper = None if None in ends[1] else max(ends[1])
+    return lower, upper, points, (bounded[-1], bounded[1])
+
+
 def profile_all(
     obj: Objective,
     z_hat: np.ndarray,
@@ -218,29 +254,17 @@ def profile_all(
         step = float(
             np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20)
         )
-        lows, highs, points = [], [], [(z_hat[i], 0.0)]
-        for centre, delta0 in centres:
-            lo_lim, hi_lim = _limits(i, centre, *lims)
-            for direction, limit, ends in ((-1, lo_lim, lows), (1, hi_lim, highs)):
-                if ends and (ends[0][0] is None or direction * (centre[i] - ends[0][0]) <= 0):
-                    continue  # an optimum inside the interval found (or an open end)
-                mine = user_bound(i, direction) and limit == lims[0 if direction < 0 else 1][i]
-                if centre[i] == limit:
-                    ends.append((limit, False) if mine else (None, True))
-                    continue
-                end, at_limit, pts = walk_side(
-                    obj, i, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0
-                )
-                if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
-                    end, at_limit = (
-                        limit,
-                        False,
-                    )  # the walk reached the user's bound inside the threshold
-                ends.append((end, at_limit))
-                points += pts
-        lo_open = any(e is None for e, _ in lows)
-        lo = None if lo_open else min(e for e, _ in lows)
-        hi = None if any(e is None for e, _ in highs) else max(e for e, _ in highs)
+
+        def side_limit(centre, direction, i=i):
+            limit = _limits(i, centre, *lims)[0 if direction < 0 else 1]
+            box_edge = lims[0 if direction < 0 else 1][i]
+            return limit, user_bound(i, direction) and limit == box_edge
+
+        lo, hi, walked, _ = hull(
+            obj, i, centres, chi2_min, threshold, step, slope, loss, side_limit
+        )
+        points = [(z_hat[i], 0.0)] + walked
+        lo_open = lo is None
         at_bound = i == 2 and lo_open  # lambda's lower end is its bound 0
         lower = 0.0 if at_bound else (None if lo is None else _own_units(i, lo))
         upper = None if hi is None else _own_units(i, hi)

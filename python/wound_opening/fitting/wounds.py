@@ -43,7 +43,7 @@ from ..results.names import ETA, SHARED
 from ..results.profiles import Profile
 from ..results.result import ParameterReport
 from ..results.wounds import TissueFitResult
-from .intervals import walk_side
+from .intervals import hull
 from .local import cost
 from .objective import LAMBDA_MAX, Objective, from_z
 from .plausibility import time_scale_warnings
@@ -379,22 +379,11 @@ def _interval(obj, k, centres, chi2_min, threshold, cov, loss, limits, default):
     se = math.sqrt(cov[k, k]) if ok else math.nan
     slope = cov[:, k] / cov[k, k] if ok else np.eye(n)[k]
     step = float(np.clip(se if ok else default, default * 0.01, default * 20))
-    lows, highs, points = [], [], []
-    for centre, delta0 in centres:
-        lo_lim, hi_lim = limits(centre)
-        for direction, limit, ends in ((-1, lo_lim, lows), (1, hi_lim, highs)):
-            if ends and (ends[0] is None or direction * (centre[k] - ends[0]) <= 0):
-                continue  # an optimum inside the interval found (or an open end): nothing to add
-            if centre[k] == limit:
-                ends.append(None)
-                continue
-            end, _, pts = walk_side(
-                obj, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0
-            )
-            ends.append(end)
-            points += pts
-    lo = None if None in lows else min(lows)
-    hi = None if None in highs else max(highs)
+
+    def side_limit(centre, direction):
+        return limits(centre)[0 if direction < 0 else 1], False
+
+    lo, hi, points, _ = hull(obj, k, centres, chi2_min, threshold, step, slope, loss, side_limit)
     return lo, hi, sorted(points)
 
 
