@@ -19,7 +19,8 @@ from coupling import ssp  # noqa: E402
 from coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE, couple  # noqa: E402
 
 STOP = 300.0
-# docs/fmi.md, "Coupling to a closure model" (the SSP file): max |R_ssp(h) - R_loop(h)| over 0..300 s is 9.76e-3 um per second of step
+# docs/fmi.md, "Coupling to a closure model" (the SSP file): max |R_ssp(h) - R_loop(h)| over
+# 0..300 s is 9.76e-3 um per second of step
 # (measured at h = 2, 1, 0.5, 0.25 s: first order, the Jacobi lag of fmpy's stepping).
 AGREEMENT_PER_STEP = 0.012  # um / s
 
