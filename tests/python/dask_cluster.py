@@ -33,9 +33,33 @@ def _stop(processes):
             p.wait(timeout=20)
 
 
+#: Starts on a fresh port after a scheduler or worker exited early: the port free_port found
+#: can be taken by another process before the scheduler binds it.
+ATTEMPTS = 3
+
+
 @contextlib.contextmanager
 def cluster(workers: int = 2):
     """Yield the scheduler's address once `workers` single-threaded workers are connected."""
+    for attempt in range(ATTEMPTS):
+        try:
+            address, processes = _start(workers)
+            break
+        except _Exited:
+            if attempt == ATTEMPTS - 1:
+                raise
+    try:
+        yield address
+    finally:
+        _stop(processes)
+
+
+class _Exited(RuntimeError):
+    """A scheduler or worker process exited before the cluster was up."""
+
+
+def _start(workers: int):
+    """Start a scheduler and `workers` workers; return (address, processes) once connected."""
     from distributed import Client
 
     port = free_port()
@@ -85,11 +109,15 @@ def cluster(workers: int = 2):
                     client.wait_for_workers(workers, timeout=max(deadline - time.monotonic(), 1.0))
                     break
             except (OSError, TimeoutError):
-                if time.monotonic() > deadline or any(p.poll() is not None for p in processes):
+                exited = [p.args[1] for p in processes if p.poll() is not None]
+                if exited:
+                    raise _Exited(f"dask cluster at {address}: the {exited[0]} exited")
+                if time.monotonic() > deadline:
                     raise RuntimeError(
                         f"dask cluster at {address} did not start within {START_TIMEOUT} s"
                     )
                 time.sleep(0.5)
-        yield address
-    finally:
+        return address, processes
+    except BaseException:
         _stop(processes)
+        raise
