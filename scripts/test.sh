@@ -1,23 +1,40 @@
 #!/usr/bin/env bash
 # Every test: Rust unit and integration tests, the C programs under valgrind
-# (scripts/c_tests.sh), then the FMUs driven by fmpy, the Python package (its Dask tests
-# start their own scheduler and workers on 127.0.0.1) and each FMU's documentation page
-# rendered in headless Chromium. Installs what it needs: .venv (scripts/venv.sh), and with
-# apt-get valgrind (in c_tests.sh) and chromium when they are missing.
+# (scripts/c_tests.sh) and, cross-built, under Wine and qemu-user (scripts/cross_tests.sh),
+# then the FMUs driven by fmpy, the Python package (its Dask tests start their own scheduler
+# and workers on 127.0.0.1) and each FMU's documentation page rendered in headless Chromium.
+# Installs what it needs: .venv (scripts/venv.sh), the Rust cross targets, and with apt-get
+# the cross linkers, Wine, qemu-user, valgrind and chromium when they are missing
+# (scripts/cross.sh).
+#
+# The set-up waits on the network and dpkg, the Rust build on the CPU: the venv and the
+# Debian packages are installed in the background while the host's crate compiles and its
+# tests run; their output follows.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-source scripts/venv.sh
-bash scripts/cross.sh  # Rust targets, cross linkers, Wine and qemu: the Windows and aarch64 binaries
-if ! command -v chromium >/dev/null; then
-    echo "== installing chromium (for tests/python/test_fmu_pages.py)"
-    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium </dev/null
-fi
+mkdir -p target
+bash scripts/venv.sh >target/setup_venv.log 2>&1 &
+venv=$!
+bash scripts/cross.sh valgrind chromium >target/setup_debian.log 2>&1 &
+debian=$!
+trap 'kill "$venv" "$debian" 2>/dev/null || true' EXIT  # a failed step ends the set-up too
 cargo fmt --check  # the crate's format (rustfmt.toml)
 cargo test --release
 cargo build --release  # the library the Python package loads
-cargo run --release --quiet -- fmu
+for job in "venv $venv" "debian $debian"; do
+    read -r name pid <<<"$job"
+    status=0
+    wait "$pid" || status=$?
+    cat "target/setup_$name.log"
+    if ((status)); then
+        echo "error: the set-up (target/setup_$name.log) failed with status $status" >&2
+        exit "$status"
+    fi
+done
+source scripts/venv.sh
+cargo run --release --quiet -- fmu  # the archives, with their Windows and aarch64 binaries
 bash scripts/c_tests.sh
-bash scripts/cross_tests.sh  # the archives' Windows and aarch64 binaries under Wine and qemu-user
+bash scripts/cross_tests.sh  # the archives' Windows and aarch64 binaries under Wine and qemu
 # The Python code's format and lint (ruff, configured in pyproject.toml).
 ruff format --check python tests/python setup.py
 ruff check python tests/python setup.py

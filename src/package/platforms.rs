@@ -102,11 +102,12 @@ fn target_installed(triple: &str) -> bool {
     }
 }
 
-/// `cargo build --release --lib --target <triple>`, with the linker of .cargo/config.toml.
+/// `cargo build --release --lib --no-default-features --target <triple>`, with the linker
+/// of .cargo/config.toml: the library alone, without the packaging's dependencies.
 fn cross_build(triple: &str, target_dir: &Path) -> Result<(), BoxError> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let status = Command::new(cargo)
-        .args(["build", "--release", "--quiet", "--lib", "--target", triple, "--target-dir"])
+        .args(["build", "--release", "--quiet", "--lib", "--no-default-features", "--target", triple, "--target-dir"])
         .arg(target_dir)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .status()?;
