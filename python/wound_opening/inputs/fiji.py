@@ -32,9 +32,9 @@ PERIMETER = "Perim."
 #: wound outline is above this (a rough ellipse of axis ratio 10 is 0.35).
 MIN_CIRCULARITY = 0.2
 #: A wound smaller than this radius (in pixels) cannot be outlined on an image.
-MIN_RADIUS_PX = 2.0
+MIN_RADIUS_PX = 5.0
 #: ... and, without a pixel size, smaller than this radius in um (laser cuts are microns wide).
-MIN_RADIUS_UM = 0.5
+MIN_RADIUS_UM = 1.5
 
 
 def _frame_interval(value) -> float:
