@@ -46,7 +46,7 @@ def add_lab_file_arguments(parser) -> None:
         "--cut-after-frame",
         type=int,
         metavar="N",
-        help="frames 1..N were recorded before the cut (their rows are skipped)",
+        help="the number of the last frame recorded before the cut: frames 1..N are skipped",
     )
     g.add_argument(
         "--piv",
@@ -59,7 +59,7 @@ def add_lab_file_arguments(parser) -> None:
         "--piv-format",
         choices=("auto", "pivlab", "openpiv"),
         default="auto",
-        help="the program that wrote the PIV files (default: from their first lines)",
+        help="the program that wrote the PIV files (auto: told by their first lines)",
     )
     g.add_argument(
         "--piv-units",
@@ -73,15 +73,15 @@ def add_lab_file_arguments(parser) -> None:
         type=int,
         default=1,
         metavar="N",
-        help="the first frame of the first PIV frame pair",
+        help="the number of the first frame of the first PIV frame pair",
     )
     g.add_argument(
         "--piv-pair-step",
         type=int,
         default=1,
         metavar="K",
-        help="frames from one pair's first frame to the next's (1 for pairs 1-2, 2-3; 2 for "
-        "1-2, 3-4)",
+        help="the number of frames from one pair's first frame to the next's (1 for pairs 1-2, "
+        "2-3; 2 for 1-2, 3-4)",
     )
     g.add_argument(
         "--piv-keep-interpolated",
@@ -105,7 +105,7 @@ def add_lab_file_arguments(parser) -> None:
         "--ring-width-um",
         type=float,
         metavar="UM",
-        help="width of the rings the PIV vectors are averaged in (default: the PIV grid spacing)",
+        help="width of the PIV rings in um (default: the PIV grid spacing)",
     )
     g.add_argument(
         "--piv-likelihood",

@@ -60,7 +60,7 @@ def _declared_separator(text: str) -> str | None:
 
 def _refuse_piv(path, first_lines) -> None:
     """A PIVlab or OpenPIV export is a vector field, not a table of these columns."""
-    from .piv import sniff
+    from .sniff import sniff
 
     program = sniff(first_lines)
     if program:

@@ -42,6 +42,7 @@ import numpy as np
 
 from .columns import InputError
 from .provenance import RawFile, decode, read_bytes, sha256_bytes
+from .sniff import sniff
 
 #: um per unit of length.
 LENGTHS = {"m": 1e6, "mm": 1e3, "um": 1.0, "px": None}
@@ -118,20 +119,6 @@ def list_files(where: str) -> list[str]:
             "quotes such as 'piv/PIVlab_*.txt')"
         )
     return sorted(found, key=natural_key)
-
-
-def sniff(first_lines: list[str]) -> str | None:
-    """'pivlab', 'openpiv' or None from a file's first lines."""
-    head = [s.strip() for s in first_lines if s.strip()][:3]
-    if not head:
-        return None
-    if head[0].startswith("PIVlab") or any(s.startswith("FRAME:") for s in head):
-        return "pivlab"
-    if any(re.match(r"x \[(m|px)\]", s) for s in head):
-        return "pivlab"
-    if re.fullmatch(r"#\s*x\s+y\s+u\s+v\s+(flags\s+)?mask", head[0]):
-        return "openpiv"
-    return None
 
 
 def _velocity_factor(path, unit: str, um_per_length, dt: float) -> float:
