@@ -221,3 +221,16 @@ def test_the_report_hashes_every_raw_file_read_with_its_counts():
     ):
         assert hashlib.sha256(path.read_bytes()).hexdigest() in section
     assert "tracking failed 2" in section and "masked" in section and "wound centre" in section
+
+
+def test_a_centre_given_in_pixels_is_used_as_given():
+    from wound_opening.cli import parser
+    from wound_opening.cli_inputs import read_lab_inputs
+
+    argv = shlex.split(readme_lab_command())[1:]
+    px = ",".join(f"{c:g}" for c in lab.CENTRE_PX)
+    inputs = read_lab_inputs(parser().parse_args(argv + ["--centre-px", px]))
+    notes = [n for f in inputs.profiles[0].files for n in f.notes]
+    assert any(n.startswith("wound centre given: (50.26, 52.56) um") for n in notes), notes
+    with pytest.raises(InputError, match="one for all or one each"):
+        read_lab_inputs(parser().parse_args(argv + ["--centre-px", px, "--centre-px", px]))

@@ -1,5 +1,5 @@
 """A PIV field as the fit's velocity profile: the radial velocity seen from the wound centre,
-averaged in rings (docs/fitting.md, "Lab files": why rings and not every vector).
+averaged in rings (docs/fitting.md, "Lab files: Fiji, PIVlab, OpenPIV": why rings).
 
 Per frame pair, vectors at or inside the wound edge (the radius series interpolated at the
 pair's time) and at or beyond the outer radius are dropped; the rest fall into rings of width
