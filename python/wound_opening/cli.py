@@ -11,6 +11,7 @@ import sys
 
 
 def _fit(args) -> None:
+    from .cli_inputs import read_lab_inputs
     from .fitting.parameters import from_options
     from .fitting.single import fit
     from .inputs.columns import InputError, float_list
@@ -35,14 +36,16 @@ def _fit(args) -> None:
         )
         for p in args.profile or []
     ]
+    lab = read_lab_inputs(args)  # Fiji tables and PIV fields (cli_inputs.py); None without them
+    profiles = lab.profiles if lab else profiles
     if args.wound_col or len(args.radius_csv) > 1:
-        return _fit_wounds(args, units, outer, profiles)
+        return _fit_wounds(args, units, outer, profiles, lab)
     if len(outer) > 1 or len(profiles) > 1:
         raise InputError(
             f"one radius file (one wound) takes one outer radius and at most one --profile, got "
             f"{len(outer)} and {len(profiles)}"
         )
-    radius = read_radius(
+    radius = (lab.radii[0] if lab else None) or read_radius(
         args.radius_csv[0],
         time_col=args.time_col,
         radius_col=args.radius_col,
@@ -79,7 +82,7 @@ def _command_line() -> str:
     return "wound-opening " + " ".join(shlex.quote(a) for a in sys.argv[1:])
 
 
-def _fit_wounds(args, units, outer, profiles) -> int:
+def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
     """Several wounds of one tissue: one radius file each, or one long table with --wound-col."""
     from .fitting.wounds import Wound, fit_wounds
     from .inputs.columns import InputError
@@ -92,7 +95,9 @@ def _fit_wounds(args, units, outer, profiles) -> int:
         noise_um=args.radius_noise_um,
         **units,
     )
-    if args.wound_col:
+    if lab:
+        series = lab.series
+    elif args.wound_col:
         if len(args.radius_csv) > 1:
             raise InputError(
                 f"--wound-col reads one long table with every wound: {len(args.radius_csv)} files "
@@ -212,6 +217,8 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
 
 
 def parser() -> argparse.ArgumentParser:
+    from .cli_inputs import add_lab_file_arguments
+
     top = argparse.ArgumentParser(
         prog="wound-opening",
         description=(
@@ -392,6 +399,7 @@ def parser() -> argparse.ArgumentParser:
         help="a Gaussian prior (mean, standard deviation), e.g. --prior G_pa=1200:200 (AFM), "
         "--prior T_s=8:2; it enters chi^2 as ((value - MEAN) / SD)^2",
     )
+    add_lab_file_arguments(f)  # Fiji tables, PIVlab and OpenPIV fields (cli_inputs.py)
     f.set_defaults(run=_fit)
 
     s = sub.add_parser(

@@ -14,7 +14,13 @@ import ast
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[2] / "python" / "wound_opening"
-LAYERS = {"cli": 4, "fitting": 3, "results": 2, "inputs": 1}  # anything else: 0 (simulation)
+LAYERS = {
+    "cli": 4,
+    "cli_inputs": 4,
+    "fitting": 3,
+    "results": 2,
+    "inputs": 1,
+}  # anything else: 0 (simulation)
 
 
 def module_name(path: Path) -> str:

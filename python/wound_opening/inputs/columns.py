@@ -58,6 +58,18 @@ def _declared_separator(text: str) -> str | None:
     return s[4] if len(s) == 5 and s.lower().startswith("sep=") else None
 
 
+def _refuse_piv(path, first_lines) -> None:
+    """A PIVlab or OpenPIV export is a vector field, not a table of these columns."""
+    from .sniff import sniff
+
+    program = sniff(first_lines)
+    if program:
+        raise InputError(
+            f"{path}: a {'PIVlab' if program == 'pivlab' else 'OpenPIV'} vector field, not a "
+            "profile table: give its folder with --piv (docs/fitting.md, 'Lab files')"
+        )
+
+
 def read_columns(
     path: str,
     columns: tuple[str, ...],
@@ -89,6 +101,7 @@ def read_columns(
                 f"{', '.join(map(repr, columns))}"
             )
     header_line, header_text = numbered[0]
+    _refuse_piv(path, text[:3])
     sep = declared or next((c for c in ("\t", ";", ",") if c in header_text), ",")
     body = numbered[1:]
     try:
@@ -126,7 +139,10 @@ def read_columns(
             )
     if frame is None or len(frame) != len(body):
         raise InputError(f"{path}: cannot be read as a table separated by {sep!r}")
-    frame.columns = [str(c).strip() for c in frame.columns]
+    frame.columns = [
+        "(blank: row numbers)" if str(c).startswith("Unnamed: ") else str(c).strip()
+        for c in frame.columns
+    ]
     header = list(frame.columns)
     for name in columns + ((label,) if label else ()):
         if name not in header:

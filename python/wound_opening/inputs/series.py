@@ -22,6 +22,8 @@ class RadiusSeries:
     #: The file read (lab_files.read_radius) and the file line of each row, for messages.
     source: str | None = None
     lines: np.ndarray | None = None
+    #: The raw files read for it (provenance.RawFile: hash, counts, notes), e.g. a Fiji table.
+    files: tuple = ()
 
     def __post_init__(self):
         _check_columns("radius", self.times_s, self.radius_um)
@@ -47,6 +49,8 @@ class VelocityProfile:
     sd_um_s: np.ndarray | None = None
     source: str | None = None
     lines: np.ndarray | None = None
+    #: The raw files read for it (provenance.RawFile), e.g. one PIVlab file per frame pair.
+    files: tuple = ()
 
     def __post_init__(self):
         _check_columns("profile", self.times_s, self.r_um, self.velocity_um_s)

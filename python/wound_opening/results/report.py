@@ -88,11 +88,37 @@ def inputs(radius, profile) -> list:
         if data is None:
             continue
         source = getattr(data, "source", None)
-        if source:
+        if getattr(data, "files", ()):  # raw lab files: hashed as read (raw_files_section)
+            out.append((what, str(source or "lab files"), "see 'Raw files read'", n))
+        elif source:
             out.append((what, str(source), sha256(source), n))
         else:
             out.append((what, "given in Python (no file)", "—", n))
     return out
+
+
+def raw_files_section(*series) -> str:
+    """The raw lab files behind the series (a Fiji table, every PIV file): each with the
+    SHA-256 of the bytes read, its counts (rows or vectors read, dropped and why, used) and
+    the notes (rows skipped, the wound centre, the rings); "" when none were read."""
+    rows, notes = [], []
+    for s in series:
+        for f in getattr(s, "files", ()) if s is not None else ():
+            notes += list(f.notes)
+            if f.sha256:
+                counts = ", ".join(f"{k} {v}" for k, v in f.counts.items())
+                rows.append((str(f.path), f.kind, f.sha256, counts))
+            elif f.counts:
+                counts = ", ".join(f"{k} {v}" for k, v in f.counts.items())
+                rows.append((f.kind, "", "", counts))
+    if not rows:
+        return ""
+    items = "".join(f"<li>{html.escape(n)}</li>" for n in notes)
+    return (
+        "<h3>Raw files read</h3>"
+        + _table(["file", "what", "SHA-256 (of the bytes read)", "counts"], rows)
+        + (f"<ul>{items}</ul>" if items else "")
+    )
 
 
 def figure_png(result) -> bytes:
@@ -115,6 +141,7 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
             [(w, f, h, str(n)) for w, f, h, n in inputs(radius, profile)],
         ),
     ]
+    parts.append(raw_files_section(radius, profile))
     estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
     how = ["estimated from the residuals" if e else "given" for e in estimated]
     noise = [f"radius {_n(result.noise[0], 4)} µm ({how[0]})"]

@@ -1,0 +1,156 @@
+"""The wound centre of a PIV field, and the field seen from it: the distance r of each vector
+from the centre and its radial component.
+
+Estimate. An opening wound moves the tissue radially away from its centre c: the velocity at
+position p_i in frame pair k is w_i = g_k(|p_i - c|) e_i + noise, e_i = (p_i - c) / |p_i - c|,
+with g_k a smooth radial speed, here g_k(r) = a/r + b/r^2 + c/r^3 + d (per pair). The centre
+is the least-squares fit of this model to both components of every vector of every pair: for
+a trial c, each g_k is the linear least-squares fit of the radial components, and the
+residuals are the tangential components and the radial ones less g_k (variable projection; c
+by scipy.optimize.least_squares from the mean position weighted by speed). Fitting the
+tangential components alone is biased where the vectors are mostly noise: moving c lines
+noise up with the radial direction at no cost, while in the full fit a noise vector costs its
+length whatever c is.
+
+Uncertainty: the larger of (a) the curvature of the cost, s^2 2 H^-1 (H by central
+differences; s^2 the residual variance), and (b) the jackknife over frame pairs (with 3 or
+more pairs): the cost is not quadratic on the scale of (a) when the far field is mostly
+noise. docs/fitting.md gives its calibration on noisy fields of the exact solution."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .columns import InputError
+
+
+@dataclass(frozen=True)
+class Centre:
+    """The centre [um] in the files' axes, with its standard errors (0 when given)."""
+
+    x_um: float
+    y_um: float
+    sd_x_um: float = 0.0
+    sd_y_um: float = 0.0
+    estimated: bool = False
+    tangential_rms_um_s: float | None = None
+
+    def describe(self) -> str:
+        if not self.estimated:
+            return f"wound centre given: ({self.x_um:.6g}, {self.y_um:.6g}) um"
+        return (
+            f"wound centre estimated from the flow: ({self.x_um:.6g} +- {self.sd_x_um:.2g}, "
+            f"{self.y_um:.6g} +- {self.sd_y_um:.2g}) um (tangential velocity rms "
+            f"{self.tangential_rms_um_s:.3g} um/s)"
+        )
+
+
+def parse_point(text: str, option: str) -> tuple[float, float]:
+    try:
+        x, y = (float(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(f"{option} {text!r}: expected X,Y (two numbers)") from None
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise InputError(f"{option} {text!r}: must be finite")
+    return x, y
+
+
+def _basis(r):
+    return np.column_stack([1 / r, r**-2, r**-3, np.ones_like(r)])
+
+
+def _residuals(c, x, y, u, v, groups):
+    dx, dy = x - c[0], y - c[1]
+    r = np.hypot(dx, dy)
+    ex, ey = dx / r, dy / r
+    radial = u * ex + v * ey
+    out = [u * ey - v * ex]
+    for rows in groups:
+        b = _basis(r[rows])
+        coef, *_ = np.linalg.lstsq(b, radial[rows], rcond=None)
+        out.append(radial[rows] - b @ coef)
+    return np.concatenate(out)
+
+
+def _fit(x, y, u, v, groups, start, scale):
+    from scipy.optimize import least_squares
+
+    return least_squares(
+        _residuals,
+        start,
+        args=(x, y, u, v, groups),
+        x_scale=scale,
+        ftol=1e-14,
+        xtol=1e-10,
+        gtol=1e-14,
+    )
+
+
+def _curvature_cov(c, args, h):
+    """2 (d^2 cost / dc^2)^-1 by central differences of the cost."""
+
+    def cost(p):
+        r = _residuals(np.asarray(p), *args)
+        return float(r @ r)
+
+    e = np.eye(2) * h
+    hess = np.empty((2, 2))
+    for i in range(2):
+        for j in range(2):
+            hess[i, j] = (
+                cost(c + e[i] + e[j])
+                - cost(c + e[i] - e[j])
+                - cost(c - e[i] + e[j])
+                + cost(c - e[i] - e[j])
+            ) / (4 * h * h)
+    try:
+        return 2 * np.linalg.inv(hess)
+    except np.linalg.LinAlgError:
+        return np.full((2, 2), np.inf)
+
+
+def estimate_centre(x, y, u, v, pair=None) -> Centre:
+    """The centre of the radial flow (module docstring). `pair`: the frame pair of each
+    vector (one radial profile each)."""
+    x, y, u, v = (np.asarray(a, dtype=float) for a in (x, y, u, v))
+    if x.size < 10:
+        raise InputError(f"{x.size} PIV vectors: too few to estimate the wound centre, give it")
+    pair = np.zeros(x.size, int) if pair is None else np.asarray(pair)
+    groups = [np.flatnonzero(pair == k) for k in np.unique(pair)]
+    extent = max(float(np.ptp(x)), float(np.ptp(y)), 1e-12)
+    speed = np.hypot(u, v)
+    start = np.array([np.average(x, weights=speed), np.average(y, weights=speed)])
+    fit = _fit(x, y, u, v, groups, start, extent / 100)
+    dof = max(2 * x.size - 2 - 4 * len(groups), 1)
+    s2 = float(fit.fun @ fit.fun) / dof
+    var = np.diag(s2 * _curvature_cov(fit.x, (x, y, u, v, groups), extent / 200)).copy()
+    if len(groups) >= 3:  # the jackknife over frame pairs
+        leave = []
+        for k in range(len(groups)):
+            rows = np.concatenate([g for j, g in enumerate(groups) if j != k])
+            sub = [np.searchsorted(rows, g) for j, g in enumerate(groups) if j != k]
+            leave.append(_fit(x[rows], y[rows], u[rows], v[rows], sub, fit.x, extent / 100).x)
+        leave = np.array(leave)
+        n = len(groups)
+        var = np.maximum(var, (n - 1) / n * np.sum((leave - leave.mean(0)) ** 2, axis=0))
+    tangential = fit.fun[: x.size]
+    rms = math.sqrt(float(tangential @ tangential) / x.size)
+    if not fit.success or not np.all(np.isfinite(var)) or var.max() > (extent / 10) ** 2:
+        raise InputError(
+            f"the PIV field does not point away from one centre (tangential velocity rms "
+            f"{rms:.3g} um/s, median speed {float(np.median(speed)):.3g} um/s): give the "
+            "centre (--centre-um or --centre-px)"
+        )
+    return Centre(float(fit.x[0]), float(fit.x[1]), math.sqrt(var[0]), math.sqrt(var[1]), True, rms)
+
+
+def radial(centre: Centre, x, y, u, v) -> tuple[np.ndarray, np.ndarray]:
+    """(r [um], radial velocity [um/s]) of each vector seen from `centre`."""
+    dx, dy = np.asarray(x) - centre.x_um, np.asarray(y) - centre.y_um
+    r = np.hypot(dx, dy)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        vr = (dx * np.asarray(u) + dy * np.asarray(v)) / r
+    return r, vr

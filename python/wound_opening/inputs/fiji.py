@@ -1,0 +1,231 @@
+"""Fiji/ImageJ Results tables (Analyze > Measure, saved as .csv or .txt): one row per
+measurement, the wound's area and the frame it was measured in.
+
+ImageJ's ResultsTable writes a first column with a blank heading (" ") holding 1-based row
+numbers when row numbers are shown, then "Label" when labels are recorded, then the measured
+columns ("Area", "Perim.", ..., "Slice" or "Frame"), separated by "," in .csv files and by tabs
+otherwise; a failed measurement is written "NaN".
+
+    radius [um] = sqrt(Area / pi) x (1 for um^2, pixel_size_um for px^2)
+    time [s since the cut] = (frame - cut_after_frame) x frame_interval_s
+
+Frames up to and including `cut_after_frame` were recorded before the cut: their rows are
+skipped (whatever they hold: Area 0, empty, a pre-cut measurement). After the cut a row with
+no area (empty, NaN, 0) is a frame where the tracking failed: skipped. Both are counted in
+the file's record (provenance.RawFile) and its notes, which the report and the command line
+show. A column that holds a radius (or a diameter) instead of an area is refused."""
+
+from __future__ import annotations
+
+import csv
+import math
+
+import numpy as np
+
+from .columns import MIN_POINTS, InputError
+from .provenance import RawFile, decode, read_bytes, sha256_bytes
+from .series import RadiusSeries
+
+ROW_NUMBERS = "(row numbers)"
+PERIMETER = "Perim."
+#: 4 pi Area / Perim.^2 (circularity) is 1 for a circle and less for any other shape; a real
+#: wound outline is above this (a rough ellipse of axis ratio 10 is 0.35).
+MIN_CIRCULARITY = 0.2
+#: A wound smaller than this radius (in pixels) cannot be outlined on an image.
+MIN_RADIUS_PX = 5.0
+#: ... and, without a pixel size, smaller than this radius in um (laser cuts are microns wide).
+MIN_RADIUS_UM = 1.5
+
+
+def _frame_interval(value) -> float:
+    if value is None or not (math.isfinite(value) and value > 0):
+        raise InputError(
+            f"--frame-interval-s {value}: a Fiji table numbers frames, the time between frames "
+            "(s, finite, > 0) turns them into times"
+        )
+    return float(value)
+
+
+def _cut_frame(value) -> int:
+    if value is None or int(value) != value or value < 0:
+        raise InputError(
+            f"--cut-after-frame {value}: give the last frame recorded before the cut (an integer "
+            ">= 0; 0 when the first frame is after the cut)"
+        )
+    return int(value)
+
+
+def _um_per_length(path, length_unit: str, pixel_size_um) -> float:
+    if length_unit == "um":
+        if pixel_size_um is not None:
+            raise InputError(
+                f"{path}: a pixel size is given but the length unit is um: give --length-unit px"
+            )
+        return 1.0
+    if length_unit != "px":
+        raise InputError(f"{path}: length unit {length_unit!r}: expected um or px")
+    if pixel_size_um is None or not (math.isfinite(pixel_size_um) and pixel_size_um > 0):
+        raise InputError(
+            f"{path}: length unit px needs the pixel size in um (finite, > 0), got {pixel_size_um}"
+        )
+    return float(pixel_size_um)
+
+
+def header_names(cells) -> list[str]:
+    """The header's names, the blank first heading named ROW_NUMBERS (not 'Unnamed: 0')."""
+    names = [c.strip() for c in cells]
+    return [ROW_NUMBERS if (k == 0 and n == "") else n for k, n in enumerate(names)]
+
+
+def _number(path, n, name, text, *, missing_ok=False):
+    s = text.strip()
+    if s == "" or s.lower() == "nan":
+        if missing_ok:
+            return math.nan
+        raise InputError(f"{path}: line {n}: {name} = {text!r} is not a number")
+    try:
+        return float(s)
+    except ValueError:
+        raise InputError(f"{path}: line {n}: {name} = {text!r} is not a number") from None
+
+
+def read_fiji(
+    path: str,
+    *,
+    area_col: str = "Area",
+    frame_col: str | None = None,
+    frame_interval_s: float | None = None,
+    cut_after_frame: int | None = None,
+    length_unit: str = "um",
+    pixel_size_um: float | None = None,
+    noise_um: float | None = None,
+) -> RadiusSeries:
+    """The wound radius series of a Fiji Results table (module docstring). `frame_col`: the
+    frame column (default: Slice, else Frame); `length_unit`: of the area's length (um for
+    um^2, px for px^2 with `pixel_size_um`). The series' `files` holds the file's record."""
+    dt = _frame_interval(frame_interval_s)
+    cut = _cut_frame(cut_after_frame)
+    um = _um_per_length(path, length_unit, pixel_size_um)
+    data = read_bytes(path, InputError)
+    text = decode(path, data, InputError)
+    numbered = [(n, s) for n, s in enumerate(text, start=1) if s.strip()]
+    if not numbered:
+        raise InputError(f"{path}: empty: expected a Fiji Results table with the column {area_col}")
+    header_line, header = numbered[0]
+    sep = "\t" if "\t" in header else ","
+    names = header_names(next(csv.reader([header], delimiter=sep)))
+    if frame_col is None:
+        frame_col = next((c for c in ("Slice", "Frame") if c in names), "Slice")
+    for name, option in ((area_col, "--area-col"), (frame_col, "--frame-col")):
+        if name not in names:
+            raise InputError(
+                f"{path}: line {header_line}: no column {name!r} ({option}); the header has "
+                f"{', '.join(map(repr, names))}"
+            )
+    ia, i_f = names.index(area_col), names.index(frame_col)
+    ip = names.index(PERIMETER) if PERIMETER in names else None
+    rows = []  # (line, frame, area, perimeter)
+    for n, s in numbered[1:]:
+        cells = next(csv.reader([s], delimiter=sep))
+        if len(cells) != len(names):
+            raise InputError(
+                f"{path}: line {n}: {len(cells)} cells, expected {len(names)} as in the header "
+                f"(line {header_line})"
+            )
+        frame = _number(path, n, frame_col, cells[i_f])
+        if frame != int(frame) or frame < 0:
+            raise InputError(f"{path}: line {n}: {frame_col} = {cells[i_f]!r}: not a frame number")
+        area = _number(path, n, area_col, cells[ia], missing_ok=True)
+        perim = math.nan if ip is None else _number(path, n, PERIMETER, cells[ip], missing_ok=True)
+        rows.append((n, int(frame), area, perim))
+    return _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um)
+
+
+def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um):
+    frames = [f for _, f, _, _ in rows]
+    for k in range(1, len(rows)):
+        if frames[k] <= frames[k - 1]:
+            raise InputError(
+                f"{path}: line {rows[k][0]}: {frame_col} {frames[k]} after {frames[k - 1]} (line "
+                f"{rows[k - 1][0]}): one measurement per frame, frames ascending"
+            )
+    before = [r for r in rows if r[1] <= cut]
+    after = [r for r in rows if r[1] > cut]
+    failed = [r for r in after if not (math.isfinite(r[2]) and r[2] > 0)]
+    used = [r for r in after if math.isfinite(r[2]) and r[2] > 0]
+    bad = [r for r in used if r[2] < 0]
+    if bad:
+        raise InputError(f"{path}: line {bad[0][0]}: {area_col} = {bad[0][2]:g} < 0")
+    if len(used) < MIN_POINTS:
+        raise InputError(
+            f"{path}: {len(used)} frames after the cut (frame {cut}) with an area: too few, need "
+            f"at least {MIN_POINTS} ({len(before)} rows before the cut, {len(failed)} without an "
+            "area)"
+        )
+    lines = np.array([r[0] for r in used], dtype=int)
+    area = np.array([r[2] for r in used])
+    perim = np.array([r[3] for r in used])
+    _check_area(path, area_col, area, perim, lines, um, length_unit)
+    radius = np.sqrt(area / math.pi) * um
+    times = (np.array([r[1] for r in used], dtype=float) - cut) * dt
+    notes = []
+    if before:
+        notes.append(
+            f"{path}: {len(before)} rows at or before frame {cut} (before the cut) skipped"
+        )
+    if failed:
+        listed = ", ".join(str(r[1]) for r in failed[:10]) + (", ..." if len(failed) > 10 else "")
+        notes.append(
+            f"{path}: {len(failed)} frames after the cut without an area (NaN, empty or 0: "
+            f"the tracking failed) skipped: {frame_col} {listed}"
+        )
+    record = RawFile(
+        path,
+        sha256_bytes(data),
+        "Fiji Results table",
+        {
+            "rows": len(rows),
+            "before the cut": len(before),
+            "tracking failed": len(failed),
+            "used": len(used),
+        },
+        tuple(notes),
+    )
+    return RadiusSeries(times, radius, noise_um, source=path, lines=lines, files=(record,))
+
+
+def _check_area(path, area_col, area, perim, lines, um, length_unit) -> None:
+    """Refuse a column that holds a radius or a diameter instead of an area."""
+    has_p = np.isfinite(perim) & (perim > 0)
+    if np.count_nonzero(has_p) >= max(3, area.size // 2):
+        circ = 4 * math.pi * area[has_p] / perim[has_p] ** 2
+        median = float(np.median(circ))
+        if median < MIN_CIRCULARITY:
+            r_if = float(np.median(area[has_p]))
+            raise InputError(
+                f"{path}: {area_col} does not hold an area: 4 pi {area_col} / {PERIMETER}^2 = "
+                f"{median:.3g} (median), but an outline has at most 1 (a circle) and a wound more "
+                f"than {MIN_CIRCULARITY}; with {PERIMETER} = 2 pi r the column holds about r "
+                f"(median {r_if:.4g}): a radius or a diameter. Measure Area in Fiji, or give a "
+                "radius column to the plain reader (--radius-col)"
+            )
+        if median > 1.05:
+            k = int(np.flatnonzero(has_p)[int(np.argmax(circ))])
+            raise InputError(
+                f"{path}: line {lines[k]}: {area_col} = {area[k]:g} with {PERIMETER} = "
+                f"{perim[k]:g}: 4 pi {area_col} / {PERIMETER}^2 = {circ.max():.3g} > 1, no outline "
+                f"has that: the two columns are not the area and perimeter of one outline"
+            )
+    radius_len = float(np.median(np.sqrt(area / math.pi)))
+    if length_unit == "px" and radius_len < MIN_RADIUS_PX:
+        raise InputError(
+            f"{path}: {area_col} median {np.median(area):.4g} px^2 is a radius of "
+            f"{radius_len:.3g} px: no wound that small can be outlined; does {area_col} hold a "
+            f"radius? (a radius needs the plain reader, --radius-col)"
+        )
+    if length_unit == "um" and radius_len * um < MIN_RADIUS_UM:
+        raise InputError(
+            f"{path}: {area_col} median {np.median(area):.4g} um^2 is a radius of "
+            f"{radius_len:.3g} um: smaller than a laser cut; is the area in px^2 (--length-unit "
+            f"px --pixel-size-um) or does {area_col} hold a radius?"
+        )

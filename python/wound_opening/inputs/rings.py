@@ -1,0 +1,174 @@
+"""A PIV field as the fit's velocity profile: the radial velocity seen from the wound centre,
+averaged in rings (docs/fitting.md, "Lab files: Fiji, PIVlab, OpenPIV": why rings).
+
+Per frame pair, vectors at or inside the wound edge (the radius series interpolated at the
+pair's time) and at or beyond the outer radius are dropped; the rest fall into rings of width
+`ring_width_um` starting at the edge. A ring with at least `min_vectors` vectors gives one
+profile point:
+
+    r     = the harmonic mean of its distances (exact for a velocity ~ 1/r)
+    v     = the mean of its radial velocities
+    sd(v) = s / sqrt(n),  s^2 the pooled variance of the vectors about their ring means
+            (every ring of every pair, n - rings degrees of freedom)
+
+so the noise comes from the scatter within the rings, as the data give it."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .columns import InputError
+from .provenance import RawFile
+from .series import RadiusSeries, VelocityProfile
+
+MIN_VECTORS = 5
+
+
+def _edge(radius: RadiusSeries, t):
+    order = np.argsort(radius.times_s, kind="stable")
+    return np.interp(t, np.asarray(radius.times_s)[order], np.asarray(radius.radius_um)[order])
+
+
+def keep(radius: RadiusSeries, outer_um: float, t, r):
+    """(mask of vectors between the wound edge and the outer radius, inside, beyond)."""
+    edge = _edge(radius, t)
+    inside, beyond = r <= edge, r >= outer_um
+    return ~inside & ~beyond & np.isfinite(r), int(inside.sum()), int(beyond.sum())
+
+
+def ring_profile(
+    t,
+    r,
+    vr,
+    radius: RadiusSeries,
+    outer_um: float,
+    ring_width_um: float,
+    *,
+    min_vectors: int = MIN_VECTORS,
+    files: tuple = (),
+    source: str | None = None,
+) -> tuple[VelocityProfile, dict]:
+    """(the ring profile, counts) of radial vectors (module docstring)."""
+    if not (math.isfinite(ring_width_um) and ring_width_um > 0):
+        raise InputError(f"--ring-width-um {ring_width_um}: must be finite and > 0")
+    ok, inside, beyond = keep(radius, outer_um, t, r)
+    t, r, vr = t[ok], r[ok], vr[ok]
+    edge = _edge(radius, t)
+    ring = np.floor((r - edge) / ring_width_um).astype(int)
+    keys = np.stack([t, ring])
+    _, group = np.unique(keys, axis=1, return_inverse=True)
+    group = group.ravel()
+    n = np.bincount(group)
+    big = n[group] >= min_vectors
+    if not big.any():
+        raise InputError(
+            f"no ring of width {ring_width_um:g} um holds {min_vectors} PIV vectors between the "
+            "wound edge and the outer radius: widen the rings (--ring-width-um)"
+        )
+    few = int((~big).sum())
+    t, r, vr, group = t[big], r[big], vr[big], np.unique(group[big], return_inverse=True)[1]
+    n = np.bincount(group)
+    tm = np.bincount(group, t) / n
+    mean = np.bincount(group, vr) / n
+    harmonic = n / np.bincount(group, 1.0 / r)
+    dof = vr.size - n.size
+    if dof < 2:
+        raise InputError("too few PIV vectors per ring to estimate their scatter")
+    s = math.sqrt(float(np.sum((vr - mean[group]) ** 2)) / dof)
+    order = np.lexsort((harmonic, tm))
+    counts = {
+        "inside the wound edge": inside,
+        "beyond the outer radius": beyond,
+        "in rings of fewer than %d" % min_vectors: few,
+        "used": int(vr.size),
+        "rings": int(n.size),
+    }
+    profile = VelocityProfile(
+        tm[order],
+        harmonic[order],
+        mean[order],
+        sd_um_s=s / np.sqrt(n[order]),
+        source=source,
+        files=tuple(files)
+        + (RawFile("(rings)", "", "ring averages", counts, (_note(counts, s, ring_width_um),)),),
+    )
+    return profile, counts
+
+
+def _note(counts, s, width) -> str:
+    return (
+        f"PIV: {counts['used']} vectors in {counts['rings']} rings of {width:.3g} um "
+        f"(scatter within rings {s:.3g} um/s); dropped {counts['inside the wound edge']} inside "
+        f"the wound edge, {counts['beyond the outer radius']} beyond the outer radius, "
+        f"{counts[next(k for k in counts if k.startswith('in rings'))]} in rings too sparse"
+    )
+
+
+def vector_profile(t, r, vr, radius, outer_um, *, noise_um_s=None, files=(), source=None):
+    """Every vector as a profile point (the alternative to rings; noise estimated unless
+    given)."""
+    ok, inside, beyond = keep(radius, outer_um, t, r)
+    order = np.lexsort((r[ok], t[ok]))
+    counts = {
+        "inside the wound edge": inside,
+        "beyond the outer radius": beyond,
+        "used": int(ok.sum()),
+    }
+    note = (
+        f"PIV: every vector ({counts['used']}); dropped {inside} inside the wound edge, "
+        f"{beyond} beyond the outer radius"
+    )
+    profile = VelocityProfile(
+        t[ok][order],
+        r[ok][order],
+        vr[ok][order],
+        noise_um_s,
+        source=source,
+        files=tuple(files) + (RawFile("(vectors)", "", "every vector", counts, (note,)),),
+    )
+    return profile, counts
+
+
+def field_profile(
+    field,
+    radius: RadiusSeries,
+    outer_um: float,
+    *,
+    centre=None,
+    ring_width_um: float | None = None,
+    likelihood: str = "rings",
+    noise_um_s: float | None = None,
+):
+    """(VelocityProfile, Centre) of a piv.Field: the centre given (centre.Centre) or
+    estimated, the radial projection, then rings (default width: the PIV grid spacing) or
+    every vector."""
+    from .centre import estimate_centre, radial
+
+    if centre is None:
+        centre = estimate_centre(field.x_um, field.y_um, field.u_um_s, field.v_um_s, field.pair)
+    r, vr = radial(centre, field.x_um, field.y_um, field.u_um_s, field.v_um_s)
+    files = field.files + (RawFile("(centre)", "", "wound centre", {}, (centre.describe(),)),)
+    if likelihood == "vectors":
+        return vector_profile(
+            field.time_s,
+            r,
+            vr,
+            radius,
+            outer_um,
+            noise_um_s=noise_um_s,
+            files=files,
+            source=field.source,
+        )[0], centre
+    if likelihood != "rings":
+        raise InputError(f"PIV likelihood {likelihood!r}: expected rings or vectors")
+    if noise_um_s is not None:
+        raise InputError(
+            "--velocity-noise-um-s with PIV rings: the rings' noise is their scatter; give it "
+            "with --piv-likelihood vectors"
+        )
+    width = ring_width_um if ring_width_um is not None else field.spacing_um
+    return ring_profile(
+        field.time_s, r, vr, radius, outer_um, width, files=files, source=field.source
+    )[0], centre
