@@ -9,6 +9,8 @@ import os
 import shlex
 import sys
 
+from .cli_checks import add_arguments, check_cut, prepare, prepare_wounds
+
 
 def _fit(args) -> None:
     from .fitting.parameters import from_options
@@ -16,6 +18,8 @@ def _fit(args) -> None:
     from .inputs.columns import InputError, float_list
     from .inputs.lab_files import read_profile, read_radius
 
+    for path in args.radius_csv:  # cli_checks.py
+        check_cut(path, args)
     units = dict(
         time_unit=args.time_unit,
         length_unit=args.length_unit,
@@ -50,7 +54,7 @@ def _fit(args) -> None:
         noise_um=args.radius_noise_um,
         **units,
     )
-    profile = profiles[0] if profiles else None
+    radius, profile = prepare(args, radius, profiles[0] if profiles else None)  # cli_checks.py
     params = from_options(args.fix, args.bound, args.prior)
     result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
     print(result.summary())
@@ -101,6 +105,7 @@ def _fit_wounds(args, units, outer, profiles) -> int:
         series = read_wounds(args.radius_csv[0], wound_col=args.wound_col, **columns)
     else:
         series = {path: read_radius(path, **columns) for path in args.radius_csv}
+    series, profiles = prepare_wounds(args, series, profiles)  # cli_checks.py
     names = list(series)
     if len(outer) not in (1, len(names)):
         raise InputError(
@@ -358,6 +363,7 @@ def parser() -> argparse.ArgumentParser:
         metavar="TIME",
         help="time of the cut in the files' time unit, subtracted from every time (default 0)",
     )
+    add_arguments(c)  # --until-max, --until-s (cli_checks.py)
     f.add_argument(
         "--loss",
         choices=("linear", "soft_l1", "cauchy"),

@@ -22,6 +22,8 @@ class RadiusSeries:
     #: The file read (lab_files.read_radius) and the file line of each row, for messages.
     source: str | None = None
     lines: np.ndarray | None = None
+    #: What a selection of the recording kept and dropped (truncate.py), said in the result.
+    note: str | None = None
 
     def __post_init__(self):
         _check_columns("radius", self.times_s, self.radius_um)
