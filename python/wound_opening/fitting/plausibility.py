@@ -134,8 +134,9 @@ def unit_warnings(lam: float, T: float, intervals: dict | None) -> list[str]:
     if lo is not None and hi is not None:
         return [f"{what} and the data identify it ([{lo:.4g}, {hi:.4g}] s): {question}"]
     return [
-        f"{name} = {t_c:.3g} s is not identified ({_lack(name, lo, hi)}): {what} says "
-        "nothing about the unit of the times"
+        f"{name} = {t_c:.3g} s is {'long' if long else 'short'} for a laser-ablation recoil "
+        f"but not identified ({_lack(name, lo, hi)}): a time scale the data do not measure "
+        "says nothing about the unit of the times"
     ]
 
 
