@@ -105,7 +105,6 @@ def _fit_wounds(args, units, outer, profiles) -> int:
         series = read_wounds(args.radius_csv[0], wound_col=args.wound_col, **columns)
     else:
         series = {path: read_radius(path, **columns) for path in args.radius_csv}
-    series, profiles = prepare_wounds(args, series, profiles)  # cli_checks.py
     names = list(series)
     if len(outer) not in (1, len(names)):
         raise InputError(
@@ -129,6 +128,7 @@ def _fit_wounds(args, units, outer, profiles) -> int:
             "--fix, --bound and --prior apply to one wound's fit: the fit of several wounds takes "
             "no constraints"
         )
+    series, profiles = prepare_wounds(args, series, profiles)  # cli_checks.py
     wounds = [
         Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
         for k, (name, s) in enumerate(series.items())

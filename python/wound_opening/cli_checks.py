@@ -34,7 +34,7 @@ def add_arguments(group) -> None:
         "--until-s",
         type=float,
         metavar="T",
-        help="fit only the times up to T seconds after the cut (radius and profile)",
+        help="fit only the times up to T (s) after the cut, radius and profile",
     )
 
 
@@ -95,4 +95,4 @@ def prepare_wounds(args, series: dict, profiles: list):
         except InputError as e:
             raise InputError(f"wound {name}: {e}") from None
         kept.append(p)
-    return out, kept if profiles else profiles
+    return out, kept[: len(profiles)]

@@ -227,3 +227,14 @@ def test_random_valid_recordings_raise_no_alarm():
         series = RadiusSeries(t, r, sd if seen % 2 else None)
         assert shrinking(series) is None, (dt, n, lam, T, sd)
         assert check_recording(series) == [], (dt, n, lam, T, sd, check_recording(series))
+
+
+def test_a_noise_given_too_small_does_not_make_a_plateau_shrink():
+    """A plateau (lambda 0, T = 1 s, 80 frames to 60 s) scattered by 0.05 um with the noise
+    given as 0.01 um: the decision uses the scatter, not the smaller noise given."""
+    t = np.linspace(0.75, 60.0, 80)
+    found = [
+        shrinking(RadiusSeries(t, opening(t, lam=0.0, T=1.0, seed=s, noise=0.05), 0.01))
+        for s in range(20)
+    ]
+    assert found == [None] * 20, [f for f in found if f is not None][:1]

@@ -5,9 +5,9 @@ whose radius falls again after its maximum is closing actively (a purse string, 
 which the model does not describe; fitted whole it gives a negative tension or an opening
 larger than the tissue.
 
-The decision is made with the noise s of the radii (the noise given, the median of the
-per-point uncertainties, or, estimated, 1.4826 x the median absolute deviation of the second
-differences / sqrt(6), since var(d2) = 6 s^2): a point is "below" when it lies more than
+The decision is made with the noise s of the radii: 1.4826 x the median absolute deviation
+of the second differences / sqrt(6) (var(d2) = 6 s^2), or the noise given (the median of the
+per-point uncertainties) where that is larger: a point is "below" when it lies more than
 
     h = s (sqrt(2 ln n) + 3)
 
@@ -49,16 +49,19 @@ class Shrinking:
 
 
 def noise_of(radius: RadiusSeries) -> float:
-    """The radii's noise [um]: given, the median uncertainty, or robust from second differences."""
+    """The radii's noise [um]: robust from the second differences, or the noise given (the
+    median uncertainty) where that is larger; a given noise smaller than the scatter must
+    not turn the scatter of a plateau into a decrease."""
+    given = 0.0
     if radius.noise_um is not None:
-        return float(radius.noise_um)
-    if radius.sd_um is not None:
-        return float(np.median(radius.sd_um))
+        given = float(radius.noise_um)
+    elif radius.sd_um is not None:
+        given = float(np.median(radius.sd_um))
     r = _ordered(radius)[1]
     if r.size < 4:
-        return 0.0
+        return given
     d2 = np.diff(r, 2)
-    return 1.4826 * float(np.median(np.abs(d2 - np.median(d2)))) / math.sqrt(6)
+    return max(given, 1.4826 * float(np.median(np.abs(d2 - np.median(d2)))) / math.sqrt(6))
 
 
 def _ordered(radius: RadiusSeries):
