@@ -9,6 +9,8 @@ import os
 import shlex
 import sys
 
+from .cli_checks import add_arguments, check_cut, prepare, prepare_wounds
+
 
 def _fit(args) -> None:
     from .cli_inputs import read_lab_inputs
@@ -17,6 +19,8 @@ def _fit(args) -> None:
     from .inputs.columns import InputError, float_list
     from .inputs.lab_files import read_profile, read_radius
 
+    for path in args.radius_csv:  # cli_checks.py
+        check_cut(path, args)
     units = dict(
         time_unit=args.time_unit,
         length_unit=args.length_unit,
@@ -53,7 +57,7 @@ def _fit(args) -> None:
         noise_um=args.radius_noise_um,
         **units,
     )
-    profile = profiles[0] if profiles else None
+    radius, profile = prepare(args, radius, profiles[0] if profiles else None)  # cli_checks.py
     params = from_options(args.fix, args.bound, args.prior)
     result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
     print(result.summary())
@@ -129,6 +133,7 @@ def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
             "--fix, --bound and --prior apply to one wound's fit: the fit of several wounds takes "
             "no constraints"
         )
+    series, profiles = prepare_wounds(args, series, profiles)  # cli_checks.py
     wounds = [
         Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
         for k, (name, s) in enumerate(series.items())
@@ -365,6 +370,7 @@ def parser() -> argparse.ArgumentParser:
         metavar="TIME",
         help="time of the cut in the files' time unit, subtracted from every time (default 0)",
     )
+    add_arguments(c)  # --until-max, --until-s (cli_checks.py)
     f.add_argument(
         "--loss",
         choices=("linear", "soft_l1", "cauchy"),

@@ -35,7 +35,8 @@ from .intervals import profile_all, profile_at
 from .local import cost
 from .objective import Objective, from_z
 from .parameters import Constrained, specification
-from .plausibility import time_scale_warnings
+from .plausibility import intervals_of, time_scale_warnings
+from .recording import check_recording
 from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
 from .starts import grid_starts
 
@@ -58,6 +59,7 @@ def fit(
     giving a prior to R0_um, sigma, lambda, T_s, and G_pa fixed or with a prior."""
     check_loss(loss)
     check_against(radius, profile, outer_radius_um)
+    recording = check_recording(radius, profile)  # refuses a unit mistake, a closing wound
     spec = specification(params, outer_radius_um)
     data = Objective(radius, profile, outer_radius_um)
     n_free = len(spec.free)
@@ -132,7 +134,10 @@ def fit(
         outliers=outliers(data, judged.flagged),
         piv_at_edge=data.inside_edge,
         derived_profiles={name: p for name, p in profiles.items() if name not in NAMES},
-        plausibility=time_scale_warnings(theta, obj.outer, radius, profile),
+        plausibility=recording
+        + time_scale_warnings(
+            theta, obj.outer, radius, profile, intervals_of(reports, profiles) if profiles else None
+        ),
         points=data_points(data, z, judged.flagged),
         refit=partial(profile_at, obj, z, chi2_cost, loss=loss) if not judged.reasons else None,
     )

@@ -46,8 +46,9 @@ from ..results.wounds import TissueFitResult
 from .intervals import hull
 from .local import cost
 from .objective import LAMBDA_MAX, Objective, from_z
-from .plausibility import time_scale_warnings
+from .plausibility import time_scale_warnings, tissue_intervals
 from .problem import Problem
+from .recording import check_recording
 from .single import fit
 from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
 
@@ -186,6 +187,7 @@ def _wounds(experiments) -> list[Wound]:
     for w in wounds:
         try:
             check_against(w.radius, w.profile, w.outer_radius_um)
+            check_recording(w.radius, w.profile)  # a unit mistake, a closing wound
         except ValueError as e:
             raise ValueError(f"wound {w.name}: {e}") from None
         n = np.size(w.radius.radius_um) + (0 if w.profile is None else np.size(w.profile.r_um))
@@ -297,7 +299,11 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
         p.residuals(tissue.z(y, k))  # inside_edge at the optimum
         theta = tissue.theta(y, k)
         warnings += [
-            f"wound {w.name}: {m}" for m in time_scale_warnings(theta, p.outer, w.radius, w.profile)
+            f"wound {w.name}: {m}"
+            for m in check_recording(w.radius, w.profile)
+            + time_scale_warnings(
+                theta, p.outer, w.radius, w.profile, tissue_intervals(shared, r0[k], profiles)
+            )
         ]
         radius_res = p.split(part * p.sd)[0]
         wound_rows.append(

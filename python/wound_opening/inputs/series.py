@@ -24,6 +24,8 @@ class RadiusSeries:
     lines: np.ndarray | None = None
     #: The raw files read for it (provenance.RawFile: hash, counts, notes), e.g. a Fiji table.
     files: tuple = ()
+    #: What a selection of the recording kept and dropped (truncate.py), said in the result.
+    note: str | None = None
 
     def __post_init__(self):
         _check_columns("radius", self.times_s, self.radius_um)
