@@ -10,8 +10,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..material import ABSOLUTE, RATIOS, absolute_interval
 from .names import ETA, SHARED
 from .result import ParameterReport, chi2_warning, fmt, outlier_warning, verdict_fields
+from .status import judge, radii
 
 #: What would identify a shared quantity that is not.
 ADVICE = {
@@ -44,6 +46,118 @@ class TissueFitResult:
     optimizer: dict = field(default_factory=dict)
     evaluations: int = 0
     plausibility: list = field(default_factory=list)
+    #: G [Pa] for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
+    G: tuple | None = None
+    #: The recording's settings (results/settings.py): cut, units, pixel size, frames, files.
+    settings: dict = field(default_factory=dict)
+
+    @property
+    def material(self) -> dict:
+        """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
+        the tension, with their 95 % profile intervals: name -> {estimate, ci95,
+        identifiable, unit, interval_computed}, as FitResult.material."""
+        out = {}
+        for name, (_, unit) in RATIOS.items():
+            rep = self.shared[name]
+            out[name] = {
+                "estimate": rep.estimate,
+                "ci95": list(rep.ci95),
+                "identifiable": rep.identifiable,
+                "unit": unit,
+                "interval_computed": rep.profile is not None,
+            }
+        if self.G is None:
+            return out
+        mu, sd = self.G
+        out["G_pa"] = {"estimate": mu, "sd": sd, "fixed": sd == 0, "unit": "Pa"}
+        for name, (ratio, unit) in ABSOLUTE.items():
+            rep = self.shared[ratio]
+            p, q = rep.profile, rep.estimate
+            lo = hi = None
+            if p is not None and not p.at_bound:
+                if p.lower is not None and p.lower == p.upper:  # the ratio held fixed
+                    k = math.sqrt(self.threshold) * sd
+                    lo, hi = sorted((q * (mu - k), q * (mu + k)))
+                else:
+                    _, lo, hi = absolute_interval(
+                        q,
+                        p.lower,
+                        p.upper,
+                        p.points,
+                        self.G,
+                        self.threshold,
+                        log=ratio != "tension_over_G",
+                        bounded=p.bounded,
+                    )
+            out[name] = {
+                "estimate": q * mu,
+                "ci95": [lo, hi],
+                "identifiable": lo is not None and hi is not None,
+                "unit": unit,
+                "interval_computed": p is not None,
+            }
+        return out
+
+    def physics(self) -> tuple[list, list]:
+        """(forbidden estimates, intervals reaching forbidden values): status.py."""
+        mat = {k: m for k, m in self.material.items() if k != "G_pa"}
+        values = [("", k, m["estimate"]) for k, m in mat.items()]
+        intervals = [("", k, *m["ci95"]) for k, m in mat.items()]
+        for w, rep in zip(self.wounds, self.r0):
+            R0, sigma, lam, T = w["theta"]
+            where = f"wound {w['name']}"
+            values += [(where, "R0_um", R0), (where, "T_s", T)]
+            values += [(where, k, v) for k, v in radii(R0, sigma, w["outer_radius_um"]).items()]
+            intervals.append((where, "R0_um", *rep.ci95))
+        return judge(values, intervals)
+
+    def wound_view(self, k: int):
+        """Wound k's fit as the single fit's tables and export read it (export.tables)."""
+        from types import SimpleNamespace
+
+        w = self.wounds[k]
+        return SimpleNamespace(
+            converged=self.converged,
+            reasons=self.reasons,
+            theta=w["theta"],
+            points=w.get("points", {}),
+            outer_radius_um=w["outer_radius_um"],
+        )
+
+    def tables(self) -> dict:
+        """wound name -> its tables (export.tables: radius, curve, profile, profile_curve)."""
+        from .export import tables
+
+        return {w["name"]: tables(self.wound_view(k)) for k, w in enumerate(self.wounds)}
+
+    def export(self, stem) -> list:
+        """Each wound's tables as stem_<wound>_radius.csv, stem_<wound>_curve.csv (and the
+        PIV ones), the wound's name made safe for a file name; returns the paths."""
+        from pathlib import Path
+
+        from .export import export
+
+        stem = Path(stem)
+        if stem.suffix.lower() == ".csv":
+            stem = stem.with_suffix("")
+        paths = []
+        for k, name in enumerate(self.file_names()):
+            paths += export(self.wound_view(k), stem.with_name(f"{stem.name}_{name}"))
+        return paths
+
+    def file_names(self) -> list:
+        """Each wound's name for a file: its file's stem for a path, letters, digits, '-'
+        and '_' kept, the rest '_'; its position where two would coincide."""
+        import re
+        from pathlib import PurePath
+
+        out = []
+        for k, n in enumerate(self.names):
+            safe = re.sub(r"[^A-Za-z0-9_-]", "_", PurePath(n).stem or n) or str(k + 1)
+            out.append(safe)
+        if len(set(out)) < len(out):
+            out = [f"{k + 1}_{n}" for k, n in enumerate(out)]
+        return out
 
     @property
     def names(self) -> list:
