@@ -86,3 +86,35 @@ def end(x, side: int, estimate=None, digits: int = 3) -> str:
 def interval(lower, upper, estimate=None, digits: int = 3) -> str:
     """ "[lower, upper]" with each end as `end` prints it."""
     return f"[{end(lower, -1, estimate, digits)}, {end(upper, 1, estimate, digits)}]"
+
+
+#: The material values' symbols and units as figures print them.
+SYMBOLS = {
+    "eta_over_G_s": ("η/G", " s"),
+    "zeta_over_G_s_per_um2": ("ζ/G", " s/µm²"),
+    "tension_over_G": ("tension/G", ""),
+    "viscous_length_um": ("viscous length", " µm"),
+    "G_pa": ("G", " Pa"),
+    "eta_pa_s": ("η", " Pa s"),
+    "zeta_pa_s_per_um2": ("ζ", " Pa s/µm²"),
+    "tension_pa": ("tension", " Pa"),
+}
+
+
+def material_lines(material: dict) -> list:
+    """One line per material value (FitResult.material, TissueFitResult.material): its
+    estimate, unit and 95 % interval (ends as `end` prints them), "not identified" where so."""
+    lines = []
+    for name, m in material.items():
+        symbol, unit = SYMBOLS.get(name, (name, ""))
+        if name == "G_pa":
+            given = "fixed" if m["fixed"] else f"prior ± {number(m['sd'], 3)}"
+            lines.append(f"{symbol} = {number(m['estimate'])}{unit} ({given})")
+            continue
+        if not m.get("interval_computed", True):
+            ci = "(interval not computed)"
+        else:
+            lo, hi = m["ci95"]
+            ci = interval(lo, hi, m["estimate"]) + ("" if m["identifiable"] else " not identified")
+        lines.append(f"{symbol} = {number(m['estimate'])}{unit}  {ci}")
+    return lines

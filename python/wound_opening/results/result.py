@@ -122,6 +122,21 @@ class FitResult:
     #: (i, values of z_i) -> delta chi^2: the profile of coordinate i by constrained fits.
     refit: object = field(default=None, repr=False, compare=False)
     _profile_cache: dict = field(default_factory=dict, repr=False, compare=False)
+    #: The recording's settings (settings.py): cut, units, pixel size, frames, files; filled
+    #: by the command line (or a reader), printed by the report.
+    settings: dict = field(default_factory=dict)
+
+    def physics(self) -> tuple[list, list]:
+        """(forbidden estimates, intervals reaching forbidden values): status.py."""
+        from .status import judge, radii
+
+        R0, sigma, lam, T = self.theta
+        values = [("", "R0_um", R0), ("", "lambda", lam), ("", "T_s", T)]
+        values += [("", k, v) for k, v in radii(R0, sigma, self.outer_radius_um).items()]
+        mat = {k: m for k, m in self.material.items() if k != "G_pa"}
+        values += [("", k, m["estimate"]) for k, m in mat.items()]
+        intervals = [("", k, *m["ci95"]) for k, m in mat.items()]
+        return judge(values, intervals)
 
     @property
     def warnings(self) -> list:
