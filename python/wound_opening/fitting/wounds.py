@@ -306,7 +306,7 @@ def fit_wounds(
     shared = {
         name: ParameterReport(
             name,
-            float(v if i != 2 else math.exp(v)),
+            float(spec.fixed.get(i, v if i != 2 else math.exp(v))),  # a fixed value as given
             float(se[i]),
             profiles.get(name),
             spec.describe(i),
@@ -317,7 +317,7 @@ def fit_wounds(
     r0 = [
         ParameterReport(
             "R0_um",
-            math.exp(y[3 + k]),
+            float(spec.fixed.get(3 + k, math.exp(y[3 + k]))),
             float(se[3 + k]),
             profiles.get(("R0_um", k)),
             spec.describe(3 + k),

@@ -260,7 +260,10 @@ class FitResult:
             "piv_vectors_at_edge": self.piv_at_edge,
         }
         if not self.converged:
-            return status | {"estimate_at_stop": dict(zip(NAMES, self.theta))}
+            return status | {
+                "estimate_at_stop": dict(zip(NAMES, self.theta)),
+                "settings": self.settings,
+            }
         params = {}
         for name in NAMES:
             rep = self.reports[name]
@@ -273,7 +276,12 @@ class FitResult:
             } | rep.constraint
             if self.advice(name):
                 params[name]["advice"] = self.advice(name)
+        from .status import status as physical_status
+
+        st = physical_status(self)
         return status | {
+            "status": {"level": st.level, "text": st.text},
+            "settings": self.settings,
             "parameters": params,
             "derived": self.derived,
             "derived_ci95": self.derived_ci95,
@@ -361,6 +369,11 @@ class FitResult:
                 f"velocity): {self.piv_at_edge}"
             )
         lines += [f"warning: {w}" for w in self.warnings]
+        from .status import status as physical_status
+
+        st = physical_status(self)
+        if st.level != "green":
+            lines.append(f"status: {st.text}")
         return "\n".join(lines)
 
 

@@ -12,8 +12,10 @@ import numpy as np
 
 from ..material import ABSOLUTE, RATIOS, absolute_interval
 from .names import ETA, SHARED
+from .numbers import end, material_lines
 from .result import ParameterReport, chi2_warning, fmt, outlier_warning, verdict_fields
 from .status import judge, radii
+from .status import status as physical_status
 
 #: What would identify a shared quantity that is not.
 ADVICE = {
@@ -185,15 +187,18 @@ class TissueFitResult:
             "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
             "ci95": list(rep.ci95),
             "identifiable": rep.identifiable if rep.profile is not None else None,
-        }
+        } | rep.constraint
 
     @staticmethod
     def _interval(rep: ParameterReport, width: int) -> str:
         """The interval and whether identified, or that it was not computed."""
+        if rep.constraint.get("fixed"):
+            return f"{'(fixed)':<{2 * width + 5}}  {'-':<3}"
         if rep.profile is None:
             return f"{'(not computed)':<{2 * width + 5}}  {'-':<3}"
         lo, hi = rep.ci95
-        return f"[{fmt(lo):>{width}}, {fmt(hi):>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
+        lo, hi = end(lo, -1, rep.estimate), end(hi, 1, rep.estimate)
+        return f"[{lo:>{width}}, {hi:>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
 
     def to_dict(self) -> dict:
         status = verdict_fields(self)
@@ -220,14 +225,18 @@ class TissueFitResult:
                 row["estimate_at_stop"] = {"R0_um": R0, "sigma": sigma, "lambda": lam, "T_s": T}
             wounds.append(row)
         if not self.converged:
-            return status | {"wounds": wounds}
+            return status | {"wounds": wounds, "settings": self.settings}
         shared = {}
         for name, rep in self.shared.items():
             shared[name] = self._report(rep)
             if self.advice(name):
                 shared[name]["advice"] = self.advice(name)
         order = list(SHARED[:2]) + ["ln_" + SHARED[2]] + [f"ln_R0_um[{n}]" for n in self.names]
+        st = physical_status(self)
         return status | {
+            "status": {"level": st.level, "text": st.text},
+            "material": self.material,
+            "settings": self.settings,
             "shared": shared,
             "wounds": wounds,
             "delta_chi2_95": self.threshold,
@@ -251,6 +260,11 @@ class TissueFitResult:
                 f"{name:<22} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {self._interval(rep, 9)}"
             )
         lines += [f"  {self.advice(n)}" for n in self.shared if self.advice(n)]
+        lines += ["material (95 % profile intervals):"]
+        lines += [f"  {m}" for m in material_lines(self.material)]
+        st = physical_status(self)
+        if st.level != "green":
+            lines.append(f"status: {st.text}")
         wide = max([5] + [len(n) for n in self.names])
         lines.append(
             f"{'wound':<{wide}} {'outer um':>9} {'points':>7} {'R0_um':>9} {'stderr':>9}   "
