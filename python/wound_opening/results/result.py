@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 from dataclasses import dataclass, field
@@ -12,6 +13,7 @@ from ..material import material_report
 from .export import export as export_csv
 from .export import tables as data_tables
 from .names import NAMES
+from .numbers import interval as interval_text
 from .profiles import Profile
 
 
@@ -303,8 +305,12 @@ class FitResult:
     def material(self) -> dict:
         """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
         the tension, with profile intervals (material.py): name -> {estimate, ci95,
-        identifiable, unit}."""
-        return material_report(self)
+        identifiable, unit} (kept while theta, G and the profiles stay the same)."""
+        key = (tuple(self.theta), self.G, id(self.derived_profiles), len(self.derived_profiles))
+        cached = self._profile_cache.get("material")
+        if cached is None or cached[0] != key:
+            cached = self._profile_cache["material"] = (key, material_report(self))
+        return copy.deepcopy(cached[1])
 
     def to_json(self, **kwargs) -> str:
         return json.dumps(self.to_dict(), **({"indent": 2} | kwargs))
@@ -391,7 +397,8 @@ def _material_lines(material: dict) -> list:
         interval = (
             "interval not computed"
             if not m.get("interval_computed", True)
-            else f"[{fmt(lo)}, {fmt(hi)}]" + ("" if m["identifiable"] else "  not identified")
+            else interval_text(lo, hi, m["estimate"])
+            + ("" if m["identifiable"] else "  not identified")
         )
         unit = "" if m["unit"] == "1" else f" {m['unit']}"
         lines.append(f"  {name} = {fmt(m['estimate'])}{unit}  {interval}")

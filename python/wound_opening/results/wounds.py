@@ -4,6 +4,7 @@ each wound's lambda = l / R0 and T = (zeta/G) R0^2 / 4, the verdict and chi^2.""
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 from dataclasses import dataclass, field
@@ -52,12 +53,24 @@ class TissueFitResult:
     G: tuple | None = None
     #: The recording's settings (results/settings.py): cut, units, pixel size, frames, files.
     settings: dict = field(default_factory=dict)
+    _material: tuple = field(default=(None, None), repr=False, compare=False)
 
     @property
     def material(self) -> dict:
         """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
         the tension, with their 95 % profile intervals: name -> {estimate, ci95,
-        identifiable, unit, interval_computed}, as FitResult.material."""
+        identifiable, unit, interval_computed}, as FitResult.material (kept while the
+        estimates, intervals and G stay the same)."""
+        key = (
+            tuple((r.estimate, r.ci95) for r in self.shared.values()),
+            self.G,
+            self.threshold,
+        )
+        if self._material[0] != key:
+            self._material = (key, self._compute_material())
+        return copy.deepcopy(self._material[1])
+
+    def _compute_material(self) -> dict:
         out = {}
         for name, (_, unit) in RATIOS.items():
             rep = self.shared[name]
