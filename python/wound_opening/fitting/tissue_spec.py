@@ -250,4 +250,12 @@ def from_tissue_options(fix, bound, prior, names) -> Parameters:
     """Parameters from the command line's --fix, --bound, --prior for wounds `names`."""
     from .parameters import from_options
 
+    for option, texts in (("--fix", fix), ("--bound", bound), ("--prior", prior)):
+        for text in texts:
+            name = text.partition("=")[0].strip()
+            if name != G_NAME and "=" in text:
+                try:
+                    _index(name, names)
+                except ValueError as e:
+                    raise ValueError(f"{option} {text!r}: {e}") from None
     return from_options(fix, bound, prior, accepted=accepted(names))
