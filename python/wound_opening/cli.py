@@ -60,6 +60,9 @@ def _fit(args) -> None:
     radius, profile = prepare(args, radius, profiles[0] if profiles else None)  # cli_checks.py
     params = from_options(args.fix, args.bound, args.prior)
     result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
+    from .results.settings import from_options as settings_from
+
+    result.settings = settings_from(args)
     print(result.summary())
     if args.json:
         with open(args.json, "w") as f:
@@ -123,27 +126,37 @@ def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
             f"one "
             "per wound, in this order, or none"
         )
-    if args.plot or args.report or args.export:
-        raise InputError(
-            "--plot, --report and --export describe one wound's fit: with several wounds write "
-            "--json"
-        )
-    if args.fix or args.bound or args.prior:
-        raise InputError(
-            "--fix, --bound and --prior apply to one wound's fit: the fit of several wounds takes "
-            "no constraints"
-        )
     series, profiles = prepare_wounds(args, series, profiles)  # cli_checks.py
+    from .fitting.tissue_spec import from_tissue_options
+    from .results.settings import from_options as settings_from
+
+    params = from_tissue_options(args.fix, args.bound, args.prior, names)
     wounds = [
         Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
         for k, (name, s) in enumerate(series.items())
     ]
-    result = fit_wounds(wounds, loss=args.loss)
+    result = fit_wounds(wounds, loss=args.loss, params=params)
+    result.settings = settings_from(args, names)
     print(result.summary())
     if args.json:
         with open(args.json, "w") as f:
             f.write(result.to_json() + "\n")
-    return 0 if result.converged else 1
+    if args.report:
+        from .results.tissue_report import write_report
+
+        write_report(args.report, result, wounds, command=_command_line())
+        print(f"report -> {args.report}")
+    if not result.converged:
+        if args.plot or args.export:
+            print("no figure and no export: the fit did not converge", file=sys.stderr)
+        return 1
+    if args.plot:
+        from .results.tissue_plots import tissue_figure
+
+        tissue_figure(result, args.plot)
+    if args.export:
+        print("exported: " + ", ".join(map(str, result.export(args.export))))
+    return 0
 
 
 def _sweep(args) -> None:
@@ -381,7 +394,9 @@ def parser() -> argparse.ArgumentParser:
         "what is known before the fit",
         "Names and units: R0_um (um), sigma (tension / G), "
         "lambda (viscous length / R0), T_s (s), G_pa (Pa; not in the model: for the "
-        "absolute eta, zeta and tension). Repeat an option for several parameters.",
+        "absolute eta, zeta and tension). With several wounds: viscous_length_um (um), "
+        "tension_over_G, zeta_over_G_s_per_um2 (s/um^2), R0_um[NAME] or R0_um[K] (wound NAME "
+        "or the K-th, from 1) and G_pa. Repeat an option for several parameters.",
     )
     k.add_argument(
         "--fix",

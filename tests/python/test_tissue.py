@@ -216,8 +216,13 @@ def _long(path, rows):
         ),
         (["LONG", "--wound-col", "id", "--outer-radius-um", "100"], "no column 'id'"),
         (
-            ["A", "B", "--outer-radius-um", "100", "--plot", "x.png"],
-            "--plot, --report and --export describe one wound's fit",
+            ["A", "B", "--outer-radius-um", "100", "--fix", "lambda=2"],
+            "--fix 'lambda=2': parameter 'lambda' is unknown for several wounds (lambda is one "
+            "wound's parameter: with several wounds use viscous_length_um",
+        ),
+        (
+            ["A", "B", "--outer-radius-um", "100", "--prior", "eta_over_G_s=10:1"],
+            "eta_over_G_s is not a coordinate of the fit of several wounds",
         ),
     ],
 )

@@ -87,9 +87,10 @@ def _number(option: str, text: str) -> float:
         raise ValueError(f"{option}: {text!r} is not a number") from None
 
 
-def from_options(fix=(), bound=(), prior=()) -> Parameters:
+def from_options(fix=(), bound=(), prior=(), accepted=ACCEPTED) -> Parameters:
     """Parameters from the command line's NAME=VALUE (--fix), NAME=MIN:MAX (--bound, either
-    side may be empty) and NAME=MEAN:SD (--prior) strings; checked by `specification`."""
+    side may be empty) and NAME=MEAN:SD (--prior) strings; checked by `specification`.
+    `accepted`: the names allowed (one wound's by default; tissue_spec.accepted for several)."""
     params = Parameters()
 
     def entry(option: str, text: str) -> tuple[Parameter, str]:
@@ -100,10 +101,10 @@ def from_options(fix=(), bound=(), prior=()) -> Parameters:
                 f"{option} {text!r}: expected NAME="
                 + {"--fix": "VALUE", "--bound": "MIN:MAX", "--prior": "MEAN:SD"}[option]
             )
-        if name not in ACCEPTED:
+        if name not in accepted:
             raise ValueError(
                 f"{option} {text!r}: parameter {name!r} is unknown: expected one of "
-                f"{', '.join(ACCEPTED)}"
+                f"{', '.join(accepted)}"
             )
         return params.get(name) or params.add(name), rest.strip()
 

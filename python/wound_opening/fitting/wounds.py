@@ -39,6 +39,7 @@ import numpy as np
 
 from .._native import SolverError
 from ..inputs.series import RadiusSeries, VelocityProfile, check_against
+from ..results.export import data_points
 from ..results.names import ETA, SHARED
 from ..results.profiles import Profile
 from ..results.result import ParameterReport
@@ -51,6 +52,7 @@ from .problem import Problem
 from .recording import check_recording
 from .single import fit
 from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
+from .tissue_spec import ConstrainedTissue, tissue_specification
 
 LN4 = math.log(4.0)
 #: Points each wound needs: its start is a fit of its own four parameters (fitting.fit).
@@ -127,6 +129,8 @@ class EtaCoordinate(Problem):
 
     def __init__(self, tissue: Tissue):
         self.tissue = tissue
+        # the user's fixed coordinates other than l and zeta/G are the same in w
+        self.fixed = {i: v for i, v in getattr(tissue, "fixed", {}).items() if i not in (0, 2)}
 
     @property
     def size(self) -> int:
@@ -225,6 +229,8 @@ def _combine(tissue: Tissue, singles, cost, count: int = 3) -> list[np.ndarray]:
     scored = []
     for y in candidates:
         y = np.clip(y, lower, upper)
+        for i, v in tissue.fixed.items():
+            y[i] = v
         try:
             c = cost(y)
         except SolverError:
@@ -232,7 +238,9 @@ def _combine(tissue: Tissue, singles, cost, count: int = 3) -> list[np.ndarray]:
         if math.isfinite(c):
             scored.append((c, y))
     scored.sort(key=lambda s: s[0])
-    chosen = [combined]
+    chosen = [np.clip(combined, lower, upper)]
+    for i, v in tissue.fixed.items():
+        chosen[0][i] = v
     for _, y in scored:
         if all(abs(y[0] - c[0]) > 0.2 * max(c[0], 1e-3) or abs(y[2] - c[2]) > 0.2 for c in chosen):
             chosen.append(y)
@@ -241,29 +249,50 @@ def _combine(tissue: Tissue, singles, cost, count: int = 3) -> list[np.ndarray]:
     return chosen
 
 
-def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
+def fit_wounds(
+    experiments,
+    *,
+    intervals: bool = True,
+    loss: str = "linear",
+    params=None,
+):
     """Fit several wounds of one tissue: shared l (viscous length, um), sigma = tension/G,
     zeta/G (and eta/G) with each wound's R0; see the module docstring and docs/fitting.md.
     `experiments`: Wound objects. `loss` and the noise of each data set as in `fit`.
+    `params`: a Parameters (parameters.py) fixing, bounding or giving a prior to
+    viscous_length_um, tension_over_G, zeta_over_G_s_per_um2, R0_um[NAME], and G_pa fixed
+    or with a prior for the absolute eta, zeta and tension (tissue_spec.py).
     Returns a TissueFitResult."""
     check_loss(loss)
     wounds = _wounds(experiments)
+    spec = tissue_specification(params, [w.name for w in wounds])
     parts = [Objective(w.radius, w.profile, w.outer_radius_um) for w in wounds]
     tissue = Tissue(parts)
-    best, ends = _local_fits(tissue, wounds, loss)
+    obj = ConstrainedTissue(tissue, spec)
+    n_free = len(obj.free)
+    best, ends = _local_fits(obj, wounds, loss)
     y, chi2_cost, res = best
     noise_given = not any(any(p.estimated) for p in parts)
-    dof = max(tissue.size - tissue.n, 1)
+    dof = max(obj.size - n_free, 1)
     residuals = tissue.residuals(y)
     # l on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
-    free = [i for i in range(tissue.n) if not (i == 0 and y[0] <= 1e-8 * math.exp(max(y[3:])))]
+    free = [i for i in obj.free if not (i == 0 and y[0] <= 1e-8 * math.exp(max(y[3:])))]
     judged = verdict(
-        residuals, tissue.jacobian(y), free, res, dof=dof, noise_given=noise_given, loss=loss
+        residuals,
+        obj.jacobian(y),
+        free,
+        res,
+        dof=dof,
+        noise_given=noise_given,
+        loss=loss,
+        extra_chi2=float(np.sum(obj.prior_residuals(y) ** 2)),
     )
     reasons, threshold, cov, flagged = judged.reasons, judged.threshold, judged.cov, judged.flagged
-    others = alternates(tissue, y, ends, chi2_cost, loss)
+    held = list(obj.fixed)
+    cov[held, :], cov[:, held] = 0.0, 0.0  # no variance
+    others = alternates(obj, y, ends, chi2_cost, loss)
     profiles = (
-        _profiles(tissue, y, chi2_cost, threshold, cov, loss, others)
+        _profiles(obj, y, chi2_cost, threshold, cov, loss, others)
         if intervals and not reasons
         else {}
     )
@@ -278,13 +307,23 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
         se_eta = eta * math.sqrt(max(float(g @ cov @ g), 0.0))
     shared = {
         name: ParameterReport(
-            name, float(v if i != 2 else math.exp(v)), float(se[i]), profiles.get(name)
+            name,
+            float(spec.fixed.get(i, v if i != 2 else math.exp(v))),  # a fixed value as given
+            float(se[i]),
+            profiles.get(name),
+            spec.describe(i),
         )
         for i, (name, v) in enumerate(zip(SHARED, y[:3]))
     }
     shared[ETA] = ParameterReport(ETA, eta, se_eta, profiles.get(ETA))
     r0 = [
-        ParameterReport("R0_um", math.exp(y[3 + k]), float(se[3 + k]), profiles.get(("R0_um", k)))
+        ParameterReport(
+            "R0_um",
+            float(spec.fixed.get(3 + k, math.exp(y[3 + k]))),
+            float(se[3 + k]),
+            profiles.get(("R0_um", k)),
+            spec.describe(3 + k),
+        )
         for k in range(len(parts))
     ]
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -320,6 +359,7 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
                 "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))),
                 "outliers": outliers(p, mine),
                 "piv_vectors_at_edge": p.inside_edge,
+                "points": data_points(p, tissue.z(y, k), mine),
             }
         )
     return TissueFitResult(
@@ -338,10 +378,11 @@ def fit_wounds(experiments, *, intervals: bool = True, loss: str = "linear"):
         optimizer=judged.optimizer,
         evaluations=tissue.evaluations,
         plausibility=warnings,
+        G=spec.G,
     )
 
 
-def _local_fits(tissue: Tissue, wounds, loss: str):
+def _local_fits(tissue: ConstrainedTissue, wounds, loss: str):
     """The best local fit from the starts the wounds fitted alone give, at the estimated
     noise where any is estimated; (best (y, cost, result), the ends of every fit)."""
     singles = []
@@ -369,37 +410,54 @@ def _local_fits(tissue: Tissue, wounds, loss: str):
             + "; ".join(failures[:2])
         )
     if any(any(p.estimated) for p in tissue.parts):
-        best = refit_at_noise(
-            tissue, tissue.parts, lambda k, y: tissue.z(y, k), best, loss, tissue.n / tissue.size
-        )
+        share = len(tissue.free) / tissue.size
+        best = refit_at_noise(tissue, tissue.parts, lambda k, y: tissue.z(y, k), best, loss, share)
     return best, ends
 
 
 def _interval(obj, k, centres, chi2_min, threshold, cov, loss, limits, default):
-    """One coordinate's profile interval (lower, upper; None where open) and points, walked by
-    intervals.walk_side from the optimum and from every other optimum below the threshold
-    (`centres`: (y, delta chi^2)), as intervals.profile_all does; `limits(centre)` gives
-    the search range, `cov` the Jacobian's covariance (first step and start prediction)."""
+    """One coordinate's profile interval (lower, upper; None where open), points and whether
+    each end is a bound the user set, walked by intervals.walk_side from the optimum and from
+    every other optimum below the threshold (`centres`: (y, delta chi^2)), as
+    intervals.profile_all does; `limits(centre)` gives the search range, `cov` the
+    Jacobian's covariance (first step and start prediction)."""
     n = centres[0][0].size
     ok = np.all(np.isfinite(cov[:, k])) and cov[k, k] > 0
     se = math.sqrt(cov[k, k]) if ok else math.nan
     slope = cov[:, k] / cov[k, k] if ok else np.eye(n)[k]
     step = float(np.clip(se if ok else default, default * 0.01, default * 20))
+    box = obj.bounds()
+    user_bound = getattr(obj, "user_bound", lambda i, side: False)
 
     def side_limit(centre, direction):
-        return limits(centre)[0 if direction < 0 else 1], False
+        limit = limits(centre)[0 if direction < 0 else 1]
+        edge = box[0 if direction < 0 else 1][k]
+        return limit, bool(user_bound(k, direction) and limit == edge)
 
-    lo, hi, points, _ = hull(obj, k, centres, chi2_min, threshold, step, slope, loss, side_limit)
-    return lo, hi, sorted(points)
+    lo, hi, points, bounded = hull(
+        obj, k, centres, chi2_min, threshold, step, slope, loss, side_limit
+    )
+    return lo, hi, sorted(points), bounded
 
 
-def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates) -> dict:
+def _log_profile(lo, hi, pts, bounded, scale: float = 1.0) -> Profile:
+    """A profile walked in a log coordinate, in own units times `scale`."""
+
+    def own(v):
+        return None if v is None else scale * math.exp(v)
+
+    return Profile(own(lo), own(hi), False, sorted((own(v), d) for v, d in pts), tuple(bounded))
+
+
+def _profiles(tissue, y_hat, chi2_min, threshold, cov, loss, alternates) -> dict:
     """Profiles of l, sigma, zeta/G, eta/G and each R0_k, with the single fit's search limits
     (likelihood.py): l from 0 to LAMBDA_MAX times the largest R0 (an interval reaching 0 is
     closed there but does not identify l, as lambda's), sigma within 10 |sigma| + 1, zeta/G
-    and eta/G within a factor 100, R0 within a factor 3."""
+    and eta/G within a factor 100, R0 within a factor 3. A coordinate the user holds fixed
+    is its value; eta/G with l or zeta/G fixed is the other one's profile carried over."""
 
     lower, upper = tissue.bounds()
+    fixed = tissue.fixed
     centres = [(y_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     out = {}
 
@@ -412,7 +470,13 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
         1: clipped(1, lambda c: c[1] - 10 * abs(c[1]) - 1, lambda c: c[1] + 10 * abs(c[1]) + 1),
         2: clipped(2, lambda c: c[2] - math.log(100.0), lambda c: c[2] + math.log(100.0)),
     }
+    walked = {}
     for i in range(tissue.n):
+        key = SHARED[i] if i < 3 else ("R0_um", i - 3)
+        if i in fixed:
+            v = float(y_hat[i] if i < 2 else math.exp(y_hat[i]))
+            out[key] = Profile(v, v, False, [(v, 0.0)])
+            continue
         lim = limits.get(i) or clipped(
             i, lambda c, i=i: c[i] - math.log(3.0), lambda c, i=i: c[i] + math.log(3.0)
         )
@@ -421,27 +485,47 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
             if i < 3
             else 0.05
         )
-        lo, hi, pts = _interval(tissue, i, centres, chi2_min, threshold, cov, loss, lim, default)
-        if i == 1 or i == 0:
+        lo, hi, pts, bounded = _interval(
+            tissue, i, centres, chi2_min, threshold, cov, loss, lim, default
+        )
+        walked[i] = (lo, hi, pts, bounded)
+        if i < 2:
             at_bound = i == 0 and lo is None
-            key = SHARED[i]
-            out[key] = Profile(0.0 if at_bound else lo, hi, at_bound, pts)
+            out[key] = Profile(0.0 if at_bound else lo, hi, at_bound, pts, tuple(bounded))
         else:
-            key = SHARED[2] if i == 2 else ("R0_um", i - 3)
-            out[key] = Profile(
-                None if lo is None else math.exp(lo),
-                None if hi is None else math.exp(hi),
-                False,
-                [(math.exp(v), d) for v, d in pts],
-            )
+            out[key] = _log_profile(lo, hi, pts, bounded)
+    out[ETA] = _eta_profile(tissue, y_hat, centres, chi2_min, threshold, cov, loss, walked, l_max)
+    return out
+
+
+def _eta_profile(tissue, y_hat, centres, chi2_min, threshold, cov, loss, walked, l_max):
+    """eta/G = l^2 zeta/G / 4: walked in its own coordinate (EtaCoordinate), or, with l or
+    zeta/G held fixed, the other one's profile carried over (eta/G is monotonic in it)."""
+    fixed = tissue.fixed
+    zg, l_hat = math.exp(y_hat[2]), y_hat[0]
+    if 0 in fixed and 2 in fixed:
+        v = l_hat**2 * zg / 4
+        return Profile(v, v, False, [(v, 0.0)])
+    if 0 in fixed:  # eta/G = (l^2 / 4) zeta/G
+        lo, hi, pts, bounded = walked[2]
+        return _log_profile(lo, hi, pts, bounded, scale=l_hat**2 / 4)
+    if 2 in fixed:  # eta/G = (zeta/G / 4) l^2, l >= 0
+        lo, hi, pts, bounded = walked[0]
+        sq = [(zg * v * v / 4, d) for v, d in pts]
+        return Profile(
+            0.0 if lo is None else zg * lo * lo / 4,
+            None if hi is None else zg * hi * hi / 4,
+            lo is None,
+            sorted(sq),
+            tuple(bounded),
+        )
     if any(c[0] <= 1e-8 * l_max for c, _ in centres):
-        out[ETA] = Profile(0.0, None, True)  # eta/G = 0 is allowed: not identified
-        return out
+        return Profile(0.0, None, True)  # eta/G = 0 is allowed: not identified
     rep = EtaCoordinate(tissue)
     a = np.eye(tissue.n)
     a[2] = rep.gradient(y_hat)
     eta_centres = [(rep.to_w(c), d) for c, d in centres]
-    lo, hi, pts = _interval(
+    lo, hi, pts, _ = _interval(
         rep,
         2,
         eta_centres,
@@ -452,10 +536,4 @@ def _profiles(tissue: Tissue, y_hat, chi2_min, threshold, cov, loss, alternates)
         lambda c: (c[2] - math.log(100.0), c[2] + math.log(100.0)),
         0.1,
     )
-    out[ETA] = Profile(
-        None if lo is None else math.exp(lo),
-        None if hi is None else math.exp(hi),
-        False,
-        [(math.exp(v), d) for v, d in pts],
-    )
-    return out
+    return _log_profile(lo, hi, pts, (False, False))

@@ -27,6 +27,7 @@ from matplotlib import ticker  # noqa: E402
 
 from ..model import half_opening_time, opening_fraction  # noqa: E402
 from .names import NAMES  # noqa: E402
+from .numbers import interval  # noqa: E402
 
 LABELS = {"R0_um": "R₀ (µm)", "sigma": "σ", "lambda": "λ", "T_s": "T (s)"}
 SYMBOLS = {"R0_um": ("R₀", " µm"), "sigma": ("σ", ""), "lambda": ("λ", ""), "T_s": ("T", " s")}
@@ -75,11 +76,15 @@ def estimates_text(result) -> str:
             ci = "(interval not computed)"
         else:
             lo, hi = rep.ci95
-            ci = f"[{_g(lo)}, {_g(hi)}]" + ("" if rep.identifiable else " not identified")
+            ci = interval(lo, hi, rep.estimate) + ("" if rep.identifiable else " not identified")
         lines.append(f"{symbol} = {rep.estimate:.4g}{unit}  {ci}")
     fit = f"χ²/dof = {result.chi2:.3g}/{result.dof}"
     fit += f", p = {result.p_value:.2g}" if result.p_value is not None else " (noise estimated)"
-    return "\n".join(lines + [fit, "95 % profile-likelihood intervals"])
+    from .numbers import material_lines
+
+    return "\n".join(
+        material_lines(result.material) + lines + [fit, "95 % profile-likelihood intervals"]
+    )
 
 
 def _errorbars(ax, x, y, sd, flagged, label):
@@ -166,6 +171,10 @@ def fit_figure(
         pax.legend(loc="upper right", fontsize="small")
     for k, name in enumerate(profiles):
         profile_panel(fig.add_subplot(grid[2, k]), result, name, profile_points)
+    from .status import status
+
+    st = status(result)
+    fig.suptitle(st.text, color=st.colour, fontsize="medium")
     if path is not None:
         fig.savefig(path, dpi=120, format="png")
     plt.close(fig)
@@ -259,7 +268,7 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
     ax.set(
         xlabel=LABELS[name],
         ylabel="Δχ² (profile)",
-        title=f"{LABELS[name]}: [{_g(lo)}, {_g(hi)}], {verdict}",
+        title=f"{LABELS[name]}: {interval(lo, hi, rep.estimate)}, {verdict}",
     )
     ax.title.set_fontsize("small")
     if name == next(

@@ -29,6 +29,10 @@ import scipy
 
 from .._native import library_path
 from .names import NAMES
+from .numbers import end
+from .settings import file_rows
+from .settings import rows as setting_rows
+from .status import status
 
 STYLE = """body{font-family:sans-serif;max-width:70em;margin:1em auto;padding:0 1em;color:#222}
 table{border-collapse:collapse;margin:.5em 0}
@@ -62,6 +66,28 @@ def _table(header, rows) -> str:
 
 def _num(x, digits: int = 5) -> str:
     return f'<td class="n">{html.escape(_n(x, digits))}</td>'
+
+
+def _end(x, side: int, estimate) -> str:
+    """An interval end to the digits that decide whether a value is inside (numbers.py)."""
+    return f'<td class="n">{html.escape("—" if x is None else end(x, side, estimate))}</td>'
+
+
+def status_html(result) -> str:
+    """The status (status.py) in its colour: green converged, amber check, red impossible."""
+    st = status(result)
+    return f'<span style="color:{st.colour};font-weight:bold">{html.escape(st.text)}</span>'
+
+
+def settings_html(settings: dict) -> str:
+    """The recording's settings (settings.py) and the files with their columns."""
+    if not settings:
+        return "<p>Recording settings: not recorded (the fit was called from Python).</p>"
+    out = "<h3>Recording settings</h3>" + _table(["setting", "value"], setting_rows(settings))
+    files = file_rows(settings)
+    if files:
+        out += _table(["wound", "data", "file", "columns"], files)
+    return out
 
 
 def software() -> dict:
@@ -140,6 +166,7 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
             ["data", "file", "SHA-256", "points"],
             [(w, f, h, str(n)) for w, f, h, n in inputs(radius, profile)],
         ),
+        settings_html(result.settings),
     ]
     parts.append(raw_files_section(radius, profile))
     estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
@@ -152,11 +179,7 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
         + ", ".join(noise)
         + f". Loss: {html.escape(result.loss)}. Outer radius {_n(result.outer_radius_um)} µm.</p>"
     ]
-    verdict = (
-        '<span class="ok">converged</span>'
-        if result.converged
-        else '<span class="bad">NOT converged</span>: ' + html.escape("; ".join(result.reasons))
-    )
+    verdict = status_html(result)
     p = "" if result.p_value is None else f", p = {_n(result.p_value, 3)}"
     dof = f"{result.chi2 / result.dof:.4g}" if result.dof else "—"
     parts += [
@@ -222,17 +245,37 @@ def _estimates(result) -> str:
                 name,
                 _num(rep.estimate),
                 _num(rep.stderr, 3),
-                _num(lo) if computed else "—",
-                _num(hi) if computed else "—",
+                _end(lo, -1, rep.estimate) if computed else "—",
+                _end(hi, 1, rep.estimate) if computed else "—",
                 state,
                 result.advice(name),
             )
         )
-    out = _table(
+    model = "<h3>Model parameters</h3>" + _table(
         ["parameter", "estimate", "stderr", "95 % lower", "95 % upper", "", "advice"], rows
     )
+    out = material_html(result.material) + model
+    computed = result._derived_computed()
     rows = []
-    for k, m in result.material.items():
+    for k, (v, (lo, hi), ok) in result._derived_all().items():
+        if k not in ("R1_um", "R_final_um"):  # the others are material values
+            continue
+        state = (
+            "interval not computed" if not computed[k] else "identified" if ok else "not identified"
+        )
+        rows.append((k, _num(v), _num(lo), _num(hi), state))
+    return (
+        out
+        + "<h3>Derived values</h3>"
+        + _table(["quantity", "value", "95 % lower", "95 % upper", ""], rows)
+    )
+
+
+def material_html(material: dict) -> str:
+    """The material values (FitResult.material, TissueFitResult.material) with their
+    intervals, each end to the digits that decide whether a value is inside."""
+    rows = []
+    for k, m in material.items():
         if k == "G_pa":
             rows.append(
                 (
@@ -241,7 +284,7 @@ def _estimates(result) -> str:
                     "—",
                     "—",
                     "Pa",
-                    "fixed (given)" if m["fixed"] else f"Gaussian prior, sd {_num(m['sd'], 3)} Pa",
+                    "fixed (given)" if m["fixed"] else f"Gaussian prior, sd {_n(m['sd'], 3)} Pa",
                 )
             )
             continue
@@ -256,28 +299,14 @@ def _estimates(result) -> str:
             (
                 k,
                 _num(m["estimate"]),
-                _num(lo) if computed else "—",
-                _num(hi) if computed else "—",
+                _end(lo, -1, m["estimate"]) if computed else "—",
+                _end(hi, 1, m["estimate"]) if computed else "—",
                 m["unit"],
                 state,
             )
         )
-    out += "<h3>Material values</h3>" + _table(
+    return "<h3>Material values</h3>" + _table(
         ["quantity", "value", "95 % lower", "95 % upper", "unit", ""], rows
-    )
-    computed = result._derived_computed()
-    rows = []
-    for k, (v, (lo, hi), ok) in result._derived_all().items():
-        if k not in ("R1_um", "R_final_um"):  # the others are material values
-            continue
-        state = (
-            "interval not computed" if not computed[k] else "identified" if ok else "not identified"
-        )
-        rows.append((k, _num(v), _num(lo), _num(hi), state))
-    return (
-        out
-        + "<h3>Derived values</h3>"
-        + _table(["quantity", "value", "95 % lower", "95 % upper", ""], rows)
     )
 
 

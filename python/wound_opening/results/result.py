@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 from dataclasses import dataclass, field
@@ -12,6 +13,7 @@ from ..material import material_report
 from .export import export as export_csv
 from .export import tables as data_tables
 from .names import NAMES
+from .numbers import interval as interval_text
 from .profiles import Profile
 
 
@@ -122,6 +124,21 @@ class FitResult:
     #: (i, values of z_i) -> delta chi^2: the profile of coordinate i by constrained fits.
     refit: object = field(default=None, repr=False, compare=False)
     _profile_cache: dict = field(default_factory=dict, repr=False, compare=False)
+    #: The recording's settings (settings.py): cut, units, pixel size, frames, files; filled
+    #: by the command line (or a reader), printed by the report.
+    settings: dict = field(default_factory=dict)
+
+    def physics(self) -> tuple[list, list]:
+        """(forbidden estimates, intervals reaching forbidden values): status.py."""
+        from .status import judge, radii
+
+        R0, sigma, lam, T = self.theta
+        values = [("", "R0_um", R0), ("", "lambda", lam), ("", "T_s", T)]
+        values += [("", k, v) for k, v in radii(R0, sigma, self.outer_radius_um).items()]
+        mat = {k: m for k, m in self.material.items() if k != "G_pa"}
+        values += [("", k, m["estimate"]) for k, m in mat.items()]
+        intervals = [("", k, *m["ci95"]) for k, m in mat.items()]
+        return judge(values, intervals)
 
     @property
     def warnings(self) -> list:
@@ -245,7 +262,10 @@ class FitResult:
             "piv_vectors_at_edge": self.piv_at_edge,
         }
         if not self.converged:
-            return status | {"estimate_at_stop": dict(zip(NAMES, self.theta))}
+            return status | {
+                "estimate_at_stop": dict(zip(NAMES, self.theta)),
+                "settings": self.settings,
+            }
         params = {}
         for name in NAMES:
             rep = self.reports[name]
@@ -258,7 +278,12 @@ class FitResult:
             } | rep.constraint
             if self.advice(name):
                 params[name]["advice"] = self.advice(name)
+        from .status import status as physical_status
+
+        st = physical_status(self)
         return status | {
+            "status": {"level": st.level, "text": st.text},
+            "settings": self.settings,
             "parameters": params,
             "derived": self.derived,
             "derived_ci95": self.derived_ci95,
@@ -280,8 +305,12 @@ class FitResult:
     def material(self) -> dict:
         """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
         the tension, with profile intervals (material.py): name -> {estimate, ci95,
-        identifiable, unit}."""
-        return material_report(self)
+        identifiable, unit} (kept while theta, G and the profiles stay the same)."""
+        key = (tuple(self.theta), self.G, id(self.derived_profiles), len(self.derived_profiles))
+        cached = self._profile_cache.get("material")
+        if cached is None or cached[0] != key:
+            cached = self._profile_cache["material"] = (key, material_report(self))
+        return copy.deepcopy(cached[1])
 
     def to_json(self, **kwargs) -> str:
         return json.dumps(self.to_dict(), **({"indent": 2} | kwargs))
@@ -346,6 +375,11 @@ class FitResult:
                 f"velocity): {self.piv_at_edge}"
             )
         lines += [f"warning: {w}" for w in self.warnings]
+        from .status import status as physical_status
+
+        st = physical_status(self)
+        if st.level != "green":
+            lines.append(f"status: {st.text}")
         return "\n".join(lines)
 
 
@@ -363,7 +397,8 @@ def _material_lines(material: dict) -> list:
         interval = (
             "interval not computed"
             if not m.get("interval_computed", True)
-            else f"[{fmt(lo)}, {fmt(hi)}]" + ("" if m["identifiable"] else "  not identified")
+            else interval_text(lo, hi, m["estimate"])
+            + ("" if m["identifiable"] else "  not identified")
         )
         unit = "" if m["unit"] == "1" else f" {m['unit']}"
         lines.append(f"  {name} = {fmt(m['estimate'])}{unit}  {interval}")

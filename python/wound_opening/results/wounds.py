@@ -4,14 +4,19 @@ each wound's lambda = l / R0 and T = (zeta/G) R0^2 / 4, the verdict and chi^2.""
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..material import ABSOLUTE, RATIOS, absolute_interval
 from .names import ETA, SHARED
+from .numbers import end, material_lines
 from .result import ParameterReport, chi2_warning, fmt, outlier_warning, verdict_fields
+from .status import judge, radii
+from .status import status as physical_status
 
 #: What would identify a shared quantity that is not.
 ADVICE = {
@@ -44,6 +49,130 @@ class TissueFitResult:
     optimizer: dict = field(default_factory=dict)
     evaluations: int = 0
     plausibility: list = field(default_factory=list)
+    #: G [Pa] for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
+    G: tuple | None = None
+    #: The recording's settings (results/settings.py): cut, units, pixel size, frames, files.
+    settings: dict = field(default_factory=dict)
+    _material: tuple = field(default=(None, None), repr=False, compare=False)
+
+    @property
+    def material(self) -> dict:
+        """eta/G, zeta/G, tension/G, the viscous length and, with G given, G, eta, zeta and
+        the tension, with their 95 % profile intervals: name -> {estimate, ci95,
+        identifiable, unit, interval_computed}, as FitResult.material (kept while the
+        estimates, intervals and G stay the same)."""
+        key = (
+            tuple((r.estimate, r.ci95) for r in self.shared.values()),
+            self.G,
+            self.threshold,
+        )
+        if self._material[0] != key:
+            self._material = (key, self._compute_material())
+        return copy.deepcopy(self._material[1])
+
+    def _compute_material(self) -> dict:
+        out = {}
+        for name, (_, unit) in RATIOS.items():
+            rep = self.shared[name]
+            out[name] = {
+                "estimate": rep.estimate,
+                "ci95": list(rep.ci95),
+                "identifiable": rep.identifiable,
+                "unit": unit,
+                "interval_computed": rep.profile is not None,
+            }
+        if self.G is None:
+            return out
+        mu, sd = self.G
+        out["G_pa"] = {"estimate": mu, "sd": sd, "fixed": sd == 0, "unit": "Pa"}
+        for name, (ratio, unit) in ABSOLUTE.items():
+            rep = self.shared[ratio]
+            p, q = rep.profile, rep.estimate
+            lo = hi = None
+            if p is not None and not p.at_bound:
+                if p.lower is not None and p.lower == p.upper:  # the ratio held fixed
+                    k = math.sqrt(self.threshold) * sd
+                    lo, hi = sorted((q * (mu - k), q * (mu + k)))
+                else:
+                    _, lo, hi = absolute_interval(
+                        q,
+                        p.lower,
+                        p.upper,
+                        p.points,
+                        self.G,
+                        self.threshold,
+                        log=ratio != "tension_over_G",
+                        bounded=p.bounded,
+                    )
+            out[name] = {
+                "estimate": q * mu,
+                "ci95": [lo, hi],
+                "identifiable": lo is not None and hi is not None,
+                "unit": unit,
+                "interval_computed": p is not None,
+            }
+        return out
+
+    def physics(self) -> tuple[list, list]:
+        """(forbidden estimates, intervals reaching forbidden values): status.py."""
+        mat = {k: m for k, m in self.material.items() if k != "G_pa"}
+        values = [("", k, m["estimate"]) for k, m in mat.items()]
+        intervals = [("", k, *m["ci95"]) for k, m in mat.items()]
+        for w, rep in zip(self.wounds, self.r0):
+            R0, sigma, lam, T = w["theta"]
+            where = f"wound {w['name']}"
+            values += [(where, "R0_um", R0), (where, "T_s", T)]
+            values += [(where, k, v) for k, v in radii(R0, sigma, w["outer_radius_um"]).items()]
+            intervals.append((where, "R0_um", *rep.ci95))
+        return judge(values, intervals)
+
+    def wound_view(self, k: int):
+        """Wound k's fit as the single fit's tables and export read it (export.tables)."""
+        from types import SimpleNamespace
+
+        w = self.wounds[k]
+        return SimpleNamespace(
+            converged=self.converged,
+            reasons=self.reasons,
+            theta=w["theta"],
+            points=w.get("points", {}),
+            outer_radius_um=w["outer_radius_um"],
+        )
+
+    def tables(self) -> dict:
+        """wound name -> its tables (export.tables: radius, curve, profile, profile_curve)."""
+        from .export import tables
+
+        return {w["name"]: tables(self.wound_view(k)) for k, w in enumerate(self.wounds)}
+
+    def export(self, stem) -> list:
+        """Each wound's tables as stem_<wound>_radius.csv, stem_<wound>_curve.csv (and the
+        PIV ones), the wound's name made safe for a file name; returns the paths."""
+        from pathlib import Path
+
+        from .export import export
+
+        stem = Path(stem)
+        if stem.suffix.lower() == ".csv":
+            stem = stem.with_suffix("")
+        paths = []
+        for k, name in enumerate(self.file_names()):
+            paths += export(self.wound_view(k), stem.with_name(f"{stem.name}_{name}"))
+        return paths
+
+    def file_names(self) -> list:
+        """Each wound's name for a file: its file's stem for a path, letters, digits, '-'
+        and '_' kept, the rest '_'; its position where two would coincide."""
+        import re
+        from pathlib import PurePath
+
+        out = []
+        for k, n in enumerate(self.names):
+            safe = re.sub(r"[^A-Za-z0-9_-]", "_", PurePath(n).stem or n) or str(k + 1)
+            out.append(safe)
+        if len(set(out)) < len(out):
+            out = [f"{k + 1}_{n}" for k, n in enumerate(out)]
+        return out
 
     @property
     def names(self) -> list:
@@ -71,15 +200,18 @@ class TissueFitResult:
             "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
             "ci95": list(rep.ci95),
             "identifiable": rep.identifiable if rep.profile is not None else None,
-        }
+        } | rep.constraint
 
     @staticmethod
     def _interval(rep: ParameterReport, width: int) -> str:
         """The interval and whether identified, or that it was not computed."""
+        if rep.constraint.get("fixed"):
+            return f"{'(fixed)':<{2 * width + 5}}  {'-':<3}"
         if rep.profile is None:
             return f"{'(not computed)':<{2 * width + 5}}  {'-':<3}"
         lo, hi = rep.ci95
-        return f"[{fmt(lo):>{width}}, {fmt(hi):>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
+        lo, hi = end(lo, -1, rep.estimate), end(hi, 1, rep.estimate)
+        return f"[{lo:>{width}}, {hi:>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
 
     def to_dict(self) -> dict:
         status = verdict_fields(self)
@@ -106,14 +238,18 @@ class TissueFitResult:
                 row["estimate_at_stop"] = {"R0_um": R0, "sigma": sigma, "lambda": lam, "T_s": T}
             wounds.append(row)
         if not self.converged:
-            return status | {"wounds": wounds}
+            return status | {"wounds": wounds, "settings": self.settings}
         shared = {}
         for name, rep in self.shared.items():
             shared[name] = self._report(rep)
             if self.advice(name):
                 shared[name]["advice"] = self.advice(name)
         order = list(SHARED[:2]) + ["ln_" + SHARED[2]] + [f"ln_R0_um[{n}]" for n in self.names]
+        st = physical_status(self)
         return status | {
+            "status": {"level": st.level, "text": st.text},
+            "material": self.material,
+            "settings": self.settings,
             "shared": shared,
             "wounds": wounds,
             "delta_chi2_95": self.threshold,
@@ -137,6 +273,11 @@ class TissueFitResult:
                 f"{name:<22} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {self._interval(rep, 9)}"
             )
         lines += [f"  {self.advice(n)}" for n in self.shared if self.advice(n)]
+        lines += ["material (95 % profile intervals):"]
+        lines += [f"  {m}" for m in material_lines(self.material)]
+        st = physical_status(self)
+        if st.level != "green":
+            lines.append(f"status: {st.text}")
         wide = max([5] + [len(n) for n in self.names])
         lines.append(
             f"{'wound':<{wide}} {'outer um':>9} {'points':>7} {'R0_um':>9} {'stderr':>9}   "

@@ -1,0 +1,109 @@
+"""The recording's settings, as a report prints them: taken from the inputs (the command
+line's options, the series read), not from the command line's text.
+
+`FitResult.settings` and `TissueFitResult.settings` hold a dict with these keys (each may be
+missing or None: not given):
+
+    cut_time          float   the time of the cut in the files' time unit (subtracted)
+    time_unit         str     "s", "ms" or "min": the files' time unit
+    length_unit       str     "um" or "px": the files' length unit
+    pixel_size_um     float   um per pixel (with length_unit "px")
+    frame_interval_s  float   s between frames (a frame column read as times)
+    centre_um         [x, y]  the wound centre given in um (PIV fields)
+    centre_px         [x, y]  the wound centre given in px
+    outer_radius_um   list    the outer radius of each wound's tissue
+    files             list of {"wound": name or None, "data": "radius" or "velocity
+                      profile", "path": str, "columns": {role: column name}}
+    reader            dict    a lab-file reader's own settings (Fiji, PIVlab, OpenPIV:
+                      any keys; printed as given, one row per key)
+
+Other keys are printed as given, after these.
+"""
+
+from __future__ import annotations
+
+#: The keys in the order a report prints them, with their labels.
+LABELS = {
+    "cut_time": "cut time (files' time unit)",
+    "time_unit": "time unit",
+    "length_unit": "length unit",
+    "pixel_size_um": "pixel size (µm)",
+    "frame_interval_s": "frame interval (s)",
+    "centre_um": "wound centre (µm)",
+    "centre_px": "wound centre (px)",
+    "outer_radius_um": "outer radius (µm)",
+}
+
+
+def from_options(args, wounds=None) -> dict:
+    """The settings the command line's `args` (cli.parser's fit) give; `wounds`: the names
+    of the wounds in order (several radius files or a long table), None for one wound."""
+    radius_cols = {"time": args.time_col, "radius": args.radius_col}
+    if args.radius_sd_col:
+        radius_cols["sd"] = args.radius_sd_col
+    if getattr(args, "wound_col", None):
+        radius_cols["wound"] = args.wound_col
+    piv_cols = {"time": args.piv_time_col, "r": args.piv_r_col, "velocity": args.piv_velocity_col}
+    if args.piv_velocity_sd_col:
+        piv_cols["sd"] = args.piv_velocity_sd_col
+    files = []
+    names = list(wounds) if wounds else [None] * len(args.radius_csv)
+    if getattr(args, "wound_col", None):
+        files.append(
+            {"wound": None, "data": "radius", "path": args.radius_csv[0]} | {"columns": radius_cols}
+        )
+    else:
+        for name, path in zip(names, args.radius_csv):
+            files.append({"wound": name, "data": "radius", "path": path, "columns": radius_cols})
+    for k, path in enumerate(args.profile or []):
+        name = names[k] if k < len(names) else None
+        files.append({"wound": name, "data": "velocity profile", "path": path, "columns": piv_cols})
+    out = {
+        "cut_time": args.cut_time,
+        "time_unit": args.time_unit,
+        "length_unit": args.length_unit,
+        "pixel_size_um": args.pixel_size_um,
+        "outer_radius_um": args.outer_radius_um,
+        "files": files,
+    }
+    for key in ("frame_interval_s", "centre_um", "centre_px"):
+        value = getattr(args, key, None)
+        if value is not None:
+            out[key] = value
+    return out
+
+
+def rows(settings: dict) -> list:
+    """(label, value as text) of the settings other than the files, in LABELS' order then
+    the rest; the reader's settings one row per key."""
+    out = []
+
+    def text(v) -> str:
+        if isinstance(v, (list, tuple)):
+            return ", ".join(text(x) for x in v)
+        return f"{v:g}" if isinstance(v, float) else str(v)
+
+    for key, label in LABELS.items():
+        if settings.get(key) is not None:
+            out.append((label, text(settings[key])))
+    for key, value in settings.items():
+        if key in LABELS or key == "files" or value is None:
+            continue
+        if isinstance(value, dict):
+            out += [(f"{key}: {k}", text(v)) for k, v in value.items() if v is not None]
+        else:
+            out.append((key, text(value)))
+    return out
+
+
+def file_rows(settings: dict) -> list:
+    """(wound, data, path, columns as text) of each file the settings name."""
+    return [
+        (
+            str(f.get("wound") or "—"),
+            str(f.get("data", "")),
+            str(f.get("path", "")),
+            ", ".join(f"{k}: {v}" for k, v in (f.get("columns") or {}).items()),
+        )
+        for f in settings.get("files", [])
+    ]

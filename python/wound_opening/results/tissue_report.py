@@ -1,0 +1,188 @@
+"""The report of a fit of several wounds (`fit_wounds`): one self-contained HTML file as the
+single fit's (report.py), with
+
+- each wound's input files with their SHA-256 and points, the recording's settings;
+- the status (status.py: green, amber or red naming a forbidden value), chi^2 / dof, the
+  optimiser, the warnings;
+- the shared material values with their 95 % profile intervals (eta/G, zeta/G, tension/G,
+  the viscous length; with G given eta, zeta and the tension), the coordinates of the fit
+  beside them with their standard errors and constraints (fixed, bounds, prior), advice;
+- a section per wound: its outer radius, points, noise, R0 with its interval, lambda, T,
+  R1, R_final, chi^2 share and residual rms, its flagged points;
+- the figure (tissue_plots.tissue_figure), the software and the command line.
+"""
+
+from __future__ import annotations
+
+import base64
+import datetime
+import html
+import io
+import sys
+from pathlib import Path
+
+from .names import ETA, SHARED
+from .report import (
+    STYLE,
+    _end,
+    _n,
+    _num,
+    _table,
+    inputs,
+    material_html,
+    settings_html,
+    software,
+    status_html,
+)
+from .status import radii
+
+
+def _constraint(c: dict) -> str:
+    if c.get("fixed"):
+        return "fixed (given)"
+    out = []
+    if "prior" in c:
+        out.append("prior {:g} ± {:g}".format(*c["prior"]))
+    if "bounds" in c:
+        out.append("bounds [{:g}, {:g}]".format(*c["bounds"]))
+    return "; ".join(out)
+
+
+def _state(rep) -> str:
+    if rep.constraint.get("fixed"):
+        return ""
+    if rep.profile is None:
+        return "interval not computed"
+    return "identified" if rep.identifiable else "not identified"
+
+
+def _shared(result) -> str:
+    rows = []
+    for name in SHARED + (ETA,):
+        rep = result.shared[name]
+        lo, hi = rep.ci95
+        rows.append(
+            (
+                name,
+                _num(rep.estimate),
+                _num(rep.stderr, 3),
+                _end(lo, -1, rep.estimate) if rep.profile is not None else "—",
+                _end(hi, 1, rep.estimate) if rep.profile is not None else "—",
+                _state(rep),
+                _constraint(rep.constraint),
+                result.advice(name),
+            )
+        )
+    return "<h3>Shared coordinates of the fit</h3>" + _table(
+        ["quantity", "estimate", "stderr", "95 % lower", "95 % upper", "", "constraint", "advice"],
+        rows,
+    )
+
+
+def _wound(result, k: int, wound) -> str:
+    w, rep = result.wounds[k], result.r0[k]
+    R0, sigma, lam, T = w["theta"]
+    lo, hi = rep.ci95
+    r = radii(R0, sigma, w["outer_radius_um"])
+    n_r, n_p = w["n_points"]
+    noise = f"radius {_n(w['noise'][0], 4)} µm"
+    if n_p:
+        noise += f", velocity {_n(w['noise'][1], 4)} µm/s"
+    files = [(d, f, h, str(n)) for d, f, h, n in inputs(wound.radius, wound.profile)]
+    rows = [
+        (
+            "R0_um",
+            _num(R0),
+            _num(rep.stderr, 3),
+            _end(lo, -1, R0) if rep.profile is not None else "—",
+            _end(hi, 1, R0) if rep.profile is not None else "—",
+            "µm",
+            _state(rep) or "fixed (given)",
+            _constraint(rep.constraint) if not rep.constraint.get("fixed") else "",
+        ),
+        ("lambda = l / R0", _num(lam), "—", "—", "—", "1", "", ""),
+        ("T_s = (zeta/G) R0² / 4", _num(T), "—", "—", "—", "s", "", ""),
+        ("R1_um = R0 (1 + sigma / 6)", _num(r["R1_um"]), "—", "—", "—", "µm", "", ""),
+        ("R_final_um", _num(r["R_final_um"]), "—", "—", "—", "µm", "", ""),
+    ]
+    flagged = w["outliers"].get("where", [])
+    return (
+        f"<h3>Wound {html.escape(str(w['name']))}</h3>"
+        + _table(["data", "file", "SHA-256", "points"], files)
+        + f"<p>Outer radius {_n(w['outer_radius_um'])} µm; {n_r} radii, {n_p} velocities; noise "
+        f"(median) {noise}; χ² share {_n(w['chi2'], 4)}; residual rms "
+        f"{_n(w['residual_rms_um'], 4)} µm; PIV vectors at the edge "
+        f"{w['piv_vectors_at_edge']}.</p>"
+        + _table(
+            ["quantity", "estimate", "stderr", "95 % lower", "95 % upper", "unit", "", ""], rows
+        )
+        + (
+            "<p>Flagged points: " + html.escape("; ".join(flagged)) + "</p>"
+            if flagged
+            else "<p>Flagged points: none.</p>"
+        )
+    )
+
+
+def figure_png(result) -> bytes:
+    from .tissue_plots import tissue_figure
+
+    buf = io.BytesIO()
+    tissue_figure(result, path=buf)
+    return buf.getvalue()
+
+
+def render(result, wounds, *, command: str | None = None, now=None) -> str:
+    """The report as an HTML string (module docstring); `wounds`: the fitted Wound objects."""
+    now = now or datetime.datetime.now(datetime.timezone.utc)
+    command = command if command is not None else " ".join(sys.argv)
+    n = len(result.wounds)
+    p = "" if result.p_value is None else f", p = {_n(result.p_value, 3)}"
+    dof = f"{result.chi2 / result.dof:.4g}" if result.dof else "—"
+    parts = [
+        f"<h1>Wound-opening fit of {n} wounds of one tissue</h1>"
+        f"<p>{html.escape(now.strftime('%Y-%m-%d %H:%M:%S UTC'))}</p>",
+        "<h2>Input</h2>",
+        settings_html(result.settings),
+        "<h2>Fit</h2>",
+        f"<p>Status: {status_html(result)}. Optimiser: "
+        f"{html.escape(result.optimizer.get('message', ''))}</p>",
+        f"<p>χ² = {_n(result.chi2)} for {result.dof} degrees of freedom (χ²/dof = {dof}{p}); "
+        f"noise {'given' if result.noise_given else 'estimated from the residuals'}; loss "
+        f"{html.escape(result.loss)}.</p>",
+    ]
+    if result.warnings:
+        parts.append(
+            "<ul>"
+            + "".join(f"<li>warning: {html.escape(w)}</li>" for w in result.warnings)
+            + "</ul>"
+        )
+    if result.converged:
+        parts += ["<h2>Shared material</h2>", material_html(result.material), _shared(result)]
+    else:
+        parts.append("<p>No estimates: the fit did not converge.</p>")
+    parts.append("<h2>Wounds</h2>")
+    parts += [_wound(result, k, w) for k, w in enumerate(wounds)]
+    if result.converged:
+        png = base64.b64encode(figure_png(result)).decode("ascii")
+        parts.append(
+            "<h2>Figure</h2><img alt=\"each wound's data and fit, residuals, profile "
+            f'likelihoods of the shared material" src="data:image/png;base64,{png}">'
+        )
+    parts += [
+        "<h2>Software and command</h2>",
+        _table(["component", "version"], list(software().items())),
+        f"<p>Command: <code>{html.escape(command)}</code></p>",
+    ]
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>Wound-opening '
+        "fit of several wounds</title>"
+        f"<style>{STYLE}</style></head><body>\n" + "\n".join(parts) + "\n</body></html>\n"
+    )
+
+
+def write_report(path, result, wounds, *, command: str | None = None) -> Path:
+    """Write render(...) to `path` (UTF-8); returns the path."""
+    path = Path(path)
+    path.write_text(render(result, wounds, command=command), encoding="utf-8")
+    return path
