@@ -20,13 +20,14 @@ that differ only in friction (same G, eta, tension: the eta/G-fixed design at la
 and 1): the ratios the recoil fit reads as "tension" (v0) and "viscosity" (tau) against
 the ratios of tension/G and eta/G this model recovers (both truly 1).
 
-    python python/bench/recoil_compare.py --out out/recoil   # table (CSV, Markdown), figure
+    python python/bench/recoil_compare.py --out out/recoil   # table (Markdown, JSON), figure
     python python/bench/recoil_compare.py --no-model         # the recoil fits alone (seconds)
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from pathlib import Path
 
@@ -187,6 +188,7 @@ def markdown(rows: list) -> str:
 
 
 def plot(rows: list, path: Path) -> None:
+    """The recoil fit's readings against the truth (this model's are in the table)."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(11, 7.5))
@@ -207,16 +209,6 @@ def plot(rows: list, path: Path) -> None:
             axes[0, 1].loglog(lam, [r["tau_over_T"] for r in sel], **kw)
             axes[1, 0].semilogx(lam, [100 * r["v0_over_true"] for r in sel], **kw)
             axes[1, 1].semilogx(lam, [100 * r["D_over_opening"] for r in sel], **kw)
-            if all("model" in r for r in sel):
-                axes[0, 0].loglog(
-                    lam,
-                    [r["model"]["eta_over_G_s"][0] / r["eta_over_G_s"] for r in sel],
-                    color=colours[window],
-                    marker="x",
-                    ls="none",
-                    ms=9 if design == DESIGNS[0] else 6,
-                    label=f"this model's eta/G, {design}, {window}",
-                )
     for ax, label in zip(
         axes.flat,
         (
@@ -271,6 +263,7 @@ def main(argv=None) -> None:
     text = "\n".join(lines)
     print(text)
     (out / "recoil_compare.md").write_text(text + "\n")
+    (out / "recoil_compare.json").write_text(json.dumps(rows, indent=1, default=float) + "\n")
     plot(rows, out / "recoil_compare.png")
     if args.figure:
         plot(rows, Path(args.figure))
