@@ -16,7 +16,7 @@ cargo build --release --quiet
 step "the paper's cases through fmpy"
 python python/run_paper_cases.py --fmu target/fmu/WoundOpening.fmu --out out
 step "the coupled worked example: opening, then purse-string closure"
-python python/coupled_example.py --fmu-dir target/fmu --out out
+python -m wound_opening.coupling --fmu-dir target/fmu --out out
 step "the same coupling as a container FMU"
 python python/coupling/container.py
 step "a synthetic experiment, fitted with wound-opening fit"

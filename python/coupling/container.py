@@ -31,9 +31,9 @@ from fmpy.model_description import (
 )
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-# The worked example (its origin is explained in python/coupling/loop.py).
-from coupling.loop import PURSE_EXAMPLE as PURSE_PARAMS  # noqa: E402
-from coupling.loop import WOUND_EXAMPLE as WOUND_PARAMS  # noqa: E402
+# The worked example (its origin is explained in wound_opening/coupling/loop.py).
+from wound_opening.coupling.loop import PURSE_EXAMPLE as PURSE_PARAMS  # noqa: E402
+from wound_opening.coupling.loop import WOUND_EXAMPLE as WOUND_PARAMS  # noqa: E402
 
 # container output name -> (component, variable of that component)
 OUTPUTS = {

@@ -27,7 +27,8 @@ if str(ROOT / "python") not in sys.path:
     sys.path.insert(0, str(ROOT / "python"))
 
 from coupling.container import PURSE_PARAMS, WOUND_PARAMS, build_container  # noqa: E402
-from coupling.loop import Unit  # noqa: E402
+
+from wound_opening.coupling.loop import Unit  # noqa: E402
 
 STEP = 0.5
 STOP = 300.0

@@ -1,5 +1,5 @@
 """WoundOpening coupled to a closure model (issue: coupling, in physical units), driven
-through fmpy by the loop of python/coupling/loop.py, against exact answers:
+through fmpy by the loop of wound_opening/coupling/loop.py, against exact answers:
 
 * a constant edge stress p: R(t) = R1 + (1 - p/sigma)(R_free(t) - R1) (docs/model.md,
   superposition), with R_free the exact Laplace-transform solution, in micrometres and
@@ -22,7 +22,8 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
 import fmu_harness  # noqa: E402
 import wound_exact  # noqa: E402
-from coupling.loop import (  # noqa: E402
+
+from wound_opening.coupling.loop import (  # noqa: E402
     PURSE_EXAMPLE,
     WOUND_EXAMPLE,
     couple,

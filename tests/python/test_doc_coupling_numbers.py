@@ -1,5 +1,6 @@
-"""The radii docs/fmi.md quotes for the worked example are those python/coupled_example.py
-produces (the loop with input derivatives, step 0.5 s), read from the sentence itself."""
+"""The radii docs/fmi.md quotes for the worked example are those the package's example
+(`python -m wound_opening.coupling`, wound_opening/coupling/example.py) produces (the loop
+with input derivatives, step 0.5 s), read from the sentence itself."""
 
 from __future__ import annotations
 
@@ -12,8 +13,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "python"))
-import coupled_example  # noqa: E402
-from coupling.loop import couple  # noqa: E402
+from wound_opening.coupling.example import STEP, STOP  # noqa: E402
+from wound_opening.coupling.loop import couple  # noqa: E402
 
 SENTENCE = re.compile(
     r"opens from ([\d.]+) um to ([\d.]+) um at t = ([\d.]+) s,"
@@ -33,7 +34,7 @@ def test_docs_quote_the_radii_the_example_produces(fmu_path, purse_path):
     match = SENTENCE.search(text)
     assert match, "docs/fmi.md: the worked example's sentence is gone"
     r0, r_max, t_max, r_end, r_free = match.groups()
-    step, stop = coupled_example.STEP, coupled_example.STOP
+    step, stop = STEP, STOP
     run = couple(fmu_path, purse_path, step=step, stop=stop, interpolate=True)
     free = couple(fmu_path, None, step=step, stop=stop, edge_stress=0.0)
     i = int(np.argmax(run.wound_radius))

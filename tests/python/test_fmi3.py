@@ -188,12 +188,13 @@ def test_number_of_probes_is_a_structural_parameter(fmu3_path):
 
 
 def _couple3(wound_path, purse_path, step, stop):
-    """The purse-string loop of python/coupling/loop.py with the FMI 3.0 archives: the wound
+    """The purse-string loop of wound_opening/coupling/loop.py with the FMI 3.0 archives: the wound
     asks for its edge stress at the end of each step (Intermediate Update Mode) and gets the
     linear extrapolation from the last two communication points."""
-    from coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE
     from fmpy import extract
     from fmpy.fmi3 import FMU3Slave
+
+    from wound_opening.coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE
 
     md_w, md_p = read_model_description(wound_path), read_model_description(purse_path)
     vw = {v.name: v.valueReference for v in md_w.modelVariables}

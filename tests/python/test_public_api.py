@@ -1,10 +1,13 @@
 """What `import wound_opening` offers: the names the README, docs/*.md, the scripts under
 python/, the benchmarks and the tests call as `wound_opening.<name>` (or `wo.<name>`),
 pinned, so that moving a module cannot drop one. Each resolves (imported lazily on first
-use) and `dir()` lists it."""
+use), `dir()` lists it (and not the module's helpers), the module docstring gives it a line
+and `help(wound_opening)` shows it."""
 
 from __future__ import annotations
 
+import pydoc
+import re
 import subprocess
 import sys
 
@@ -23,6 +26,7 @@ PUBLIC = {
     "fit",
     "fit_wounds",
     "fmu_path",
+    "fmu_start_values",
     "from_material",
     "library_path",
     "read_profile",
@@ -45,6 +49,22 @@ def test_every_public_name_resolves_and_is_listed():
         assert getattr(value, "__name__", name) == name, (name, value)
     assert PUBLIC <= set(dir(wound_opening))
     assert isinstance(wound_opening.__version__, str)
+
+
+def test_dir_lists_the_public_names_and_not_the_helpers():
+    names = [n for n in dir(wound_opening) if not n.startswith("__")]
+    assert names == sorted(PUBLIC)
+
+
+def test_the_docstring_and_help_list_every_public_name():
+    """Each public name starts a line of the module docstring (its one-line description),
+    and help() (pydoc) renders its documentation."""
+    listed = set(re.findall(r"^    (\w+)", wound_opening.__doc__, re.M))
+    assert PUBLIC <= listed, sorted(PUBLIC - listed)
+    assert listed <= PUBLIC, sorted(listed - PUBLIC)
+    text = pydoc.plain(pydoc.render_doc(wound_opening))
+    for name in PUBLIC:
+        assert re.search(rf"^    (class )?{name}\b", text, re.M), name
 
 
 def test_the_subpackages_do_not_shadow_a_public_function():

@@ -1,5 +1,5 @@
 """target/fmu/WoundClosure.ssp, the coupled system as SSP 1.0: valid against the schema,
-the connections and parameters of python/coupling/loop.py, and run with fmpy's SSP module
+the connections and parameters of wound_opening/coupling/loop.py, and run with fmpy's SSP module
 it agrees with the Python loop at the coupling accuracy of docs/fmi.md."""
 
 from __future__ import annotations
@@ -16,7 +16,8 @@ from fmpy.ssp.ssd import read_ssd
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
 from coupling import ssp  # noqa: E402
-from coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE, couple  # noqa: E402
+
+from wound_opening.coupling.loop import PURSE_EXAMPLE, WOUND_EXAMPLE, couple  # noqa: E402
 
 STOP = 300.0
 # docs/fmi.md, "Coupling to a closure model" (the SSP file): max |R_ssp(h) - R_loop(h)| over

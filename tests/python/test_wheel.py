@@ -1,7 +1,9 @@
 """The wheel: `pip wheel .` builds it (reusing target/), it installs into a fresh venv with
 no Rust on PATH and no checkout on sys.path, and there `wound-opening fit` runs (also the
-README's quick starts: its microscope export, and its three-wound fit) and fmpy loads the
-shipped FMUs through `wound_opening.fmu_path`.
+README's quick starts: its microscope export, and its three-wound fit), fmpy loads the
+shipped FMUs through `wound_opening.fmu_path` and simulates them from the start values of
+`wound_opening.fmu_start_values`, and the coupled worked example runs from the package
+(`python -m wound_opening.coupling`).
 
 The runtime dependencies come from the wheel's own metadata, pinned by the versions of
 python/requirements.txt (pip's cache serves them). Nothing here falls back on the checkout:
@@ -44,15 +46,15 @@ TISSUE_COMMAND = (
 #: The FMUs' promise at the default tolerance: |R - R_exact| <= 1e-10 (R_final - R1), t >= 0.01 T.
 FMU_TOL = 1e-10
 
-# Run inside the fresh venv: where the package found its files, and two FMUs simulated.
+# Run inside the fresh venv: where the package found its files, and two FMUs simulated from
+# the start values `fmu_start_values` makes of material constants.
 PROBE = """
 import json, shutil, sys
 import wound_opening
 from fmpy import read_model_description, simulate_fmu
-start = {"lambda": %(lam)r, "sigma": %(sigma)r, "R_inf": %(r_inf)r, "R0": %(r0)r, "T": %(t)r,
-         "G": 100.0}
+start = wound_opening.fmu_start_values(**%(material)r)
 out = {"cargo": shutil.which("cargo"), "sys_path": sys.path, "package": wound_opening.__file__,
-       "library": str(wound_opening.library_path()), "fmus": {}, "radius": {}}
+       "library": str(wound_opening.library_path()), "fmus": {}, "radius": {}, "start": start}
 for name in %(fmus)r:
     path = wound_opening.fmu_path(name)
     out["fmus"][name] = [str(path), read_model_description(str(path)).modelName]
@@ -116,6 +118,10 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
     names = set(zipfile.ZipFile(wheel).namelist())
     assert "wound_opening/libwound_opening.so" in names
     assert {f"wound_opening/fmu/{name}" for name in FMUS} <= names
+    assert {
+        f"wound_opening/coupling/{m}.py"
+        for m in ("__init__", "__main__", "start", "loop", "example")
+    } <= names
     # ctypes, no CPython ABI: any Python 3, one platform.
     assert wheel.name.endswith("-py3-none-linux_x86_64.whl"), wheel.name
 
@@ -213,9 +219,16 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
 
     # The package's files, and fmpy on the shipped archives.
     stop, step = 20.0, 1.0
-    script = PROBE % dict(
-        lam=LAM, sigma=SIGMA, r_inf=OUTER / R0, r0=R0, t=T, fmus=FMUS, stop=stop, step=step
+    G = 100.0
+    material = dict(
+        G_pa=G,
+        eta_pa_s=LAM**2 * T * G,
+        zeta_pa_s_per_um2=4 * T * G / R0**2,
+        tension_pa=SIGMA * G,
+        R0_um=R0,
+        outer_radius_um=OUTER,
     )
+    script = PROBE % dict(material=material, fmus=FMUS, stop=stop, step=step)
     probe = subprocess.run(
         [str(python), "-c", script], capture_output=True, text=True, env=env, cwd=work, timeout=300
     )
@@ -231,6 +244,9 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
     for name, (path, model) in out["fmus"].items():
         assert Path(path) == package / "fmu" / name
         assert model in ("WoundOpening", "PurseString")
+    assert out["start"] == pytest.approx(
+        {"lambda": LAM, "sigma": SIGMA, "R_inf": OUTER / R0, "R0": R0, "T": T, "G": G}, rel=1e-14
+    )
     opening = R0 * (we.final_radius(SIGMA, OUTER / R0) - we.initial_radius(SIGMA))
     for name, (t, radius) in out["radius"].items():
         t, radius = np.array(t), np.array(radius)
@@ -238,6 +254,25 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
         keep = t >= 0.01 * T
         exact = R0 * we.edge(LAM, SIGMA, OUTER / R0, t[keep] / T)[0]
         assert np.abs(radius[keep] - exact).max() <= FMU_TOL * opening, name
+
+    # The coupled worked example from the installed package, with its shipped archives.
+    coupled = subprocess.run(
+        [str(python), "-m", "wound_opening.coupling", "--out", "coupled"],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=work,
+        timeout=300,
+    )
+    assert coupled.returncode == 0, coupled.stderr
+    closure = np.genfromtxt(work / "coupled" / "coupled_closure.csv", delimiter=",", names=True)
+    w = {"R0": 10.0, "sigma": 1.0, "lambda": 1.0, "T": 10.0, "R_inf": 10.0}  # docs/model.md
+    opening = w["R0"] * (we.final_radius(w["sigma"], w["R_inf"]) - we.initial_radius(w["sigma"]))
+    t = closure["time_s"][1:]
+    exact = w["R0"] * we.edge(w["lambda"], w["sigma"], w["R_inf"], t / w["T"])[0]
+    assert np.abs(closure["free_wound_radius_um"][1:] - exact).max() <= FMU_TOL * opening
+    # the purse-string closes the wound: below the free opening by the end
+    assert closure["wound_radius_um"][-1] < closure["free_wound_radius_um"][-1] - 5.0
 
 
 def test_the_source_distribution_carries_what_builds_the_wheel(tmp_path):

@@ -1,4 +1,5 @@
-"""A co-simulation master for WoundOpening and a closure model, with fmpy's FMU2Slave.
+"""A co-simulation master for WoundOpening and a closure model, with fmpy's FMU2Slave
+(fmpy is needed here only: `pip install fmpy`).
 
 The wound FMU takes the edge stress as input and gives the wound radius; the
 PurseString FMU takes the radius and gives the edge stress p = T_c(t) / (h R). The
@@ -35,33 +36,17 @@ import shutil
 from dataclasses import dataclass, field
 
 import numpy as np
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
 
-from wound_opening.material import from_material
+try:
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+except ImportError as e:  # fmpy is an optional dependency of the package
+    raise ImportError(
+        "wound_opening.coupling.loop drives the FMUs with fmpy: pip install fmpy "
+        "(or the package's extra: pip install 'wound_opening[fmi]')"
+    ) from e
 
-
-def fmu_start_values(
-    *, G_pa, eta_pa_s, zeta_pa_s_per_um2, tension_pa, R0_um, outer_radius_um
-) -> dict:
-    """The WoundOpening FMU's start values (lambda, sigma, R_inf, R0, T, G) from material
-    constants (Pa, Pa s, Pa s / um^2, Pa, um): wound_opening.from_material."""
-    p = from_material(
-        G_pa=G_pa,
-        eta_pa_s=eta_pa_s,
-        zeta_pa_s_per_um2=zeta_pa_s_per_um2,
-        tension_pa=tension_pa,
-        R0_um=R0_um,
-    )
-    return {
-        "lambda": p["lam"],
-        "sigma": p["sigma"],
-        "R_inf": outer_radius_um / R0_um,
-        "R0": R0_um,
-        "T": p["T_s"],
-        "G": G_pa,
-    }
-
+from .start import fmu_start_values
 
 # The README's worked example: a wound of R0 = 10 um in a tissue with G = 100 Pa,
 # eta = 1000 Pa s (viscous relaxation time eta / G = 10 s) and zeta = 40 Pa s / um^2,
