@@ -19,7 +19,7 @@ def _fit(args) -> None:
     from .inputs.columns import InputError, float_list
     from .inputs.lab_files import read_profile, read_radius
 
-    for path in args.radius_csv:  # cli_checks.py
+    for path in [] if args.area_col else args.radius_csv:  # cli_checks.py (Fiji tables: fiji.py)
         check_cut(path, args)
     units = dict(
         time_unit=args.time_unit,

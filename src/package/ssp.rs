@@ -6,7 +6,7 @@
 //! └── resources/WoundOpening.fmu, resources/PurseString.fmu   (the FMI 2.0 co-simulation archives)
 //! ```
 //!
-//! The two connections of python/coupling/loop.py:
+//! The two connections of python/wound_opening/coupling/loop.py:
 //! `wound.wound_radius -> purse.wound_radius`, `purse.edge_stress -> wound.edge_stress`;
 //! the parameters of its worked example (one system-level parameter set, names
 //! `<component>.<variable>`), run from 0 to 300 s (the communication step, 0.5 s in the
@@ -22,7 +22,7 @@ const STOP: f64 = 300.0;
 /// (component, archive, connectors (name, kind), parameters (name, value)).
 type Component = (&'static str, &'static str, &'static [(&'static str, &'static str)], &'static [(&'static str, f64)]);
 
-/// The worked example of python/coupling/loop.py (WOUND_EXAMPLE, PURSE_EXAMPLE):
+/// The worked example of python/wound_opening/coupling/loop.py (WOUND_EXAMPLE, PURSE_EXAMPLE):
 /// tests/python/test_ssp.py checks that they agree.
 const COMPONENTS: [Component; 2] = [
     (
