@@ -1,7 +1,6 @@
 # Sourced by the other scripts: creates .venv (once) with python/requirements.txt and the
 # wound_opening package (editable, from pyproject.toml) and activates it (run with bash, it
-# only creates it: scripts/test.sh). Re-installs when
-# either file changes.
+# only creates it: scripts/test.sh). Re-installs when either file changes.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 venv="$root/.venv"
