@@ -63,7 +63,7 @@ DIMENSIONLESS = ("lam", "sigma", "T_s")
 MATERIAL = ("G_pa", "eta_pa_s", "zeta_pa_s_per_um2", "tension_pa")
 
 
-def _value(name: str, x, positive: bool = True, zero: bool = False) -> float:
+def checked_value(name: str, x, positive: bool = True, zero: bool = False) -> float:
     try:
         x = float(x)
     except (TypeError, ValueError):
@@ -82,11 +82,11 @@ def from_material(
 ) -> dict:
     """The model's parameters {lam, sigma, T_s, R0_um} (simulate's keywords) from material
     constants: lambda = 2 sqrt(eta / zeta) / R0, sigma = tension / G, T = zeta R0^2 / (4 G)."""
-    G = _value("G_pa", G_pa)
-    eta = _value("eta_pa_s", eta_pa_s, zero=True)
-    zeta = _value("zeta_pa_s_per_um2", zeta_pa_s_per_um2)
-    tension = _value("tension_pa", tension_pa, positive=False)
-    R0 = _value("R0_um", R0_um)
+    G = checked_value("G_pa", G_pa)
+    eta = checked_value("eta_pa_s", eta_pa_s, zero=True)
+    zeta = checked_value("zeta_pa_s_per_um2", zeta_pa_s_per_um2)
+    tension = checked_value("tension_pa", tension_pa, positive=False)
+    R0 = checked_value("R0_um", R0_um)
     return {
         "lam": 2.0 * math.sqrt(eta / zeta) / R0,
         "sigma": tension / G,
@@ -98,8 +98,8 @@ def from_material(
 def to_material(*, lam: float, sigma: float, T_s: float, R0_um: float, G_pa: float) -> dict:
     """Material constants {G_pa, eta_pa_s, zeta_pa_s_per_um2, tension_pa, R0_um} from the
     model's parameters and G: eta = lambda^2 T G, zeta = 4 T G / R0^2, tension = sigma G."""
-    G, T, R0 = _value("G_pa", G_pa), _value("T_s", T_s), _value("R0_um", R0_um)
-    lam, sigma = _value("lam", lam, zero=True), _value("sigma", sigma, positive=False)
+    G, T, R0 = checked_value("G_pa", G_pa), checked_value("T_s", T_s), checked_value("R0_um", R0_um)
+    lam, sigma = checked_value("lam", lam, zero=True), checked_value("sigma", sigma, positive=False)
     return {
         "G_pa": G,
         "eta_pa_s": lam * lam * T * G,

@@ -15,26 +15,26 @@ from __future__ import annotations
 
 import math
 
-from ..material import _value, from_material
+from ..material import checked_value, from_material
 
 
 def _fmu_values(R0_um, sigma, lam, T_s, outer_radius_um, G_pa) -> dict:
-    R0 = _value("R0_um", R0_um)
-    outer = _value("outer_radius_um", outer_radius_um)
+    R0 = checked_value("R0_um", R0_um)
+    outer = checked_value("outer_radius_um", outer_radius_um)
     if not outer > R0:
         raise ValueError(
             f"outer_radius_um = {outer} must exceed R0_um = {R0} (the FMU accepts R_inf = "
             f"outer / R0 in [1.001, 1e6])"
         )
     out = {
-        "lambda": _value("lambda", lam, zero=True),
-        "sigma": _value("sigma", sigma, positive=False),
+        "lambda": checked_value("lambda", lam, zero=True),
+        "sigma": checked_value("sigma", sigma, positive=False),
         "R_inf": outer / R0,
         "R0": R0,
-        "T": _value("T_s", T_s),
+        "T": checked_value("T_s", T_s),
     }
     if G_pa is not None:
-        out["G"] = _value("G_pa", G_pa)
+        out["G"] = checked_value("G_pa", G_pa)
     return out
 
 

@@ -127,7 +127,7 @@ def from_options(fix=(), bound=(), prior=(), accepted=ACCEPTED) -> Parameters:
     return params
 
 
-def _finite(name: str, what: str, x) -> float:
+def checked_finite(name: str, what: str, x) -> float:
     try:
         x = float(x)
     except (TypeError, ValueError):
@@ -211,7 +211,10 @@ def specification(params, outer_radius_um: float) -> Spec:
         if prior is not None:
             if not (isinstance(prior, (tuple, list)) and len(prior) == 2):
                 raise ValueError(f"{name}: prior = {prior!r}: expected (mean, sd)")
-            mean, sd = _finite(name, "prior mean", prior[0]), _finite(name, "prior sd", prior[1])
+            mean, sd = (
+                checked_finite(name, "prior mean", prior[0]),
+                checked_finite(name, "prior sd", prior[1]),
+            )
             if not sd > 0:
                 raise ValueError(f"{name}: prior sd = {sd:g}: a standard deviation must be > 0")
             prior = (mean, sd)
@@ -224,7 +227,7 @@ def specification(params, outer_radius_um: float) -> Spec:
             if not p.vary:
                 if prior is not None:
                     raise ValueError(f"{name}: fixed and with a prior: give one of them")
-                G = (_finite(name, "value", p.value), 0.0)
+                G = (checked_finite(name, "value", p.value), 0.0)
             elif prior is not None:
                 G = prior
             else:
@@ -240,7 +243,7 @@ def specification(params, outer_radius_um: float) -> Spec:
         if not p.vary:
             if prior is not None or math.isfinite(lo) or math.isfinite(hi):
                 raise ValueError(f"{name}: a fixed parameter takes no bounds and no prior")
-            v = _finite(name, "value", p.value)
+            v = checked_finite(name, "value", p.value)
             if not (a < v < b or (i == 2 and v == 0.0)):
                 raise ValueError(
                     f"{name} = {v:g}: outside the accepted range ({a:g}, {b:g}) {UNITS[name]}"

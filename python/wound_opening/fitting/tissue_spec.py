@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..results.names import ETA, SHARED
-from .parameters import G_NAME, Parameters, _finite
+from .parameters import G_NAME, Parameters, checked_finite
 from .problem import Problem
 
 UNITS = {SHARED[0]: "um", SHARED[1]: "1 (tension / G)", SHARED[2]: "s/um^2", "R0_um": "um"}
@@ -115,7 +115,7 @@ def _g(p, lo, hi, prior) -> tuple:
     if not p.vary:
         if prior is not None:
             raise ValueError(f"{G_NAME}: fixed and with a prior: give one of them")
-        G = (_finite(G_NAME, "value", p.value), 0.0)
+        G = (checked_finite(G_NAME, "value", p.value), 0.0)
     elif prior is not None:
         G = prior
     else:
@@ -156,7 +156,10 @@ def tissue_specification(params, names) -> TissueSpec:
             raise ValueError(f"{name}: min = {lo:g} is not below max = {hi:g}")
         prior = getattr(p, "prior", None)
         if prior is not None:
-            mean, sd = _finite(name, "prior mean", prior[0]), _finite(name, "prior sd", prior[1])
+            mean, sd = (
+                checked_finite(name, "prior mean", prior[0]),
+                checked_finite(name, "prior sd", prior[1]),
+            )
             if not sd > 0:
                 raise ValueError(f"{name}: prior sd = {sd:g}: a standard deviation must be > 0")
             prior = (mean, sd)
@@ -169,7 +172,7 @@ def tissue_specification(params, names) -> TissueSpec:
         if not p.vary:
             if prior is not None or math.isfinite(lo) or math.isfinite(hi):
                 raise ValueError(f"{name}: a fixed parameter takes no bounds and no prior")
-            v = _finite(name, "value", p.value)
+            v = checked_finite(name, "value", p.value)
             if not (a < v < b or (closed and v == a)):
                 raise ValueError(
                     f"{name} = {v:g}: outside the accepted range ({a:g}, {b:g}) {unit}"

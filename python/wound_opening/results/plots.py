@@ -87,7 +87,7 @@ def estimates_text(result) -> str:
     )
 
 
-def _errorbars(ax, x, y, sd, flagged, label):
+def errorbar_points(ax, x, y, sd, flagged, label):
     """Points with error bars, the flagged ones circled; returns the points' colour."""
     bars = ax.errorbar(x, y, yerr=sd, fmt="o", ms=3, lw=0.8, capsize=0, label=label, zorder=2)
     if np.any(flagged):
@@ -125,7 +125,7 @@ def fit_figure(
     t, flagged = pts.time_s.to_numpy(), pts.flagged.to_numpy(bool)
     estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
     noise = "estimated" if estimated[0] else "given"
-    _errorbars(
+    errorbar_points(
         ax, t, pts.radius_um.to_numpy(), pts.sd_um.to_numpy(), flagged, f"data ± noise ({noise})"
     )
     ax.plot(curve.time_s, curve.radius_um, "-", c="C1", label="fit", zorder=1)
@@ -145,7 +145,7 @@ def fit_figure(
         bbox={"fc": "white", "ec": "0.7", "alpha": 0.9},
     )
     res = fig.add_subplot(grid[1, width], sharex=ax)
-    _errorbars(res, t, pts.residual_um.to_numpy(), pts.sd_um.to_numpy(), flagged, None)
+    errorbar_points(res, t, pts.residual_um.to_numpy(), pts.sd_um.to_numpy(), flagged, None)
     res.axhline(0, c="gray", lw=0.8)
     res.set(xlabel="time since the cut (s)", ylabel="data − fit (µm)")
     if has_piv:
@@ -153,7 +153,7 @@ def fit_figure(
         pax = fig.add_subplot(grid[0:2, 2:])
         for time in np.unique(pv.time_s):
             sel = (pv.time_s == time).to_numpy()
-            colour = _errorbars(
+            colour = errorbar_points(
                 pax,
                 pv.r_um.to_numpy()[sel],
                 pv.velocity_um_s.to_numpy()[sel],

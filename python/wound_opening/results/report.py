@@ -49,11 +49,11 @@ def sha256(path) -> str:
     return h.hexdigest()
 
 
-def _n(x, digits: int = 5) -> str:
+def sig(x, digits: int = 5) -> str:
     return "—" if x is None else f"{x:.{digits}g}"
 
 
-def _table(header, rows) -> str:
+def html_table(header, rows) -> str:
     head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
     body = "".join(
         "<tr>"
@@ -64,11 +64,11 @@ def _table(header, rows) -> str:
     return f"<table><tr>{head}</tr>{body}</table>"
 
 
-def _num(x, digits: int = 5) -> str:
-    return f'<td class="n">{html.escape(_n(x, digits))}</td>'
+def number_cell(x, digits: int = 5) -> str:
+    return f'<td class="n">{html.escape(sig(x, digits))}</td>'
 
 
-def _end(x, side: int, estimate) -> str:
+def end_cell(x, side: int, estimate) -> str:
     """An interval end to the digits that decide whether a value is inside (numbers.py)."""
     return f'<td class="n">{html.escape("—" if x is None else end(x, side, estimate))}</td>'
 
@@ -83,10 +83,10 @@ def settings_html(settings: dict) -> str:
     """The recording's settings (settings.py) and the files with their columns."""
     if not settings:
         return "<p>Recording settings: not recorded (the fit was called from Python).</p>"
-    out = "<h3>Recording settings</h3>" + _table(["setting", "value"], setting_rows(settings))
+    out = "<h3>Recording settings</h3>" + html_table(["setting", "value"], setting_rows(settings))
     files = file_rows(settings)
     if files:
-        out += _table(["wound", "data", "file", "columns"], files)
+        out += html_table(["wound", "data", "file", "columns"], files)
     return out
 
 
@@ -142,7 +142,7 @@ def raw_files_section(*series) -> str:
     items = "".join(f"<li>{html.escape(n)}</li>" for n in notes)
     return (
         "<h3>Raw files read</h3>"
-        + _table(["file", "what", "SHA-256 (of the bytes read)", "counts"], rows)
+        + html_table(["file", "what", "SHA-256 (of the bytes read)", "counts"], rows)
         + (f"<ul>{items}</ul>" if items else "")
     )
 
@@ -162,7 +162,7 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     parts = [
         f"<h1>Wound-opening fit</h1><p>{html.escape(now.strftime('%Y-%m-%d %H:%M:%S UTC'))}</p>",
         "<h2>Input</h2>",
-        _table(
+        html_table(
             ["data", "file", "SHA-256", "points"],
             [(w, f, h, str(n)) for w, f, h, n in inputs(radius, profile)],
         ),
@@ -171,22 +171,22 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     parts.append(raw_files_section(radius, profile))
     estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
     how = ["estimated from the residuals" if e else "given" for e in estimated]
-    noise = [f"radius {_n(result.noise[0], 4)} µm ({how[0]})"]
+    noise = [f"radius {sig(result.noise[0], 4)} µm ({how[0]})"]
     if result.has_profile:
-        noise.append(f"velocity {_n(result.noise[1], 4)} µm/s ({how[1]})")
+        noise.append(f"velocity {sig(result.noise[1], 4)} µm/s ({how[1]})")
     parts += [
         "<p>Noise (the median of the per-point standard deviations): "
         + ", ".join(noise)
-        + f". Loss: {html.escape(result.loss)}. Outer radius {_n(result.outer_radius_um)} µm.</p>"
+        + f". Loss: {html.escape(result.loss)}. Outer radius {sig(result.outer_radius_um)} µm.</p>"
     ]
     verdict = status_html(result)
-    p = "" if result.p_value is None else f", p = {_n(result.p_value, 3)}"
+    p = "" if result.p_value is None else f", p = {sig(result.p_value, 3)}"
     dof = f"{result.chi2 / result.dof:.4g}" if result.dof else "—"
     parts += [
         "<h2>Fit</h2>",
         f"<p>Status: {verdict}. Optimiser: {html.escape(result.optimizer.get('message', ''))}</p>",
-        f"<p>χ² = {_n(result.chi2)} for {result.dof} degrees of freedom (χ²/dof = {dof}{p}); "
-        f"residual rms {_n(result.residual_rms_um, 4)} µm; {result.n_points[0]} radii, "
+        f"<p>χ² = {sig(result.chi2)} for {result.dof} degrees of freedom (χ²/dof = {dof}{p}); "
+        f"residual rms {sig(result.residual_rms_um, 4)} µm; {result.n_points[0]} radii, "
         f"{result.n_points[1]} velocities.</p>",
     ]
     if result.warnings:
@@ -205,7 +205,7 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
         )
     parts += [
         "<h2>Software and command</h2>",
-        _table(["component", "version"], list(software().items())),
+        html_table(["component", "version"], list(software().items())),
         f"<p>Command: <code>{html.escape(command)}</code></p>",
     ]
     return (
@@ -220,7 +220,7 @@ def _estimates(result) -> str:
         theta = dict(zip(NAMES, result.theta))
         return (
             "<p>No estimates: the fit did not converge. Where it stopped: "
-            + html.escape(", ".join(f"{k} = {_n(v)}" for k, v in theta.items()))
+            + html.escape(", ".join(f"{k} = {sig(v)}" for k, v in theta.items()))
             + "</p>"
         )
     rows = []
@@ -229,7 +229,7 @@ def _estimates(result) -> str:
         lo, hi = rep.ci95
         c = rep.constraint
         if c.get("fixed"):
-            rows.append((name, _num(rep.estimate), "—", "—", "—", "fixed (given)", ""))
+            rows.append((name, number_cell(rep.estimate), "—", "—", "—", "fixed (given)", ""))
             continue
         computed = rep.profile is not None
         state = (
@@ -243,15 +243,15 @@ def _estimates(result) -> str:
         rows.append(
             (
                 name,
-                _num(rep.estimate),
-                _num(rep.stderr, 3),
-                _end(lo, -1, rep.estimate) if computed else "—",
-                _end(hi, 1, rep.estimate) if computed else "—",
+                number_cell(rep.estimate),
+                number_cell(rep.stderr, 3),
+                end_cell(lo, -1, rep.estimate) if computed else "—",
+                end_cell(hi, 1, rep.estimate) if computed else "—",
                 state,
                 result.advice(name),
             )
         )
-    model = "<h3>Model parameters</h3>" + _table(
+    model = "<h3>Model parameters</h3>" + html_table(
         ["parameter", "estimate", "stderr", "95 % lower", "95 % upper", "", "advice"], rows
     )
     out = material_html(result.material) + model
@@ -263,11 +263,11 @@ def _estimates(result) -> str:
         state = (
             "interval not computed" if not computed[k] else "identified" if ok else "not identified"
         )
-        rows.append((k, _num(v), _num(lo), _num(hi), state))
+        rows.append((k, number_cell(v), number_cell(lo), number_cell(hi), state))
     return (
         out
         + "<h3>Derived values</h3>"
-        + _table(["quantity", "value", "95 % lower", "95 % upper", ""], rows)
+        + html_table(["quantity", "value", "95 % lower", "95 % upper", ""], rows)
     )
 
 
@@ -280,11 +280,11 @@ def material_html(material: dict) -> str:
             rows.append(
                 (
                     k,
-                    _num(m["estimate"]),
+                    number_cell(m["estimate"]),
                     "—",
                     "—",
                     "Pa",
-                    "fixed (given)" if m["fixed"] else f"Gaussian prior, sd {_n(m['sd'], 3)} Pa",
+                    "fixed (given)" if m["fixed"] else f"Gaussian prior, sd {sig(m['sd'], 3)} Pa",
                 )
             )
             continue
@@ -298,14 +298,14 @@ def material_html(material: dict) -> str:
         rows.append(
             (
                 k,
-                _num(m["estimate"]),
-                _end(lo, -1, m["estimate"]) if computed else "—",
-                _end(hi, 1, m["estimate"]) if computed else "—",
+                number_cell(m["estimate"]),
+                end_cell(lo, -1, m["estimate"]) if computed else "—",
+                end_cell(hi, 1, m["estimate"]) if computed else "—",
                 m["unit"],
                 state,
             )
         )
-    return "<h3>Material values</h3>" + _table(
+    return "<h3>Material values</h3>" + html_table(
         ["quantity", "value", "95 % lower", "95 % upper", "unit", ""], rows
     )
 
@@ -328,16 +328,16 @@ def _flagged(result) -> str:
                     what,
                     str(cols["row"][k]),
                     line,
-                    _num(cols["time_s"][k]),
-                    f"{_n(cols[value][k])} {unit}",
-                    f"{_n(cols[res][k], 3)} {unit}",
-                    _num(cols["normalised_residual"][k], 3),
+                    number_cell(cols["time_s"][k]),
+                    f"{sig(cols[value][k])} {unit}",
+                    f"{sig(cols[res][k], 3)} {unit}",
+                    number_cell(cols["normalised_residual"][k], 3),
                 )
             )
     if not rows:
         why = "no robust loss" if result.loss == "linear" else "none beyond 3 noise"
         return f"<p>Flagged points: none ({why}).</p>"
-    return "<h3>Flagged points (down-weighted by the robust loss)</h3>" + _table(
+    return "<h3>Flagged points (down-weighted by the robust loss)</h3>" + html_table(
         ["data", "row", "file line", "time (s)", "value", "data − fit", "/ noise"], rows
     )
 

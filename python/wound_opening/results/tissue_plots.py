@@ -13,7 +13,7 @@ import numpy as np
 
 from .names import ETA, SHARED
 from .numbers import interval, material_lines
-from .plots import _errorbars, plt, time_axis
+from .plots import errorbar_points, plt, time_axis
 from .status import status
 
 LABELS = {
@@ -89,7 +89,7 @@ def tissue_figure(result, path=None):
             res.plot(tt[flagged], pts.normalised_residual[flagged], "o", ms=8, mfc="none", mec="C3")
         if pax is not None and "profile" in t:
             pv, pc = t["profile"], t["profile_curve"]
-            _errorbars(
+            errorbar_points(
                 pax,
                 pv.r_um.to_numpy(),
                 pv.velocity_um_s.to_numpy(),

@@ -24,13 +24,13 @@ from pathlib import Path
 from .names import ETA, SHARED
 from .report import (
     STYLE,
-    _end,
-    _n,
-    _num,
-    _table,
+    end_cell,
+    html_table,
     inputs,
     material_html,
+    number_cell,
     settings_html,
+    sig,
     software,
     status_html,
 )
@@ -64,16 +64,16 @@ def _shared(result) -> str:
         rows.append(
             (
                 name,
-                _num(rep.estimate),
-                _num(rep.stderr, 3),
-                _end(lo, -1, rep.estimate) if rep.profile is not None else "—",
-                _end(hi, 1, rep.estimate) if rep.profile is not None else "—",
+                number_cell(rep.estimate),
+                number_cell(rep.stderr, 3),
+                end_cell(lo, -1, rep.estimate) if rep.profile is not None else "—",
+                end_cell(hi, 1, rep.estimate) if rep.profile is not None else "—",
                 _state(rep),
                 _constraint(rep.constraint),
                 result.advice(name),
             )
         )
-    return "<h3>Shared coordinates of the fit</h3>" + _table(
+    return "<h3>Shared coordinates of the fit</h3>" + html_table(
         ["quantity", "estimate", "stderr", "95 % lower", "95 % upper", "", "constraint", "advice"],
         rows,
     )
@@ -85,35 +85,35 @@ def _wound(result, k: int, wound) -> str:
     lo, hi = rep.ci95
     r = radii(R0, sigma, w["outer_radius_um"])
     n_r, n_p = w["n_points"]
-    noise = f"radius {_n(w['noise'][0], 4)} µm"
+    noise = f"radius {sig(w['noise'][0], 4)} µm"
     if n_p:
-        noise += f", velocity {_n(w['noise'][1], 4)} µm/s"
+        noise += f", velocity {sig(w['noise'][1], 4)} µm/s"
     files = [(d, f, h, str(n)) for d, f, h, n in inputs(wound.radius, wound.profile)]
     rows = [
         (
             "R0_um",
-            _num(R0),
-            _num(rep.stderr, 3),
-            _end(lo, -1, R0) if rep.profile is not None else "—",
-            _end(hi, 1, R0) if rep.profile is not None else "—",
+            number_cell(R0),
+            number_cell(rep.stderr, 3),
+            end_cell(lo, -1, R0) if rep.profile is not None else "—",
+            end_cell(hi, 1, R0) if rep.profile is not None else "—",
             "µm",
             _state(rep) or "fixed (given)",
             _constraint(rep.constraint) if not rep.constraint.get("fixed") else "",
         ),
-        ("lambda = l / R0", _num(lam), "—", "—", "—", "1", "", ""),
-        ("T_s = (zeta/G) R0² / 4", _num(T), "—", "—", "—", "s", "", ""),
-        ("R1_um = R0 (1 + sigma / 6)", _num(r["R1_um"]), "—", "—", "—", "µm", "", ""),
-        ("R_final_um", _num(r["R_final_um"]), "—", "—", "—", "µm", "", ""),
+        ("lambda = l / R0", number_cell(lam), "—", "—", "—", "1", "", ""),
+        ("T_s = (zeta/G) R0² / 4", number_cell(T), "—", "—", "—", "s", "", ""),
+        ("R1_um = R0 (1 + sigma / 6)", number_cell(r["R1_um"]), "—", "—", "—", "µm", "", ""),
+        ("R_final_um", number_cell(r["R_final_um"]), "—", "—", "—", "µm", "", ""),
     ]
     flagged = w["outliers"].get("where", [])
     return (
         f"<h3>Wound {html.escape(str(w['name']))}</h3>"
-        + _table(["data", "file", "SHA-256", "points"], files)
-        + f"<p>Outer radius {_n(w['outer_radius_um'])} µm; {n_r} radii, {n_p} velocities; noise "
-        f"(median) {noise}; χ² share {_n(w['chi2'], 4)}; residual rms "
-        f"{_n(w['residual_rms_um'], 4)} µm; PIV vectors at the edge "
+        + html_table(["data", "file", "SHA-256", "points"], files)
+        + f"<p>Outer radius {sig(w['outer_radius_um'])} µm; {n_r} radii, {n_p} velocities; noise "
+        f"(median) {noise}; χ² share {sig(w['chi2'], 4)}; residual rms "
+        f"{sig(w['residual_rms_um'], 4)} µm; PIV vectors at the edge "
         f"{w['piv_vectors_at_edge']}.</p>"
-        + _table(
+        + html_table(
             ["quantity", "estimate", "stderr", "95 % lower", "95 % upper", "unit", "", ""], rows
         )
         + (
@@ -137,7 +137,7 @@ def render(result, wounds, *, command: str | None = None, now=None) -> str:
     now = now or datetime.datetime.now(datetime.timezone.utc)
     command = command if command is not None else " ".join(sys.argv)
     n = len(result.wounds)
-    p = "" if result.p_value is None else f", p = {_n(result.p_value, 3)}"
+    p = "" if result.p_value is None else f", p = {sig(result.p_value, 3)}"
     dof = f"{result.chi2 / result.dof:.4g}" if result.dof else "—"
     parts = [
         f"<h1>Wound-opening fit of {n} wounds of one tissue</h1>"
@@ -147,7 +147,7 @@ def render(result, wounds, *, command: str | None = None, now=None) -> str:
         "<h2>Fit</h2>",
         f"<p>Status: {status_html(result)}. Optimiser: "
         f"{html.escape(result.optimizer.get('message', ''))}</p>",
-        f"<p>χ² = {_n(result.chi2)} for {result.dof} degrees of freedom (χ²/dof = {dof}{p}); "
+        f"<p>χ² = {sig(result.chi2)} for {result.dof} degrees of freedom (χ²/dof = {dof}{p}); "
         f"noise {'given' if result.noise_given else 'estimated from the residuals'}; loss "
         f"{html.escape(result.loss)}.</p>",
     ]
@@ -171,7 +171,7 @@ def render(result, wounds, *, command: str | None = None, now=None) -> str:
         )
     parts += [
         "<h2>Software and command</h2>",
-        _table(["component", "version"], list(software().items())),
+        html_table(["component", "version"], list(software().items())),
         f"<p>Command: <code>{html.escape(command)}</code></p>",
     ]
     return (
