@@ -62,7 +62,7 @@ def _fit(args) -> None:
     result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
     from .results.settings import from_options as settings_from
 
-    result.settings = settings_from(args)
+    result.settings = settings_from(args, series=(radius, profile))
     print(result.summary())
     if args.json:
         with open(args.json, "w") as f:
@@ -136,7 +136,7 @@ def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
         for k, (name, s) in enumerate(series.items())
     ]
     result = fit_wounds(wounds, loss=args.loss, params=params)
-    result.settings = settings_from(args, names)
+    result.settings = settings_from(args, names, [*series.values(), *(profiles or [])])
     print(result.summary())
     if args.json:
         with open(args.json, "w") as f:

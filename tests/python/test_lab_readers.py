@@ -206,6 +206,15 @@ def test_the_readme_lab_command_fits_fiji_and_pivlab_covering_the_truth(tmp_path
         assert lo <= value <= hi, (name, lo, value, hi)
         assert result["parameters"][name]["identifiable"]
     assert "wound centre estimated" in done.stderr and "tracking failed" in done.stderr
+    # the JSON keeps what the report lists of the raw files: hashes, counts, notes, the centre
+    raw = result["settings"]["raw_files"]
+    fiji = (ROOT / "examples/lab/Results_8um.csv").read_bytes()
+    assert raw[0]["sha256"] == hashlib.sha256(fiji).hexdigest()
+    assert raw[0]["counts"]["tracking failed"] == 2
+    notes = [n for f in raw for n in f["notes"]]
+    assert any("tracking failed" in n for n in notes), notes
+    assert any(n.startswith("wound centre estimated from the flow") for n in notes), notes
+    assert len([f for f in raw if f["path"].endswith(".txt")]) == 6
 
 
 def test_the_report_hashes_every_raw_file_read_with_its_counts():

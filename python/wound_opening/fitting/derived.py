@@ -1,5 +1,5 @@
 """Likelihood profiles of derived quantities: the fit reparametrised so that the quantity
-is one coordinate, then profiled like a parameter (likelihood.py).
+is one coordinate, then profiled like a parameter (intervals.py).
 
 Each quantity is a monomial of the parameters, linear in the log coordinates
 y = (ln R0, -, ln lambda, ln T):

@@ -27,7 +27,7 @@ wound's Objective.jacobian in z_k = (ln R0_k, sigma, lambda_k, ln T_k):
 Stages, as for one wound (fitting.py): starts from each wound fitted alone (no intervals)
 combined, and from a coarse grid in l; local fits (local.py); noise given or estimated per
 data set of each wound; the verdict (optimiser, rank of the Jacobian, chi^2); profile
-likelihood intervals of l, tension/G, zeta/G, eta/G and every R0_k (likelihood.py's walker).
+likelihood intervals of l, tension/G, zeta/G, eta/G and every R0_k (intervals.py's walker).
 """
 
 from __future__ import annotations
@@ -451,7 +451,7 @@ def _log_profile(lo, hi, pts, bounded, scale: float = 1.0) -> Profile:
 
 def _profiles(tissue, y_hat, chi2_min, threshold, cov, loss, alternates) -> dict:
     """Profiles of l, sigma, zeta/G, eta/G and each R0_k, with the single fit's search limits
-    (likelihood.py): l from 0 to LAMBDA_MAX times the largest R0 (an interval reaching 0 is
+    (intervals.py): l from 0 to LAMBDA_MAX times the largest R0 (an interval reaching 0 is
     closed there but does not identify l, as lambda's), sigma within 10 |sigma| + 1, zeta/G
     and eta/G within a factor 100, R0 within a factor 3. A coordinate the user holds fixed
     is its value; eta/G with l or zeta/G fixed is the other one's profile carried over."""

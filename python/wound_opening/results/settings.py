@@ -16,6 +16,10 @@ missing or None: not given):
                       profile", "path": str, "columns": {role: column name}}
     reader            dict    a lab-file reader's own settings (Fiji, PIVlab, OpenPIV:
                       any keys; printed as given, one row per key)
+    raw_files         list of {"path", "sha256", "kind", "counts", "notes"}: the raw lab
+                      files read (a Fiji table, each PIV file) and the steps made of them
+                      (rings, the wound centre), as the report's "Raw files read" lists
+                      them: what was skipped and why, the centre with its uncertainty
 
 Other keys are printed as given, after these.
 """
@@ -35,9 +39,10 @@ LABELS = {
 }
 
 
-def from_options(args, wounds=None) -> dict:
+def from_options(args, wounds=None, series=()) -> dict:
     """The settings the command line's `args` (cli.parser's fit) give; `wounds`: the names
-    of the wounds in order (several radius files or a long table), None for one wound."""
+    of the wounds in order (several radius files or a long table), None for one wound;
+    `series`: the series read (their raw files go under "raw_files")."""
     radius_cols = {"time": args.time_col, "radius": args.radius_col}
     if args.radius_sd_col:
         radius_cols["sd"] = args.radius_sd_col
@@ -70,7 +75,26 @@ def from_options(args, wounds=None) -> dict:
         value = getattr(args, key, None)
         if value is not None:
             out[key] = value
+    raw = raw_files(series)
+    if raw:
+        out["raw_files"] = raw
     return out
+
+
+def raw_files(series) -> list:
+    """The raw files behind `series` (inputs.provenance.RawFile; None skipped) as dicts."""
+    return [
+        {
+            "path": f.path,
+            "sha256": f.sha256,
+            "kind": f.kind,
+            "counts": dict(f.counts),
+            "notes": list(f.notes),
+        }
+        for s in series
+        if s is not None
+        for f in getattr(s, "files", ())
+    ]
 
 
 def rows(settings: dict) -> list:
@@ -87,7 +111,7 @@ def rows(settings: dict) -> list:
         if settings.get(key) is not None:
             out.append((label, text(settings[key])))
     for key, value in settings.items():
-        if key in LABELS or key == "files" or value is None:
+        if key in LABELS or key in ("files", "raw_files") or value is None:
             continue
         if isinstance(value, dict):
             out += [(f"{key}: {k}", text(v)) for k, v in value.items() if v is not None]
