@@ -15,6 +15,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -43,6 +44,8 @@ TISSUE_COMMAND = (
     "--outer-radius-um",
     "80,100,120",
 )
+#: The material of examples/lab (python/make_lab_examples.py).
+LAB_TRUTH = {"viscous_length_um": 20.0, "tension_over_G": 0.5, "zeta_over_G_s_per_um2": 0.1}
 #: The FMUs' promise at the default tolerance: |R - R_exact| <= 1e-10 (R_final - R1), t >= 0.01 T.
 FMU_TOL = 1e-10
 
@@ -217,6 +220,31 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
             and shared[name]["ci95"][0] < truth < shared[name]["ci95"][1]
         ), (name, shared)
 
+    # The README's lab quick starts as written: a Fiji table and a PIVlab folder, one wound
+    # and three, with their figures and reports (examples/lab copied beside them).
+    shutil.copytree(ROOT / "examples" / "lab", work / "examples" / "lab")
+    for k, command in enumerate(readme_lab_commands()):
+        argv = shlex.split(command)[1:] + ["--json", f"lab{k}.json"]
+        lab = subprocess.run(
+            [str(venv / "bin" / "wound-opening"), *argv],
+            capture_output=True,
+            text=True,
+            env=env,
+            cwd=work,
+            timeout=600,
+        )
+        assert lab.returncode == 0, (command, lab.stderr)
+        for option in ("--plot", "--report"):
+            out = work / argv[argv.index(option) + 1]
+            assert out.stat().st_size > 10_000, out
+        result = json.loads((work / f"lab{k}.json").read_text())
+        raw = result["settings"]["raw_files"]
+        assert all(len(f["sha256"]) == 64 for f in raw if f["path"].endswith((".csv", ".txt")))
+        values = result["shared"] if "shared" in result else result["material"]
+        for name, truth in LAB_TRUTH.items():
+            lo, hi = values[name]["ci95"]
+            assert lo < truth < hi, (command, name, values[name])
+
     # The package's files, and fmpy on the shipped archives.
     stop, step = 20.0, 1.0
     G = 100.0
@@ -310,3 +338,18 @@ def test_the_source_distribution_carries_what_builds_the_wheel(tmp_path):
     assert not any(n.startswith(("target/", ".venv/", "dist/", "build/")) for n in names), sorted(
         names
     )
+
+
+def readme_lab_commands() -> list[str]:
+    """The commands of the README's "Fitting a lab's own files", as written."""
+    text = (ROOT / "README.md").read_text()
+    section = text[text.index("## Fitting a lab's own files") :]
+    blocks = re.findall(r"```(?:bash|sh)?\n(.*?)```", section.split("\n## ")[0], re.S)
+    commands = [
+        c.strip()
+        for b in blocks
+        for c in b.replace("\\\n", " ").splitlines()
+        if c.strip().startswith("wound-opening fit")
+    ]
+    assert len(commands) == 2, commands
+    return commands
