@@ -160,3 +160,35 @@ fn current_radii_inside_the_wound_or_beyond_the_tissue_are_refused() {
     assert_eq!(status, WoStatus::WoInvalidArgument);
     assert!(last_error().contains("overflows"), "{}", last_error());
 }
+
+/// wo_series_sensitivities: the radius and velocity of wo_series to the bit, optional
+/// outputs skipped by NULL, the radius required, and nothing written on a refusal (its
+/// derivatives are checked in src/solver/sensitivity.rs and tests/python/test_sensitivities.py).
+#[test]
+fn sensitivities_give_the_series_values_and_follow_the_pointer_rules() {
+    let times = [0.0, 0.5, 3.0, 40.0];
+    let problem = pb(0.7, 1.0, 10.0, TOL, 0.2);
+    let (mut r, mut v) = ([0.0; 4], [0.0; 4]);
+    let (mut r2, mut v2, mut dl, mut dr) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]);
+    unsafe {
+        assert_eq!(wo_series(problem, times.as_ptr(), 4, r.as_mut_ptr(), v.as_mut_ptr()), WoStatus::WoOk);
+        let status =
+            wo_series_sensitivities(problem, times.as_ptr(), 4, r2.as_mut_ptr(), v2.as_mut_ptr(), dl.as_mut_ptr(), dr.as_mut_ptr());
+        assert_eq!(status, WoStatus::WoOk, "{}", last_error());
+        assert_eq!((r, v), (r2, v2));
+        assert!(dl[1..].iter().all(|d| *d < 0.0) && dr[1..].iter().all(|d| *d < 0.0), "{dl:?} {dr:?}");
+        let mut only = [0.0; 4];
+        let status = wo_series_sensitivities(problem, times.as_ptr(), 4, r2.as_mut_ptr(), null_mut(), null_mut(), only.as_mut_ptr());
+        assert_eq!(status, WoStatus::WoOk);
+        assert_eq!(only, dr);
+        let status = wo_series_sensitivities(problem, times.as_ptr(), 4, null_mut(), null_mut(), dl.as_mut_ptr(), null_mut());
+        assert_eq!(status, WoStatus::WoNullPointer);
+        assert!(last_error().contains("wo_series_sensitivities: radius (with count = 4) is NULL"), "{}", last_error());
+        let mut untouched = [9.0; 2];
+        let status =
+            wo_series_sensitivities(problem, [1.0, 0.5].as_ptr(), 2, r2.as_mut_ptr(), null_mut(), untouched.as_mut_ptr(), null_mut());
+        assert_eq!(status, WoStatus::WoInvalidArgument);
+        assert!(last_error().contains("expected ascending times"), "{}", last_error());
+        assert_eq!(untouched, [9.0; 2]);
+    }
+}

@@ -3,6 +3,8 @@
 //!
 //! ```text
 //! series(problem, p, times)            R(t_i), dR/dt(t_i)  for ascending t_i >= 0, p constant
+//! series_sensitivities(problem, ...)   the same and dR/dlambda(t_i), dR/dR_inf(t_i), exact on
+//!                                      the solver's mesh (crate::solver::radius_sensitivities)
 //! profile_series(problem, p, times, r) u and u_t of the material point currently at r_j:
 //!                                      X_j solves X + u(X, t_i) = r_j, then u(X_j, t_i), u_t(X_j, t_i)
 //! ```
@@ -14,7 +16,7 @@
 //! to a few ulps.
 
 use super::error::{Failure, WoStatus};
-use crate::solver::{Params, Settings, Solver, check_edge_stress};
+use crate::solver::{Params, Settings, Solver, check_edge_stress, radius_sensitivities};
 
 /// One problem of a series call: parameters, accuracy target and the constant edge stress.
 #[derive(Debug, Clone, Copy)]
@@ -88,6 +90,32 @@ pub fn series(problem: &Problem, times: &[f64], radius: &mut [f64], velocity: Op
     radius.copy_from_slice(&r);
     if let Some(out) = velocity {
         out.copy_from_slice(&v);
+    }
+    Ok(())
+}
+
+/// Optional outputs of [`series_sensitivities`] (one value per time each).
+pub struct SeriesOut<'a> {
+    pub velocity: Option<&'a mut [f64]>,
+    pub d_lambda: Option<&'a mut [f64]>,
+    pub d_r_inf: Option<&'a mut [f64]>,
+}
+
+/// [`series`] and the derivatives of the wound radius with respect to lambda and `R_inf`
+/// (in R0 per unit), exact for the mesh the tolerance picks (its degree, element count and
+/// grading length held fixed: no decomposition beyond the one of `series`). Every output is
+/// written only on success.
+pub fn series_sensitivities(problem: &Problem, times: &[f64], radius: &mut [f64], out: SeriesOut<'_>) -> Result<(), Failure> {
+    let mut r = vec![0.0; times.len()];
+    let mut v = out.velocity.as_ref().map(|_| vec![0.0; times.len()]);
+    series(problem, times, &mut r, v.as_deref_mut())?;
+    let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
+    let d = radius_sensitivities(&problem.params, &settings, problem.edge_stress, times)?;
+    radius.copy_from_slice(&r);
+    for (o, values) in [(out.velocity, v.as_deref()), (out.d_lambda, Some(&d.d_lambda[..])), (out.d_r_inf, Some(&d.d_r_inf[..]))] {
+        if let (Some(o), Some(values)) = (o, values) {
+            o.copy_from_slice(values);
+        }
     }
     Ok(())
 }
