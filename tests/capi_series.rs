@@ -192,3 +192,22 @@ fn sensitivities_give_the_series_values_and_follow_the_pointer_rules() {
         assert_eq!(untouched, [9.0; 2]);
     }
 }
+
+/// The searches of many radii side by side give, bit for bit, what each radius's search
+/// gives alone, and X + u(X, t) is the current radius to a few ulps.
+#[test]
+fn reference_radii_side_by_side_equal_those_found_one_at_a_time() {
+    use wound_opening::capi::series::reference_radii;
+    use wound_opening::solver::{Params, Settings, Solver};
+    let params = Params { lambda: 0.8, sigma: 0.6, r_inf: 12.0 };
+    let mut s = Solver::new(&params, &Settings::for_tolerance(&params, 1e-11).unwrap()).unwrap();
+    s.advance(0.7, 0.1).unwrap();
+    let ends = s.displacement(&[1.0, 12.0]);
+    let (lo, hi) = (1.0 + ends[0], 12.0 + ends[1]);
+    let radii: Vec<f64> = (0..=300).map(|j| lo + (hi - lo) * (j as f64 / 300.0).powi(3)).chain([hi, lo, 3.0, 3.0]).collect();
+    let together = reference_radii(&s, &radii, 12.0, (lo, hi));
+    for (&r, &x) in radii.iter().zip(&together) {
+        assert_eq!(x.to_bits(), reference_radii(&s, &[r], 12.0, (lo, hi))[0].to_bits(), "{r}");
+        assert!((x + s.displacement(&[x])[0] - r).abs() <= 8.0 * f64::EPSILON * r, "{r}: {x}");
+    }
+}
