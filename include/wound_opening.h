@@ -355,6 +355,19 @@ wo_status wo_series(wo_problem problem,
                     double *radius,
                     double *velocity);
 
+// As `wo_series`, and the derivatives of the wound radius with respect to lambda
+// (`d_radius_d_lambda`, in R0) and to the outer radius R_inf (`d_radius_d_r_inf`, in R0 per
+// R0) at each time: exact derivatives of the solver's own R(t) on the grid the tolerance
+// picks, through its modal basis (no further decomposition; 0 in lambda at lambda = 0).
+// `velocity`, `d_radius_d_lambda` and `d_radius_d_r_inf` may each be NULL (not computed).
+wo_status wo_series_sensitivities(wo_problem problem,
+                                  const double *times,
+                                  size_t count,
+                                  double *radius,
+                                  double *velocity,
+                                  double *d_radius_d_lambda,
+                                  double *d_radius_d_r_inf);
+
 // Displacement u and velocity u_t, at each of `times[i]` (`i < n_times`, ascending), of
 // the material points found at the CURRENT radii `radii[j]` (`j < n_radii`, in R0 from the
 // wound centre, as PIV measures them): X_j solves X + u(X, t_i) = radii[j]. Row-major

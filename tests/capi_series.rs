@@ -160,3 +160,54 @@ fn current_radii_inside_the_wound_or_beyond_the_tissue_are_refused() {
     assert_eq!(status, WoStatus::WoInvalidArgument);
     assert!(last_error().contains("overflows"), "{}", last_error());
 }
+
+/// wo_series_sensitivities: the radius and velocity of wo_series to the bit, optional
+/// outputs skipped by NULL, the radius required, and nothing written on a refusal (its
+/// derivatives are checked in src/solver/sensitivity.rs and tests/python/test_sensitivities.py).
+#[test]
+fn sensitivities_give_the_series_values_and_follow_the_pointer_rules() {
+    let times = [0.0, 0.5, 3.0, 40.0];
+    let problem = pb(0.7, 1.0, 10.0, TOL, 0.2);
+    let (mut r, mut v) = ([0.0; 4], [0.0; 4]);
+    let (mut r2, mut v2, mut dl, mut dr) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]);
+    unsafe {
+        assert_eq!(wo_series(problem, times.as_ptr(), 4, r.as_mut_ptr(), v.as_mut_ptr()), WoStatus::WoOk);
+        let status =
+            wo_series_sensitivities(problem, times.as_ptr(), 4, r2.as_mut_ptr(), v2.as_mut_ptr(), dl.as_mut_ptr(), dr.as_mut_ptr());
+        assert_eq!(status, WoStatus::WoOk, "{}", last_error());
+        assert_eq!((r, v), (r2, v2));
+        assert!(dl[1..].iter().all(|d| *d < 0.0) && dr[1..].iter().all(|d| *d < 0.0), "{dl:?} {dr:?}");
+        let mut only = [0.0; 4];
+        let status = wo_series_sensitivities(problem, times.as_ptr(), 4, r2.as_mut_ptr(), null_mut(), null_mut(), only.as_mut_ptr());
+        assert_eq!(status, WoStatus::WoOk);
+        assert_eq!(only, dr);
+        let status = wo_series_sensitivities(problem, times.as_ptr(), 4, null_mut(), null_mut(), dl.as_mut_ptr(), null_mut());
+        assert_eq!(status, WoStatus::WoNullPointer);
+        assert!(last_error().contains("wo_series_sensitivities: radius (with count = 4) is NULL"), "{}", last_error());
+        let mut untouched = [9.0; 2];
+        let status =
+            wo_series_sensitivities(problem, [1.0, 0.5].as_ptr(), 2, r2.as_mut_ptr(), null_mut(), untouched.as_mut_ptr(), null_mut());
+        assert_eq!(status, WoStatus::WoInvalidArgument);
+        assert!(last_error().contains("expected ascending times"), "{}", last_error());
+        assert_eq!(untouched, [9.0; 2]);
+    }
+}
+
+/// The searches of many radii side by side give, bit for bit, what each radius's search
+/// gives alone, and X + u(X, t) is the current radius to a few ulps.
+#[test]
+fn reference_radii_side_by_side_equal_those_found_one_at_a_time() {
+    use wound_opening::capi::series::reference_radii;
+    use wound_opening::solver::{Params, Settings, Solver};
+    let params = Params { lambda: 0.8, sigma: 0.6, r_inf: 12.0 };
+    let mut s = Solver::new(&params, &Settings::for_tolerance(&params, 1e-11).unwrap()).unwrap();
+    s.advance(0.7, 0.1).unwrap();
+    let ends = s.displacement(&[1.0, 12.0]);
+    let (lo, hi) = (1.0 + ends[0], 12.0 + ends[1]);
+    let radii: Vec<f64> = (0..=300).map(|j| lo + (hi - lo) * (j as f64 / 300.0).powi(3)).chain([hi, lo, 3.0, 3.0]).collect();
+    let together = reference_radii(&s, &radii, 12.0, (lo, hi));
+    for (&r, &x) in radii.iter().zip(&together) {
+        assert_eq!(x.to_bits(), reference_radii(&s, &[r], 12.0, (lo, hi))[0].to_bits(), "{r}");
+        assert!((x + s.displacement(&[x])[0] - r).abs() <= 8.0 * f64::EPSILON * r, "{r}: {x}");
+    }
+}

@@ -1,4 +1,4 @@
-"""ctypes binding of the two series functions of the direct C API (include/wound_opening.h).
+"""ctypes binding of the series functions of the direct C API (include/wound_opening.h).
 
 Everything here is dimensionless (lengths in R0, time in T, stresses in G); `model.py`
 converts. The library is loaded once per process: from `$WOUND_OPENING_LIB` when it is set
@@ -84,7 +84,10 @@ def _load():
             _DOUBLES,
             _DOUBLES,
         ]
-        for f in (lib.wo_series, lib.wo_profile_series):
+        lib.wo_series_sensitivities.argtypes = [_Problem, _DOUBLES, ctypes.c_size_t] + [
+            _DOUBLES
+        ] * 4
+        for f in (lib.wo_series, lib.wo_profile_series, lib.wo_series_sensitivities):
             f.restype = ctypes.c_int
         lib.wo_last_error.restype = ctypes.c_char_p
         lib.wo_last_error.argtypes = []
@@ -125,6 +128,29 @@ def series(
     problem = _Problem(lam, sigma, r_inf, tolerance, edge_stress)
     _check(lib, lib.wo_series(problem, _ptr(t), t.size, _ptr(r), _ptr(v)))
     return r, v
+
+
+def series_sensitivities(
+    lam: float,
+    sigma: float,
+    r_inf: float,
+    times,
+    edge_stress: float = 0.0,
+    *,
+    tolerance: float = TOLERANCE,
+):
+    """R(t), dR/dt, dR/dlambda and dR/dR_inf at ascending dimensionless `times`, in one C
+    call: the derivatives are exact for the solver's own R(t) (its grid held fixed), through
+    its modal basis (wo_series_sensitivities). Returns the four arrays."""
+    lib = _load()
+    t = _doubles(times)
+    r, v, d_lam, d_r_inf = (np.empty_like(t) for _ in range(4))
+    problem = _Problem(lam, sigma, r_inf, tolerance, edge_stress)
+    status = lib.wo_series_sensitivities(
+        problem, _ptr(t), t.size, _ptr(r), _ptr(v), _ptr(d_lam), _ptr(d_r_inf)
+    )
+    _check(lib, status)
+    return r, v, d_lam, d_r_inf
 
 
 def profile_series(

@@ -8,6 +8,8 @@
 //! wo_solver_save_state(s, &st), wo_solver_restore_state(s, st), wo_state_free(st)
 //! wo_solver_free(s)
 //! wo_series(problem, times, n, R, dRdt)                  a whole R(t) in one call
+//! wo_series_sensitivities(problem, times, n, R, dRdt, dRdlambda, dRdR_inf)  and its exact
+//!                                                         derivatives in lambda and R_inf
 //! wo_profile_series(problem, times, n_t, radii, n_r, u, v) u, u_t at CURRENT radii
 //! wo_last_error()                                         the calling thread's last message
 //! ```

@@ -3,6 +3,8 @@
 //!
 //! ```text
 //! series(problem, p, times)            R(t_i), dR/dt(t_i)  for ascending t_i >= 0, p constant
+//! series_sensitivities(problem, ...)   the same and dR/dlambda(t_i), dR/dR_inf(t_i), exact on
+//!                                      the solver's mesh (crate::solver::radius_sensitivities)
 //! profile_series(problem, p, times, r) u and u_t of the material point currently at r_j:
 //!                                      X_j solves X + u(X, t_i) = r_j, then u(X_j, t_i), u_t(X_j, t_i)
 //! ```
@@ -11,10 +13,10 @@
 //! `1 + u(1, t)` to the outer edge `R_inf + u(R_inf, t)`; a current radius outside that
 //! interval is refused, naming the interval. `X` is found by the Illinois variant of
 //! regula falsi on `[1, R_inf]` (bracketing, so it converges whatever `u` looks like),
-//! to a few ulps.
+//! to a few ulps, the searches of all radii of one time side by side ([`reference_radii`]).
 
 use super::error::{Failure, WoStatus};
-use crate::solver::{Params, Settings, Solver, check_edge_stress};
+use crate::solver::{Params, Settings, Solver, check_edge_stress, radius_sensitivities};
 
 /// One problem of a series call: parameters, accuracy target and the constant edge stress.
 #[derive(Debug, Clone, Copy)]
@@ -92,43 +94,119 @@ pub fn series(problem: &Problem, times: &[f64], radius: &mut [f64], velocity: Op
     Ok(())
 }
 
-/// The reference radius `X` in `[1, R_inf]` of the material point at current radius `r`.
-/// `r` must lie within `[lo, hi] = [1 + u(1), R_inf + u(R_inf)]` (checked by the caller).
-pub fn reference_radius(s: &Solver, r: f64, r_inf: f64, (lo, hi): (f64, f64)) -> f64 {
-    let gap = |x: f64| x + s.displacement(&[x])[0] - r;
-    let (mut a, mut fa, mut b, mut fb) = (1.0, lo - r, r_inf, hi - r);
-    if fa == 0.0 {
-        return a;
-    }
-    if fb == 0.0 {
-        return b;
-    }
-    let mut side = 0i8;
-    for _ in 0..200 {
-        let c = (a * fb - b * fa) / (fb - fa);
-        let c = if c > a && c < b { c } else { 0.5 * (a + b) };
-        let fc = gap(c);
-        if fc == 0.0 {
-            return c;
+/// Optional outputs of [`series_sensitivities`] (one value per time each).
+pub struct SeriesOut<'a> {
+    pub velocity: Option<&'a mut [f64]>,
+    pub d_lambda: Option<&'a mut [f64]>,
+    pub d_r_inf: Option<&'a mut [f64]>,
+}
+
+/// [`series`] and the derivatives of the wound radius with respect to lambda and `R_inf`
+/// (in R0 per unit), exact for the mesh the tolerance picks (its degree, element count and
+/// grading length held fixed: no decomposition beyond the one of `series`). Every output is
+/// written only on success.
+pub fn series_sensitivities(problem: &Problem, times: &[f64], radius: &mut [f64], out: SeriesOut<'_>) -> Result<(), Failure> {
+    let mut r = vec![0.0; times.len()];
+    let mut v = out.velocity.as_ref().map(|_| vec![0.0; times.len()]);
+    series(problem, times, &mut r, v.as_deref_mut())?;
+    let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
+    let d = radius_sensitivities(&problem.params, &settings, problem.edge_stress, times)?;
+    radius.copy_from_slice(&r);
+    for (o, values) in [(out.velocity, v.as_deref()), (out.d_lambda, Some(&d.d_lambda[..])), (out.d_r_inf, Some(&d.d_r_inf[..]))] {
+        if let (Some(o), Some(values)) = (o, values) {
+            o.copy_from_slice(values);
         }
-        if (fc < 0.0) == (fa < 0.0) {
-            (a, fa) = (c, fc);
-            if side == -1 {
-                fb *= 0.5;
-            }
-            side = -1;
+    }
+    Ok(())
+}
+
+/// The Illinois search of one reference radius: the bracket `[a, b]` of `X` with the gaps
+/// `fa`, `fb` of `X + u(X, t) - r` at its ends, the side that moved last, and the root once
+/// found.
+#[derive(Debug, Clone, Copy)]
+struct Search {
+    r: f64,
+    a: f64,
+    fa: f64,
+    b: f64,
+    fb: f64,
+    side: i8,
+    root: Option<f64>,
+}
+
+impl Search {
+    fn new(r: f64, r_inf: f64, (lo, hi): (f64, f64)) -> Self {
+        let (fa, fb) = (lo - r, hi - r);
+        let root = if fa == 0.0 {
+            Some(1.0)
+        } else if fb == 0.0 {
+            Some(r_inf)
         } else {
-            (b, fb) = (c, fc);
-            if side == 1 {
-                fa *= 0.5;
-            }
-            side = 1;
+            None
+        };
+        Self { r, a: 1.0, fa, b: r_inf, fb, side: 0, root }
+    }
+
+    /// The next point: regula falsi, or the midpoint when that leaves the open bracket.
+    fn next(&self) -> f64 {
+        let c = (self.a * self.fb - self.b * self.fa) / (self.fb - self.fa);
+        if c > self.a && c < self.b { c } else { 0.5 * (self.a + self.b) }
+    }
+
+    /// Narrow the bracket with the gap `fc` at `c`, halving the stale end's gap when the
+    /// same side moves twice (Illinois); done at a zero gap or a bracket of a few ulps.
+    fn update(&mut self, c: f64, fc: f64) {
+        if fc == 0.0 {
+            self.root = Some(c);
+            return;
         }
-        if b - a <= 4.0 * f64::EPSILON * b {
+        if (fc < 0.0) == (self.fa < 0.0) {
+            (self.a, self.fa) = (c, fc);
+            if self.side == -1 {
+                self.fb *= 0.5;
+            }
+            self.side = -1;
+        } else {
+            (self.b, self.fb) = (c, fc);
+            if self.side == 1 {
+                self.fa *= 0.5;
+            }
+            self.side = 1;
+        }
+        if self.b - self.a <= 4.0 * f64::EPSILON * self.b {
+            self.root = Some(self.closer_end());
+        }
+    }
+
+    fn closer_end(&self) -> f64 {
+        if self.fa.abs() < self.fb.abs() { self.a } else { self.b }
+    }
+}
+
+/// The reference radii `X` in `[1, R_inf]` of the material points at current radii `radii`,
+/// each within `[lo, hi] = [1 + u(1), R_inf + u(R_inf)]` (checked by the caller).
+///
+/// Each radius has its own Illinois search (at most 200 steps); the searches advance in
+/// rounds, one step each, so that a round evaluates `u` at all their points in one call
+/// (the mode shapes are summed into nodal values once per call, `O(modes^2)`, then
+/// `O(degree)` per point). Every search takes exactly the steps it takes alone, and each
+/// `u(X)` is the same double in a call of many points as of one: the result is that of
+/// the one-radius search, bit for bit.
+pub fn reference_radii(s: &Solver, radii: &[f64], r_inf: f64, ends: (f64, f64)) -> Vec<f64> {
+    let mut searches: Vec<Search> = radii.iter().map(|&r| Search::new(r, r_inf, ends)).collect();
+    for _ in 0..200 {
+        let open: Vec<usize> = (0..searches.len()).filter(|&j| searches[j].root.is_none()).collect();
+        if open.is_empty() {
             break;
         }
+        let points: Vec<f64> = open.iter().map(|&j| searches[j].next()).collect();
+        let u = s.displacement(&points);
+        for ((&j, &c), u) in open.iter().zip(&points).zip(u) {
+            let search = &mut searches[j];
+            search.update(c, c + u - search.r);
+        }
     }
-    if fa.abs() < fb.abs() { a } else { b }
+    searches.iter().map(|search| search.root.unwrap_or_else(|| search.closer_end())).collect()
 }
 
 /// Row-major `(times, radii)` outputs of [`profile_series`]; either may be absent.
@@ -163,7 +241,7 @@ pub fn profile_series(problem: &Problem, times: &[f64], radii: &[f64], out: Prof
         if want_velocity && !s.edge_velocity_defined(p) {
             return Err(undefined(i, times[i]));
         }
-        let x: Vec<f64> = radii.iter().map(|&r| reference_radius(s, r, r_inf, (lo, hi))).collect();
+        let x = reference_radii(s, radii, r_inf, (lo, hi));
         u[i * n..(i + 1) * n].copy_from_slice(&s.displacement(&x));
         if want_velocity {
             v[i * n..(i + 1) * n].copy_from_slice(&s.velocity(p, &x));

@@ -4,7 +4,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 use super::error::{Failure, WoStatus, run};
-use super::series::{self, Problem, ProfileOut};
+use super::series::{self, Problem, ProfileOut, SeriesOut};
 use super::solver_c::{input, output};
 use crate::solver::Params;
 
@@ -44,6 +44,33 @@ pub unsafe extern "C" fn wo_series(problem: WoProblem, times: *const f64, count:
         let t = input(times, count, "times")?;
         let r = output(radius, count, "radius")?;
         series::series(&problem.problem(), &t, r, optional(velocity, count, "velocity")?)
+    })
+}
+
+/// As `wo_series`, and the derivatives of the wound radius with respect to lambda
+/// (`d_radius_d_lambda`, in R0) and to the outer radius R_inf (`d_radius_d_r_inf`, in R0 per
+/// R0) at each time: exact derivatives of the solver's own R(t) on the grid the tolerance
+/// picks, through its modal basis (no further decomposition; 0 in lambda at lambda = 0).
+/// `velocity`, `d_radius_d_lambda` and `d_radius_d_r_inf` may each be NULL (not computed).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wo_series_sensitivities(
+    problem: WoProblem,
+    times: *const f64,
+    count: usize,
+    radius: *mut f64,
+    velocity: *mut f64,
+    d_radius_d_lambda: *mut f64,
+    d_radius_d_r_inf: *mut f64,
+) -> WoStatus {
+    run("wo_series_sensitivities", || {
+        let t = input(times, count, "times")?;
+        let r = output(radius, count, "radius")?;
+        let out = SeriesOut {
+            velocity: optional(velocity, count, "velocity")?,
+            d_lambda: optional(d_radius_d_lambda, count, "d_radius_d_lambda")?,
+            d_r_inf: optional(d_radius_d_r_inf, count, "d_radius_d_r_inf")?,
+        };
+        series::series_sensitivities(&problem.problem(), &t, r, out)
     })
 }
 

@@ -60,40 +60,102 @@ pub(crate) enum Functions {
     ConstantFirst,
 }
 
+/// One Gauss point of one element `[a, b]`: reference coordinate `x`, weight, and the
+/// values and reference derivatives (`d/dx`) of the element's Lagrange functions there.
+struct Point<'a> {
+    element: usize,
+    a: f64,
+    b: f64,
+    x: f64,
+    weight: f64,
+    val: &'a [f64],
+    der: &'a [f64],
+}
+
+/// Visit the `p + 4` Gauss-Legendre points of every element, in a fixed order.
+fn for_each_point(mesh: &Mesh, mut visit: impl FnMut(Point<'_>)) {
+    let basis = LagrangeBasis::new(&mesh.reference_nodes);
+    let rule = gauss_legendre(mesh.degree() + 4);
+    let at_points: Vec<_> = rule.iter().map(|&(x, _)| basis.eval(x)).collect();
+    for (element, w) in mesh.breaks.windows(2).enumerate() {
+        for (&(x, weight), (val, der)) in rule.iter().zip(&at_points) {
+            visit(Point { element, a: w[0], b: w[1], x, weight, val, der });
+        }
+    }
+}
+
 pub(crate) fn assemble(mesh: &Mesh, functions: Functions) -> Matrices {
     let n = mesh.len();
     let p = mesh.degree();
-    let basis = LagrangeBasis::new(&mesh.reference_nodes);
-    let rule = gauss_legendre(p + 4);
-    let at_points: Vec<_> = rule.iter().map(|&(x, _)| basis.eval(x)).collect();
     let constant_first = functions == Functions::ConstantFirst;
     let mut stiffness = DMatrix::zeros(n, n);
     let mut mass = DMatrix::zeros(n, n);
     // (global index, value, derivative) of every function alive on an element at one point.
     let mut local: Vec<(usize, f64, f64)> = Vec::with_capacity(p + 2);
-    for (e, w) in mesh.breaks.windows(2).enumerate() {
-        let (a, b) = (w[0], w[1]);
+    for_each_point(mesh, |Point { element: e, a, b, x, weight, val, der }| {
         let jac = 0.5 * (b - a);
-        for (&(x, weight), (val, der)) in rule.iter().zip(&at_points) {
-            let r = 0.5 * (a + b) + jac * x;
-            let dw = weight * jac;
-            local.clear();
-            local.extend((0..=p).map(|i| (mesh.global(e, i), val[i], der[i] / jac)));
-            if constant_first {
-                if e == 0 {
-                    local[0] = (0, 1.0, 0.0);
-                } else {
-                    local.push((0, 1.0, 0.0));
-                }
-            }
-            for &(gi, fi, di) in &local {
-                for &(gj, fj, dj) in &local {
-                    stiffness[(gi, gj)] += dw * (4.0 * r * di * dj + 2.0 * (di * fj + fi * dj) + 4.0 * fi * fj / r);
-                    mass[(gi, gj)] += dw * r * fi * fj;
-                }
+        let r = 0.5 * (a + b) + jac * x;
+        let dw = weight * jac;
+        local.clear();
+        local.extend((0..=p).map(|i| (mesh.global(e, i), val[i], der[i] / jac)));
+        if constant_first {
+            if e == 0 {
+                local[0] = (0, 1.0, 0.0);
+            } else {
+                local.push((0, 1.0, 0.0));
             }
         }
-    }
+        for &(gi, fi, di) in &local {
+            for &(gj, fj, dj) in &local {
+                stiffness[(gi, gj)] += dw * (4.0 * r * di * dj + 2.0 * (di * fj + fi * dj) + 4.0 * fi * fj / r);
+                mass[(gi, gj)] += dw * r * fi * fj;
+            }
+        }
+    });
+    Matrices { stiffness, mass }
+}
+
+/// `dA / dR_inf` and `dM / dR_inf` in the nodal basis, exact for the quadrature above: the
+/// elements' ends move with the outer radius ([`Mesh::break_rates`], `a'`, `b'`), the
+/// Lagrange functions stay fixed on the reference element. At a Gauss point `x` of `[a, b]`,
+///
+/// ```text
+/// jac = (b - a) / 2,  r = (a + b) / 2 + jac x,  dw = weight jac,  f_i' = l_i'(x) / jac
+/// s = jac' / jac = (b' - a') / (b - a),   r' = (a' + b') / 2 + (b' - a') x / 2
+/// dw' = s dw,   (d/dR) f_i' = -s f_i'   (the values f_i do not move)
+/// ```
+///
+/// so the derivative of each point's term, with `q = r' - s r`, is
+///
+/// ```text
+/// stiffness  dw (4 r di dj + 2 (di fj + fi dj) + 4 fi fj / r)   ->  4 q dw (di dj - fi fj / r^2)
+/// mass       dw r fi fj                                         ->  (r' + s r) dw fi fj
+/// ```
+///
+/// (the cross terms `2 (di fj + fi dj) dw` do not depend on the element's ends).
+pub(crate) fn assemble_r_inf_rate(mesh: &Mesh) -> Matrices {
+    let n = mesh.len();
+    let p = mesh.degree();
+    let rates = mesh.break_rates();
+    let mut stiffness = DMatrix::zeros(n, n);
+    let mut mass = DMatrix::zeros(n, n);
+    for_each_point(mesh, |Point { element: e, a, b, x, weight, val, der }| {
+        let jac = 0.5 * (b - a);
+        let r = 0.5 * (a + b) + jac * x;
+        let dw = weight * jac;
+        let (da, db) = (rates[e], rates[e + 1]);
+        let s = (db - da) / (b - a);
+        let dr = 0.5 * (da + db) + 0.5 * (db - da) * x;
+        let q = dr - s * r;
+        for i in 0..=p {
+            let (gi, fi, di) = (mesh.global(e, i), val[i], der[i] / jac);
+            for j in 0..=p {
+                let (gj, fj, dj) = (mesh.global(e, j), val[j], der[j] / jac);
+                stiffness[(gi, gj)] += 4.0 * q * dw * (di * dj - fi * fj / (r * r));
+                mass[(gi, gj)] += (dr + s * r) * dw * fi * fj;
+            }
+        }
+    });
     Matrices { stiffness, mass }
 }
 
@@ -138,6 +200,22 @@ mod tests {
         let m = t.transpose() * &nodal.mass * &t;
         assert!((a - &constant.stiffness).amax() < 1e-12 * constant.stiffness.amax());
         assert!((m - &constant.mass).amax() < 1e-12 * constant.mass.amax());
+    }
+
+    /// The rates against central differences of the assembly at fixed `E` and `ell`.
+    #[test]
+    fn r_inf_rates_are_the_derivatives_of_the_assembly() {
+        let spec = MeshSpec { degree: 5, elements: 4, edge_scale: 0.1 };
+        for r_inf in [1.3, 7.0, 300.0] {
+            let rate = assemble_r_inf_rate(&Mesh::new(spec, r_inf));
+            let h = 1e-5 * r_inf;
+            let (up, down) =
+                (assemble(&Mesh::new(spec, r_inf + h), Functions::Nodal), assemble(&Mesh::new(spec, r_inf - h), Functions::Nodal));
+            let fd_a = (up.stiffness - down.stiffness) / (2.0 * h);
+            let fd_m = (up.mass - down.mass) / (2.0 * h);
+            assert!((&fd_a - &rate.stiffness).amax() < 1e-6 * fd_a.amax(), "{r_inf}: {}", (&fd_a - &rate.stiffness).amax());
+            assert!((&fd_m - &rate.mass).amax() < 1e-6 * fd_m.amax(), "{r_inf}: {}", (&fd_m - &rate.mass).amax());
+        }
     }
 
     #[test]

@@ -35,6 +35,8 @@ pub struct Mesh {
     pub(crate) reference_nodes: Vec<f64>,
     /// Global nodes, ascending: `nodes[0] = 1`, `nodes[last] = r_inf`.
     pub(crate) nodes: Vec<f64>,
+    /// The grading length `ell` of its [`MeshSpec`].
+    pub(crate) edge_scale: f64,
 }
 
 impl Mesh {
@@ -50,7 +52,24 @@ impl Mesh {
             let (a, b) = (w[0], w[1]);
             nodes.extend(reference_nodes[1..].iter().map(|x| 0.5 * (a + b) + 0.5 * (b - a) * x));
         }
-        Self { breaks, reference_nodes, nodes }
+        Self { breaks, reference_nodes, nodes, edge_scale: ell }
+    }
+
+    /// `d b_j / d R_inf` of every break at fixed `E` and `ell` (the breaks move smoothly
+    /// with the outer radius): with `S = 1 + (R_inf - 1) / ell`,
+    ///
+    /// ```text
+    /// b_j = 1 + ell (S^(j/E) - 1)   =>   d b_j / d R_inf = (j / E) S^(j/E - 1)
+    /// ```
+    ///
+    /// (0 at the wound edge, 1 at the outer edge).
+    pub(crate) fn break_rates(&self) -> Vec<f64> {
+        let e = self.breaks.len() - 1;
+        let r_inf = self.breaks[e];
+        let stretch = 1.0 + (r_inf - 1.0) / self.edge_scale;
+        let mut rates: Vec<f64> = (0..=e).map(|j| j as f64 / e as f64 * stretch.powf(j as f64 / e as f64 - 1.0)).collect();
+        rates[e] = 1.0;
+        rates
     }
 
     pub fn len(&self) -> usize {

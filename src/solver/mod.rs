@@ -23,6 +23,7 @@ mod modal;
 mod paper;
 mod params;
 mod quadrature;
+mod sensitivity;
 pub mod stability;
 mod tolerance;
 mod trbdf2;
@@ -34,6 +35,7 @@ pub use params::{
     EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, SIGMA_MIN, check_edge_stress,
     check_lambda, check_r_inf, check_sigma,
 };
+pub use sensitivity::{RadiusSensitivities, radius_sensitivities};
 pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy, sigma_floor};
 
 pub use explicit::stability_limits as explicit_stability_limits;

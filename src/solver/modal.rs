@@ -37,6 +37,7 @@ use super::galerkin::{self, Functions};
 use super::jacobi;
 use super::mesh::Mesh;
 use super::quadrature::LagrangeBasis;
+use super::sensitivity::LazyRates;
 use nalgebra::{DMatrix, DVector};
 
 /// The lambda-independent modal decomposition of one mesh on `[1, R_inf]`.
@@ -55,6 +56,8 @@ pub(crate) struct Basis {
     pub(crate) edge_slope_row: DVector<f64>,
     /// Row of the mode shapes at the outer edge (the last node).
     pub(crate) outer_row: DVector<f64>,
+    /// Their derivatives with respect to `R_inf`, on first use ([`super::sensitivity`]).
+    pub(crate) rates: LazyRates,
 }
 
 /// Why a modal decomposition could not be built.
@@ -133,7 +136,7 @@ impl Basis {
             edge_slope_row += (scale * d) * shapes.row(mesh.global(0, i)).transpose();
         }
         let outer_row = shapes.row(shapes.nrows() - 1).transpose();
-        Ok(Self { mesh, mu, shapes, edge_row, edge_slope_row, outer_row })
+        Ok(Self { mesh, mu, shapes, edge_row, edge_slope_row, outer_row, rates: LazyRates::default() })
     }
 
     pub(crate) fn len(&self) -> usize {

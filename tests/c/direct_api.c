@@ -7,7 +7,9 @@
  *   4. bad input: every refused call gives its status and a message naming what was
  *      wrong, changes nothing, and the solver still reproduces the reference afterwards;
  *   5. wo_series (a whole R(t) in one call) against the reference, and wo_profile_series
- *      at current radii r = X + u(X, t) against the handle's profile at X; bad input.
+ *      at current radii r = X + u(X, t) against the handle's profile at X; bad input;
+ *      wo_series_sensitivities: the same R(t), and dR/dlambda, dR/dR_inf against central
+ *      differences of wo_series (step 1e-4; their own checks are in the Rust and Python tests).
  * Run under valgrind by scripts/c_tests.sh: no error, no leak.
  */
 #include "wound_opening.h"
@@ -255,6 +257,24 @@ static void series(void) {
     for (int j = 0; j < 3; j++) {
         CHECK(fabs(u[j] - ux[j]) < 1e-13 && fabs(v[j] - vx[j]) < 1e-12, "current radius %g: u %g vs %g, v %g vs %g", r[j], u[j],
               ux[j], v[j], vx[j]);
+    }
+
+    /* The derivatives against central differences of wo_series (same grid: 10 +- 1e-3 keeps
+     * the element count the tolerance picks at 10). */
+    double again[5], d_lambda[5], d_r_inf[5], up[5], down[5];
+    OK(wo_series_sensitivities((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, times, 5, again, NULL, d_lambda, d_r_inf));
+    for (int k = 0; k < 5; k++) CHECK(again[k] == radius[k], "wo_series_sensitivities radius at %g", times[k]);
+    OK(wo_series((wo_problem){1.0001, 1.0, 10.0, 1e-10, 0.0}, times, 5, up, NULL));
+    OK(wo_series((wo_problem){0.9999, 1.0, 10.0, 1e-10, 0.0}, times, 5, down, NULL));
+    for (int k = 0; k < 5; k++) {
+        double fd = (up[k] - down[k]) / 2e-4;
+        CHECK(fabs(d_lambda[k] - fd) < 1e-7, "dR/dlambda at %g: %g vs %g", times[k], d_lambda[k], fd);
+    }
+    OK(wo_series((wo_problem){1.0, 1.0, 10.001, 1e-10, 0.0}, times, 5, up, NULL));
+    OK(wo_series((wo_problem){1.0, 1.0, 9.999, 1e-10, 0.0}, times, 5, down, NULL));
+    for (int k = 0; k < 5; k++) {
+        double fd = (up[k] - down[k]) / 2e-3;
+        CHECK(fabs(d_r_inf[k] - fd) < 1e-7, "dR/dR_inf at %g: %g vs %g", times[k], d_r_inf[k], fd);
     }
 
     double bad_times[2] = {1.0, 0.5}, inside = 1.01;

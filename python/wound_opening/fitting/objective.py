@@ -13,18 +13,21 @@ h(t) = R(t; sigma = 1) - 1 (dimensionless, lambda and R_inf given)
     d R_um / d ln R0 = R_um - R0 sigma R_inf dh/dR_inf
     d R_um / d lambda = R0 sigma dh/dlambda
 
-dh/dR_inf and dh/dlambda are central differences of solves at TOLERANCE_FD (1e-11 of the
-opening) with steps STEP (1e-4 relative): rounding error ~1e-11 / 1e-4 = 1e-7, truncation
-~STEP^2 = 1e-8, both relative to the column (tests/python/test_fit.py checks 1e-6 against the
-exact Laplace-domain solution). The solution depends on lambda only through lambda^2, so
-h(-lambda) = h(lambda) and the central difference at lambda = 0 gives the exact 0.
+dh/dR_inf and dh/dlambda come with h from one native call (`_native.series_sensitivities`,
+src/solver/sensitivity.rs): the exact derivatives of the solver's h through its modal basis,
+no further decomposition. They differ from the derivatives of the exact solution by about
+1e-10 of the opening (2e-8 for the ln R_inf column at R_inf = 1.01;
+tests/python/test_sensitivities.py), far below the 1e-7 of the central differences they
+replace. The grid is the one TOLERANCE_FD picks for this R_inf (its element count is piecewise
+constant in R_inf): the derivative is that of the smooth curve, not of the grid's steps.
 
 Velocity profile (PIV). A vector at current distance r from the centre at time t is
 compared with the velocity of the tissue at r. Where r is at or inside the model's wound
 edge R(t) (possible for vectors measured at the edge, for some parameter values), the
 window holds the edge itself: the model value is the edge velocity dR/dt. The model is
 then continuous in the parameters (no penalty branch); such vectors are counted
-(`inside_edge`). Profile columns of the Jacobian are central differences of the same kind.
+(`inside_edge`). Profile columns of the Jacobian are central differences (steps STEP,
+relative), in ln R0 between the outer radii R_inf -+ STEP R_inf (two more decompositions).
 """
 
 from __future__ import annotations
@@ -155,6 +158,13 @@ class Objective(Problem):
         r, v = _native.series(abs(lam), 1.0, r_inf, times, tolerance=TOLERANCE_FD)
         return r - 1.0, v
 
+    def _h_rates(self, lam: float, r_inf: float, times):
+        """h, h', dh/dlambda and dh/dR_inf at ascending dimensionless times (exact on the grid)."""
+        r, v, d_lam, d_r_inf = _native.series_sensitivities(
+            abs(lam), 1.0, r_inf, times, tolerance=TOLERANCE_FD
+        )
+        return r - 1.0, v, d_lam, d_r_inf
+
     def _profile(self, theta, r_inf: float) -> np.ndarray:
         """Model velocities [um/s] of the profile rows (group order), the edge velocity for
         rows at or inside the model's wound edge; sets `inside_edge`."""
@@ -194,28 +204,14 @@ class Objective(Problem):
         """d residuals / d z, (size, 4): see the module docstring. Only `columns` are
         computed (the others are 0; None: all): a profile fit holds one coordinate fixed.
 
-        Every difference in ln R0 is taken between the outer radii rc -+ dr of the radius
-        columns, so that one Jacobian needs the modal bases of three outer radii (each new
-        outer radius costs a decomposition)."""
+        The radius columns need the modal basis of R_inf alone; every difference in ln R0 of
+        the profile columns is taken between the outer radii rc -+ dr, two more bases."""
         columns = (0, 1, 2, 3) if columns is None else columns
         R0, sigma, lam, T = theta = from_z(z)
         r_inf = self.outer / R0
         t = self.t_sorted
-        h, dh = self._h(lam, r_inf, t / T)
-        dr = STEP * r_inf
-        rc = max(r_inf, R_INF_MIN + dr)  # centred inside the solver's range at its edge
+        h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, t / T)
         dl = STEP * max(lam, 0.01)
-        zero = np.zeros(t.size)
-        dh_dr = (
-            (self._h(lam, rc + dr, t / T)[0] - self._h(lam, rc - dr, t / T)[0]) / (2 * dr)
-            if 0 in columns
-            else zero
-        )
-        dh_dl = (
-            (self._h(lam + dl, r_inf, t / T)[0] - self._h(lam - dl, r_inf, t / T)[0]) / (2 * dl)
-            if 2 in columns
-            else zero
-        )
         with np.errstate(invalid="ignore"):
             dlnT = np.where(t > 0, -(t / T) * R0 * sigma * dh, 0.0)
         jr = np.column_stack(
@@ -228,6 +224,8 @@ class Objective(Problem):
                 if i not in columns:
                     cols.append(np.zeros(self.n_profile))
                 elif i == 0:  # R0 = outer / R_inf at R_inf = rc -+ dr
+                    dr = STEP * r_inf
+                    rc = max(r_inf, R_INF_MIN + dr)  # centred inside the solver's range
                     up = self._profile((self.outer / (rc - dr), sigma, lam, T), rc - dr)
                     down = self._profile((self.outer / (rc + dr), sigma, lam, T), rc + dr)
                     cols.append((up - down) / math.log((rc + dr) / (rc - dr)))
