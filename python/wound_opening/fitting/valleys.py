@@ -18,9 +18,10 @@ beyond it, from starts on the other branch, falls back under the threshold. The 
               T moved, T = tau_c / lambda^2 where lambda moved), and keeping zeta_c (T moves
               with R0^2 where R0 moved);
     further:  z_c carried along a curve into the other regime: the viscous point (lambda =
-              VISCOUS, T = tau_c / VISCOUS^2) and the friction point (lambda = 0, the time
-              scale T (1 + lambda^2) kept), fitted at their own value of the profiled
-              coordinate where that lies beyond v, else at v.
+              VISCOUS, T = tau_c / VISCOUS^2; with lambda_c < 1 also at tau = s_c, the time
+              scale s_c = T_c (1 + lambda_c^2) the global grid pairs across regimes) and the
+              friction point (lambda = 0, T = s_c), fitted at their own value of the
+              profiled coordinate where that lies beyond v, else at v.
 
 "Beyond" is in the profiled coordinate of the problem walked (ln R0, sigma, lambda, ln T, or
 a derived ln q read through its reparametrisation): for R0 and sigma, which neither curve
@@ -75,14 +76,19 @@ def _moved(zc: np.ndarray, z: np.ndarray) -> list[np.ndarray]:
 
 
 def _other_branches(zc: np.ndarray) -> list[np.ndarray]:
-    """zc carried into the other regime: the viscous point (tau kept) and the friction point
-    (the time scale T (1 + lambda^2) kept)."""
+    """zc carried into the other regime: the viscous point at tau_c and, where lambda_c is
+    small (tau_c says little), at the time scale s_c = T_c (1 + lambda_c^2) as its tau; the
+    friction point (lambda = 0) at s_c."""
     lam, T = zc[2], math.exp(zc[3])
+    s = T * (1 + lam**2)
+    taus = [lam**2 * T] if lam >= 1 else [lam**2 * T, s]
     out = []
-    if lam < VISCOUS and lam > 0:
-        out.append(np.r_[zc[:2], VISCOUS, math.log(lam**2 * T / VISCOUS**2)])
+    if lam < VISCOUS:
+        for k, tau in enumerate(taus):
+            if tau > 0 and all(o <= 0 or abs(math.log(tau / o)) > math.log(2) for o in taus[:k]):
+                out.append(np.r_[zc[:2], VISCOUS, math.log(tau / VISCOUS**2)])
     if lam > 0:
-        out.append(np.r_[zc[:2], 0.0, math.log(T * (1 + lam**2))])
+        out.append(np.r_[zc[:2], 0.0, math.log(s)])
     return out
 
 
