@@ -30,7 +30,7 @@ def test_a_crossing_with_a_valley_beyond_it_does_not_stand():
     """From the small-lambda optimum (lambda = 0.15, T = 37 s) the profile of R0 walked down
     meets a barrier (delta chi^2 = 6.7 at R0 = 3.5 um on that branch), but a fit there started
     along the invariant curves reaches delta chi^2 = 3.05 < 3.84: R0 = 3.5 um lies inside the
-    confidence set, and the end must not be placed above it (cee82cd: 3.93 um)."""
+    confidence set, and the end must not be placed above it (without the check: 3.93 um)."""
     obj = viscous_short_recording(5e-2, 8)
     z, chi2, _ = local_fit(obj, to_z((10.8, 0.5, 0.02, 8e4)))
     assert z[2] < 0.5, z  # the small-lambda branch

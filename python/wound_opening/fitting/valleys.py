@@ -5,9 +5,9 @@ The radius depends on (lambda, T) through two nearly invariant curves: with lamb
 lambda small (friction regime) through T = (zeta/G) R0^2 / 4. A profile walked by warm-
 started fits stays on the branch it starts on; where the data are short (an opening 5 %
 done at the last frame) the other branch can be a valley as low as the optimum, beyond a
-barrier that the walk reports as an interval end (issue 25: T reported [1188 s, open] from
-lambda = 10, T = 10 s data, where a fit at T = 10 s lies at delta chi^2 = 0.05; here R0 from
-such data closed at 3.93 um where 3.53 um lies at 3.05, tests/python/test_valleys.py).
+barrier that the walk reports as an interval end (data with lambda = 10, T = 10 s: R0
+walked down from the small-lambda optimum closed at 3.93 um, where a fit from the other
+branch lies at delta chi^2 = 3.05 at 3.53 um; tests/python/test_valleys.py).
 
 A crossing at v (the first profile point above the threshold; z_c the last inside point,
 in the parameters z = (ln R0, sigma, lambda, ln T)) stands only if no constrained fit
@@ -28,8 +28,8 @@ a derived ln q read through its reparametrisation): for R0 and sigma, which neit
 moves, the other branch is tried at v itself; for lambda, ln T and a derived ratio also
 where the curve takes it. A valley further than the walk's search limit (T = 10 s from an
 estimate T = 8e4 s, limit x100) leaves that end open: the data do not bound it in the
-search range. Each fit has at most BUDGET evaluations, so an ordinary crossing costs two to
-four bounded fits; the first that falls under the threshold is returned and the walk goes
+search range. Each fit has at most BUDGET evaluations, so an ordinary crossing costs at most
+five bounded fits; the first that falls under the threshold is returned and the walk goes
 on from it. Problems without the four parameters (several wounds) are not checked.
 """
 
