@@ -51,3 +51,18 @@ def test_a_crossing_with_a_valley_beyond_it_does_not_stand():
     inside = [v for v, d in points if d < 3.84]
     assert end is None or end <= min(inside), (end, points)
     assert min(inside) < math.log(3.6), points
+
+
+def test_a_crossing_of_t_on_the_small_lambda_branch_is_tested_on_the_viscous_one():
+    """T walked down from lambda = 0.1, T = 8e4 s (tau = 800 s) and crossing at 1188 s: the
+    starts include T = 8 s with lambda = 10 (tau kept), beyond the crossing and beyond the
+    walk's limit (x100: 801 s), where a valley leaves the lower end open."""
+    from wound_opening.fitting.valleys import starts
+
+    obj = viscous_short_recording(1e-2, 0)
+    z_in = to_z((10.8, 0.4, 0.1, 8e4))
+    got = starts(obj, 3, z_in, math.log(1188.0), -1)
+    viscous = [(u, w) for u, w in got if w[2] == 10.0 and abs(math.exp(u) - 8.0) < 1e-6]
+    assert viscous and np.allclose(viscous[0][1][[0, 1]], z_in[[0, 1]]), got
+    along_tau = [w for u, w in got if u == math.log(1188.0)]
+    assert any(abs(w[2] ** 2 * 1188.0 - 800.0) < 1e-6 for w in along_tau), got
