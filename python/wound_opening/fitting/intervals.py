@@ -18,6 +18,9 @@ and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1
 estimate. An end that reaches such a search limit is open (None): the data do not bound it.
 An end that reaches a bound of the user's (parameters.py) is that bound (`bounded`), as an
 estimate on such a bound gives that end. Parameters the user holds fixed are not profiled.
+A crossing stands only if no fit beyond it from the other branch (valleys.py: along
+lambda^2 T = const and zeta = const) falls back under the threshold; else the walk goes on
+from that fit.
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ from ..results.names import NAMES
 from ..results.profiles import Profile
 from .local import local_fit
 from .objective import LAMBDA_MAX, Objective
+from .valleys import beyond
 
 #: An interval end is located to where sqrt(delta chi^2) is within this fraction of the
 #: threshold's square root (delta within ~2e-3 of the threshold, relative).
@@ -141,14 +145,22 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
         points.append((v, delta))
         if unsure:
             return None, True, points
+        if delta >= threshold:  # a crossing stands if no valley lies beyond it (valleys.py)
+            found = beyond(obj, i, path[-1][1], v, direction, chi2_min + threshold, loss)
+            if found is None:
+                s = math.sqrt(delta)
+                return crossing(constrained, points, prev_v, prev_s - root, v, s - root, root)
+            v, z, delta = found[0], found[1], max(found[2] - chi2_min, 0.0)
+            points.append((v, delta))
+            if direction * (v - limit) >= 0:  # a valley at or past the search limit: open
+                return None, True, points
+            path[:], slope = [], np.eye(len(z))[i]  # from there, moving coordinate i alone
         s = math.sqrt(delta)
-        if delta >= threshold:
-            return crossing(constrained, points, prev_v, prev_s - root, v, s - root, root)
         if v == limit:
             return None, True, points
-        slope = (s - prev_s) / abs(v - prev_v)
+        rate = (s - prev_s) / abs(v - prev_v)
         # just beyond the crossing predicted by the line through the last two points
-        want = ((1 + 5 * ROOT_TOL) * root - s) / slope if slope > 0 else 4 * move
+        want = ((1 + 5 * ROOT_TOL) * root - s) / rate if rate > 0 else 4 * move
         move = min(max(want, 0.01 * move), 4 * move)
         prev_v, prev_s = v, s
         path.append((v, z))
