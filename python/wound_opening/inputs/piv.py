@@ -188,13 +188,77 @@ def _read_pivlab(path, lines, pixel_size_um, dt):
     if units["y"] != units["x"]:
         raise InputError(f"{path}: x in {units['x']} but y in {units['y']}")
     vel = _velocity_factor(path, units["u"], pixel_size_um, dt)
+    notes = ()
+    if units["u"] == "m/s":
+        vel, notes = _pivlab_time_step(path, lines, vel, dt)
     c = {n: a[:, i] for i, n in enumerate(keys)}
-    return pair, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, c["Vector type"]
+    return pair, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, c["Vector type"], notes
+
+
+_FACTORS = re.compile(
+    r"conversion factor xy \(px -> m\):\s*(\S+?),\s*conversion factor uv "
+    r"\(px/frame -> m/s\):\s*(\S+)"
+)
+#: num2str writes the conversion factors to 5 significant digits.
+_FACTOR_RTOL = 1e-3
+
+
+def _pivlab_time_step(path, lines, vel, dt):
+    """(um/s per unit of u, notes) of a calibrated PIVlab file, its info line checked: PIVlab
+    turns px/frame into m/s with the time step typed in its calibration, uv = xy / step, and
+    writes both factors; the step must be the frame interval. A step of 0 ms (PIVlab's
+    displacements only: uv = xy) writes m/frame under the heading "u [m/s]" (file_save.m),
+    and a step of 1000 ms writes the same numbers: both read as m/frame."""
+    m = next((m for _, s in lines[:2] for m in [_FACTORS.search(s)] if m), None)
+    if m is None:
+        return vel, ()
+    try:
+        xy, uv = abs(float(m.group(1))), abs(float(m.group(2)))
+    except ValueError:
+        return vel, ()
+    if not (xy > 0 and uv > 0 and math.isfinite(xy / uv)):
+        return vel, ()
+    step = xy / uv  # s
+    if abs(step - dt) <= _FACTOR_RTOL * dt:
+        return vel, ()
+    if abs(step - 1.0) <= _FACTOR_RTOL:
+        return vel / dt, (
+            f"{path}: PIVlab's conversion factors (line 2) are equal (px/frame -> m/s = px -> "
+            "m): it was calibrated without a time step (displacements) or with 1000 ms, and "
+            f"its u, v are in m/frame whatever the heading says: divided by {dt:g} s",
+        )
+    raise InputError(
+        f"{path}: PIVlab converted px/frame to m/s with a time step of {step:.5g} s (line 2: "
+        f"{m.group(0)}), but --frame-interval-s is {dt:g} s: the velocities and the times "
+        f"disagree by a factor {step / dt:.4g}. Give --frame-interval-s {step:.5g} if that is "
+        "the time between frames (ms typed as s?), else calibrate PIVlab with the frame "
+        "interval in ms and export again"
+    )
+
+
+#: The columns of an OpenPIV file without a heading (openpiv.tools.save before 0.23: x y u v
+#: and the validation's mask, nonzero for an invalid vector; later: x y u v flags mask).
+_OPENPIV_COLUMNS = {4: "x y u v", 5: "x y u v mask", 6: "x y u v flags mask"}
 
 
 def _read_openpiv(path, lines, units, pixel_size_um, dt):
-    names = lines[0][1].lstrip("#").split()
-    _, a = _numbers(path, lines, 1, len(names), None)
+    if lines[0][1].lstrip().startswith("#"):
+        names, start = lines[0][1].lstrip().lstrip("#").split(), 1
+    else:
+        width = len(lines[0][1].split())
+        if width not in _OPENPIV_COLUMNS:
+            raise InputError(
+                f"{path}: line {lines[0][0]}: {width} columns and no '# x y u v ...' heading: "
+                "an OpenPIV file without a heading has 4 to 6 (x y u v [flags] mask)"
+            )
+        names, start = _OPENPIV_COLUMNS[width].split(), 0
+    missing = [n for n in ("x", "y", "u", "v") if n not in names]
+    if missing:
+        raise InputError(
+            f"{path}: line {lines[0][0]}: no column {', '.join(missing)} in the heading "
+            f"{lines[0][1].strip()!r}: expected '# x y u v flags mask' (openpiv.tools.save)"
+        )
+    _, a = _numbers(path, lines, start, len(names), None)
     c = {n: a[:, i] for i, n in enumerate(names)}
     length, velocity = units
     um = _length_factor(path, length, pixel_size_um)
@@ -203,7 +267,7 @@ def _read_openpiv(path, lines, units, pixel_size_um, dt):
     mask = c.get("mask", np.zeros(len(a)))
     # as PIVlab's vector type: 0 masked, 1 valid, 2 interpolated; -1 invalid
     kind = np.where(mask != 0, 0, np.where(flags == 1, -1, np.where(flags == 2, 2, 1)))
-    return None, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, kind
+    return None, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, kind, ()
 
 
 def read_field(
@@ -229,9 +293,10 @@ def read_field(
         else:
             raise InputError(
                 f"{path}: neither a PIVlab export (info lines or 'x [m],y [m],...' headings) nor "
-                "an OpenPIV file ('# x y u v flags mask'): give --piv-format"
+                "an OpenPIV file ('# x y u v flags mask'): give --piv-format (openpiv for "
+                "OpenPIV files without a heading: x y u v [flags] mask)"
             )
-        pair, x, y, u, v, vtype = got
+        pair, x, y, u, v, vtype, file_notes = got
         pair = pair or order
         finite = np.isfinite(u) & np.isfinite(v) & np.isfinite(x) & np.isfinite(y)
         masked = (vtype == 0) | ~finite
@@ -254,7 +319,7 @@ def read_field(
             counts["used"] = int(use.sum())
             rows.append((np.full(use.sum(), t), x[use], y[use], u[use], v[use], pair))
             spacing.append(_spacing(x, y))
-        records.append(RawFile(path, sha256_bytes(data), label, counts))
+        records.append(RawFile(path, sha256_bytes(data), label, counts, file_notes))
     if not rows:
         raise InputError(f"{where}: no frame pair after the cut (frame {frames.cut_after_frame})")
     cols = [np.concatenate([r[i] for r in rows]) for i in range(5)]

@@ -1,0 +1,104 @@
+"""Layouts the programs really write beyond the defaults of test_lab_readers.py, each checked
+against the program's own code: PIVlab's info line (+export/file_save.m: the conversion
+factors, a displacements-only calibration writing m/frame under "u [m/s]"), OpenPIV files
+of every openpiv.tools.save since 2011 (no heading before 0.23, "# x y u v mask" in 0.23,
+"# x y u v s2n mask" late 2020, "# x y u v flags mask" since 0.24.4). Readers only, no fit."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import make_lab_examples as lab
+import numpy as np
+import pytest
+
+from wound_opening.inputs.centre import Centre, radial
+from wound_opening.inputs.columns import InputError
+from wound_opening.inputs.piv import Frames, read_field
+
+R0 = 8.0
+FRAMES = Frames(lab.FRAME_S, lab.CUT_AFTER, lab.PIV_FIRST, lab.PIV_STEP)
+CENTRE = Centre(*(np.array(lab.CENTRE_PX) * lab.PIXEL_UM))
+
+
+def radial_error(field) -> float:
+    """The largest error of the radial velocity against the exact one, relative to its max."""
+    worst = 0.0
+    for k in np.unique(field.pair):
+        s = field.pair == k
+        r, vr = radial(
+            CENTRE, *(a[s] for a in (field.x_um, field.y_um, field.u_um_s, field.v_um_s))
+        )
+        exact = lab.velocity(R0, lab.pair_time(int(k)), r)
+        worst = max(worst, float(np.max(np.abs(vr - exact)) / np.max(np.abs(exact))))
+    return worst
+
+
+def rewrite_pivlab(folder: Path, edit) -> None:
+    """Apply `edit(lines)` to every PIVlab file's CRLF lines (info, info, headings, data)."""
+    for p in folder.glob("PIVlab_*.txt"):
+        lines = p.read_bytes().decode().split("\r\n")
+        p.write_bytes("\r\n".join(edit(lines)).encode())
+
+
+def test_a_pivlab_displacement_export_labelled_m_per_s_is_read_in_m_per_frame(tmp_path):
+    """PIVlab calibrated with a time step of 0 writes displacements [m/frame] under the heading
+    "u [m/s]" (file_save.m, no derivatives) and the uv factor equal to the xy one."""
+    lab.write_pivlab(tmp_path, R0)
+
+    def displacements(lines):
+        xy = re.search(r"xy \(px -> m\): (\S+),", lines[1]).group(1)
+        lines[1] = re.sub(r"(uv \(px/frame -> m/s\): )\S+", rf"\g<1>{xy}", lines[1])
+        for i in range(3, len(lines)):
+            if lines[i]:
+                c = lines[i].split(",")
+                c[2], c[3] = (f"{float(v) * lab.FRAME_S:.10g}" for v in c[2:4])
+                lines[i] = ",".join(c)
+        return lines
+
+    rewrite_pivlab(tmp_path, displacements)
+    field = read_field(str(tmp_path), FRAMES, pixel_size_um=lab.PIXEL_UM)
+    assert radial_error(field) < 1e-8
+    assert all("m/frame" in f.notes[0] for f in field.files)
+
+
+def test_a_pivlab_time_step_other_than_the_frame_interval_is_refused(tmp_path):
+    """The info line's factors give PIVlab's time step (xy / uv = 0.25 s): a frame interval
+    typed in ms (250) disagrees with it and is refused, naming the step."""
+    lab.write_pivlab(tmp_path, R0)
+    wrong = Frames(lab.FRAME_S * 1000, lab.CUT_AFTER, lab.PIV_FIRST, lab.PIV_STEP)
+    with pytest.raises(InputError, match=r"time step of 0.25 s .* --frame-interval-s is 250 s"):
+        read_field(str(tmp_path), wrong, pixel_size_um=lab.PIXEL_UM)
+    # without the info lines there is nothing to check against: read as the headings say
+    rewrite_pivlab(tmp_path, lambda lines: lines[2:])
+    assert read_field(str(tmp_path), FRAMES, pixel_size_um=lab.PIXEL_UM).files
+
+
+def openpiv_as(folder: Path, out: Path, columns, heading, fmt="%.4e") -> Path:
+    """The OpenPIV fixture re-saved as an older openpiv.tools.save wrote it."""
+    out.mkdir()
+    for p in sorted(folder.glob("exp_*.txt")):
+        a = np.loadtxt(p)[:, columns]
+        np.savetxt(out / p.name, a, fmt=fmt, delimiter="\t", header=heading or "")
+    return out
+
+
+@pytest.mark.parametrize(
+    "columns, heading, program",
+    [
+        ([0, 1, 2, 3, 5], None, "openpiv"),  # before 0.23: no heading, x y u v mask, %8.4f
+        ([0, 1, 2, 3, 5], "x\ty\tu\tv\tmask", "auto"),  # 0.23 to 0.24.3
+        ([0, 1, 2, 3, 4, 5], "x\ty\tu\tv\ts2n\tmask", "auto"),  # late 2020
+    ],
+)
+def test_older_openpiv_files_are_read(tmp_path, columns, heading, program):
+    lab.write_openpiv(tmp_path / "new", R0)
+    old = openpiv_as(tmp_path / "new", tmp_path / "old", columns, heading, fmt="%8.4f")
+    if heading is None:
+        with pytest.raises(InputError, match="--piv-format .*openpiv for OpenPIV files without"):
+            read_field(str(old), FRAMES, pixel_size_um=lab.PIXEL_UM)
+    field = read_field(str(old), FRAMES, pixel_size_um=lab.PIXEL_UM, program=program)
+    new = read_field(str(tmp_path / "new"), FRAMES, pixel_size_um=lab.PIXEL_UM)
+    assert field.x_um.size == new.x_um.size  # the masked vectors dropped, the first row kept
+    assert radial_error(field) < 2e-3  # %8.4f in px/s
