@@ -12,6 +12,7 @@ from pathlib import Path
 import make_lab_examples as lab
 import numpy as np
 import pytest
+from test_lab_readers import fiji  # the Fiji reader with the fixture's settings
 
 from wound_opening.inputs.centre import Centre, radial
 from wound_opening.inputs.columns import InputError
@@ -102,3 +103,84 @@ def test_older_openpiv_files_are_read(tmp_path, columns, heading, program):
     new = read_field(str(tmp_path / "new"), FRAMES, pixel_size_um=lab.PIXEL_UM)
     assert field.x_um.size == new.x_um.size  # the masked vectors dropped, the first row kept
     assert radial_error(field) < 2e-3  # %8.4f in px/s
+
+
+def fiji_rows(path: Path) -> list[str]:
+    lab.write_fiji(path, R0)
+    return path.read_text().splitlines()
+
+
+def test_a_fiji_hyperstack_table_is_timed_by_frame_not_by_its_z_slice(tmp_path):
+    """ImageJ's Analyzer writes Slice (z) and Frame (t) for a hyperstack with z slices and
+    frames: the default frame column is Frame; Slice (1 in every row) used to be taken."""
+    rows = fiji_rows(tmp_path / "plain.csv")
+    hyper = [rows[0] + ",Frame"] + [
+        ",".join(r.split(",")[:-1] + ["1", r.split(",")[-1]]) for r in rows[1:]
+    ]
+    (tmp_path / "hyper.csv").write_text("\n".join(hyper) + "\n")
+    plain, got = fiji(tmp_path / "plain.csv"), fiji(tmp_path / "hyper.csv")
+    np.testing.assert_array_equal(got.times_s, plain.times_s)
+    np.testing.assert_array_equal(got.radius_um, plain.radius_um)
+
+
+def test_fiji_rows_out_of_order_are_sorted_and_a_frame_measured_twice_is_refused(tmp_path):
+    rows = fiji_rows(tmp_path / "plain.csv")
+    body = rows[1:]
+    shuffled = [rows[0]] + body[::-1]  # measured from the last frame back
+    (tmp_path / "reversed.csv").write_text("\r\n".join(shuffled) + "\r\n")
+    plain = fiji(tmp_path / "plain.csv")
+    got = fiji(tmp_path / "reversed.csv")
+    np.testing.assert_array_equal(got.times_s, plain.times_s)
+    np.testing.assert_array_equal(got.radius_um, plain.radius_um)
+    assert "sorted by Slice" in got.files[0].notes[0]
+    two_rois = [rows[0]] + [r for row in body for r in (row, row)]  # two ROIs per slice
+    (tmp_path / "two.csv").write_text("\n".join(two_rois) + "\n")
+    with pytest.raises(InputError, match="line 3: Slice 1 measured again .*several ROIs"):
+        fiji(tmp_path / "two.csv")
+
+
+@pytest.mark.parametrize(
+    "pixel_size, message",
+    [
+        (
+            200.0,
+            r"radius of 1.01\de\+04 um, over 1000 um: is the pixel size in nm\? "
+            r"\(--pixel-size-um 0.2\)",
+        ),
+        (2e-4, "under 1.5 um: is the pixel size in mm"),
+    ],
+)
+def test_a_pixel_size_in_nm_or_mm_is_refused(tmp_path, pixel_size, message):
+    fiji_rows(tmp_path / "r.csv")
+    with pytest.raises(InputError, match=message):
+        fiji(tmp_path / "r.csv", pixel_size_um=pixel_size)
+
+
+@pytest.mark.parametrize("interval, fix", [(250.0, "0.25"), (2.5e-4, "0.25")])
+def test_a_fiji_frame_interval_in_another_unit_names_the_option(tmp_path, capsys, interval, fix):
+    """Refused before any fit, naming --frame-interval-s (not --time-unit, which a Fiji table
+    refuses) and the interval in s that makes the recording a usual one."""
+    from wound_opening.cli import main
+
+    fiji_rows(tmp_path / "r.csv")
+    code = main(
+        [
+            "fit",
+            str(tmp_path / "r.csv"),
+            "--area-col",
+            "Area",
+            "--cut-after-frame",
+            "3",
+            "--frame-interval-s",
+            str(interval),
+            "--length-unit",
+            "px",
+            "--pixel-size-um",
+            "0.2",
+            "--outer-radius-um",
+            "100",
+        ]
+    )
+    err = capsys.readouterr().err
+    assert code == 2 and f"--frame-interval-s {fix}: frames 250 ms apart" in err
+    assert "--time-unit" not in err

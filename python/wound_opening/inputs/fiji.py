@@ -13,7 +13,9 @@ Frames up to and including `cut_after_frame` were recorded before the cut: their
 skipped (whatever they hold: Area 0, empty, a pre-cut measurement). After the cut a row with
 no area (empty, NaN, 0) is a frame where the tracking failed: skipped. Both are counted in
 the file's record (provenance.RawFile) and its notes, which the report and the command line
-show. A column that holds a radius (or a diameter) instead of an area is refused."""
+show. A column that holds a radius (or a diameter) instead of an area is refused, and so is a
+frame measured twice (two ROIs per slice: never averaged) and a pixel size whose radius is
+no laser wound's (nm or mm typed as um); rows in another order are sorted by frame."""
 
 from __future__ import annotations
 
@@ -33,8 +35,11 @@ PERIMETER = "Perim."
 MIN_CIRCULARITY = 0.2
 #: A wound smaller than this radius (in pixels) cannot be outlined on an image.
 MIN_RADIUS_PX = 5.0
-#: ... and, without a pixel size, smaller than this radius in um (laser cuts are microns wide).
+#: ... and smaller than this radius in um (laser cuts are microns wide).
 MIN_RADIUS_UM = 1.5
+#: A laser-cut wound in an epithelium is tens of um wide: a median radius above 1 mm is a
+#: pixel size in nm (or an area in px^2 read as um^2 of a very coarse image).
+MAX_RADIUS_UM = 1000.0
 
 
 def _frame_interval(value) -> float:
@@ -101,7 +106,8 @@ def read_fiji(
     noise_um: float | None = None,
 ) -> RadiusSeries:
     """The wound radius series of a Fiji Results table (module docstring). `frame_col`: the
-    frame column (default: Slice, else Frame); `length_unit`: of the area's length (um for
+    frame column (default: Frame, else Slice: ImageJ writes Frame (time) and Slice (z) for a
+    hyperstack, Slice alone for a plain stack); `length_unit`: of the area's length (um for
     um^2, px for px^2 with `pixel_size_um`). The series' `files` holds the file's record."""
     dt = _frame_interval(frame_interval_s)
     cut = _cut_frame(cut_after_frame)
@@ -115,7 +121,7 @@ def read_fiji(
     sep = "\t" if "\t" in header else ","
     names = header_names(next(csv.reader([header], delimiter=sep)))
     if frame_col is None:
-        frame_col = next((c for c in ("Slice", "Frame") if c in names), "Slice")
+        frame_col = next((c for c in ("Frame", "Slice") if c in names), "Slice")
     for name, option in ((area_col, "--area-col"), (frame_col, "--frame-col")):
         if name not in names:
             raise InputError(
@@ -142,13 +148,18 @@ def read_fiji(
 
 
 def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um):
-    frames = [f for _, f, _, _ in rows]
-    for k in range(1, len(rows)):
-        if frames[k] <= frames[k - 1]:
+    first = {}
+    for n, f, _, _ in rows:
+        if f in first:
             raise InputError(
-                f"{path}: line {rows[k][0]}: {frame_col} {frames[k]} after {frames[k - 1]} (line "
-                f"{rows[k - 1][0]}): one measurement per frame, frames ascending"
+                f"{path}: line {n}: {frame_col} {f} measured again (first on line {first[f]}): "
+                "one measurement per frame; several ROIs or wounds measured in one frame, or a "
+                "table appended twice, cannot be told apart: save one Results table per wound "
+                "(Clear Results between wounds)"
             )
+        first[f] = n
+    unsorted = any(rows[k][1] < rows[k - 1][1] for k in range(1, len(rows)))
+    rows = sorted(rows, key=lambda r: r[1])  # measured in any order: the frame gives the time
     before = [r for r in rows if r[1] <= cut]
     after = [r for r in rows if r[1] > cut]
     failed = [r for r in after if not (math.isfinite(r[2]) and r[2] > 0)]
@@ -168,7 +179,7 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
     _check_area(path, area_col, area, perim, lines, um, length_unit)
     radius = np.sqrt(area / math.pi) * um
     times = (np.array([r[1] for r in used], dtype=float) - cut) * dt
-    notes = []
+    notes = [f"{path}: rows not in {frame_col} order: sorted by {frame_col}"] if unsorted else []
     if before:
         notes.append(
             f"{path}: {len(before)} rows at or before frame {cut} (before the cut) skipped"
@@ -222,6 +233,17 @@ def _check_area(path, area_col, area, perim, lines, um, length_unit) -> None:
             f"{path}: {area_col} median {np.median(area):.4g} px^2 is a radius of "
             f"{radius_len:.3g} px: no wound that small can be outlined; does {area_col} hold a "
             f"radius? (a radius needs the plain reader, --radius-col)"
+        )
+    if length_unit == "px" and not MIN_RADIUS_UM <= radius_len * um <= MAX_RADIUS_UM:
+        raise InputError(
+            f"{path}: {area_col} median {np.median(area):.4g} px^2 with --pixel-size-um {um:g} "
+            f"is a radius of {radius_len * um:.4g} um, "
+            + (
+                f"over {MAX_RADIUS_UM:g} um: is the pixel size in nm? (--pixel-size-um "
+                f"{um / 1000:g})"
+                if radius_len * um > MAX_RADIUS_UM
+                else f"under {MIN_RADIUS_UM:g} um: is the pixel size in mm or m? (give it in um)"
+            )
         )
     if length_unit == "um" and radius_len * um < MIN_RADIUS_UM:
         raise InputError(
