@@ -184,3 +184,19 @@ def test_a_fiji_frame_interval_in_another_unit_names_the_option(tmp_path, capsys
     err = capsys.readouterr().err
     assert code == 2 and f"--frame-interval-s {fix}: frames 250 ms apart" in err
     assert "--time-unit" not in err
+
+
+def test_the_rows_of_analyze_summarize_are_skipped_and_counted(tmp_path):
+    """Analyze > Summarize appends rows labelled Mean, SD, Min, Max holding each column's
+    statistics (ImageJ's ResultsTable; their Slice is not a frame: 83, 47.198, 1, 163)."""
+    rows = fiji_rows(tmp_path / "plain.csv")
+    n = len(rows) - 1
+    stats = [("Mean", "83", "1111.111"), ("SD", "47.198", "22.2"), ("Min", "1", "0")]
+    stats.append(("Max", "163", "9999.9"))
+    summary = [f"{n + 1 + k},{label},{a},{a},{sl}" for k, (label, sl, a) in enumerate(stats)]
+    (tmp_path / "summarized.csv").write_text("\n".join(rows + summary) + "\n")
+    got = fiji(tmp_path / "summarized.csv")
+    plain = fiji(tmp_path / "plain.csv")
+    np.testing.assert_array_equal(got.radius_um, plain.radius_um)
+    assert got.files[0].counts["summary rows"] == 4
+    assert "4 summary rows" in got.files[0].notes[0]

@@ -15,12 +15,14 @@ no area (empty, NaN, 0) is a frame where the tracking failed: skipped. Both are 
 the file's record (provenance.RawFile) and its notes, which the report and the command line
 show. A column that holds a radius (or a diameter) instead of an area is refused, and so is a
 frame measured twice (two ROIs per slice: never averaged) and a pixel size whose radius is
-no laser wound's (nm or mm typed as um); rows in another order are sorted by frame."""
+no laser wound's (nm or mm typed as um); rows in another order are sorted by frame; the rows
+Analyze > Summarize appends (labels Mean, SD, Min, Max) are skipped and counted."""
 
 from __future__ import annotations
 
 import csv
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -29,6 +31,8 @@ from .provenance import RawFile, decode, read_bytes, sha256_bytes
 from .series import RadiusSeries
 
 ROW_NUMBERS = "(row numbers)"
+#: The labels of the rows Analyze > Summarize appends (ImageJ's ResultsTable summary).
+SUMMARY = ("Mean", "SD", "Min", "Max")
 PERIMETER = "Perim."
 #: 4 pi Area / Perim.^2 (circularity) is 1 for a circle and less for any other shape; a real
 #: wound outline is above this (a rough ellipse of axis ratio 10 is 0.35).
@@ -130,7 +134,8 @@ def read_fiji(
             )
     ia, i_f = names.index(area_col), names.index(frame_col)
     ip = names.index(PERIMETER) if PERIMETER in names else None
-    rows = []  # (line, frame, area, perimeter)
+    il = names.index("Label") if "Label" in names else None
+    rows, summary = [], []  # (line, frame, area, perimeter); lines of summary rows
     for n, s in numbered[1:]:
         cells = next(csv.reader([s], delimiter=sep))
         if len(cells) != len(names):
@@ -138,13 +143,25 @@ def read_fiji(
                 f"{path}: line {n}: {len(cells)} cells, expected {len(names)} as in the header "
                 f"(line {header_line})"
             )
+        if il is not None and cells[il].strip() in SUMMARY:
+            summary.append(n)
+            continue
         frame = _number(path, n, frame_col, cells[i_f])
         if frame != int(frame) or frame < 0:
             raise InputError(f"{path}: line {n}: {frame_col} = {cells[i_f]!r}: not a frame number")
         area = _number(path, n, area_col, cells[ia], missing_ok=True)
         perim = math.nan if ip is None else _number(path, n, PERIMETER, cells[ip], missing_ok=True)
         rows.append((n, int(frame), area, perim))
-    return _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um)
+    series = _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um)
+    if summary:
+        f = series.files[0]
+        note = (
+            f"{path}: {len(summary)} summary rows (Analyze > Summarize: labels "
+            f"{', '.join(SUMMARY)}; lines {summary[0]}-{summary[-1]}) skipped"
+        )
+        f = replace(f, counts={"summary rows": len(summary), **f.counts}, notes=(note, *f.notes))
+        series = replace(series, files=(f,))
+    return series
 
 
 def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um):
