@@ -200,3 +200,21 @@ def test_the_rows_of_analyze_summarize_are_skipped_and_counted(tmp_path):
     np.testing.assert_array_equal(got.radius_um, plain.radius_um)
     assert got.files[0].counts["summary rows"] == 4
     assert "4 summary rows" in got.files[0].notes[0]
+
+
+@pytest.mark.parametrize("option", ["--centre-px", "--centre-um"])
+def test_a_given_centre_the_flow_does_not_point_away_from_is_refused(option):
+    """The README's noisy PIVlab folder with the true centre in px: used as given with
+    --centre-px; typed into --centre-um (pixels read as um, 200 um off): refused, naming the
+    axes, where it used to be projected on as given."""
+    from test_lab_readers import readme_lab_command
+
+    from wound_opening.cli import parser
+    from wound_opening.cli_inputs import read_lab_inputs
+
+    argv = readme_lab_command().split()[1:] + [option, "{:g},{:g}".format(*lab.CENTRE_PX)]
+    if option == "--centre-px":
+        assert read_lab_inputs(parser().parse_args(argv)).profiles
+        return
+    with pytest.raises(InputError, match=r"2\d\d um from the centre .*other axes"):
+        read_lab_inputs(parser().parse_args(argv))
