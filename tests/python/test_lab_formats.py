@@ -218,3 +218,24 @@ def test_a_given_centre_the_flow_does_not_point_away_from_is_refused(option):
         return
     with pytest.raises(InputError, match=r"2\d\d um from the centre .*other axes"):
         read_lab_inputs(parser().parse_args(argv))
+
+
+def test_openpiv_lengths_in_um_read_as_px_are_refused(tmp_path):
+    """OpenPIV files scaled to um (openpiv.scaling.uniform) read with the default px,px/s: the
+    field shrinks 5 times and lies mostly inside the wound; it used to be fitted."""
+    from test_lab_readers import readme_lab_command
+
+    from wound_opening.cli import parser
+    from wound_opening.cli_inputs import read_lab_inputs
+
+    lab.write_openpiv(tmp_path / "px", R0)
+    um = openpiv_as(tmp_path / "px", tmp_path / "um", [0, 1, 2, 3, 4, 5], "x\ty\tu\tv\tflags\tmask")
+    for p in um.glob("*.txt"):
+        a = np.loadtxt(p)
+        a[:, :4] *= lab.PIXEL_UM
+        np.savetxt(p, a, fmt="%.4e", delimiter="\t", header="x\ty\tu\tv\tflags\tmask")
+    argv = readme_lab_command().split()[1:]
+    argv[argv.index("examples/lab/piv_8um")] = str(um)
+    with pytest.raises(InputError, match=r"of 3\d\d\d PIV vectors lie inside the wound.*units"):
+        read_lab_inputs(parser().parse_args(argv))
+    assert read_lab_inputs(parser().parse_args(argv + ["--piv-units", "um,um/s"])).profiles

@@ -31,10 +31,25 @@ def _edge(radius: RadiusSeries, t):
     return np.interp(t, np.asarray(radius.times_s)[order], np.asarray(radius.radius_um)[order])
 
 
+#: A field with more than this fraction of its vectors inside the wound (r <= R(t)) is read in
+#: the wrong lengths (um read as px shrinks it 1 / pixel size times) or about a wrong centre:
+#: a PIV window inside a wound is masked or noise, and a field that is mostly wound has
+#: nothing to fit. Refused.
+MAX_INSIDE = 2 / 3
+
+
 def keep(radius: RadiusSeries, outer_um: float, t, r):
     """(mask of vectors between the wound edge and the outer radius, inside, beyond)."""
     edge = _edge(radius, t)
     inside, beyond = r <= edge, r >= outer_um
+    n = int(np.isfinite(r).sum())
+    if inside.sum() > MAX_INSIDE * n:
+        raise InputError(
+            f"{int(inside.sum())} of {n} PIV vectors lie inside the wound (closer to the centre "
+            "than the radius of the radius file at their time): a field mostly inside the "
+            "wound is read in other lengths than it was written in (OpenPIV files: "
+            "--piv-units, e.g. um,um/s; px: --pixel-size-um) or about a wrong centre"
+        )
     return ~inside & ~beyond & np.isfinite(r), int(inside.sum()), int(beyond.sum())
 
 
