@@ -239,3 +239,39 @@ def test_openpiv_lengths_in_um_read_as_px_are_refused(tmp_path):
     with pytest.raises(InputError, match=r"of 3\d\d\d PIV vectors lie inside the wound.*units"):
         read_lab_inputs(parser().parse_args(argv))
     assert read_lab_inputs(parser().parse_args(argv + ["--piv-units", "um,um/s"])).profiles
+
+
+@pytest.mark.parametrize(
+    "first, step, message",
+    [
+        (1, 1, "start at images 4 and 24 .*20 frames per pair.*give --piv-pair-step 20"),
+        (1, 20, "images 4-5 by its file names .*give --piv-first-frame 4 .* or 5 \\(from 0"),
+        (5, 20, None),  # images numbered from 0: image 4 is frame 5
+        (4, 20, None),
+    ],
+)
+def test_pivlab_file_names_check_the_pair_options(tmp_path, first, step, message):
+    """The info line names each pair's images (wound8um_0004.tif & wound8um_0005.tif, ...):
+    pairs timed with the default --piv-first-frame 1 --piv-pair-step 1 used to be read at
+    the wrong times with no word."""
+    lab.write_pivlab(tmp_path, R0)
+    frames = Frames(lab.FRAME_S, lab.CUT_AFTER, first, step)
+    if message is None:
+        assert read_field(str(tmp_path), frames, pixel_size_um=lab.PIXEL_UM).files
+        return
+    with pytest.raises(InputError, match=message):
+        read_field(str(tmp_path), frames, pixel_size_um=lab.PIXEL_UM)
+
+
+def test_pivlab_pairs_two_frames_apart_are_refused(tmp_path):
+    """Pairs of images two frames apart (PIVlab's sequencing 1-3, 2-4): the velocity per
+    pair is over two frame intervals, refused rather than read as over one."""
+    lab.write_pivlab(tmp_path, R0)
+
+    def two_apart(s):
+        second = lambda m: f"_{int(m.group(1)) + 1:04d}.tif,"  # noqa: E731
+        return [s[0], re.sub(r"_(\d+)\.tif,", second, s[1])] + s[2:]
+
+    rewrite_pivlab(tmp_path, two_apart)
+    with pytest.raises(InputError, match="images 4 and 6 .*2 frames apart.*consecutive"):
+        read_field(str(tmp_path), FRAMES, pixel_size_um=lab.PIXEL_UM)

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .columns import InputError
+from .pivlab_info import check_pairs, image_numbers, time_step
 from .provenance import RawFile, decode, read_bytes, sha256_bytes
 from .sniff import sniff
 
@@ -190,50 +191,9 @@ def _read_pivlab(path, lines, pixel_size_um, dt):
     vel = _velocity_factor(path, units["u"], pixel_size_um, dt)
     notes = ()
     if units["u"] == "m/s":
-        vel, notes = _pivlab_time_step(path, lines, vel, dt)
+        vel, notes = time_step(path, lines, vel, dt)
     c = {n: a[:, i] for i, n in enumerate(keys)}
     return pair, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, c["Vector type"], notes
-
-
-_FACTORS = re.compile(
-    r"conversion factor xy \(px -> m\):\s*(\S+?),\s*conversion factor uv "
-    r"\(px/frame -> m/s\):\s*(\S+)"
-)
-#: num2str writes the conversion factors to 5 significant digits.
-_FACTOR_RTOL = 1e-3
-
-
-def _pivlab_time_step(path, lines, vel, dt):
-    """(um/s per unit of u, notes) of a calibrated PIVlab file, its info line checked: PIVlab
-    turns px/frame into m/s with the time step typed in its calibration, uv = xy / step, and
-    writes both factors; the step must be the frame interval. A step of 0 ms (PIVlab's
-    displacements only: uv = xy) writes m/frame under the heading "u [m/s]" (file_save.m),
-    and a step of 1000 ms writes the same numbers: both read as m/frame."""
-    m = next((m for _, s in lines[:2] for m in [_FACTORS.search(s)] if m), None)
-    if m is None:
-        return vel, ()
-    try:
-        xy, uv = abs(float(m.group(1))), abs(float(m.group(2)))
-    except ValueError:
-        return vel, ()
-    if not (xy > 0 and uv > 0 and math.isfinite(xy / uv)):
-        return vel, ()
-    step = xy / uv  # s
-    if abs(step - dt) <= _FACTOR_RTOL * dt:
-        return vel, ()
-    if abs(step - 1.0) <= _FACTOR_RTOL:
-        return vel / dt, (
-            f"{path}: PIVlab's conversion factors (line 2) are equal (px/frame -> m/s = px -> "
-            "m): it was calibrated without a time step (displacements) or with 1000 ms, and "
-            f"its u, v are in m/frame whatever the heading says: divided by {dt:g} s",
-        )
-    raise InputError(
-        f"{path}: PIVlab converted px/frame to m/s with a time step of {step:.5g} s (line 2: "
-        f"{m.group(0)}), but --frame-interval-s is {dt:g} s: the velocities and the times "
-        f"disagree by a factor {step / dt:.4g}. Give --frame-interval-s {step:.5g} if that is "
-        "the time between frames (ms typed as s?), else calibrate PIVlab with the frame "
-        "interval in ms and export again"
-    )
 
 
 #: The columns of an OpenPIV file without a heading (openpiv.tools.save before 0.23: x y u v
@@ -281,7 +241,7 @@ def read_field(
 ) -> Field:
     """Every frame pair's vectors of a folder or glob of PIVlab or OpenPIV files (module
     docstring). `units`: (length, velocity) of OpenPIV files (PIVlab files name theirs)."""
-    rows, records, notes, spacing = [], [], [], []
+    rows, records, notes, spacing, named = [], [], [], [], []
     for order, path in enumerate(list_files(where), start=1):
         data = read_bytes(path, InputError)
         lines = [(n, s) for n, s in enumerate(decode(path, data, InputError), 1) if s.strip()]
@@ -298,6 +258,8 @@ def read_field(
             )
         pair, x, y, u, v, vtype, file_notes = got
         pair = pair or order
+        if kind == "pivlab":
+            named.append((path, pair, image_numbers(lines)))
         finite = np.isfinite(u) & np.isfinite(v) & np.isfinite(x) & np.isfinite(y)
         masked = (vtype == 0) | ~finite
         invalid = (vtype == -1) & ~masked
@@ -320,6 +282,7 @@ def read_field(
             rows.append((np.full(use.sum(), t), x[use], y[use], u[use], v[use], pair))
             spacing.append(_spacing(x, y))
         records.append(RawFile(path, sha256_bytes(data), label, counts, file_notes))
+    notes += check_pairs(named, frames)
     if not rows:
         raise InputError(f"{where}: no frame pair after the cut (frame {frames.cut_after_frame})")
     cols = [np.concatenate([r[i] for r in rows]) for i in range(5)]
