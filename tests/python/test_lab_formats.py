@@ -275,3 +275,28 @@ def test_pivlab_pairs_two_frames_apart_are_refused(tmp_path):
     rewrite_pivlab(tmp_path, two_apart)
     with pytest.raises(InputError, match="images 4 and 6 .*2 frames apart.*consecutive"):
         read_field(str(tmp_path), FRAMES, pixel_size_um=lab.PIXEL_UM)
+
+
+def test_a_radius_csv_in_px_with_a_pixel_size_in_nm_is_refused(tmp_path):
+    """The plain reader: it used to end in a misleading "outer radius not larger than the
+    largest wound radius" (1.6 cm)."""
+    from wound_opening.inputs.lab_files import read_radius
+
+    path = tmp_path / "r.csv"
+    t = np.arange(1, 30) * lab.FRAME_S
+    rows = [f"{a:g},{r / lab.PIXEL_UM:.3f}" for a, r in zip(t, lab.radius(R0, t))]
+    path.write_text("time_s,radius_px\n" + "\n".join(rows) + "\n")
+    kw = dict(radius_col="radius_px", length_unit="px")
+    assert read_radius(str(path), pixel_size_um=lab.PIXEL_UM, **kw).radius_um.size == t.size
+    with pytest.raises(InputError, match=r"radius_px median .* nm\? \(--pixel-size-um 0.2\)"):
+        read_radius(str(path), pixel_size_um=200.0, **kw)
+
+
+def test_a_fiji_table_resaved_with_semicolons_and_decimal_commas_is_read(tmp_path):
+    """A spreadsheet in a decimal-comma locale re-saves ImageJ's CSV with ";" and "1234,5"."""
+    rows = fiji_rows(tmp_path / "plain.csv")
+    (tmp_path / "excel.csv").write_text(
+        "\r\n".join(r.replace(",", ";").replace(".", ",").replace("Perim,", "Perim.") for r in rows)
+    )
+    got, plain = fiji(tmp_path / "excel.csv"), fiji(tmp_path / "plain.csv")
+    np.testing.assert_array_equal(got.radius_um, plain.radius_um)

@@ -27,6 +27,7 @@ from dataclasses import replace
 import numpy as np
 
 from .columns import MIN_POINTS, InputError
+from .lab_files import RADIUS_UM, check_pixel_size
 from .provenance import RawFile, decode, read_bytes, sha256_bytes
 from .series import RadiusSeries
 
@@ -40,10 +41,7 @@ MIN_CIRCULARITY = 0.2
 #: A wound smaller than this radius (in pixels) cannot be outlined on an image.
 MIN_RADIUS_PX = 5.0
 #: ... and smaller than this radius in um (laser cuts are microns wide).
-MIN_RADIUS_UM = 1.5
-#: A laser-cut wound in an epithelium is tens of um wide: a median radius above 1 mm is a
-#: pixel size in nm (or an area in px^2 read as um^2 of a very coarse image).
-MAX_RADIUS_UM = 1000.0
+MIN_RADIUS_UM = RADIUS_UM[0]
 
 
 def _frame_interval(value) -> float:
@@ -122,7 +120,9 @@ def read_fiji(
     if not numbered:
         raise InputError(f"{path}: empty: expected a Fiji Results table with the column {area_col}")
     header_line, header = numbered[0]
-    sep = "\t" if "\t" in header else ","
+    # ImageJ writes "," (.csv) or tabs; a table re-saved by a spreadsheet in a locale with a
+    # decimal comma has ";" between cells and "," in numbers
+    sep = "\t" if "\t" in header else ";" if ";" in header and "," not in header else ","
     names = header_names(next(csv.reader([header], delimiter=sep)))
     if frame_col is None:
         frame_col = next((c for c in ("Frame", "Slice") if c in names), "Slice")
@@ -138,6 +138,8 @@ def read_fiji(
     rows, summary = [], []  # (line, frame, area, perimeter); lines of summary rows
     for n, s in numbered[1:]:
         cells = next(csv.reader([s], delimiter=sep))
+        if sep == ";":
+            cells = [c.replace(",", ".") for c in cells]
         if len(cells) != len(names):
             raise InputError(
                 f"{path}: line {n}: {len(cells)} cells, expected {len(names)} as in the header "
@@ -251,17 +253,8 @@ def _check_area(path, area_col, area, perim, lines, um, length_unit) -> None:
             f"{radius_len:.3g} px: no wound that small can be outlined; does {area_col} hold a "
             f"radius? (a radius needs the plain reader, --radius-col)"
         )
-    if length_unit == "px" and not MIN_RADIUS_UM <= radius_len * um <= MAX_RADIUS_UM:
-        raise InputError(
-            f"{path}: {area_col} median {np.median(area):.4g} px^2 with --pixel-size-um {um:g} "
-            f"is a radius of {radius_len * um:.4g} um, "
-            + (
-                f"over {MAX_RADIUS_UM:g} um: is the pixel size in nm? (--pixel-size-um "
-                f"{um / 1000:g})"
-                if radius_len * um > MAX_RADIUS_UM
-                else f"under {MIN_RADIUS_UM:g} um: is the pixel size in mm or m? (give it in um)"
-            )
-        )
+    if length_unit == "px":
+        check_pixel_size(path, f"{area_col} median {np.median(area):.4g} px^2", radius_len, um)
     if length_unit == "um" and radius_len * um < MIN_RADIUS_UM:
         raise InputError(
             f"{path}: {area_col} median {np.median(area):.4g} um^2 is a radius of "
