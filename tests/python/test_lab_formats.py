@@ -300,3 +300,10 @@ def test_a_fiji_table_resaved_with_semicolons_and_decimal_commas_is_read(tmp_pat
     )
     got, plain = fiji(tmp_path / "excel.csv"), fiji(tmp_path / "plain.csv")
     np.testing.assert_array_equal(got.radius_um, plain.radius_um)
+
+
+def test_a_fiji_table_without_stack_position_names_the_setting(tmp_path):
+    rows = fiji_rows(tmp_path / "plain.csv")
+    (tmp_path / "r.csv").write_text("\n".join(r.rsplit(",", 1)[0] for r in rows) + "\n")
+    with pytest.raises(InputError, match="no column 'Slice'.*Set Measurements > Stack position"):
+        fiji(tmp_path / "r.csv")

@@ -131,6 +131,12 @@ def read_fiji(
             raise InputError(
                 f"{path}: line {header_line}: no column {name!r} ({option}); the header has "
                 f"{', '.join(map(repr, names))}"
+                + (
+                    ". ImageJ writes the frame (Slice, or Frame for a hyperstack) with "
+                    "Analyze > Set Measurements > Stack position checked: measure again with it"
+                    if option == "--frame-col" and not {"Slice", "Frame"} & set(names)
+                    else ""
+                )
             )
     ia, i_f = names.index(area_col), names.index(frame_col)
     ip = names.index(PERIMETER) if PERIMETER in names else None
