@@ -307,3 +307,14 @@ def test_a_fiji_table_without_stack_position_names_the_setting(tmp_path):
     (tmp_path / "r.csv").write_text("\n".join(r.rsplit(",", 1)[0] for r in rows) + "\n")
     with pytest.raises(InputError, match="no column 'Slice'.*Set Measurements > Stack position"):
         fiji(tmp_path / "r.csv")
+
+
+def test_a_folder_with_two_exports_of_the_same_pairs_is_refused(tmp_path):
+    """PIVlab's FRAME: k repeated (an export saved twice under two names): the vectors used to
+    be counted twice, each pair's noise halved."""
+    lab.write_pivlab(tmp_path, R0)
+    (tmp_path / "PIVlab_0002 (copy).txt").write_bytes((tmp_path / "PIVlab_0002.txt").read_bytes())
+    with pytest.raises(InputError, match=r"frame pair 2 again \(first in .*PIVlab_0002.*glob"):
+        read_field(str(tmp_path), FRAMES, pixel_size_um=lab.PIXEL_UM)
+    field = read_field(str(tmp_path / "PIVlab_000?.txt"), FRAMES, pixel_size_um=lab.PIXEL_UM)
+    assert len(field.files) == lab.PIV_PAIRS

@@ -241,7 +241,7 @@ def read_field(
 ) -> Field:
     """Every frame pair's vectors of a folder or glob of PIVlab or OpenPIV files (module
     docstring). `units`: (length, velocity) of OpenPIV files (PIVlab files name theirs)."""
-    rows, records, notes, spacing, named = [], [], [], [], []
+    rows, records, notes, spacing, named, seen = [], [], [], [], [], {}
     for order, path in enumerate(list_files(where), start=1):
         data = read_bytes(path, InputError)
         lines = [(n, s) for n, s in enumerate(decode(path, data, InputError), 1) if s.strip()]
@@ -254,10 +254,18 @@ def read_field(
             raise InputError(
                 f"{path}: neither a PIVlab export (info lines or 'x [m],y [m],...' headings) nor "
                 "an OpenPIV file ('# x y u v flags mask'): give --piv-format (openpiv for "
-                "OpenPIV files without a heading: x y u v [flags] mask)"
+                "OpenPIV files without a heading: x y u v [flags] mask), or give a glob of "
+                "the export's files alone (e.g. 'folder/PIVlab_*.txt')"
             )
         pair, x, y, u, v, vtype, file_notes = got
         pair = pair or order
+        if pair in seen:
+            raise InputError(
+                f"{path}: frame pair {pair} again (first in {seen[pair]}): one file per frame "
+                "pair; a folder holding two exports (or copies) of the same pairs: give a glob "
+                "of one export's files, e.g. 'folder/PIVlab_*.txt'"
+            )
+        seen[pair] = path
         if kind == "pivlab":
             named.append((path, pair, image_numbers(lines)))
         finite = np.isfinite(u) & np.isfinite(v) & np.isfinite(x) & np.isfinite(y)
