@@ -318,3 +318,19 @@ def test_a_folder_with_two_exports_of_the_same_pairs_is_refused(tmp_path):
         read_field(str(tmp_path), FRAMES, pixel_size_um=lab.PIXEL_UM)
     field = read_field(str(tmp_path / "PIVlab_000?.txt"), FRAMES, pixel_size_um=lab.PIXEL_UM)
     assert len(field.files) == lab.PIV_PAIRS
+
+
+def test_an_older_pivlab_export_without_vector_types_is_read(tmp_path):
+    """PIVlab before March 2021 (PIVlab_GUI.m): first line 'PIVlab by W.Th. & E.J.S., ASCII
+    chart output - DATE', headings 'x [m],y [m],u [m/s],v [m/s]', masked vectors NaN."""
+    lab.write_pivlab(tmp_path / "new", R0)
+    (tmp_path / "old").mkdir()
+    for p in (tmp_path / "new").glob("*.txt"):
+        lines = p.read_bytes().decode().split("\r\n")
+        lines[0] = "PIVlab by W.Th. & E.J.S., ASCII chart output - 02-Dec-2020"
+        lines[2:] = [",".join(s.split(",")[:4]) for s in lines[2:]]
+        (tmp_path / "old" / p.name).write_bytes("\r\n".join(lines).encode())
+    old = read_field(str(tmp_path / "old"), FRAMES, pixel_size_um=lab.PIXEL_UM)
+    new = read_field(str(tmp_path / "new"), FRAMES, pixel_size_um=lab.PIXEL_UM)
+    np.testing.assert_array_equal(old.u_um_s, new.u_um_s)
+    assert "no 'Vector type' column" in old.files[0].notes[0]

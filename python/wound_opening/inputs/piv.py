@@ -178,7 +178,7 @@ def _read_pivlab(path, lines, pixel_size_um, dt):
         )
     names = [(m.group(1).strip(), m.group(2)) for m in _HEADING.finditer(lines[k][1])]
     keys = [n for n, _ in names]
-    for want in ("x", "y", "u", "v", "Vector type"):
+    for want in ("x", "y", "u", "v"):
         if want not in keys:
             raise InputError(f"{path}: line {lines[k][0]}: no column {want!r} in the headings")
     units = dict(names)
@@ -193,6 +193,13 @@ def _read_pivlab(path, lines, pixel_size_um, dt):
     if units["u"] == "m/s":
         vel, notes = time_step(path, lines, vel, dt)
     c = {n: a[:, i] for i, n in enumerate(keys)}
+    if "Vector type" not in c:  # PIVlab before March 2021: masked vectors NaN, no types
+        c["Vector type"] = np.ones(len(a))
+        notes = (
+            *notes,
+            f"{path}: no 'Vector type' column (PIVlab before March 2021): NaN vectors dropped as "
+            "masked; vectors PIVlab interpolated cannot be told from measured ones: kept",
+        )
     return pair, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, c["Vector type"], notes
 
 
