@@ -334,3 +334,9 @@ def test_an_older_pivlab_export_without_vector_types_is_read(tmp_path):
     new = read_field(str(tmp_path / "new"), FRAMES, pixel_size_um=lab.PIXEL_UM)
     np.testing.assert_array_equal(old.u_um_s, new.u_um_s)
     assert "no 'Vector type' column" in old.files[0].notes[0]
+
+
+def test_a_cut_given_as_a_time_in_ms_names_the_frame_number(tmp_path):
+    fiji_rows(tmp_path / "r.csv")
+    with pytest.raises(InputError, match="last frame is 163: --cut-after-frame is the number"):
+        fiji(tmp_path / "r.csv", cut_after_frame=750)  # 0.75 s typed in ms

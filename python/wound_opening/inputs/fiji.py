@@ -197,6 +197,12 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
             f"{path}: {len(used)} frames after the cut (frame {cut}) with an area: too few, need "
             f"at least {MIN_POINTS} ({len(before)} rows before the cut, {len(failed)} without an "
             "area)"
+            + (
+                f"; the last frame is {rows[-1][1]}: --cut-after-frame is the number of the last "
+                "frame before the cut, not a time"
+                if rows and cut >= rows[-1][1]
+                else ""
+            )
         )
     lines = np.array([r[0] for r in used], dtype=int)
     area = np.array([r[2] for r in used])
