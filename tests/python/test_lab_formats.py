@@ -340,3 +340,29 @@ def test_a_cut_given_as_a_time_in_ms_names_the_frame_number(tmp_path):
     fiji_rows(tmp_path / "r.csv")
     with pytest.raises(InputError, match="last frame is 163: --cut-after-frame is the number"):
         fiji(tmp_path / "r.csv", cut_after_frame=750)  # 0.75 s typed in ms
+
+
+@pytest.mark.parametrize("units, refused", [("px,px/s", False), ("px,px/frame", True)])
+def test_piv_velocities_in_another_unit_than_the_edge_speed_are_refused(tmp_path, units, refused):
+    """OpenPIV px/s read as px/frame at 4 frames/s: velocities 4 times too large, which the
+    fit used to turn into sigma 1.23 [1.21, 1.26] "identified" (truth 0.5), exit 0."""
+    from test_lab_readers import readme_lab_command
+
+    from wound_opening.cli import parser
+    from wound_opening.cli_inputs import read_lab_inputs
+
+    lab.write_fiji(tmp_path / "r.csv", R0)
+    lab.write_openpiv(tmp_path / "piv", R0)
+    argv = readme_lab_command().split()[1:] + ["--piv-units", units]
+    argv[argv.index("examples/lab/Results_8um.csv")] = str(tmp_path / "r.csv")
+    argv[argv.index("examples/lab/piv_8um")] = str(tmp_path / "piv")
+    if refused:
+        with pytest.raises(
+            InputError, match=r"edge speed dR/dt of the radius file = 3\.\d+ .*units"
+        ):
+            read_lab_inputs(parser().parse_args(argv))
+        return
+    notes = [
+        n for f in read_lab_inputs(parser().parse_args(argv)).profiles[0].files for n in f.notes
+    ]
+    assert any(re.search(r"dR/dt of the radius file = 0\.8\d \(6 frame pairs", n) for n in notes)

@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from .columns import InputError
+from .edge_speed import check_edge_speed
 from .provenance import RawFile
 from .series import RadiusSeries, VelocityProfile
 
@@ -168,6 +169,10 @@ def field_profile(
         check_given_centre(centre, flow)
     r, vr = radial(centre, field.x_um, field.y_um, field.u_um_s, field.v_um_s)
     files = field.files + (RawFile("(centre)", "", "wound centre", {}, (centre.describe(),)),)
+    keep(radius, outer_um, field.time_s, r)  # a field mostly inside the wound: refused first
+    edge = check_edge_speed(field.time_s, r, vr, radius)
+    if edge:
+        files += (RawFile("(edge)", "", "edge speed", {}, (edge,)),)
     if likelihood == "vectors":
         return vector_profile(
             field.time_s,
