@@ -1,4 +1,4 @@
-"""Issue 25.3's design: radius only, lambda = 10, T = 10 s (eta/G = 1000 s), R0 = 10 um,
+"""A viscous wound recorded early: radius only, lambda = 10, T = 10 s (eta/G = 1000 s), R0 = 10 um,
 sigma = 0.5, outer 100 um, 100 frames 0.2-50 s (the opening 4.7 % done at the last),
 noise as a fraction of the opening, estimated by the fit (threshold F(1, 96) = 3.94).
 Prints each draw's estimate and the intervals of the four parameters.

@@ -80,6 +80,8 @@ def prepare(args, radius, profile=None):
             radius, profile = until_s(radius, profile, args.until_s)
         elif args.until_max:
             radius, profile = until_max(radius, profile)
+        if getattr(args, "area_col", None):
+            check_frame_interval(radius, args.frame_interval_s)
         check_recording(radius, profile, time_unit=args.time_unit)
     except ValueError as e:
         raise InputError(f"{radius.source or 'radius'}: {e}") from None
@@ -96,3 +98,38 @@ def prepare_wounds(args, series: dict, profiles: list):
             raise InputError(f"wound {name}: {e}") from None
         kept.append(p)
     return out, kept[: len(profiles)]
+
+
+#: A frame interval typed in another unit than s: (factor to seconds, what was typed).
+INTERVAL_MISTAKES = (
+    (1e-3, "the interval in ms typed as s"),
+    (1e3, "the interval divided by 1000 once too often"),
+    (60.0, "the interval in min typed as s"),
+)
+
+
+def check_frame_interval(radius, frame_interval_s: float) -> None:
+    """Refuse (ValueError) a Fiji table whose times, made from its frames and
+    --frame-interval-s, are no recording of a passive opening (fitting/recording.py's bounds),
+    naming the option and the interval in s that makes it a usual one (not --time-unit: a
+    Fiji table has no time column)."""
+    from .fitting.recording import FRAME_S, LAST_S, QUIET_FRAME_S, QUIET_LAST_S, sampling
+    from .fitting.recording import duration as _s
+
+    dt, _, last = sampling(radius.times_s)
+    if (dt is None or FRAME_S[0] <= dt <= FRAME_S[1]) and LAST_S[0] <= last <= LAST_S[1]:
+        return
+    fixes = [
+        f"{what}? (--frame-interval-s {frame_interval_s * f:.6g}: frames {_s(dt * f)} apart)"
+        for f, what in INTERVAL_MISTAKES
+        if dt is not None
+        and QUIET_FRAME_S[0] <= dt * f <= QUIET_FRAME_S[1]
+        and QUIET_LAST_S[0] <= last * f <= QUIET_LAST_S[1]
+    ]
+    raise ValueError(
+        f"--frame-interval-s {frame_interval_s:g} makes the frames {_s(dt)} apart and the last "
+        f"{_s(last)} after the cut: a passive opening after a laser cut is recorded over "
+        f"seconds to minutes (accepted: frame interval {_s(FRAME_S[0])} to {_s(FRAME_S[1])}, "
+        f"last time {_s(LAST_S[0])} to {_s(LAST_S[1])}); give the time between two frames in s"
+        + (": " + " or ".join(fixes) if fixes else "")
+    )

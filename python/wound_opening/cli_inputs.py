@@ -37,7 +37,7 @@ def add_lab_file_arguments(parser) -> None:
     g.add_argument(
         "--frame-col",
         metavar="NAME",
-        help="the frame column of a Fiji table (default: Slice, else Frame)",
+        help="the frame column of a Fiji table (default: Frame, else Slice)",
     )
     g.add_argument(
         "--frame-interval-s", type=float, metavar="S", help="time between two frames (s)"

@@ -125,10 +125,13 @@ def _suggest(dt, last, unit: str, api: bool = False) -> str:
     return (": " + " or ".join(found) + "?") if found else ""
 
 
-def _s(x: float) -> str:
+def duration(x: float) -> str:
     """A duration in s, ms or h as reads best."""
     if x < 1:
         return f"{x * 1e3:.3g} ms"
     if x >= 7200:
         return f"{x:.3g} s ({x / 3600:.3g} h)"
     return f"{x:.3g} s"
+
+
+_s = duration  # the messages' short name

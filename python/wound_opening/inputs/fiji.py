@@ -13,28 +13,35 @@ Frames up to and including `cut_after_frame` were recorded before the cut: their
 skipped (whatever they hold: Area 0, empty, a pre-cut measurement). After the cut a row with
 no area (empty, NaN, 0) is a frame where the tracking failed: skipped. Both are counted in
 the file's record (provenance.RawFile) and its notes, which the report and the command line
-show. A column that holds a radius (or a diameter) instead of an area is refused."""
+show. A column that holds a radius (or a diameter) instead of an area is refused, and so is a
+frame measured twice (two ROIs per slice: never averaged) and a pixel size whose radius is
+no laser wound's (nm or mm typed as um); rows in another order are sorted by frame; the rows
+Analyze > Summarize appends (labels Mean, SD, Min, Max) are skipped and counted."""
 
 from __future__ import annotations
 
 import csv
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from .columns import MIN_POINTS, InputError
+from .lab_files import RADIUS_UM, check_pixel_size
 from .provenance import RawFile, decode, read_bytes, sha256_bytes
 from .series import RadiusSeries
 
 ROW_NUMBERS = "(row numbers)"
+#: The labels of the rows Analyze > Summarize appends (ImageJ's ResultsTable summary).
+SUMMARY = ("Mean", "SD", "Min", "Max")
 PERIMETER = "Perim."
 #: 4 pi Area / Perim.^2 (circularity) is 1 for a circle and less for any other shape; a real
 #: wound outline is above this (a rough ellipse of axis ratio 10 is 0.35).
 MIN_CIRCULARITY = 0.2
 #: A wound smaller than this radius (in pixels) cannot be outlined on an image.
 MIN_RADIUS_PX = 5.0
-#: ... and, without a pixel size, smaller than this radius in um (laser cuts are microns wide).
-MIN_RADIUS_UM = 1.5
+#: ... and smaller than this radius in um (laser cuts are microns wide).
+MIN_RADIUS_UM = RADIUS_UM[0]
 
 
 def _frame_interval(value) -> float:
@@ -101,7 +108,8 @@ def read_fiji(
     noise_um: float | None = None,
 ) -> RadiusSeries:
     """The wound radius series of a Fiji Results table (module docstring). `frame_col`: the
-    frame column (default: Slice, else Frame); `length_unit`: of the area's length (um for
+    frame column (default: Frame, else Slice: ImageJ writes Frame (time) and Slice (z) for a
+    hyperstack, Slice alone for a plain stack); `length_unit`: of the area's length (um for
     um^2, px for px^2 with `pixel_size_um`). The series' `files` holds the file's record."""
     dt = _frame_interval(frame_interval_s)
     cut = _cut_frame(cut_after_frame)
@@ -112,43 +120,71 @@ def read_fiji(
     if not numbered:
         raise InputError(f"{path}: empty: expected a Fiji Results table with the column {area_col}")
     header_line, header = numbered[0]
-    sep = "\t" if "\t" in header else ","
+    # ImageJ writes "," (.csv) or tabs; a table re-saved by a spreadsheet in a locale with a
+    # decimal comma has ";" between cells and "," in numbers
+    sep = "\t" if "\t" in header else ";" if ";" in header and "," not in header else ","
     names = header_names(next(csv.reader([header], delimiter=sep)))
     if frame_col is None:
-        frame_col = next((c for c in ("Slice", "Frame") if c in names), "Slice")
+        frame_col = next((c for c in ("Frame", "Slice") if c in names), "Slice")
     for name, option in ((area_col, "--area-col"), (frame_col, "--frame-col")):
         if name not in names:
             raise InputError(
                 f"{path}: line {header_line}: no column {name!r} ({option}); the header has "
                 f"{', '.join(map(repr, names))}"
+                + (
+                    ". ImageJ writes the frame (Slice, or Frame for a hyperstack) with "
+                    "Analyze > Set Measurements > Stack position checked: measure again with it"
+                    if option == "--frame-col" and not {"Slice", "Frame"} & set(names)
+                    else ""
+                )
             )
     ia, i_f = names.index(area_col), names.index(frame_col)
     ip = names.index(PERIMETER) if PERIMETER in names else None
-    rows = []  # (line, frame, area, perimeter)
+    il = names.index("Label") if "Label" in names else None
+    rows, summary = [], []  # (line, frame, area, perimeter); lines of summary rows
     for n, s in numbered[1:]:
         cells = next(csv.reader([s], delimiter=sep))
+        if sep == ";":
+            cells = [c.replace(",", ".") for c in cells]
         if len(cells) != len(names):
             raise InputError(
                 f"{path}: line {n}: {len(cells)} cells, expected {len(names)} as in the header "
                 f"(line {header_line})"
             )
+        if il is not None and cells[il].strip() in SUMMARY:
+            summary.append(n)
+            continue
         frame = _number(path, n, frame_col, cells[i_f])
         if frame != int(frame) or frame < 0:
             raise InputError(f"{path}: line {n}: {frame_col} = {cells[i_f]!r}: not a frame number")
         area = _number(path, n, area_col, cells[ia], missing_ok=True)
         perim = math.nan if ip is None else _number(path, n, PERIMETER, cells[ip], missing_ok=True)
         rows.append((n, int(frame), area, perim))
-    return _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um)
+    series = _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um)
+    if summary:
+        f = series.files[0]
+        note = (
+            f"{path}: {len(summary)} summary rows (Analyze > Summarize: labels "
+            f"{', '.join(SUMMARY)}; lines {summary[0]}-{summary[-1]}) skipped"
+        )
+        f = replace(f, counts={"summary rows": len(summary), **f.counts}, notes=(note, *f.notes))
+        series = replace(series, files=(f,))
+    return series
 
 
 def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noise_um):
-    frames = [f for _, f, _, _ in rows]
-    for k in range(1, len(rows)):
-        if frames[k] <= frames[k - 1]:
+    first = {}
+    for n, f, _, _ in rows:
+        if f in first:
             raise InputError(
-                f"{path}: line {rows[k][0]}: {frame_col} {frames[k]} after {frames[k - 1]} (line "
-                f"{rows[k - 1][0]}): one measurement per frame, frames ascending"
+                f"{path}: line {n}: {frame_col} {f} measured again (first on line {first[f]}): "
+                "one measurement per frame; several ROIs or wounds measured in one frame, or a "
+                "table appended twice, cannot be told apart: save one Results table per wound "
+                "(Clear Results between wounds)"
             )
+        first[f] = n
+    unsorted = any(rows[k][1] < rows[k - 1][1] for k in range(1, len(rows)))
+    rows = sorted(rows, key=lambda r: r[1])  # measured in any order: the frame gives the time
     before = [r for r in rows if r[1] <= cut]
     after = [r for r in rows if r[1] > cut]
     failed = [r for r in after if not (math.isfinite(r[2]) and r[2] > 0)]
@@ -161,6 +197,12 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
             f"{path}: {len(used)} frames after the cut (frame {cut}) with an area: too few, need "
             f"at least {MIN_POINTS} ({len(before)} rows before the cut, {len(failed)} without an "
             "area)"
+            + (
+                f"; the last frame is {rows[-1][1]}: --cut-after-frame is the number of the last "
+                "frame before the cut, not a time"
+                if rows and cut >= rows[-1][1]
+                else ""
+            )
         )
     lines = np.array([r[0] for r in used], dtype=int)
     area = np.array([r[2] for r in used])
@@ -168,7 +210,7 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
     _check_area(path, area_col, area, perim, lines, um, length_unit)
     radius = np.sqrt(area / math.pi) * um
     times = (np.array([r[1] for r in used], dtype=float) - cut) * dt
-    notes = []
+    notes = [f"{path}: rows not in {frame_col} order: sorted by {frame_col}"] if unsorted else []
     if before:
         notes.append(
             f"{path}: {len(before)} rows at or before frame {cut} (before the cut) skipped"
@@ -223,6 +265,8 @@ def _check_area(path, area_col, area, perim, lines, um, length_unit) -> None:
             f"{radius_len:.3g} px: no wound that small can be outlined; does {area_col} hold a "
             f"radius? (a radius needs the plain reader, --radius-col)"
         )
+    if length_unit == "px":
+        check_pixel_size(path, f"{area_col} median {np.median(area):.4g} px^2", radius_len, um)
     if length_unit == "um" and radius_len * um < MIN_RADIUS_UM:
         raise InputError(
             f"{path}: {area_col} median {np.median(area):.4g} um^2 is a radius of "

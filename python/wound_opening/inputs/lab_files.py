@@ -19,6 +19,25 @@ from .series import RadiusSeries, VelocityProfile
 #: Seconds per time unit.
 TIME_UNITS = {"ms": 1e-3, "s": 1.0, "min": 60.0}
 LENGTH_UNITS = ("um", "px")
+#: A laser-cut wound is microns to tens of microns wide: a median radius outside this range
+#: [um] with a pixel size is a pixel size in nm (over) or in mm or m (under).
+RADIUS_UM = (1.5, 1000.0)
+
+
+def check_pixel_size(path, what: str, radius_px: float, pixel_size_um: float) -> None:
+    """Refuse a pixel size that makes a median radius of `radius_px` px no laser wound's."""
+    r = radius_px * pixel_size_um
+    if RADIUS_UM[0] <= r <= RADIUS_UM[1]:
+        return
+    raise InputError(
+        f"{path}: {what} with --pixel-size-um {pixel_size_um:g} is a radius of {r:.4g} um, "
+        + (
+            f"over {RADIUS_UM[1]:g} um: is the pixel size in nm? (--pixel-size-um "
+            f"{pixel_size_um / 1000:g})"
+            if r > RADIUS_UM[1]
+            else f"under {RADIUS_UM[0]:g} um: is the pixel size in mm or m? (give it in um)"
+        )
+    )
 
 
 def _factors(
@@ -136,6 +155,9 @@ def _radius_series(
     c = table.columns
     sd = c.get(sd_col or "radius_sd_um")
     ids = c[wound_col] if wound_col else np.full(table.lines.size, None)
+    if length_unit == "px" and c[radius_col].size:
+        median = float(np.median(c[radius_col]))
+        check_pixel_size(path, f"{radius_col} median {median:.4g} px", median, um)
     out = {}
     for name in dict.fromkeys(ids.tolist()):  # the wound ids as Python str, in order of appearance
         rows = np.flatnonzero(ids == name) if wound_col else np.arange(ids.size)

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .columns import InputError
+from .pivlab_info import check_pairs, image_numbers, time_step
 from .provenance import RawFile, decode, read_bytes, sha256_bytes
 from .sniff import sniff
 
@@ -177,7 +178,7 @@ def _read_pivlab(path, lines, pixel_size_um, dt):
         )
     names = [(m.group(1).strip(), m.group(2)) for m in _HEADING.finditer(lines[k][1])]
     keys = [n for n, _ in names]
-    for want in ("x", "y", "u", "v", "Vector type"):
+    for want in ("x", "y", "u", "v"):
         if want not in keys:
             raise InputError(f"{path}: line {lines[k][0]}: no column {want!r} in the headings")
     units = dict(names)
@@ -188,13 +189,43 @@ def _read_pivlab(path, lines, pixel_size_um, dt):
     if units["y"] != units["x"]:
         raise InputError(f"{path}: x in {units['x']} but y in {units['y']}")
     vel = _velocity_factor(path, units["u"], pixel_size_um, dt)
+    notes = ()
+    if units["u"] == "m/s":
+        vel, notes = time_step(path, lines, vel, dt)
     c = {n: a[:, i] for i, n in enumerate(keys)}
-    return pair, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, c["Vector type"]
+    if "Vector type" not in c:  # PIVlab before March 2021: masked vectors NaN, no types
+        c["Vector type"] = np.ones(len(a))
+        notes = (
+            *notes,
+            f"{path}: no 'Vector type' column (PIVlab before March 2021): NaN vectors dropped as "
+            "masked; vectors PIVlab interpolated cannot be told from measured ones: kept",
+        )
+    return pair, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, c["Vector type"], notes
+
+
+#: The columns of an OpenPIV file without a heading (openpiv.tools.save before 0.23: x y u v
+#: and the validation's mask, nonzero for an invalid vector; later: x y u v flags mask).
+_OPENPIV_COLUMNS = {4: "x y u v", 5: "x y u v mask", 6: "x y u v flags mask"}
 
 
 def _read_openpiv(path, lines, units, pixel_size_um, dt):
-    names = lines[0][1].lstrip("#").split()
-    _, a = _numbers(path, lines, 1, len(names), None)
+    if lines[0][1].lstrip().startswith("#"):
+        names, start = lines[0][1].lstrip().lstrip("#").split(), 1
+    else:
+        width = len(lines[0][1].split())
+        if width not in _OPENPIV_COLUMNS:
+            raise InputError(
+                f"{path}: line {lines[0][0]}: {width} columns and no '# x y u v ...' heading: "
+                "an OpenPIV file without a heading has 4 to 6 (x y u v [flags] mask)"
+            )
+        names, start = _OPENPIV_COLUMNS[width].split(), 0
+    missing = [n for n in ("x", "y", "u", "v") if n not in names]
+    if missing:
+        raise InputError(
+            f"{path}: line {lines[0][0]}: no column {', '.join(missing)} in the heading "
+            f"{lines[0][1].strip()!r}: expected '# x y u v flags mask' (openpiv.tools.save)"
+        )
+    _, a = _numbers(path, lines, start, len(names), None)
     c = {n: a[:, i] for i, n in enumerate(names)}
     length, velocity = units
     um = _length_factor(path, length, pixel_size_um)
@@ -203,7 +234,7 @@ def _read_openpiv(path, lines, units, pixel_size_um, dt):
     mask = c.get("mask", np.zeros(len(a)))
     # as PIVlab's vector type: 0 masked, 1 valid, 2 interpolated; -1 invalid
     kind = np.where(mask != 0, 0, np.where(flags == 1, -1, np.where(flags == 2, 2, 1)))
-    return None, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, kind
+    return None, c["x"] * um, c["y"] * um, c["u"] * vel, c["v"] * vel, kind, ()
 
 
 def read_field(
@@ -217,7 +248,7 @@ def read_field(
 ) -> Field:
     """Every frame pair's vectors of a folder or glob of PIVlab or OpenPIV files (module
     docstring). `units`: (length, velocity) of OpenPIV files (PIVlab files name theirs)."""
-    rows, records, notes, spacing = [], [], [], []
+    rows, records, notes, spacing, named, seen = [], [], [], [], [], {}
     for order, path in enumerate(list_files(where), start=1):
         data = read_bytes(path, InputError)
         lines = [(n, s) for n, s in enumerate(decode(path, data, InputError), 1) if s.strip()]
@@ -229,10 +260,21 @@ def read_field(
         else:
             raise InputError(
                 f"{path}: neither a PIVlab export (info lines or 'x [m],y [m],...' headings) nor "
-                "an OpenPIV file ('# x y u v flags mask'): give --piv-format"
+                "an OpenPIV file ('# x y u v flags mask'): give --piv-format (openpiv for "
+                "OpenPIV files without a heading: x y u v [flags] mask), or give a glob of "
+                "the export's files alone (e.g. 'folder/PIVlab_*.txt')"
             )
-        pair, x, y, u, v, vtype = got
+        pair, x, y, u, v, vtype, file_notes = got
         pair = pair or order
+        if pair in seen:
+            raise InputError(
+                f"{path}: frame pair {pair} again (first in {seen[pair]}): one file per frame "
+                "pair; a folder holding two exports (or copies) of the same pairs: give a glob "
+                "of one export's files, e.g. 'folder/PIVlab_*.txt'"
+            )
+        seen[pair] = path
+        if kind == "pivlab":
+            named.append((path, pair, image_numbers(lines)))
         finite = np.isfinite(u) & np.isfinite(v) & np.isfinite(x) & np.isfinite(y)
         masked = (vtype == 0) | ~finite
         invalid = (vtype == -1) & ~masked
@@ -254,7 +296,8 @@ def read_field(
             counts["used"] = int(use.sum())
             rows.append((np.full(use.sum(), t), x[use], y[use], u[use], v[use], pair))
             spacing.append(_spacing(x, y))
-        records.append(RawFile(path, sha256_bytes(data), label, counts))
+        records.append(RawFile(path, sha256_bytes(data), label, counts, file_notes))
+    notes += check_pairs(named, frames)
     if not rows:
         raise InputError(f"{where}: no frame pair after the cut (frame {frames.cut_after_frame})")
     cols = [np.concatenate([r[i] for r in rows]) for i in range(5)]

@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from .columns import InputError
+from .edge_speed import check_edge_speed
 from .provenance import RawFile
 from .series import RadiusSeries, VelocityProfile
 
@@ -31,10 +32,25 @@ def _edge(radius: RadiusSeries, t):
     return np.interp(t, np.asarray(radius.times_s)[order], np.asarray(radius.radius_um)[order])
 
 
+#: A field with more than this fraction of its vectors inside the wound (r <= R(t)) is read in
+#: the wrong lengths (um read as px shrinks it 1 / pixel size times) or about a wrong centre:
+#: a PIV window inside a wound is masked or noise, and a field that is mostly wound has
+#: nothing to fit. Refused.
+MAX_INSIDE = 2 / 3
+
+
 def keep(radius: RadiusSeries, outer_um: float, t, r):
     """(mask of vectors between the wound edge and the outer radius, inside, beyond)."""
     edge = _edge(radius, t)
     inside, beyond = r <= edge, r >= outer_um
+    n = int(np.isfinite(r).sum())
+    if inside.sum() > MAX_INSIDE * n:
+        raise InputError(
+            f"{int(inside.sum())} of {n} PIV vectors lie inside the wound (closer to the centre "
+            "than the radius of the radius file at their time): a field mostly inside the "
+            "wound is read in other lengths than it was written in (OpenPIV files: "
+            "--piv-units, e.g. um,um/s; px: --pixel-size-um) or about a wrong centre"
+        )
     return ~inside & ~beyond & np.isfinite(r), int(inside.sum()), int(beyond.sum())
 
 
@@ -146,10 +162,17 @@ def field_profile(
     every vector."""
     from .centre import estimate_centre, radial
 
+    flow = estimate_centre(field.x_um, field.y_um, field.u_um_s, field.v_um_s, field.pair)
     if centre is None:
-        centre = estimate_centre(field.x_um, field.y_um, field.u_um_s, field.v_um_s, field.pair)
+        centre = flow
+    else:
+        check_given_centre(centre, flow)
     r, vr = radial(centre, field.x_um, field.y_um, field.u_um_s, field.v_um_s)
     files = field.files + (RawFile("(centre)", "", "wound centre", {}, (centre.describe(),)),)
+    keep(radius, outer_um, field.time_s, r)  # a field mostly inside the wound: refused first
+    edge = check_edge_speed(field.time_s, r, vr, radius)
+    if edge:
+        files += (RawFile("(edge)", "", "edge speed", {}, (edge,)),)
     if likelihood == "vectors":
         return vector_profile(
             field.time_s,
@@ -172,3 +195,29 @@ def field_profile(
     return ring_profile(
         field.time_s, r, vr, radius, outer_um, width, files=files, source=field.source
     )[0], centre
+
+
+#: A given centre this many standard errors of the flow's centre away (and over
+#: CENTRE_FLOOR_UM) is not the centre of the flow in the files' axes: refused.
+CENTRE_SIGMAS, CENTRE_FLOOR_UM = 6.0, 1.0
+
+
+def check_given_centre(given, flow) -> None:
+    """Refuse a given centre the velocities do not point away from: (dx/sd_x)^2 + (dy/sd_y)^2
+    over CENTRE_SIGMAS^2 (chi-square, 2 degrees of freedom: 1.5e-8 by chance) with the
+    estimate's standard errors (centre.py), and a distance over CENTRE_FLOOR_UM. The usual
+    cause is other axes: image pixels against a PIVlab calibration that flips y or adds an
+    offset, or X and Y swapped."""
+    dx, dy = given.x_um - flow.x_um, given.y_um - flow.y_um
+    sx, sy = max(flow.sd_x_um, 1e-12), max(flow.sd_y_um, 1e-12)
+    z = math.hypot(dx / sx, dy / sy)
+    if z > CENTRE_SIGMAS and math.hypot(dx, dy) > CENTRE_FLOOR_UM:
+        raise InputError(
+            f"the wound centre given, ({given.x_um:.4g}, {given.y_um:.4g}) um, is "
+            f"{math.hypot(dx, dy):.3g} um from the centre the velocities point away from, "
+            f"({flow.x_um:.4g} +- {flow.sd_x_um:.2g}, {flow.y_um:.4g} +- {flow.sd_y_um:.2g}) "
+            f"um: {z:.0f} standard errors. Is it in other axes than the PIV files' (--centre-px "
+            "is image pixels, y down, times --pixel-size-um; a PIVlab calibration may flip y or "
+            "add an offset: give --centre-um in the files' axes), or are X and Y swapped? "
+            "Without --centre-um/--centre-px the centre of the flow is used"
+        )

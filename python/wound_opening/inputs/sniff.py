@@ -15,6 +15,8 @@ def sniff(first_lines: list[str]) -> str | None:
         return "pivlab"
     if any(re.match(r"x \[(m|px)\]", s) for s in head):
         return "pivlab"
-    if re.fullmatch(r"#\s*x\s+y\s+u\s+v\s+(flags\s+)?mask", head[0]):
+    # openpiv.tools.save: "x y u v flags mask" (0.24.4 on), "x y u v mask" (0.23), "x y u v
+    # s2n mask" (late 2020)
+    if re.fullmatch(r"#\s*x\s+y\s+u\s+v\s+((flags|s2n)\s+)?mask", head[0]):
         return "openpiv"
     return None
