@@ -34,7 +34,7 @@ from .numbers import interval  # noqa: E402
 LABELS = {"R0_um": "R₀ (µm)", "sigma": "σ", "lambda": "λ", "T_s": "T (s)"}
 SYMBOLS = {"R0_um": ("R₀", " µm"), "sigma": ("σ", ""), "lambda": ("λ", ""), "T_s": ("T", " s")}
 #: Evenly spaced values of a profile panel: those with no point of the walk near are fitted.
-PROFILE_POINTS = 20
+PROFILE_POINTS = 12
 
 
 def _g(x) -> str:
@@ -115,28 +115,33 @@ def fit_figure(
     (closed). The data come from the result (radius, profile: accepted for the callers that
     pass them). A figure written once is kept with the result (its PNG bytes): the report's
     and the command line's `--plot` are one drawing."""
-    cache = getattr(result, "_profile_cache", {})
-    key = ("figure", profile_points)
-    if path is not None and key in cache:
+    return drawn_once(result, profile_points, lambda: _draw(result, profile_points), path, 120)
+
+
+def drawn_once(result, key, draw, path, dpi: int):
+    """The figure `draw()` makes, written as PNG to `path` (a file name or a binary file
+    object; None: not written), returned closed; a figure written once is kept with the
+    result (`_figures`: key -> (figure, PNG bytes)), so the report's and the command line's
+    `--plot` are one drawing."""
+    cache = getattr(result, "_figures", None)
+    if path is not None and cache is not None and key in cache:
         fig, png = cache[key]
-        _write(path, png)
-        return fig
-    fig = _draw(result, profile_points)
-    if path is not None:
-        buf = io.BytesIO()
-        fig.savefig(buf, dpi=120, format="png")
-        cache[key] = fig, buf.getvalue()
-        _write(path, cache[key][1])
-    plt.close(fig)
-    return fig
-
-
-def _write(path, png: bytes) -> None:
-    if hasattr(path, "write"):
-        path.write(png)
     else:
+        fig = draw()
+        png = None
+        if path is not None:
+            buf = io.BytesIO()
+            fig.savefig(buf, dpi=dpi, format="png")
+            png = buf.getvalue()
+            if cache is not None:
+                cache[key] = fig, png
+        plt.close(fig)
+    if png is not None and hasattr(path, "write"):
+        path.write(png)
+    elif png is not None:
         with open(path, "wb") as f:
             f.write(png)
+    return fig
 
 
 def _draw(result, profile_points: int):
