@@ -160,7 +160,8 @@ def run_case(name: str, data_file: str, out_dir: str) -> dict:
         if result.converged:
             fit_figure(result, radius, profile, out / f"{name}.png")
     cpu = time.process_time() - start
-    return {"cpu_s": cpu, "fit_s": fit_s, "solves": counts["solves"], "values": _intervals(result)}
+    values = _intervals(result) | {"chi2": [result.chi2, None, None]}
+    return {"cpu_s": cpu, "fit_s": fit_s, "solves": counts["solves"], "values": values}
 
 
 def _flat_numbers(d, prefix="") -> dict:
@@ -174,21 +175,27 @@ def _flat_numbers(d, prefix="") -> dict:
 
 
 def agreement(a: dict, b: dict) -> float:
-    """Largest difference of an estimate or interval end between two runs, relative to the
-    interval's half width (or the value); inf where an end is open in one only."""
+    """Largest difference of an estimate or interval end between two runs (name -> [estimate,
+    lower, upper], None where open or not given), relative to the distance from the estimate
+    to the farther closed end of `a` (its width where there is no estimate, the end itself
+    where only one is given); inf where an end is open in one only."""
     worst = 0.0
     for name, (e, lo, hi) in a.items():
         if name not in b:
             continue
-        e2, lo2, hi2 = b[name]
-        ends = [x for x in (lo, hi, lo2, hi2) if x is not None]
-        width = (max(ends) - min(ends)) / 2 if len(ends) >= 2 else 0.0
-        for x, y in ((e, e2), (lo, lo2), (hi, hi2)):
+        ends = [x for x in (lo, hi) if x is not None]
+        if e is not None:
+            scale = max([abs(x - e) for x in ends] + [abs(e) * 1e-6])
+        else:
+            scale = max(
+                (max(ends) - min(ends)) / 2 if len(ends) == 2 else 0, *map(abs, ends), 1e-300
+            )
+        for x, y in zip((e, lo, hi), b[name]):
             if x is None and y is None:
                 continue
             if (x is None) != (y is None):
                 return float("inf")
-            worst = max(worst, abs(x - y) / max(width, abs(x) * 1e-6, 1e-300))
+            worst = max(worst, abs(x - y) / scale)
     return worst
 
 
@@ -228,7 +235,7 @@ def main(argv=None) -> int:
     names = args.cases.split(",") if args.cases else (QUICK if args.quick else list(CASES))
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    rows = []
+    rows, values = [], {}
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         sides = [] if args.only == "baseline" else [("current", ROOT / "python")]
@@ -247,6 +254,7 @@ def main(argv=None) -> int:
                 row[f"{side}_error"] = g.get("error", "")
             if len(got) == 2 and all("values" in g for g in got.values()):
                 row["max_diff"] = agreement(got["baseline"]["values"], got["current"]["values"])
+            values[name] = {side: g.get("values") for side, g in got.items()}
             rows.append(row)
             print(json.dumps(row), file=sys.stderr, flush=True)
     keys = sorted({k for r in rows for k in r}, key=lambda k: (k != "case", k))
@@ -254,6 +262,7 @@ def main(argv=None) -> int:
         w = csv.DictWriter(f, keys)
         w.writeheader()
         w.writerows(rows)
+    (out / "fit_speed_values.json").write_text(json.dumps(values, indent=1))
     print(table(rows))
     return 0
 
@@ -265,14 +274,14 @@ def _s(x, fmt="{:.2f}") -> str:
 def table(rows) -> str:
     lines = [
         "| case | baseline CPU s | current CPU s | ratio | current fit s | solves (base -> now) "
-        "| estimates and ends agree |",
+        "| estimates and ends agree (to 1 %) |",
         "|---|---:|---:|---:|---:|---:|---|",
     ]
     for r in rows:
         b, c = r.get("baseline_cpu_s"), r.get("current_cpu_s")
         ratio = _s(b / c, "{:.1f}x") if b and c else "-"
         d = r.get("max_diff")
-        agree = "-" if d is None else ("yes" if d < 0.01 else "no") + f" (max {d:.2g} half-widths)"
+        agree = "-" if d is None else ("yes" if d < 0.01 else "no") + f" (max {d:.2g})"
         err = r.get("current_error") or r.get("baseline_error")
         lines.append(
             f"| {r['case']} | {_s(b)} | {_s(c)} | {ratio} | {_s(r.get('current_fit_s'))} | "
