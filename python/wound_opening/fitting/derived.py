@@ -62,6 +62,7 @@ class Reparametrised(Problem):
         # one.
         free.sort(key=lambda k: k in bounded)
         self.k = free[0] if free else None  # None: the quantity is held fixed
+        self.stretched = tuple(getattr(obj, "stretched", ())) if self.k != 2 else ()
         #: The replaced coordinate carries a bound of the user's that is not a box in w (the
         #: others it depends on are not all fixed): the walk could not honour it.
         self.unenforceable = (

@@ -306,14 +306,14 @@ def profile_at(
 ) -> np.ndarray:
     """delta chi^2 at the given values of coordinate i of z (ln R0, sigma, lambda, ln T):
     each a fit of the other three with coordinate i fixed, as the walks above make them.
-    The values are visited outward from the estimate on each side; each is fitted from two
-    starts, the previous value's optimum and that optimum moved along the line through the
-    last two (as `walk_side` predicts), keeping the lower, and from the estimate too when delta
-    jumps by more than JUMP from the previous value: one start alone can end in a higher
-    valley and draw a spike. A value whose fits both stop without converging within
-    `max_nfev` evaluations, or that the solver refuses, gives nan (its chi^2 would only
-    bound the profile from above). For drawing a profile finely; the intervals come from
-    `profile_all`."""
+    The values are visited outward from the estimate on each side; each is fitted from the
+    previous value's optimum moved along the line through the last two (as `walk_side`
+    predicts), and where that fit does not converge or delta jumps by more than JUMP from the
+    previous value, also from the previous optimum itself and then from the estimate,
+    keeping the lowest: one start alone can end in a higher valley and draw a spike. A value
+    whose fits all stop without converging within `max_nfev` evaluations, or that the solver
+    refuses, gives nan (its chi^2 would only bound the profile from above). For drawing a
+    profile finely; the intervals come from `profile_all`."""
 
     values = np.asarray(values, dtype=float)
     out = np.full(values.size, np.nan)
@@ -331,11 +331,7 @@ def profile_at(
             )
             best = None
             for start in (z1 + np.clip(move, -1.0, 1.0), z1, z_hat):
-                if (
-                    start is z_hat
-                    and best is not None
-                    and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0)
-                ):
+                if best is not None and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0):
                     break
                 try:
                     z, chi2, res = local_fit(

@@ -6,6 +6,13 @@ cost, the step and the gradient) are far below the data's precision: a change of
 1e-12 chi^2 is invisible at any noise level, so the fit stops at the optimum, not on a
 plateau of a coarse criterion. `loss` is least_squares' (linear, soft_l1, cauchy) on the
 residuals in units of their uncertainty (f_scale = 1).
+
+The coordinates a problem calls `stretched` (lambda) are moved as x = asinh(lambda), with
+d r / d x = cosh(x) d r / d lambda: linear near the bound 0 (kept at x = 0), ln(2 lambda)
+beyond 1. Where R(t) depends on tau = lambda^2 T only (lambda >> 1, the tissue moving as one)
+the valley ln T = ln tau - 2 ln lambda is then a straight line, which the trust region
+follows in a few steps; in lambda it is curved, and fits held at a value of another
+parameter crawled along it for their 200 evaluations (the intervals' walks, issue 25).
 """
 
 from __future__ import annotations
@@ -57,18 +64,31 @@ def local_fit(
         )
     inner = (lower[free] < z[free]) & (z[free] < upper[free])
     z[free] = np.where(inner, z[free], np.clip(z[free], lower[free] + 1e-9, upper[free] - 1e-9))
+    # the stretched coordinates' positions among the free ones: the fit moves x = asinh(z)
+    bent = [k for k, i in enumerate(free) if i in getattr(obj, "stretched", ())]
 
     def full(x):
         w = z.copy()
         w[free] = x
+        w[[free[k] for k in bent]] = np.sinh(x[bent])
         return w
+
+    def jac(x):
+        j = obj.jacobian(full(x), columns)[:, free]
+        j[:, bent] *= np.cosh(x[bent])
+        return j
+
+    def stretch(v):
+        v = np.array(v, dtype=float)
+        v[bent] = np.arcsinh(v[bent])
+        return v
 
     columns = free if held else None  # the columns the fit needs
     res = optimize.least_squares(
         lambda x: obj.residuals(full(x)),
-        z[free],
-        jac=lambda x: obj.jacobian(full(x), columns)[:, free],
-        bounds=(lower[free], upper[free]),
+        stretch(z[free]),
+        jac=jac,
+        bounds=(stretch(lower[free]), stretch(upper[free])),
         method="trf",
         x_scale="jac",
         loss=loss,

@@ -278,6 +278,8 @@ class Constrained(Problem):
     per prior appended, bounds narrowed to the user's, coordinates held fixed (`fixed`, in z,
     honoured by local.local_fit). The data's own objective is `obj`."""
 
+    stretched = (1, 2)  # sigma and lambda: its fits move asinh of them (local.py)
+
     def __init__(self, obj: Objective, spec: Spec):
         self.obj, self.spec = obj, spec
         self.fixed = {i: _z(i, v) for i, v in spec.fixed.items()}

@@ -27,6 +27,9 @@ class Problem(Protocol):
     #: Coordinates whose bounds the user set (parameters.Constrained); a reparametrisation
     #: prefers to replace another one.
     user_bounded = frozenset()
+    #: Coordinates that are lambda (>= 0): local.local_fit moves asinh of them, in which the
+    #: valley along lambda^2 T = const (ln T = const - 2 ln lambda) is straight for lambda >> 1.
+    stretched = ()
 
     @property
     def size(self) -> int:

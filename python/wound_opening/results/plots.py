@@ -4,9 +4,10 @@ fit_figure: the radius on a time axis linear up to the first sampled time and lo
 beyond (symlog: the first seconds, where the timing information is, get as much width as
 each later decade), with error bars (the given or estimated noise), flagged points marked
 and the estimates with their 95 % profile intervals written on it; the residuals below; the
-PIV profile only when there is one; each parameter's profile likelihood, evaluated at
-PROFILE_POINTS more values by constrained fits (FitResult.profile_at), on a log axis for
-R0, lambda and T where the values span more than a decade.
+PIV profile only when there is one; each parameter's profile likelihood, drawn through the
+points of its interval walk and, where the walk left gaps, through more of PROFILE_POINTS
+evenly spaced values by constrained fits (FitResult.profile_at), on a log axis for R0,
+lambda and T where the values span more than a decade.
 
 sweep_figure: the opening fraction f(t) = (R - R1) / (R_final - R1) of every (lambda, R_inf)
 of the sweep (the sweep's values as markers on the model's curve), coloured by lambda, and
@@ -16,6 +17,7 @@ both depend on lambda and R_inf only (sigma sets the size of the opening, not it
 
 from __future__ import annotations
 
+import io
 import math
 
 import matplotlib
@@ -31,8 +33,8 @@ from .numbers import interval  # noqa: E402
 
 LABELS = {"R0_um": "R₀ (µm)", "sigma": "σ", "lambda": "λ", "T_s": "T (s)"}
 SYMBOLS = {"R0_um": ("R₀", " µm"), "sigma": ("σ", ""), "lambda": ("λ", ""), "T_s": ("T", " s")}
-#: Values at which each profile is evaluated in addition to the points of its walk.
-PROFILE_POINTS = 20
+#: Evenly spaced values of a profile panel: those with no point of the walk near are fitted.
+PROFILE_POINTS = 12
 
 
 def _g(x) -> str:
@@ -111,7 +113,38 @@ def fit_figure(
 ):
     """The figure of a converged fit to `path` (a file name or a binary file object), returned
     (closed). The data come from the result (radius, profile: accepted for the callers that
-    pass them)."""
+    pass them). A figure written once is kept with the result (its PNG bytes): the report's
+    and the command line's `--plot` are one drawing."""
+    return drawn_once(result, profile_points, lambda: _draw(result, profile_points), path, 120)
+
+
+def drawn_once(result, key, draw, path, dpi: int):
+    """The figure `draw()` makes, written as PNG to `path` (a file name or a binary file
+    object; None: not written), returned closed; a figure written once is kept with the
+    result (`_figures`: key -> (figure, PNG bytes)), so the report's and the command line's
+    `--plot` are one drawing."""
+    cache = getattr(result, "_figures", None)
+    if path is not None and cache is not None and key in cache:
+        fig, png = cache[key]
+    else:
+        fig = draw()
+        png = None
+        if path is not None:
+            buf = io.BytesIO()
+            fig.savefig(buf, dpi=dpi, format="png")
+            png = buf.getvalue()
+            if cache is not None:
+                cache[key] = fig, png
+        plt.close(fig)
+    if png is not None and hasattr(path, "write"):
+        path.write(png)
+    elif png is not None:
+        with open(path, "wb") as f:
+            f.write(png)
+    return fig
+
+
+def _draw(result, profile_points: int):
     tabs = result.tables()
     pts, curve = tabs["radius"], tabs["curve"]
     has_piv = "profile" in tabs
@@ -175,9 +208,6 @@ def fit_figure(
 
     st = status(result)
     fig.suptitle(st.text, color=st.colour, fontsize="medium")
-    if path is not None:
-        fig.savefig(path, dpi=120, format="png")
-    plt.close(fig)
     return fig
 
 
@@ -222,6 +252,25 @@ def _values(left, right, scale, n):
     return np.linspace(left, right, n)
 
 
+def _gaps(values, known, scale: str, right: float):
+    """The values farther than half their spacing (on the axis's scale) from every point the
+    interval walk already has: the profile is drawn through both, and only the gaps the walk
+    left cost constrained fits."""
+    if values.size < 2 or known.size == 0:
+        return values
+
+    def axis(v):
+        if scale == "log":
+            return np.log(v)
+        if scale == "symlog":
+            return np.arcsinh(np.asarray(v) / (2 * _linthresh(right)))
+        return np.asarray(v)
+
+    u, w = axis(values), axis(known)
+    half = 0.5 * (u.max() - u.min()) / (u.size - 1)
+    return values[np.min(np.abs(u[:, None] - w[None, :]), axis=1) > half]
+
+
 def profile_panel(ax, result, name, n=PROFILE_POINTS):
     rep = result.reports[name]
     if rep.constraint.get("fixed"):  # no profile: say so in the panel
@@ -237,15 +286,18 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
         ax.title.set_fontsize("small")
         return
     left, right, scale = profile_span(result, name)
+    walk = np.array(rep.profile.points).reshape(-1, 2)
+    known = walk[np.isfinite(walk[:, 1])]
     values = _values(left, right, scale, n) if n and result.refit is not None else np.empty(0)
+    values = _gaps(values, known[:, 0], scale, right)
     delta = result.profile_at(name, values) if values.size else values
     pts = sorted(
-        [(rep.estimate, 0.0)]
-        + [(float(a), float(b)) for a, b in zip(values, delta) if np.isfinite(b)]
+        {(rep.estimate, 0.0)}
+        | {(float(a), float(b)) for a, b in zip(values, delta) if np.isfinite(b)}
+        | {(float(a), float(b)) for a, b in known}
     )
     x, y = np.array(pts).T
     ax.plot(x, y, "o-", ms=2.5, lw=1, label="profile")
-    walk = np.array(rep.profile.points).reshape(-1, 2)
     ax.plot(walk[:, 0], walk[:, 1], "x", c="C2", ms=4, label="interval search")
     y = np.concatenate([y, walk[:, 1]])
     ax.axhline(

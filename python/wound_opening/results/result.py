@@ -124,6 +124,8 @@ class FitResult:
     #: (i, values of z_i) -> delta chi^2: the profile of coordinate i by constrained fits.
     refit: object = field(default=None, repr=False, compare=False)
     _profile_cache: dict = field(default_factory=dict, repr=False, compare=False)
+    #: The figures drawn (plots.drawn_once): key -> (figure, PNG bytes).
+    _figures: dict = field(default_factory=dict, repr=False, compare=False)
     #: The recording's settings (settings.py): cut, units, pixel size, frames, files; filled
     #: by the command line (or a reader), printed by the report.
     settings: dict = field(default_factory=dict)

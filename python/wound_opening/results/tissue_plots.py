@@ -13,7 +13,7 @@ import numpy as np
 
 from .names import ETA, SHARED
 from .numbers import interval, material_lines
-from .plots import errorbar_points, plt, time_axis
+from .plots import drawn_once, errorbar_points, plt, time_axis
 from .status import status
 
 LABELS = {
@@ -64,7 +64,11 @@ def _profile_panel(ax, result, name) -> None:
 
 def tissue_figure(result, path=None):
     """The figure of a converged TissueFitResult to `path` (a file name or a binary file
-    object), returned (closed)."""
+    object), returned (closed); drawn once for the report and `--plot` (plots.drawn_once)."""
+    return drawn_once(result, "tissue", lambda: _draw(result), path, 110)
+
+
+def _draw(result):
     tabs = result.tables()
     has_piv = any("profile" in t for t in tabs.values())
     fig = plt.figure(figsize=(13, 9), layout="constrained")
@@ -126,7 +130,4 @@ def tissue_figure(result, path=None):
         _profile_panel(fig.add_subplot(grid[2, k]), result, name)
     st = status(result)
     fig.suptitle(f"{len(tabs)} wounds of one tissue: {st.text}", color=st.colour, fontsize="medium")
-    if path is not None:
-        fig.savefig(path, dpi=110, format="png")
-    plt.close(fig)
     return fig

@@ -54,6 +54,8 @@ class TissueFitResult:
     #: The recording's settings (results/settings.py): cut, units, pixel size, frames, files.
     settings: dict = field(default_factory=dict)
     _material: tuple = field(default=(None, None), repr=False, compare=False)
+    #: The figures drawn (plots.drawn_once): key -> (figure, PNG bytes).
+    _figures: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def material(self) -> dict:
