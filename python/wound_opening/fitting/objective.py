@@ -218,6 +218,7 @@ class Objective(Problem):
             [R0 * (1 + sigma * h) - R0 * sigma * r_inf * dh_dr, R0 * h, R0 * sigma * dh_dl, dlnT]
         )
         if self.groups:
+            inside = self.inside_edge  # as the last model evaluation left it
             steps = np.array([STEP, STEP * max(1.0, abs(sigma)), dl, STEP])
             cols = []
             for i in range(4):
@@ -236,7 +237,7 @@ class Objective(Problem):
                         (self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf))
                         / (2 * steps[i])
                     )
-            self._profile(theta, r_inf)  # inside_edge at z
+            self.inside_edge = inside  # not the differences' shifted points
             jr = np.vstack([jr, np.column_stack(cols)])
         jr[:, [i for i in range(4) if i not in columns]] = 0.0
         return jr / self.sd[:, None]
