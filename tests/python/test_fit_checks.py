@@ -95,3 +95,24 @@ def test_lambda_on_its_bound_gets_the_mixture_threshold():
     mixture = stats.chi2.ppf(0.90, 1)
     assert result.profile_at("lambda", [hi])[0] == pytest.approx(mixture, rel=0.02)
     assert result.reports["lambda"].profile.threshold == pytest.approx(mixture)
+
+
+def test_several_wounds_name_the_wound_whose_residuals_are_systematic():
+    """Three wounds of one tissue (bench/tissue_designs.py), the noise estimated, wound 2's
+    R0 fixed 5 % above its truth: the fit fails, each reason naming a wound's radius series
+    (the shared material bends to wound 2 and leaves the misfit in another wound too)."""
+    from bench.tissue_designs import draw as tissue_draw
+
+    from wound_opening.fitting.wounds import Wound, fit_wounds
+
+    wounds = [
+        Wound(RadiusSeries(w.radius.times_s, w.radius.radius_um), w.outer_radius_um, name=w.name)
+        for w in tissue_draw(1e-2, 100)
+    ]
+    params = Parameters()
+    params.add("R0_um[2]", value=10.5, vary=False)
+    result = fit_wounds(wounds, params=params, intervals=False)
+    assert not result.converged
+    named = [r for r in result.reasons if "runs of residual signs" in r]
+    names = tuple(f"wound {w.name}: radius: " for w in wounds)
+    assert named and all(r.startswith(names) for r in named), named
