@@ -116,3 +116,18 @@ def test_several_wounds_name_the_wound_whose_residuals_are_systematic():
     named = [r for r in result.reasons if "runs of residual signs" in r]
     names = tuple(f"wound {w.name}: radius: " for w in wounds)
     assert named and all(r.startswith(names) for r in named), named
+
+
+def test_the_nuisance_quantile_matches_a_monte_carlo_of_its_model():
+    """q(rho) (bounds.py): chi^2_1's 3.84 at rho = 0; at rho = 0.95 the 95 % point of the
+    likelihood ratio of the local Gaussian model with psi >= 0 true at 0, simulated."""
+    from wound_opening.fitting.bounds import nuisance_quantile
+
+    assert nuisance_quantile(0.0) == pytest.approx(stats.chi2.ppf(0.95, 1), rel=1e-4)
+    rho, n = 0.95, 400_000
+    x, y = np.random.default_rng(1).standard_normal((2, n))
+    psi = rho * x + np.sqrt(1 - rho**2) * y  # (theta_hat, psi_hat), unit variances
+    star = np.maximum(psi - rho * x, 0.0)  # psi fitted at theta = its truth 0, psi >= 0
+    null = (x**2 - 2 * rho * x * (psi - star) + (psi - star) ** 2) / (1 - rho**2)
+    lr = null - np.where(psi >= 0, 0.0, psi**2)
+    assert nuisance_quantile(rho) == pytest.approx(np.quantile(lr, 0.95), rel=0.01)

@@ -138,8 +138,8 @@ def thresholds(problem, z, chi2_min: float, loss: str, noise_given: bool, dof: i
     docstring): lambda's where its estimate is 0; the others' wherever lambda's interval
     reaches 0 (its estimate 0, or delta chi^2 at lambda = 0 below the regular threshold,
     one constrained fit; a fit that fails there counts as reaching it). Nothing with
-    lambda held fixed."""
-    if 2 in problem.fixed:
+    lambda held fixed or bounded above 0 by the user (the bound is then the user's)."""
+    if 2 in problem.fixed or problem.bounds()[0][2] > 0:
         return {}
     base = regular(noise_given, dof)
     out = {}
