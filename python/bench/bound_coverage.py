@@ -3,7 +3,9 @@ lambda = 0"): the friction regime, radius only, exact-solution data (wound_exact
 R0 = 10 um, sigma = 0.5, T = 10 s, outer radius 100 um, FRAMES radii from 0.5 to 60 s and
 noise 1 % of the opening (given). For each lambda, the share of draws whose interval holds
 the truth, per quantity, over all converged draws and over those that call it identified,
-with a binomial p-value of the misses against honest 95 % intervals. Runs the package on
+with a binomial p-value of the misses against honest 95 % intervals, and the law of delta
+chi^2 at each parameter's truth (mean, share above 3.84 and 2.71, 95 % point: calibration
+by simulation of the threshold). Runs the package on
 PYTHONPATH, so the same command measures another tree (e.g. the tree before the change).
 
     PYTHONPATH=python python python/bench/bound_coverage.py --draws 200 --workers 2
@@ -54,6 +56,8 @@ def one(job):
             (lo, hi), ident = m["ci95"], m["identifiable"]
         covered = (lo is None or lo <= truth[name]) and (hi is None or truth[name] <= hi)
         out[name] = (covered, bool(ident))
+    # delta chi^2 at the truth of each parameter: its law is what the threshold calibrates
+    out["delta"] = {n: float(result.profile_at(n, [truth[n]])[0]) for n in QUANTITIES[:4]}
     return lam, out
 
 
@@ -64,9 +68,14 @@ def main() -> None:
     ap.add_argument("--frames", type=int, default=120)
     ap.add_argument("--noise", type=float, default=0.01)
     ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--seed", type=int, default=7000, help="first seed (each lambda its own)")
     args = ap.parse_args()
     lams = [float(x) for x in args.lambdas.split(",")]
-    jobs = [(lam, 7000 + k, args.frames, args.noise) for lam in lams for k in range(args.draws)]
+    jobs = [
+        (lam, args.seed + 1000 * j + k, args.frames, args.noise)
+        for j, lam in enumerate(lams)
+        for k in range(args.draws)
+    ]
     t0 = time.process_time()
     with Pool(args.workers) as pool:
         done = pool.map(one, jobs, chunksize=1)
@@ -82,6 +91,14 @@ def main() -> None:
             print(
                 f"  {name:<24} covered {sum(cov)}/{len(cov)} (P(misses >= {miss}) = {p:.2g}); "
                 f"identified {len(idc)}, of them covered {sum(idc)}"
+            )
+        for name in QUANTITIES[:4]:
+            d = np.array([o["delta"][name] for o in ok])
+            d = d[np.isfinite(d)]
+            print(
+                f"  delta chi^2 at the true {name:<7}: mean {d.mean():.2f} (chi^2_1: 1), "
+                f"> 3.84 in {np.sum(d > 3.84)}/{d.size}, > 2.71 in {np.sum(d > 2.71)}/{d.size}, "
+                f"95 % point {np.quantile(d, 0.95):.2f}"
             )
     print(f"CPU of this process {time.process_time() - t0:.0f} s (the workers' not counted)")
 

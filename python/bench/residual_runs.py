@@ -54,18 +54,23 @@ def main() -> None:
     args = ap.parse_args()
     t0 = time.process_time()
     counts = {"fits": 0, "warn": 0, "fail": 0, "other failures": 0}
-    for (lam, noise, design), given in itertools.product(
-        itertools.product(LAMBDAS, NOISES, DESIGNS), (False, True)
-    ):
-        for k in range(args.draws):
-            p_min, runs, other = one(design, lam, noise, 5000 + k, given)
+    cells = itertools.product(itertools.product(LAMBDAS, NOISES, DESIGNS), (False, True))
+    for c, ((lam, noise, design), given) in enumerate(cells):
+        for k in range(args.draws):  # a draw of its own per cell (independent alarms)
+            p_min, runs, other = one(design, lam, noise, 5000 + 100 * c + k, given)
             counts["fits"] += 1
             counts["other failures"] += bool(other)
             counts["fail"] += p_min < P_FAIL
             counts["warn"] += P_FAIL <= p_min < P_WARN
             print(
                 f"correct {design} lambda {lam:g} noise {noise:g} given {given} draw {k}: "
-                f"p_min {p_min:.3g} {[(r['series'], r['runs'], r['points']) for r in runs]}",
+                f"p_min {p_min:.3g} "
+                + str(
+                    [
+                        (r["series"], r["runs"], r["points"], round(r["durbin_watson"], 2))
+                        for r in runs
+                    ]
+                ),
                 flush=True,
             )
     print("correct fits:", counts)

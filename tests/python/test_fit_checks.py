@@ -70,8 +70,8 @@ def test_a_correct_fit_passes_the_runs_test(seed):
     assert all(r["level"] == "ok" for r in result.residual_runs)
 
 
-def test_the_runs_law_is_exact_and_short_series_cannot_alarm():
-    from wound_opening.fitting.gof import runs_law, runs_test
+def test_the_runs_law_is_exact_and_the_durbin_watson_tail_matches_a_monte_carlo():
+    from wound_opening.fitting.gof import durbin_watson_p, runs_law, runs_test
 
     rng = np.random.default_rng(0)
     n1, n2 = 7, 9
@@ -79,8 +79,13 @@ def test_the_runs_law_is_exact_and_short_series_cannot_alarm():
     sims = [1 + np.sum(np.diff(rng.permutation(signs)) != 0) for _ in range(20000)]
     freq = np.bincount(sims, minlength=n1 + n2 + 1) / 20000
     assert np.max(np.abs(freq - runs_law(n1, n2))) < 0.01
-    # six points in two runs (the fewest possible for three of each sign): p = 0.1
-    assert runs_test("x", [np.array([1, 2, 3, -1, -2, -3.0])]).p_value == pytest.approx(0.1)
+    # six points in two runs (the fewest possible for three of each sign): p = 0.1, so a
+    # short series alone cannot make the runs test alarm
+    assert runs_test("x", [np.array([1, 2, 3, -1, -2, -3.0])]).p_runs == pytest.approx(0.1)
+    e = rng.standard_normal((200_000, 40))  # Durbin-Watson of independent noise, 40 points
+    d = np.sum(np.diff(e, axis=1) ** 2, axis=1) / np.sum(e**2, axis=1)
+    for d0 in (1.0, 1.3):
+        assert durbin_watson_p(d0, [40]) == pytest.approx(np.mean(d <= d0), rel=0.1)
 
 
 def test_lambda_on_its_bound_gets_the_mixture_threshold():

@@ -1,4 +1,5 @@
-"""Systematic residuals: a runs test on the signs of each series' residuals.
+"""Systematic residuals: a runs test on the signs of each series' residuals and the
+Durbin-Watson test of their serial correlation.
 
 A model that describes the data leaves residuals that are independent noise; a model that
 cannot (a wrong fixed value, a closing wound, a wrong outer radius) leaves long stretches of
@@ -23,10 +24,20 @@ noise is given or estimated, in addition to chi^2 where it is given).
 
 The residuals of a fit are not exactly independent (4 parameters fitted to n points);
 docs/fitting.md gives the false-alarm rate measured on correct fits of exact-solution data
-and the detection rate on the wrong-R0 case. A series with p < P_FAIL makes the fit fail,
-one with p < P_WARN gives a warning; the Durbin-Watson statistic
-sum (e_i - e_{i-1})^2 / sum e_i^2 (2 for independent noise, 0 for a smooth misfit) is
-reported beside it as a measure of the size of the effect.
+and the detection rate on the wrong-R0 case.
+
+The signs lose the residuals' size; the Durbin-Watson statistic d = sum (e_i - e_{i-1})^2 /
+sum e_i^2 (differences within each sequence; 2 for independent noise, 0 for a smooth
+misfit) keeps it. For independent Gaussian noise d <= d0 is Q = e^T (A - d0 I) e <= 0 with A
+the second-difference form of the sequences, whose eigenvalues are 2 - 2 cos(pi j / m),
+j = 0 .. m - 1, for a sequence of m points: Q = sum_j mu_j Z_j^2, mu_j = those minus d0,
+and P(Q <= 0) is the Lugannani-Rice saddlepoint approximation with the cumulant generating
+function K(s) = -1/2 sum log(1 - 2 s mu_j) (relative error below 5 % at p = 6e-4 against
+a Monte Carlo of 40 points). The residuals of a fit lose the directions of the Jacobian's
+columns, which are smooth in time (low eigenvalues of A): that makes d larger, so this p is
+conservative for them. Each series' p-value is the smaller of the two tests' times 2
+(Bonferroni). A series with p < P_FAIL makes the fit fail, one with p < P_WARN gives a
+warning.
 """
 
 from __future__ import annotations
@@ -34,7 +45,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import gammaln
+from scipy import optimize
+from scipy.special import gammaln, ndtr
 
 #: Runs-test p-value below which a series makes the fit fail, and below which a warning is given.
 P_FAIL, P_WARN = 1e-4, 1e-3
@@ -72,23 +84,55 @@ def runs_law(n1: int, n2: int) -> np.ndarray:
     return p / p.sum()
 
 
+def durbin_watson_p(d0: float, lengths) -> float:
+    """P(d <= d0) for independent Gaussian noise in sequences of `lengths` points (module
+    docstring: saddlepoint approximation)."""
+    mu = np.concatenate([2 - 2 * np.cos(np.pi * np.arange(m) / m) for m in lengths]) - d0
+    if mu.max() <= 0:
+        return 1.0
+    if mu.min() >= 0:
+        return 0.0
+    lo, hi = 1 / (2 * mu.min()), 1 / (2 * mu.max())
+    s = optimize.brentq(
+        lambda s: float(np.sum(mu / (1 - 2 * s * mu))),
+        lo * (1 - 1e-12),
+        hi * (1 - 1e-12),
+        xtol=1e-15,
+    )
+    k = -0.5 * float(np.sum(np.log1p(-2 * s * mu)))
+    k2 = float(np.sum(2 * mu**2 / (1 - 2 * s * mu) ** 2))
+    if abs(s) * np.sqrt(k2) < 1e-6:  # the mean: the normal approximation
+        return float(ndtr(-float(np.sum(mu)) / np.sqrt(2 * np.sum(mu**2))))
+    w = np.sign(s) * np.sqrt(max(-2 * k, 0.0))
+    u = s * np.sqrt(k2)
+    p = ndtr(w) + np.exp(-0.5 * w * w) / np.sqrt(2 * np.pi) * (1 / w - 1 / u)
+    return float(np.clip(p, 0.0, 1.0))
+
+
 @dataclass(frozen=True)
 class Runs:
-    """The runs test of one series: runs observed and expected, points, p = P(R <= runs),
-    and the Durbin-Watson statistic."""
+    """The tests of one series: runs observed and expected, points, the runs test's
+    P(R <= runs), the Durbin-Watson statistic and its P(d <= observed), and the series'
+    p-value (the smaller times 2)."""
 
     series: str
     runs: int
     expected: float
     points: int
-    p_value: float
+    p_runs: float
     durbin_watson: float
+    p_durbin_watson: float
+
+    @property
+    def p_value(self) -> float:
+        return min(1.0, 2 * min(self.p_runs, self.p_durbin_watson))
 
     def text(self) -> str:
         return (
             f"{self.series}: {self.runs} runs of residual signs where {self.expected:.1f} are "
-            f"expected ({self.points} points, runs test p = {self.p_value:.2g}; Durbin-Watson "
-            f"{self.durbin_watson:.2f}, 2 for independent noise): systematic residuals"
+            f"expected ({self.points} points, runs test p = {self.p_runs:.2g}), Durbin-Watson "
+            f"{self.durbin_watson:.2f} where 2 is expected (p = {self.p_durbin_watson:.2g}): "
+            "systematic residuals"
         )
 
 
@@ -97,8 +141,10 @@ def runs_test(series: str, sequences) -> Runs | None:
     two signs of each kind in all."""
     law, runs, expected, num, den = np.ones(1), 0, 0.0, 0.0, 0.0
     pos = neg = 0
+    lengths = []
     for e in sequences:
         e = np.asarray(e, float)
+        lengths.append(e.size)
         s = np.sign(e[e != 0])
         if s.size == 0:
             continue
@@ -112,7 +158,8 @@ def runs_test(series: str, sequences) -> Runs | None:
     if min(pos, neg) < 2:
         return None
     p = float(min(np.sum(law[: runs + 1]), 1.0))
-    return Runs(series, runs, expected, pos + neg, p, num / den if den > 0 else float("nan"))
+    d = num / den if den > 0 else 2.0
+    return Runs(series, runs, expected, pos + neg, p, d, durbin_watson_p(d, lengths))
 
 
 def series_tests(obj, residuals, prefix: str = "") -> list[Runs]:
@@ -142,8 +189,10 @@ def as_dicts(tests) -> list[dict]:
             "runs": t.runs,
             "expected": t.expected,
             "points": t.points,
-            "p_value": t.p_value,
+            "p_runs": t.p_runs,
             "durbin_watson": t.durbin_watson,
+            "p_durbin_watson": t.p_durbin_watson,
+            "p_value": t.p_value,
             "level": level(t),
         }
         for t in tests

@@ -117,8 +117,9 @@ class FitResult:
     derived_profiles: dict = field(default_factory=dict)
     #: The fitted time scale against the sampling (plausibility.py).
     plausibility: list = field(default_factory=list)
-    #: The runs test of each series' residual signs (fitting/gof.py): dicts with "series",
-    #: "runs", "expected", "points", "p_value", "durbin_watson", "level" (ok, warn, fail).
+    #: The runs and Durbin-Watson tests of each series' residuals (fitting/gof.py): dicts
+    #: with "series", "runs", "expected", "points", "p_runs", "durbin_watson",
+    #: "p_durbin_watson", "p_value" (the smaller times 2), "level" (ok, warn, fail).
     residual_runs: list = field(default_factory=list)
     #: G [Pa] given for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
     G: tuple | None = None

@@ -14,8 +14,8 @@ friction zeta > 0 and a pre-tension; its values are forbidden where
 A converged fit whose estimate is forbidden is not a result: its status is red, naming the
 value ("physically impossible: tension/G = -5.4 <= 0 ..."). A fit whose estimate is allowed
 but one of whose 95 % intervals reaches a forbidden value is amber ("check: ..."). Otherwise
-green ("converged"). A converged fit whose residuals are systematic by the runs test at
-the warning level (fitting/gof.py) is amber too. The fit's own verdict (`converged`) is
+green ("converged"). A converged fit whose residuals are systematic at the warning level
+(runs and Durbin-Watson tests, fitting/gof.py) is amber too. The fit's own verdict (`converged`) is
 left as the optimiser and chi^2 judged it: the status is what the figure and report print
 beside the values.
 """
@@ -102,8 +102,9 @@ def status(result) -> Status:
     if bad:
         return Status("red", "converged, but physically impossible: " + "; ".join(bad), tuple(bad))
     runs = [
-        f"{r['series']}: residual signs in {r['runs']} runs where {r['expected']:.1f} are "
-        f"expected (p = {r['p_value']:.2g}): systematic residuals"
+        f"{r['series']}: systematic residuals ({r['runs']} runs of signs where "
+        f"{r['expected']:.1f} are expected, Durbin-Watson {r['durbin_watson']:.2f}; "
+        f"p = {r['p_value']:.2g})"
         for r in getattr(result, "residual_runs", ())
         if r["level"] == "warn"
     ]
