@@ -17,7 +17,7 @@ import wound_exact as we
 
 from wound_opening.cli import parser
 from wound_opening.cli_checks import check_cut, prepare, prepare_wounds
-from wound_opening.fitting.plausibility import intervals_of, unit_warnings
+from wound_opening.fitting.plausibility import intervals_of, time_scale_warnings, unit_warnings
 from wound_opening.fitting.recording import check_recording
 from wound_opening.fitting.single import fit
 from wound_opening.fitting.wounds import Wound, fit_wounds
@@ -184,6 +184,24 @@ def test_the_unit_question_is_asked_only_of_an_identified_time_scale():
     (found,) = unit_warnings(20.0, 10.0, tau)  # tau = 4000 s, its lower end lambda's bound
     assert "bounded above only" in found and "milliseconds" not in found, found
     assert unit_warnings(lam, 10.0, {"T_s": (5.0, 20.0)}) == []
+
+
+def test_the_half_opening_time_is_quoted_only_of_an_identified_time_scale():
+    """A recording of 12 s that ends during an opening with T = 1000 s: the warning says the
+    recording ends during the opening; the fitted curve's half-opening time is quoted only
+    where T's interval is finite on both sides (else it is a number the data do not give)."""
+    t = np.linspace(0.5, 12.0, 16)
+    theta, radius = (10.0, 0.5, 0.0, 1000.0), RadiusSeries(t, opening(t), NOISE)
+    for intervals, quoted in (
+        (None, False),
+        ({"T_s": (300.0, None), "tau_s": None}, False),
+        ({"T_s": (300.0, 3000.0), "tau_s": None}, True),
+    ):
+        found = [
+            w for w in time_scale_warnings(theta, OUTER, radius, None, intervals) if "ends" in w
+        ]
+        assert len(found) == 1 and "the recording ends during the opening" in found[0], found
+        assert ("half-opening time" in found[0]) == quoted, (intervals, found)
 
 
 def test_a_fit_with_its_intervals_asks_no_unit_question_of_an_unidentified_T():

@@ -135,13 +135,21 @@ class Reparametrised(Problem):
 
 
 def derived_profiles(
-    obj, z_hat, chi2_min: float, threshold: float, loss: str = "linear", alternates=(), cov_z=None
+    obj,
+    z_hat,
+    chi2_min: float,
+    threshold: float,
+    loss: str = "linear",
+    alternates=(),
+    cov_z=None,
+    thresholds=None,
 ) -> dict:
     """Profile (interval in the quantity's units) of tau, zeta/G and the viscous length;
     with other optima below the threshold (`alternates`: (z, delta chi^2)), the hull of the
     intervals walked from each (as likelihood.profile_all does). `cov_z`, the Jacobian's
     covariance in z, gives the first step (the standard error of w_k, from
-    cov_w = A cov_z A^T with A = dw/dz) and the start of the other coordinates."""
+    cov_w = A cov_z A^T with A = dw/dz) and the start of the other coordinates.
+    `thresholds`: kind -> its own threshold where lambda's bound changes it (bounds.py)."""
     out = {}
     centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for kind in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um"):
@@ -183,12 +191,13 @@ def derived_profiles(
             return (edge if mine else limit), mine
 
         w_centres = [(rep.to_w(c), d) for c, d in centres]
+        own = (thresholds or {}).get(kind)
         lo, hi, points, bounded = hull(
-            rep, k, w_centres, chi2_min, threshold, step, slope, loss, side_limit
+            rep, k, w_centres, chi2_min, own or threshold, step, slope, loss, side_limit
         )
         lo = None if lo is None else math.exp(lo)
         hi = None if hi is None else math.exp(hi)
         out[kind] = Profile(
-            lo, hi, False, sorted((math.exp(v), d) for v, d in points), tuple(bounded)
+            lo, hi, False, sorted((math.exp(v), d) for v, d in points), tuple(bounded), own
         )
     return out

@@ -247,11 +247,14 @@ def profile_all(
     cov_z: np.ndarray,
     loss: str = "linear",
     alternates=(),
+    thresholds=None,
 ) -> dict:
     """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z.
     `alternates`: other local optima (z, delta chi^2) below the threshold. The confidence
     set of a parameter may then be two intervals (a barrier between the valleys rises above
-    the threshold): each is walked from its own optimum and the hull is reported."""
+    the threshold): each is walked from its own optimum and the hull is reported.
+    `thresholds`: name -> a parameter's own threshold where lambda's bound changes it
+    (bounds.py; recorded in its Profile)."""
     out = {}
     lims = obj.bounds()
     centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
@@ -272,8 +275,9 @@ def profile_all(
             box_edge = lims[0 if direction < 0 else 1][i]
             return limit, user_bound(i, direction) and limit == box_edge
 
+        own = (thresholds or {}).get(name)
         lo, hi, walked, _ = hull(
-            obj, i, centres, chi2_min, threshold, step, slope, loss, side_limit
+            obj, i, centres, chi2_min, own or threshold, step, slope, loss, side_limit
         )
         points = [(z_hat[i], 0.0)] + walked
         lo_open = lo is None
@@ -285,7 +289,12 @@ def profile_all(
             hi is not None and user_bound(i, 1) and hi == lims[1][i],
         )
         out[name] = Profile(
-            lower, upper, at_bound, [(_own_units(i, v), d) for v, d in sorted(points)], bounded
+            lower,
+            upper,
+            at_bound,
+            [(_own_units(i, v), d) for v, d in sorted(points)],
+            bounded,
+            own,
         )
     return out
 

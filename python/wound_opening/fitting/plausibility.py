@@ -13,6 +13,10 @@ says what the samples can see:
 - f below DONE_AT_LAST at the last sampled time: the recording ends during the opening, and
   R_final and the time scale are extrapolated.
 
+These name what the data lack; the half-opening time of the fitted curve is quoted with them
+only where the slower time scale max(T, tau) is identified (a finite 95 % interval on both
+sides): the half-opening time of an estimate the data do not bound says nothing.
+
 A uniform rescaling of every time (milliseconds read as seconds) rescales the fitted time
 scales with the sampling and leaves f at the samples unchanged, so the sampling cannot reveal
 it. The time scales themselves can: T = zeta R0^2 / 4G (friction) and tau = lambda^2 T = eta / G
@@ -83,7 +87,9 @@ def time_scale_warnings(
             f_first, f_last = np.interp(np.log([first, last]), np.log(grid), done)
             half = (
                 f"half-opening time {float(np.exp(np.interp(0.5, done, np.log(grid)))):.3g} s"
-                if done[0] < 0.5 < done[-1] and np.all(np.diff(done) >= 0)
+                if done[0] < 0.5 < done[-1]
+                and np.all(np.diff(done) >= 0)
+                and _identified(lam, T, intervals)
                 else ""
             )
             if f_first > DONE_AT_FIRST:
@@ -105,13 +111,24 @@ def time_scale_warnings(
     return out + unit_warnings(lam, T, intervals)
 
 
+def _slower(lam: float, T: float) -> tuple[str, str, float]:
+    """(interval key, name, value) of the slower time scale max(T, tau)."""
+    tau = lam**2 * T
+    return ("tau_s", "tau = lambda^2 T", tau) if tau > T else ("T_s", "T", T)
+
+
+def _identified(lam: float, T: float, intervals: dict | None) -> bool:
+    """Whether the slower time scale's 95 % interval is finite on both sides."""
+    ends = (intervals or {}).get(_slower(lam, T)[0])
+    return ends is not None and None not in ends
+
+
 def unit_warnings(lam: float, T: float, intervals: dict | None) -> list[str]:
     """The unit question about the slower time scale max(T, tau) out of (SHORTEST_S,
     LONGEST_S), asked only where its 95 % interval is finite on both sides. `intervals`:
     {"T_s": (lower, upper), "tau_s": (lower, upper)}, None for an open end (a lower end on
     lambda's bound 0 counts as open); None (or the pair None): not computed."""
-    tau = lam**2 * T
-    key, name, t_c = ("tau_s", "tau = lambda^2 T", tau) if tau > T else ("T_s", "T", T)
+    key, name, t_c = _slower(lam, T)
     if SHORTEST_S <= t_c <= LONGEST_S:
         return []
     long = t_c > LONGEST_S

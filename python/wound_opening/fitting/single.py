@@ -11,8 +11,9 @@ profile, for R0_um, sigma, lambda (>= 0) and T_s, with profile-likelihood interv
    quantile instead of chi^2(1) (3.84).
 4. Intervals: profile likelihood (likelihood.py), also of tau, zeta/G and the viscous length
    (derived.py); standard errors from the Jacobian.
-5. Verdict: converged only if the optimiser reports convergence, the Jacobian has full rank
-   and, with the noise given, chi^2 is consistent with its degrees of freedom (p >= 1e-6).
+5. Verdict: converged only if the optimiser reports convergence, the Jacobian has full rank,
+   with the noise given chi^2 is consistent with its degrees of freedom (p >= 1e-6), and the
+   signs of each series' residuals show no systematic misfit (runs test, gof.py).
 
 `params` (parameters.py): parameters held fixed, bounded or given a Gaussian prior, and G
 for the absolute material values (material.py). Fixed parameters leave every stage; each
@@ -30,7 +31,9 @@ from ..results.export import data_points
 from ..results.names import NAMES
 from ..results.profiles import Profile
 from ..results.result import FitResult, ParameterReport
+from .bounds import thresholds as bound_thresholds
 from .derived import derived_profiles
+from .gof import as_dicts, series_tests
 from .intervals import profile_all, profile_at
 from .local import cost
 from .objective import Objective, from_z
@@ -83,6 +86,7 @@ def fit(
         loss=loss,
         extra_chi2=float(np.sum(obj.prior_residuals(z) ** 2)),
         what=f"the {n_free} free parameters",
+        runs=series_tests(data, residuals),
     )
     cov_z = judged.cov
     held = list(spec.fixed)
@@ -97,11 +101,13 @@ def fit(
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
     others = alternates(obj, z, ends, chi2_cost, loss)  # other local optima a profile may reach
-    profiles = (
-        _profiles(obj, z, chi2_cost, judged.threshold, cov_z, loss, others, derived)
-        if intervals and not judged.reasons
-        else {}
-    )
+    profiles = {}
+    if intervals and not judged.reasons:
+        dof = max(obj.size - n_free, 1)
+        near = bound_thresholds(obj, z, chi2_cost, loss, not any(data.estimated), dof)
+        profiles = _profiles(
+            obj, z, chi2_cost, judged.threshold, cov_z, loss, others, derived, near
+        )
     reports = {
         name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name), spec.describe(i))
         for i, name in enumerate(NAMES)
@@ -135,10 +141,12 @@ def fit(
         piv_at_edge=data.inside_edge,
         derived_profiles={name: p for name, p in profiles.items() if name not in NAMES},
         plausibility=recording
+        + list(judged.warnings)
         + time_scale_warnings(
             theta, obj.outer, radius, profile, intervals_of(reports, profiles) if profiles else None
         ),
         points=data_points(data, z, judged.flagged),
+        residual_runs=as_dicts(judged.runs),
         refit=partial(profile_at, obj, z, chi2_cost, loss=loss) if not judged.reasons else None,
     )
 
@@ -172,13 +180,21 @@ def _local_fits(obj: Constrained, data: Objective, spec, loss: str):
 
 
 def _profiles(
-    obj: Constrained, z, chi2_min: float, threshold: float, cov_z, loss: str, others, derived: bool
+    obj: Constrained,
+    z,
+    chi2_min: float,
+    threshold: float,
+    cov_z,
+    loss: str,
+    others,
+    derived: bool,
+    near: dict,
 ):
     """The parameters' profiles (and the derived values' with `derived`); a fixed
-    parameter's is its value."""
-    profiles = profile_all(obj, z, chi2_min, threshold, cov_z, loss, others)
+    parameter's is its value. `near`: the thresholds lambda's bound changes (bounds.py)."""
+    profiles = profile_all(obj, z, chi2_min, threshold, cov_z, loss, others, near)
     if profiles and derived:
-        profiles |= derived_profiles(obj, z, chi2_min, threshold, loss, others, cov_z)
+        profiles |= derived_profiles(obj, z, chi2_min, threshold, loss, others, cov_z, near)
     if profiles:
         for i, v in obj.spec.fixed.items():
             profiles[NAMES[i]] = Profile(v, v, False, [(v, 0.0)])

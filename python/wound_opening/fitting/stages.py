@@ -1,7 +1,8 @@
 """The stages of a fit, shared by one wound (single.py) and several (wounds.py): the best of
 local fits from several starts continued side by side (`best_of`), the noise estimated from
 the residuals and the fit repeated at it (`refit_at_noise`), the verdict (optimiser, chi^2
-and its p-value, rank of the Jacobian and the covariance: `verdict`), the other local optima
+and its p-value, systematic residuals by the runs test of gof.py, rank of the Jacobian and
+the covariance: `verdict`), the other local optima
 a profile may reach (`alternates`) and the flagged points as input rows (`outliers`).
 """
 
@@ -15,6 +16,8 @@ from scipy import stats
 
 from .._native import SolverError
 from ..inputs.series import where
+from .bounds import regular
+from .gof import judge_series
 from .local import cost, local_fit
 from .objective import Objective
 from .problem import Problem
@@ -96,8 +99,9 @@ def refit_at_noise(problem: Problem, parts, z_of, best, loss: str, share: float)
 class Verdict:
     """Whether a fit stands: `reasons` it does not (empty: converged), chi^2 without the
     flagged points (plus `extra_chi2`), its p-value (None with an estimated noise), the
-    threshold of delta chi^2 for 95 % intervals, and the covariance of the coordinates
-    (nan where the Jacobian does not determine them)."""
+    threshold of delta chi^2 for 95 % intervals, the covariance of the coordinates
+    (nan where the Jacobian does not determine them), the runs tests of the series
+    (gof.py) and the warnings they give."""
 
     reasons: list
     optimizer: dict
@@ -106,6 +110,8 @@ class Verdict:
     p_value: float | None
     threshold: float
     cov: np.ndarray
+    runs: tuple = ()
+    warnings: tuple = ()
 
 
 def verdict(
@@ -119,11 +125,14 @@ def verdict(
     loss: str,
     extra_chi2: float = 0.0,
     what: str = "the parameters",
+    runs=(),
 ) -> Verdict:
     """The verdict at the best point: `residuals` and `jac` there, `free` the columns judged
     (a coordinate on a bound where its column vanishes left out), `res` the optimiser's
-    result; `what` the singular Jacobian leaves undetermined."""
-    threshold = float(stats.chi2.ppf(0.95, 1)) if noise_given else float(stats.f.ppf(0.95, 1, dof))
+    result; `what` the singular Jacobian leaves undetermined; `runs` the runs tests of the
+    series (gof.series_tests: systematic residuals fail the fit or warn, whether the noise
+    is given or estimated)."""
+    threshold = regular(noise_given, dof)
     optimizer = {"status": int(res.status), "message": str(res.message), "nfev": int(res.nfev)}
     reasons = [] if res.status > 0 else [f"optimiser stopped without converging ({res.message})"]
     flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
@@ -134,6 +143,8 @@ def verdict(
             f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
             "the model does not describe the data with the given noise"
         )
+    systematic, warnings = judge_series(runs)
+    reasons += systematic
     n = jac.shape[1]
     sv = np.linalg.svd(jac[:, free], compute_uv=False)
     cov = np.full((n, n), np.nan)
@@ -147,7 +158,9 @@ def verdict(
         reasons.append(
             f"the Jacobian at the best point is singular: the data do not determine {what}"
         )
-    return Verdict(reasons, optimizer, flagged, chi2, p_value, threshold, cov)
+    return Verdict(
+        reasons, optimizer, flagged, chi2, p_value, threshold, cov, tuple(runs), tuple(warnings)
+    )
 
 
 def alternates(problem: Problem, z, ends, chi2_min: float, loss: str) -> list:

@@ -26,8 +26,9 @@ wound's Objective.jacobian in z_k = (ln R0_k, sigma, lambda_k, ln T_k):
 
 Stages, as for one wound (fitting.py): starts from each wound fitted alone (no intervals)
 combined, and from a coarse grid in l; local fits (local.py); noise given or estimated per
-data set of each wound; the verdict (optimiser, rank of the Jacobian, chi^2); profile
-likelihood intervals of l, tension/G, zeta/G, eta/G and every R0_k (intervals.py's walker).
+data set of each wound; the verdict (optimiser, rank of the Jacobian, chi^2, the runs test of
+each wound's series: gof.py); profile likelihood intervals of l, tension/G, zeta/G, eta/G
+and every R0_k (intervals.py's walker).
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ from ..results.names import ETA, SHARED
 from ..results.profiles import Profile
 from ..results.result import ParameterReport
 from ..results.wounds import TissueFitResult
+from .gof import as_dicts, series_tests
 from .intervals import hull
 from .local import cost
 from .objective import LAMBDA_MAX, Objective, from_z
@@ -277,6 +279,12 @@ def fit_wounds(
     residuals = tissue.residuals(y)
     # l on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
     free = [i for i in obj.free if not (i == 0 and y[0] <= 1e-8 * math.exp(max(y[3:])))]
+    cuts = np.cumsum([0] + [p.size for p in parts])
+    runs = [
+        t
+        for k, (p, w) in enumerate(zip(parts, wounds))
+        for t in series_tests(p, residuals[cuts[k] : cuts[k + 1]], f"wound {w.name}: ")
+    ]
     judged = verdict(
         residuals,
         obj.jacobian(y),
@@ -286,6 +294,7 @@ def fit_wounds(
         noise_given=noise_given,
         loss=loss,
         extra_chi2=float(np.sum(obj.prior_residuals(y) ** 2)),
+        runs=runs,
     )
     reasons, threshold, cov, flagged = judged.reasons, judged.threshold, judged.cov, judged.flagged
     held = list(obj.fixed)
@@ -329,7 +338,7 @@ def fit_wounds(
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(np.sqrt(np.diag(cov)), np.sqrt(np.diag(cov)))
     start = 0
-    warnings = []
+    warnings = list(judged.warnings)
     wound_rows = []
     for k, (p, w) in enumerate(zip(parts, wounds)):
         part = residuals[start : start + p.size]
@@ -378,6 +387,7 @@ def fit_wounds(
         optimizer=judged.optimizer,
         evaluations=tissue.evaluations,
         plausibility=warnings,
+        residual_runs=as_dicts(judged.runs),
         G=spec.G,
     )
 

@@ -300,9 +300,8 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
     ax.plot(x, y, "o-", ms=2.5, lw=1, label="profile")
     ax.plot(walk[:, 0], walk[:, 1], "x", c="C2", ms=4, label="interval search")
     y = np.concatenate([y, walk[:, 1]])
-    ax.axhline(
-        result.threshold, ls="--", c="gray", lw=0.8, label=f"95 % threshold {result.threshold:.3g}"
-    )
+    threshold = rep.profile.threshold or result.threshold  # its own near lambda's bound
+    ax.axhline(threshold, ls="--", c="gray", lw=0.8, label=f"95 % threshold {threshold:.3g}")
     ax.axvline(rep.estimate, c="k", ls=":", lw=0.8)
     for end in rep.ci95:
         if end is not None:
@@ -314,7 +313,7 @@ def profile_panel(ax, result, name, n=PROFILE_POINTS):
         if right < 1e3 * left:
             plain_ticks(ax.xaxis)
     ax.set_xlim(min(left, float(x.min())), max(right, float(x.max())))
-    ax.set_ylim(0, max(1.5 * result.threshold, min(float(y.max()) * 1.05, 4 * result.threshold)))
+    ax.set_ylim(0, max(1.5 * threshold, min(float(y.max()) * 1.05, 4 * threshold)))
     lo, hi = rep.ci95
     verdict = "identified" if rep.identifiable else "not identified"
     ax.set(

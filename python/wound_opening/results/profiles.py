@@ -17,3 +17,27 @@ class Profile:
     points: list = field(default_factory=list)  # (value, delta chi^2), value in its own units
     #: (lower, upper): the end is a bound the user set, not a rise of the profile.
     bounded: tuple = (False, False)
+    #: The delta chi^2 threshold of its 95 % interval where it is not the fit's (a bound
+    #: nearby: fitting/bounds.py); None: the fit's `threshold`.
+    threshold: float | None = None
+
+
+def own_thresholds(profiles: dict) -> dict:
+    """name -> the threshold of a profile that has its own (lambda's bound nearby)."""
+    return {
+        name: p.threshold
+        for name, p in profiles.items()
+        if p is not None and getattr(p, "threshold", None) is not None
+    }
+
+
+def threshold_line(threshold: float, profiles: dict) -> str | None:
+    """The summary's line on the thresholds of delta chi^2 where some differ from the fit's."""
+    own = own_thresholds(profiles)
+    if not own:
+        return None
+    return (
+        f"95 % thresholds of delta chi^2: {threshold:.3g}, except "
+        + ", ".join(f"{k} {v:.3g}" for k, v in own.items())
+        + " (lambda's bound 0 within reach: fitting/bounds.py, docs/fitting.md)"
+    )

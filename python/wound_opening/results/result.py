@@ -14,7 +14,7 @@ from .export import export as export_csv
 from .export import tables as data_tables
 from .names import NAMES
 from .numbers import interval as interval_text
-from .profiles import Profile
+from .profiles import Profile, own_thresholds, threshold_line
 
 
 @dataclass
@@ -80,6 +80,7 @@ VERDICT = (
     "p_value",
     "noise_given",
     "loss",
+    "residual_runs",
 )
 
 
@@ -116,6 +117,10 @@ class FitResult:
     derived_profiles: dict = field(default_factory=dict)
     #: The fitted time scale against the sampling (plausibility.py).
     plausibility: list = field(default_factory=list)
+    #: The runs and Durbin-Watson tests of each series' residuals (fitting/gof.py): dicts
+    #: with "series", "runs", "expected", "points", "p_runs", "durbin_watson",
+    #: "p_durbin_watson", "p_value" (the smaller times 2), "level" (ok, warn, fail).
+    residual_runs: list = field(default_factory=list)
     #: G [Pa] given for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
     G: tuple | None = None
     #: The data in the input's order with the model, the noise used and the flags (export.py).
@@ -249,6 +254,10 @@ class FitResult:
             self._profile_cache[key] = self.refit(i, np.log(v) if i in (0, 3) else v)
         return self._profile_cache[key].copy()
 
+    def _profiles(self) -> dict:
+        """Every profile computed, parameters' and derived values', by name."""
+        return {n: r.profile for n, r in self.reports.items()} | dict(self.derived_profiles)
+
     def tables(self) -> dict:
         """The data with the model, residuals and flags, and the fitted curve, as pandas
         DataFrames with units in the column names (export.py)."""
@@ -297,6 +306,7 @@ class FitResult:
             },
             "outer_radius_um": self.outer_radius_um,
             "delta_chi2_95": self.threshold,
+            "delta_chi2_95_own": own_thresholds(self._profiles()),
             "noise": {
                 "radius_um": self.noise[0],
                 "velocity_um_s": self.noise[1] if self.has_profile else None,
@@ -376,7 +386,8 @@ class FitResult:
                 f"PIV vectors at or inside the model's wound edge (compared with the edge "
                 f"velocity): {self.piv_at_edge}"
             )
-        lines += [f"warning: {w}" for w in self.warnings]
+        own = threshold_line(self.threshold, self._profiles())
+        lines += ([own] if own else []) + [f"warning: {w}" for w in self.warnings]
         from .status import status as physical_status
 
         st = physical_status(self)

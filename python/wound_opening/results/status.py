@@ -14,8 +14,10 @@ friction zeta > 0 and a pre-tension; its values are forbidden where
 A converged fit whose estimate is forbidden is not a result: its status is red, naming the
 value ("physically impossible: tension/G = -5.4 <= 0 ..."). A fit whose estimate is allowed
 but one of whose 95 % intervals reaches a forbidden value is amber ("check: ..."). Otherwise
-green ("converged"). The fit's own verdict (`converged`) is left as the optimiser and chi^2
-judged it: the status is what the figure and report print beside the values.
+green ("converged"). A converged fit whose residuals are systematic at the warning level
+(runs and Durbin-Watson tests, fitting/gof.py) is amber too. The fit's own verdict (`converged`) is
+left as the optimiser and chi^2 judged it: the status is what the figure and report print
+beside the values.
 """
 
 from __future__ import annotations
@@ -99,6 +101,13 @@ def status(result) -> Status:
     bad, edge = result.physics()
     if bad:
         return Status("red", "converged, but physically impossible: " + "; ".join(bad), tuple(bad))
-    if edge:
-        return Status("amber", "converged; check: " + "; ".join(edge), tuple(edge))
+    runs = [
+        f"{r['series']}: systematic residuals ({r['runs']} runs of signs where "
+        f"{r['expected']:.1f} are expected, Durbin-Watson {r['durbin_watson']:.2f}; "
+        f"p = {r['p_value']:.2g})"
+        for r in getattr(result, "residual_runs", ())
+        if r["level"] == "warn"
+    ]
+    if edge or runs:
+        return Status("amber", "converged; check: " + "; ".join(edge + runs), tuple(edge + runs))
     return Status("green", "converged")

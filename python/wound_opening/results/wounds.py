@@ -49,6 +49,8 @@ class TissueFitResult:
     optimizer: dict = field(default_factory=dict)
     evaluations: int = 0
     plausibility: list = field(default_factory=list)
+    #: The runs tests of the wounds' series (FitResult.residual_runs).
+    residual_runs: list = field(default_factory=list)
     #: G [Pa] for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
     G: tuple | None = None
     #: The recording's settings (results/settings.py): cut, units, pixel size, frames, files.
