@@ -1,5 +1,5 @@
-"""Coverage of the 95 % intervals next to lambda's bound 0 (issue 25, "under-coverage next to
-lambda = 0"): the friction regime, radius only, exact-solution data (wound_exact.py) with
+"""Coverage of the 95 % intervals next to lambda's bound 0: the friction regime, radius only,
+exact-solution data (wound_exact.py) with
 R0 = 10 um, sigma = 0.5, T = 10 s, outer radius 100 um, FRAMES radii from 0.5 to 60 s and
 noise 1 % of the opening (given). For each lambda, the share of draws whose interval holds
 the truth, per quantity, over all converged draws and over those that call it identified,

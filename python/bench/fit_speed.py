@@ -1,5 +1,5 @@
 """Speed of `fit` at the sizes labs have, side by side with an earlier revision in one run.
-Writes OUT/fit_speed.csv and prints a markdown table (issue 25: targets in CPU seconds).
+Writes OUT/fit_speed.csv and prints a markdown table (CPU seconds).
 
 Data from the EXACT solution (wound_exact.py), made once by this process and shared by
 both fitters. The tissue of examples/lab (make_lab_examples.py): viscous length 20 um,

@@ -1,6 +1,6 @@
 """The runs test of the residuals (fitting/gof.py): its false-alarm rate on correct fits of
 exact-solution data (bench/fit_designs.py: designs x lambda x noise, the noise estimated, and
-given) and its detection rate on the wrong fixed value of issue 25 (piv design, lambda 0.5,
+given) and its detection rate on a wrong fixed value (piv design, lambda 0.5,
 noise 1 % of the opening, noise estimated, R0 fixed at 10.5 um where the truth is 10 um).
 Fits without intervals (the verdict needs none). Prints one line per fit and the counts.
 

@@ -25,7 +25,7 @@ def _noise_estimated(radius, profile):
 
 
 def test_a_wrong_fixed_R0_fails_by_its_systematic_residuals_with_the_noise_estimated():
-    """Issue 25: radius + PIV (lambda 0.5, noise 1 % of the opening, not given), R0 fixed at
+    """Radius + PIV (lambda 0.5, noise 1 % of the opening, not given), R0 fixed at
     10.5 um where the truth is 10: sigma and T came out "identified" and wrong, exit 0. The
     radius residuals run in a few long blocks of one sign."""
     params = Parameters()

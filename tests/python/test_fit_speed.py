@@ -1,4 +1,4 @@
-"""What makes fits fast (issue 25) leaves their answers alone, on data from the EXACT solution
+"""What makes fits fast leaves their answers alone, on data from the EXACT solution
 (python/wound_exact.py): a fit in asinh(sigma), asinh(lambda) (local.py) reaches the optimum
 a fit in (sigma, lambda) reaches; a profile panel fits only the gaps the interval walk left
 (plots._gaps); the report's figure and --plot's are one drawing with the same bytes."""

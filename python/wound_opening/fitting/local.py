@@ -12,7 +12,7 @@ d r / d x = cosh(x) d r / d lambda: linear near the bound 0 (kept at x = 0), ln(
 beyond 1. Where R(t) depends on tau = lambda^2 T only (lambda >> 1, the tissue moving as one)
 the valley ln T = ln tau - 2 ln lambda is then a straight line, which the trust region
 follows in a few steps; in lambda it is curved, and fits held at a value of another
-parameter crawled along it for their 200 evaluations (the intervals' walks, issue 25).
+parameter crawled along it for their 200 evaluations (the intervals' walks).
 """
 
 from __future__ import annotations

@@ -207,7 +207,7 @@ class Objective(Problem):
         The radius columns need the modal basis of R_inf alone; every difference in ln R0 of
         the profile columns is taken between the outer radii rc -+ dr, two more bases."""
         columns = (0, 1, 2, 3) if columns is None else columns
-        R0, sigma, lam, T = theta = from_z(z)
+        R0, sigma, lam, T = from_z(z)
         r_inf = self.outer / R0
         t = self.t_sorted
         h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, t / T)
