@@ -211,8 +211,16 @@ def baseline_tree(rev: str, into: Path) -> Path:
     return into / "python"
 
 
+def _library() -> Path:
+    from wound_opening import library_path
+
+    return library_path()
+
+
 def spawn(pkg: Path, name: str, data_file: str, out_dir: str) -> dict:
-    env = dict(os.environ, PYTHONPATH=str(pkg))
+    """Run one case in a subprocess importing the package at `pkg`, on the native library this
+    process loads (both columns of a run use the same library)."""
+    env = dict(os.environ, PYTHONPATH=str(pkg), WOUND_OPENING_LIB=str(_library()))
     cmd = [sys.executable, __file__, "--worker", name, data_file, out_dir]
     got = subprocess.run(cmd, env=env, capture_output=True, text=True)
     if got.returncode != 0:
