@@ -162,12 +162,34 @@ def runs_test(series: str, sequences) -> Runs | None:
     return Runs(series, runs, expected, pos + neg, p, d, durbin_watson_p(d, lengths))
 
 
+#: A series whose residuals are below this fraction of the noise given (rms), or below
+#: RESOLVED of its data's range in size, is not tested: its pattern is then that of the
+#: solver's own error (exact data) or of a misfit far inside the noise, not a misfit the
+#: data show.
+NEGLIGIBLE, RESOLVED = 0.1, 1e-8
+
+
+def _resolved(obj, k: int, normalised: np.ndarray, data: np.ndarray) -> bool:
+    """Whether series k (0 radius, 1 profile) of `obj` has residuals a pattern test can read:
+    not below NEGLIGIBLE of a given noise, nor RESOLVED of the data's range."""
+    if normalised.size == 0:
+        return False
+    sd = obj.split(obj.sd)[k]
+    size = float(np.sqrt(np.mean((normalised * sd) ** 2)))
+    span = float(np.ptp(data)) if k == 0 else float(np.max(np.abs(data)))
+    if size <= RESOLVED * span:
+        return False
+    return obj.estimated[k] or float(np.sqrt(np.mean(normalised**2))) >= NEGLIGIBLE
+
+
 def series_tests(obj, residuals, prefix: str = "") -> list[Runs]:
     """Runs tests of an Objective's series at its `residuals` (objective.py order): the radius
-    in time, the PIV profile by distance within each time."""
+    in time, the PIV profile by distance within each time; a series whose residuals are not
+    resolved (`_resolved`) is left out."""
     radius, profile = obj.split(np.asarray(residuals, float))
-    out = [runs_test(f"{prefix}radius", [radius])]
-    if obj.groups:
+    velocities = obj.split(obj.data())[1]
+    out = [runs_test(f"{prefix}radius", [radius])] if _resolved(obj, 0, radius, obj.radius) else []
+    if obj.groups and _resolved(obj, 1, profile, velocities):
         pieces, start = [], 0
         for _, r, _, _ in obj.groups:
             part = profile[start : start + r.size]
