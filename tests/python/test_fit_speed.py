@@ -67,3 +67,53 @@ def test_the_report_and_the_plot_are_one_drawing(series, monkeypatch, tmp_path):
     assert (tmp_path / "fit.png").read_bytes() == buf.getvalue()
     fig = plots.fit_figure(result, series, None, tmp_path / "other.png", profile_points=4)
     assert len(drawn) == 2 and fig is not None
+
+
+def _fake_fits(monkeypatch, module, ends):
+    """Replace `module.local_fit` by a record of its calls: `ends(z0, max_nfev)` gives
+    (z, cost, status) of each fit."""
+    from scipy.optimize import OptimizeResult
+
+    calls = []
+
+    def fake(obj, z0, fixed=None, value=None, loss="linear", tol=1e-12, max_nfev=200):
+        z0 = np.array(z0, dtype=float)
+        calls.append((z0.copy(), max_nfev))
+        z, c, status = ends(z0, max_nfev)
+        return np.asarray(z, float), c, OptimizeResult(status=status, message="", nfev=max_nfev)
+
+    monkeypatch.setattr(module, "local_fit", fake)
+    return calls
+
+
+def test_a_fit_within_flat_of_a_finished_one_is_not_continued(monkeypatch):
+    """best_of continues the lowest fit first; once it is finished, a fit less than FLAT
+    above it (the same flat valley) is not continued, one further above is."""
+    from wound_opening.fitting import stages
+
+    first = {0.0: 10.0, 1.0: 10.0 + 0.5 * stages.FLAT, 2.0: 10.5}  # by the start's z[0]
+    then = {0.0: (9.999, 2), 1.0: (9.9985, 2), 2.0: (10.2, 2)}
+
+    def ends(z0, max_nfev):
+        k = float(z0[0])
+        if max_nfev == 200:
+            return z0, first[k], 0
+        c, status = then[k]
+        return z0, c, status
+
+    calls = _fake_fits(monkeypatch, stages, ends)
+    best, _, _ = stages.best_of(None, [np.full(4, k) for k in (2.0, 1.0, 0.0)], "linear")
+    continued = [float(z[0]) for z, n in calls if n == 400]
+    assert continued == [0.0, 2.0]
+    assert best[1] == pytest.approx(9.999) and best[2].status == 2
+
+
+def test_a_panel_value_is_not_fitted_twice_from_the_same_start(monkeypatch):
+    """profile_at retries a value that does not converge from the previous optimum and the
+    estimate; where those are the start it tried (no optimum yet), it fits it once."""
+    from wound_opening.fitting import intervals
+
+    calls = _fake_fits(monkeypatch, intervals, lambda z0, n: (z0, 1.0, 0))
+    out = intervals.profile_at(None, np.zeros(4), 0.0, 2, [0.1, 0.2])
+    assert np.all(np.isnan(out))
+    assert len(calls) == 2

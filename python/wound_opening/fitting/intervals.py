@@ -319,7 +319,8 @@ def profile_at(
     previous value's optimum moved along the line through the last two (as `walk_side`
     predicts), and where that fit does not converge or delta jumps by more than JUMP from the
     previous value, also from the previous optimum itself and then from the estimate,
-    keeping the lowest: one start alone can end in a higher valley and draw a spike. A value
+    keeping the lowest (a start equal to one tried is not fitted again): one start alone can
+    end in a higher valley and draw a spike. A value
     whose fits all stop without converging within `max_nfev` evaluations, or that the solver
     refuses, gives nan (its chi^2 would only bound the profile from above). For drawing a
     profile finely; the intervals come from `profile_all`."""
@@ -338,10 +339,13 @@ def profile_at(
                 if len(path) >= 2 and path[-2][0] != v1
                 else 0
             )
-            best = None
+            best, tried = None, []
             for start in (z1 + np.clip(move, -1.0, 1.0), z1, z_hat):
                 if best is not None and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0):
                     break
+                if any(np.array_equal(start, s) for s in tried):
+                    continue  # the same start gives the same fit
+                tried.append(start)
                 try:
                     z, chi2, res = local_fit(
                         obj, start, fixed=i, value=v, loss=loss, tol=1e-7, max_nfev=max_nfev

@@ -43,8 +43,9 @@ def best_of(obj, starts, loss, rounds: int = 6):
     curved valley they crawl along, as plateau data at low noise give) continue side by side
     in rounds of 400 evaluations, until the optimiser converges, a round lowers the cost by
     less than FLAT (at its minimum for the intervals: status 1, said in the message), or
-    `rounds` are spent (status 0); a fit whose cost lies above the best converged one by more
-    than its last drop times the rounds left is abandoned (it cannot overtake it). `obj`:
+    `rounds` are spent (status 0). Each round continues the fits lowest cost first and
+    abandons a fit whose cost lies above the best finished one by more than its last drop
+    times the rounds left (it cannot overtake it) or by less than FLAT (`_worth`). `obj`:
     a Problem (problem.py)."""
     fits, failures = [], []
     for z0 in starts:
@@ -55,13 +56,12 @@ def best_of(obj, starts, loss, rounds: int = 6):
             continue
         fits.append([z, c, res, math.inf])  # z, cost, result, last drop
     for left in range(rounds, 0, -1):
-        done = [f[1] for f in fits if f[2].status > 0]
-        live = [
-            f for f in fits if f[2].status == 0 and not (done and f[1] - min(done) > f[3] * left)
-        ]
-        if not live:
+        live = [f for f in fits if f[2].status == 0]
+        if not any(_worth(f, fits, left) for f in live):
             break
-        for f in live:
+        for f in sorted(live, key=lambda f: f[1]):  # the lowest first
+            if not _worth(f, fits, left):
+                continue
             try:
                 z2, c2, res2 = local_fit(obj, f[0], loss=loss, max_nfev=400)
             except SolverError:
@@ -81,6 +81,19 @@ def best_of(obj, starts, loss, rounds: int = 6):
     ends = [(f[0], f[1]) for f in fits]
     best = min(fits, key=lambda f: f[1])[:3] if fits else None
     return (tuple(best) if best else None), failures, ends
+
+
+def _worth(f, fits, left: int) -> bool:
+    """Whether the live fit f ([z, cost, result, last drop]) is worth another round: not if
+    its cost lies above the best finished one (converged, or at its minimum by FLAT) by more
+    than its last drop times the `left` rounds (it cannot overtake it), nor by less than
+    FLAT (the same flat valley, reached lower: a round of it would move the minimum by less
+    than FLAT, as one of the finished fit did)."""
+    done = [g[1] for g in fits if g[2].status > 0]
+    if not done:
+        return True
+    gap = f[1] - min(done)
+    return not (gap > f[3] * left or 0 <= gap < FLAT)
 
 
 def refit_at_noise(problem: Problem, parts, z_of, best, loss: str, share: float):
