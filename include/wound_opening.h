@@ -382,6 +382,25 @@ wo_status wo_profile_series(wo_problem problem,
                             double *u,
                             double *v);
 
+// At each of `times[i]` (`i < n_times`, ascending, all > 0) of a problem with
+// `edge_stress` 0: the velocity u_t (in R0 / T) of the material point at the CURRENT
+// radius `radii[j]` (`j < n_radii`) and its derivatives with respect to sigma, lambda and
+// the time t (in T) at that fixed current radius, four values per point into
+// `rates[(i * n_radii + j) * 4 + q]` (q: velocity, d/dsigma, d/dlambda, d/dt); the same
+// of the wound edge dR/dt (its material point held) into `edge[i * 8 + q]`, and their
+// limit from the tissue (a current radius coming down to the edge) into
+// `edge[i * 8 + 4 + q]` (`edge` may be NULL). Exact derivatives of the
+// solver's own velocities on the grid the tolerance picks, through its modal basis. A
+// nonzero edge stress or a time 0 is `WO_INVALID_ARGUMENT`; other rules as
+// `wo_profile_series`.
+wo_status wo_profile_sensitivities(wo_problem problem,
+                                   const double *times,
+                                   size_t n_times,
+                                   const double *radii,
+                                   size_t n_radii,
+                                   double *rates,
+                                   double *edge);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

@@ -87,7 +87,13 @@ def _load():
         lib.wo_series_sensitivities.argtypes = [_Problem, _DOUBLES, ctypes.c_size_t] + [
             _DOUBLES
         ] * 4
-        for f in (lib.wo_series, lib.wo_profile_series, lib.wo_series_sensitivities):
+        lib.wo_profile_sensitivities.argtypes = lib.wo_profile_series.argtypes
+        for f in (
+            lib.wo_series,
+            lib.wo_profile_series,
+            lib.wo_series_sensitivities,
+            lib.wo_profile_sensitivities,
+        ):
             f.restype = ctypes.c_int
         lib.wo_last_error.restype = ctypes.c_char_p
         lib.wo_last_error.argtypes = []
@@ -173,3 +179,24 @@ def profile_series(
     problem = _Problem(lam, sigma, r_inf, tolerance, edge_stress)
     _check(lib, lib.wo_profile_series(problem, _ptr(t), t.size, _ptr(r), r.size, _ptr(u), _ptr(v)))
     return u, v
+
+
+def profile_sensitivities(
+    lam: float, sigma: float, r_inf: float, times, radii, *, tolerance=TOLERANCE
+):
+    """Velocities u_t at CURRENT radii and at the wound edge, with their exact derivatives in
+    sigma, lambda and the dimensionless time at fixed current radius (free edge, times > 0;
+    wo_profile_sensitivities, src/solver/profile_rates.rs). Returns `(points, edge)`: arrays
+    (len(times), len(radii), 4) and (len(times), 2, 4), last axis (u_t, d/dsigma, d/dlambda,
+    d/dt); edge[:, 0] the edge's own (material point held), edge[:, 1] their limit from the
+    tissue (a current radius coming down to the edge)."""
+    lib = _load()
+    t, r = _doubles(times), _doubles(radii)
+    points = np.empty((t.size, r.size, 4))
+    edge = np.empty((t.size, 2, 4))
+    problem = _Problem(lam, sigma, r_inf, tolerance, 0.0)
+    status = lib.wo_profile_sensitivities(
+        problem, _ptr(t), t.size, _ptr(r), r.size, _ptr(points), _ptr(edge)
+    )
+    _check(lib, status)
+    return points, edge

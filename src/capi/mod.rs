@@ -11,6 +11,8 @@
 //! wo_series_sensitivities(problem, times, n, R, dRdt, dRdlambda, dRdR_inf)  and its exact
 //!                                                         derivatives in lambda and R_inf
 //! wo_profile_series(problem, times, n_t, radii, n_r, u, v) u, u_t at CURRENT radii
+//! wo_profile_sensitivities(problem, times, n_t, radii, n_r, rates, edge)  u_t at CURRENT radii and
+//!                                                         at the edge, exact derivatives in sigma, lambda, t
 //! wo_last_error()                                         the calling thread's last message
 //! ```
 //!
@@ -23,6 +25,7 @@
 pub mod error;
 #[cfg(test)]
 mod panic_tests;
+pub mod profile_rates;
 pub mod series;
 pub mod series_c;
 pub mod solver;

@@ -26,7 +26,7 @@ pub struct Problem {
     pub edge_stress: f64,
 }
 
-fn start(problem: &Problem) -> Result<Solver, Failure> {
+pub(crate) fn start(problem: &Problem) -> Result<Solver, Failure> {
     problem.params.validate().map_err(|e| Failure::invalid(e.to_string()))?;
     check_edge_stress(problem.edge_stress).map_err(|e| Failure::invalid(e.to_string()))?;
     Ok(Solver::new(&problem.params, &Settings::for_tolerance(&problem.params, problem.tolerance)?)?)
@@ -49,7 +49,12 @@ pub fn check_times(times: &[f64]) -> Result<(), Failure> {
 }
 
 /// Advance `solver` to each time in turn and call `visit(i, solver)` there.
-fn walk(solver: &mut Solver, p: f64, times: &[f64], mut visit: impl FnMut(usize, &Solver) -> Result<(), Failure>) -> Result<(), Failure> {
+pub(crate) fn walk(
+    solver: &mut Solver,
+    p: f64,
+    times: &[f64],
+    mut visit: impl FnMut(usize, &Solver) -> Result<(), Failure>,
+) -> Result<(), Failure> {
     for (i, &t) in times.iter().enumerate() {
         if t > solver.time() {
             solver.advance(t - solver.time(), p)?;
@@ -209,6 +214,28 @@ pub fn reference_radii(s: &Solver, radii: &[f64], r_inf: f64, ends: (f64, f64)) 
     searches.iter().map(|search| search.root.unwrap_or_else(|| search.closer_end())).collect()
 }
 
+pub(crate) fn check_radii(radii: &[f64]) -> Result<(), Failure> {
+    match radii.iter().position(|r| !r.is_finite()) {
+        Some(j) => Err(Failure::invalid(format!("radii[{j}] = {} is invalid: expected a finite radius", radii[j]))),
+        None => Ok(()),
+    }
+}
+
+/// The reference radii of the current radii `radii` at the solver's time (`times[i] = t`),
+/// refusing a radius inside the wound or beyond the outer edge then.
+pub(crate) fn tissue_points(s: &Solver, radii: &[f64], r_inf: f64, (i, t): (usize, f64)) -> Result<Vec<f64>, Failure> {
+    let ends = s.displacement(&[1.0, r_inf]);
+    let (lo, hi) = (1.0 + ends[0], r_inf + ends[1]);
+    if let Some(j) = radii.iter().position(|r| !(lo..=hi).contains(r)) {
+        let place = if radii[j] < lo { "inside the wound" } else { "outside the tissue" };
+        return Err(Failure::invalid(format!(
+            "radii[{j}] = {} is {place} at times[{i}] = {}: the tissue spans current radii [{lo}, {hi}] then",
+            radii[j], t
+        )));
+    }
+    Ok(reference_radii(s, radii, r_inf, (lo, hi)))
+}
+
 /// Row-major `(times, radii)` outputs of [`profile_series`]; either may be absent.
 pub struct ProfileOut<'a> {
     pub displacement: Option<&'a mut [f64]>,
@@ -219,9 +246,7 @@ pub struct ProfileOut<'a> {
 /// `radii` (each strictly inside neither the wound nor beyond the outer edge at that time).
 pub fn profile_series(problem: &Problem, times: &[f64], radii: &[f64], out: ProfileOut<'_>) -> Result<(), Failure> {
     check_times(times)?;
-    if let Some(j) = radii.iter().position(|r| !r.is_finite()) {
-        return Err(Failure::invalid(format!("radii[{j}] = {} is invalid: expected a finite radius", radii[j])));
-    }
+    check_radii(radii)?;
     let mut solver = start(problem)?;
     let (p, r_inf) = (problem.edge_stress, problem.params.r_inf);
     let n = radii.len();
@@ -229,19 +254,10 @@ pub fn profile_series(problem: &Problem, times: &[f64], radii: &[f64], out: Prof
     let mut v = vec![0.0; times.len() * n];
     let want_velocity = out.velocity.is_some();
     walk(&mut solver, p, times, |i, s| {
-        let ends = s.displacement(&[1.0, r_inf]);
-        let (lo, hi) = (1.0 + ends[0], r_inf + ends[1]);
-        if let Some(j) = radii.iter().position(|r| !(lo..=hi).contains(r)) {
-            let place = if radii[j] < lo { "inside the wound" } else { "outside the tissue" };
-            return Err(Failure::invalid(format!(
-                "radii[{j}] = {} is {place} at times[{i}] = {}: the tissue spans current radii [{lo}, {hi}] then",
-                radii[j], times[i]
-            )));
-        }
+        let x = tissue_points(s, radii, r_inf, (i, times[i]))?;
         if want_velocity && !s.edge_velocity_defined(p) {
             return Err(undefined(i, times[i]));
         }
-        let x = reference_radii(s, radii, r_inf, (lo, hi));
         u[i * n..(i + 1) * n].copy_from_slice(&s.displacement(&x));
         if want_velocity {
             v[i * n..(i + 1) * n].copy_from_slice(&s.velocity(p, &x));

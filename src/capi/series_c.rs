@@ -4,6 +4,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 use super::error::{Failure, WoStatus, run};
+use super::profile_rates::{EDGE_RATES, RATES, profile_sensitivities};
 use super::series::{self, Problem, ProfileOut, SeriesOut};
 use super::solver_c::{input, output};
 use crate::solver::Params;
@@ -98,5 +99,39 @@ pub unsafe extern "C" fn wo_profile_series(
         let r = input(radii, n_radii, "radii")?;
         let out = ProfileOut { displacement: optional(u, count, "u")?, velocity: optional(v, count, "v")? };
         series::profile_series(&problem.problem(), &t, &r, out)
+    })
+}
+
+/// At each of `times[i]` (`i < n_times`, ascending, all > 0) of a problem with
+/// `edge_stress` 0: the velocity u_t (in R0 / T) of the material point at the CURRENT
+/// radius `radii[j]` (`j < n_radii`) and its derivatives with respect to sigma, lambda and
+/// the time t (in T) at that fixed current radius, four values per point into
+/// `rates[(i * n_radii + j) * 4 + q]` (q: velocity, d/dsigma, d/dlambda, d/dt); the same
+/// of the wound edge dR/dt (its material point held) into `edge[i * 8 + q]`, and their
+/// limit from the tissue (a current radius coming down to the edge) into
+/// `edge[i * 8 + 4 + q]` (`edge` may be NULL). Exact derivatives of the
+/// solver's own velocities on the grid the tolerance picks, through its modal basis. A
+/// nonzero edge stress or a time 0 is `WO_INVALID_ARGUMENT`; other rules as
+/// `wo_profile_series`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wo_profile_sensitivities(
+    problem: WoProblem,
+    times: *const f64,
+    n_times: usize,
+    radii: *const f64,
+    n_radii: usize,
+    rates: *mut f64,
+    edge: *mut f64,
+) -> WoStatus {
+    run("wo_profile_sensitivities", || {
+        let count = n_times
+            .checked_mul(n_radii)
+            .and_then(|c| c.checked_mul(RATES))
+            .ok_or_else(|| Failure::new(WoStatus::WoInvalidArgument, format!("n_times * n_radii = {n_times} * {n_radii} overflows")))?;
+        let t = input(times, n_times, "times")?;
+        let r = input(radii, n_radii, "radii")?;
+        let out = output(rates, count, "rates")?;
+        let edge = optional(edge, n_times.saturating_mul(EDGE_RATES), "edge")?;
+        profile_sensitivities(&problem.problem(), &t, &r, out, edge)
     })
 }

@@ -22,6 +22,7 @@ mod mesh;
 mod modal;
 mod paper;
 mod params;
+mod profile_rates;
 mod quadrature;
 mod sensitivity;
 pub mod stability;
@@ -35,6 +36,7 @@ pub use params::{
     EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, SIGMA_MIN, check_edge_stress,
     check_lambda, check_r_inf, check_sigma,
 };
+pub use profile_rates::{VelocityRates, velocity_rates};
 pub use sensitivity::{RadiusSensitivities, radius_sensitivities};
 pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy, sigma_floor};
 
