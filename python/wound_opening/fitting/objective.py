@@ -60,8 +60,15 @@ def to_z(theta) -> np.ndarray:
     return np.array([math.log(R0), sigma, lam, math.log(T)])
 
 
+#: The solver accepts lambda = 0 or lambda >= 1e-150 (src/solver/params.rs LAMBDA_MIN); the
+#: model depends on lambda^2, so a smaller |lambda| (the fits' asinh coordinate, local.py,
+#: can reach subnormal values next to the bound 0) is 0 to the last bit of every result.
+LAMBDA_SOLVER_MIN = 1e-150
+
+
 def from_z(z) -> tuple[float, float, float, float]:
-    return math.exp(z[0]), float(z[1]), abs(float(z[2])), math.exp(z[3])
+    lam = abs(float(z[2]))
+    return math.exp(z[0]), float(z[1]), lam if lam >= LAMBDA_SOLVER_MIN else 0.0, math.exp(z[3])
 
 
 class Objective(Problem):
