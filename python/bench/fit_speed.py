@@ -181,7 +181,7 @@ def agreement(a: dict, b: dict) -> float:
     where only one is given); inf where an end is open in one only."""
     worst = 0.0
     for name, (e, lo, hi) in a.items():
-        if name not in b:
+        if name not in b or name.startswith("optimizer"):  # counts, not estimates
             continue
         ends = [x for x in (lo, hi) if x is not None]
         if e is not None:
@@ -195,7 +195,8 @@ def agreement(a: dict, b: dict) -> float:
                 continue
             if (x is None) != (y is None):
                 return float("inf")
-            worst = max(worst, abs(x - y) / scale)
+            if x != y:
+                worst = max(worst, abs(x - y) / max(scale, 1e-300))
     return worst
 
 
