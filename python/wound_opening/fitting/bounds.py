@@ -49,7 +49,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize, special
 
 from .intervals import profile_at
 
@@ -59,14 +59,20 @@ ANGLES = 20000
 PSI_STEP = 1e-2
 
 
+def quantile(p: float, noise_given: bool, dof: int) -> float:
+    """The p quantile of chi^2_1, or of F(1, dof) with the noise estimated (scipy.special's
+    inverse distribution functions: scipy.stats costs more to import than a fit)."""
+    return float(special.chdtri(1, 1 - p)) if noise_given else float(special.fdtri(1, dof, p))
+
+
 def regular(noise_given: bool, dof: int) -> float:
     """chi^2_1's 95 % point, or F(1, dof)'s with the noise estimated."""
-    return float(stats.chi2.ppf(0.95, 1)) if noise_given else float(stats.f.ppf(0.95, 1, dof))
+    return quantile(0.95, noise_given, dof)
 
 
 def mixture(noise_given: bool, dof: int) -> float:
     """The 95 % point of 1/2 chi^2_0 + 1/2 chi^2_1 (chi^2_1's 90 %), or of F likewise."""
-    return float(stats.chi2.ppf(0.90, 1)) if noise_given else float(stats.f.ppf(0.90, 1, dof))
+    return quantile(0.90, noise_given, dof)
 
 
 def exceedance(c: float, rho: float) -> float:
@@ -149,7 +155,7 @@ def thresholds(problem, z, chi2_min: float, loss: str, noise_given: bool, dof: i
         delta0 = float(profile_at(problem, z, chi2_min, 2, [0.0], loss=loss)[0])
         if delta0 >= base:
             return out
-    scale = base / float(stats.chi2.ppf(0.95, 1))
+    scale = base / quantile(0.95, True, 0)
     for name, rho in psi_correlations(problem, z, GRADIENTS).items():
         out[name] = scale * nuisance_quantile(rho)
     return out

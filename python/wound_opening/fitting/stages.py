@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats
+from scipy import special
 
 from .._native import SolverError
 from ..inputs.series import where
@@ -150,7 +150,7 @@ def verdict(
     reasons = [] if res.status > 0 else [f"optimiser stopped without converging ({res.message})"]
     flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
     chi2 = float(np.sum(np.delete(residuals, flagged) ** 2) + extra_chi2)
-    p_value = float(stats.chi2.sf(chi2, max(dof - flagged.size, 1))) if noise_given else None
+    p_value = float(special.chdtrc(max(dof - flagged.size, 1), chi2)) if noise_given else None
     if p_value is not None and p_value < P_FAIL:
         reasons.append(
             f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
