@@ -401,6 +401,21 @@ wo_status wo_profile_sensitivities(wo_problem problem,
                                    double *rates,
                                    double *edge);
 
+// `wo_profile_sensitivities` with six values per point, `rates[(i * n_radii + j) * 6 + q]`
+// (q: velocity, d/dsigma, d/dlambda, d/dt, d/dR_inf, d/dr): also the derivatives with
+// respect to the outer radius R_inf and to the current radius r, both at fixed time and
+// the other parameters held; the edge's into `edge[i * 12 + q]` (its own: d/dr = 0) and,
+// from the tissue, `edge[i * 12 + 6 + q]` (`edge` may be NULL). Exact derivatives of the
+// solver's own velocities on the grid the tolerance picks (its degree, element count and
+// grading length held as R_inf moves); other rules as `wo_profile_sensitivities`.
+wo_status wo_profile_rates(wo_problem problem,
+                           const double *times,
+                           size_t n_times,
+                           const double *radii,
+                           size_t n_radii,
+                           double *rates,
+                           double *edge);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

@@ -13,6 +13,7 @@
 //! wo_profile_series(problem, times, n_t, radii, n_r, u, v) u, u_t at CURRENT radii
 //! wo_profile_sensitivities(problem, times, n_t, radii, n_r, rates, edge)  u_t at CURRENT radii and
 //!                                                         at the edge, exact derivatives in sigma, lambda, t
+//! wo_profile_rates(problem, times, n_t, radii, n_r, rates, edge)  the same and in R_inf and r
 //! wo_last_error()                                         the calling thread's last message
 //! ```
 //!

@@ -1,28 +1,36 @@
 //! Velocities at current radii and at the wound edge with their exact derivatives in sigma,
-//! lambda and the time ([`crate::solver::velocity_rates`]), in safe Rust; the shim is
-//! [`super::series_c::wo_profile_sensitivities`].
+//! lambda and the time, and in the outer and current radii
+//! ([`crate::solver::velocity_rates`]), in safe Rust; the shims are
+//! [`super::series_c::wo_profile_sensitivities`] (four values per point) and
+//! [`super::series_c::wo_profile_rates`] (six).
 
 use super::error::Failure;
 use super::series::{Problem, check_radii, check_times, start, tissue_points, walk};
 use crate::solver::{Settings, VelocityRates, velocity_rates};
 
-/// Values per point of [`profile_sensitivities`]: velocity, d/dsigma, d/dlambda, d/dt.
+/// Values per point of `wo_profile_sensitivities`: velocity, d/dsigma, d/dlambda, d/dt.
 pub const RATES: usize = 4;
 /// Values per time of its edge output: the edge's own [`RATES`], then those from the tissue.
 pub const EDGE_RATES: usize = 2 * RATES;
+/// Values per point of `wo_profile_rates`: those of [`RATES`], then d/dR_inf and d/dr.
+pub const ALL_RATES: usize = 6;
 
+/// The first `out.len()` values of velocity, d/dsigma, d/dlambda, d/dt, d/dR_inf, d/dr.
 fn put(out: &mut [f64], r: &VelocityRates) {
-    out.copy_from_slice(&[r.velocity, r.d_sigma, r.d_lambda, r.d_tau]);
+    let all = [r.velocity, r.d_sigma, r.d_lambda, r.d_tau, r.d_r_inf, r.d_r];
+    out.copy_from_slice(&all[..out.len()]);
 }
 
 /// At each time `times[i] > 0` (ascending) of a problem with no edge stress: into
-/// `points[(i * radii.len() + j) * 4 ..][..4]` the velocity `u_t` (in R0 / T) of the material
-/// point at the CURRENT radius `radii[j]` and its derivatives with respect to sigma, lambda
-/// and the time at that fixed current radius; into `edge[i * 8 ..][..8]` the same of the
-/// wound edge (`dR/dt`, its material point held), then their limit from the tissue (a
+/// `points[(i * radii.len() + j) * w ..][..w]` (`w = width`, [`RATES`] or [`ALL_RATES`])
+/// the velocity `u_t` (in R0 / T) of the material point at the CURRENT radius `radii[j]`
+/// and its derivatives with respect to sigma, lambda and the time at that fixed current
+/// radius, and with [`ALL_RATES`] also to `R_inf` and to the current radius; into
+/// `edge[2 i w ..][..2 w]` the same of the wound edge (`dR/dt`, its material point held), then their limit from the tissue (a
 /// current radius coming down to the edge: same velocity, derivatives through the moving
 /// material point). Exact for the solver's grid. Written only on success.
-pub fn profile_sensitivities(
+pub fn profile_rates(
+    width: usize,
     problem: &Problem,
     times: &[f64],
     radii: &[f64],
@@ -40,16 +48,16 @@ pub fn profile_sensitivities(
     let mut solver = start(problem)?;
     let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
     let (n, r_inf) = (radii.len(), problem.params.r_inf);
-    let mut p = vec![0.0; times.len() * n * RATES];
-    let mut e = vec![0.0; times.len() * EDGE_RATES];
+    let mut p = vec![0.0; times.len() * n * width];
+    let mut e = vec![0.0; times.len() * 2 * width];
     walk(&mut solver, 0.0, times, |i, s| {
         let x = tissue_points(s, radii, r_inf, (i, times[i]))?;
         let (rates, at_edge) = velocity_rates(&problem.params, &settings, times[i], &x)?;
         for (j, r) in rates.iter().enumerate() {
-            put(&mut p[(i * n + j) * RATES..][..RATES], r);
+            put(&mut p[(i * n + j) * width..][..width], r);
         }
-        put(&mut e[i * EDGE_RATES..][..RATES], &at_edge[0]);
-        put(&mut e[i * EDGE_RATES + RATES..][..RATES], &at_edge[1]);
+        put(&mut e[2 * i * width..][..width], &at_edge[0]);
+        put(&mut e[(2 * i + 1) * width..][..width], &at_edge[1]);
         Ok(())
     })?;
     points.copy_from_slice(&p);
@@ -94,7 +102,7 @@ mod tests {
                 let radii: Vec<f64> = [1.3, 2.0, 3.5].iter().map(|f| f * (1.0 + 0.5 * sigma.max(0.0))).collect();
                 let mut pts = vec![0.0; radii.len() * RATES];
                 let mut edge = [0.0; EDGE_RATES];
-                profile_sensitivities(&problem(sigma, lambda, r_inf), &[tau], &radii, &mut pts, Some(&mut edge)).unwrap();
+                profile_rates(RATES, &problem(sigma, lambda, r_inf), &[tau], &radii, &mut pts, Some(&mut edge)).unwrap();
                 pts.extend(&edge[..RATES]);
                 let at = |sigma, lambda, tau| velocities(sigma, lambda, r_inf, tau, &radii);
                 let base = at(sigma, lambda, tau);
@@ -129,7 +137,7 @@ mod tests {
             let (mut r, mut v) = ([0.0], [0.0]);
             series(&pr, &[tau], &mut r, Some(&mut v)).unwrap();
             let (mut pts, mut edge) = ([0.0; RATES], [0.0; EDGE_RATES]);
-            profile_sensitivities(&pr, &[tau], &[r[0] * (1.0 + 1e-9)], &mut pts, Some(&mut edge)).unwrap();
+            profile_rates(RATES, &pr, &[tau], &[r[0] * (1.0 + 1e-9)], &mut pts, Some(&mut edge)).unwrap();
             let scale = pts.iter().map(|x| x.abs()).fold(0.0, f64::max);
             for q in 0..RATES {
                 assert!((edge[RATES + q] - pts[q]).abs() < 1e-7 * scale, "{sigma} {lambda} {tau}: {edge:?} vs {pts:?}");
@@ -139,11 +147,69 @@ mod tests {
         }
     }
 
+    /// The outer-radius and current-radius columns of `profile_rates` against central
+    /// differences (relative steps 1e-4 in R_inf, 1e-5 in r, on the same mesh: a case whose
+    /// steps changed the element count would fail its first assertion), relative to the
+    /// largest velocity. Measured worst 8e-8: the differences' rounding (1e-11 of the
+    /// velocity over the step; 1.5e-7 with steps 1e-5).
+    #[test]
+    fn outer_and_current_radius_rates_match_central_differences() {
+        let mut worst: f64 = 0.0;
+        for (sigma, lambda, r_inf) in
+            [(0.7, 0.3, 10.0), (1.5, 2.0, 6.0), (0.4, 0.05, 25.0), (-0.3, 1.0, 8.0), (0.6, 0.0, 2.8), (0.5, 3.0, 125.0)]
+        {
+            let sigma: f64 = sigma;
+            let h = 1e-4 * r_inf;
+            let shrink = f64::min(1.0, r_inf / 3.6);
+            let mesh = |r: f64| Settings::for_tolerance(&Params { lambda, sigma, r_inf: r }, 1e-11).unwrap().mesh;
+            assert_eq!(mesh(r_inf - h), mesh(r_inf + h), "a case across an element-count change");
+            for tau in [1e-3, 0.05, 1.0, 30.0] {
+                let radii: Vec<f64> =
+                    [1.3, 2.0, 2.4].iter().map(|f| f64::max(shrink * f, 1.0 + 0.8 * (f - 1.0)) * (1.0 + 0.5 * sigma.max(0.0))).collect();
+                let mut pts = vec![0.0; radii.len() * ALL_RATES];
+                let mut edge = [0.0; 2 * ALL_RATES];
+                profile_rates(ALL_RATES, &problem(sigma, lambda, r_inf), &[tau], &radii, &mut pts, Some(&mut edge)).unwrap();
+                let base = velocities(sigma, lambda, r_inf, tau, &radii);
+                let scale = base.iter().map(|v| v.abs()).fold(1e-300, f64::max);
+                let up = velocities(sigma, lambda, r_inf + h, tau, &radii);
+                let down = velocities(sigma, lambda, r_inf - h, tau, &radii);
+                let mut rows: Vec<&[f64]> = pts.chunks(ALL_RATES).collect();
+                rows.push(&edge[..ALL_RATES]);
+                for (j, g) in rows.iter().enumerate() {
+                    let what = format!("sigma {sigma} lambda {lambda} R_inf {r_inf} tau {tau} point {j}: {g:?}");
+                    let fd = (up[j] - down[j]) / (2.0 * h);
+                    let err = (g[4] - fd) * r_inf;
+                    worst = worst.max(err.abs() / scale);
+                    assert!(err.abs() < 1e-6 * scale, "{what}: d/dR_inf {} vs {fd}", g[4]);
+                    if j < radii.len() {
+                        let dr = 1e-5 * radii[j];
+                        let mut near = radii.clone();
+                        near[j] += dr;
+                        let a = velocities(sigma, lambda, r_inf, tau, &near)[j];
+                        near[j] -= 2.0 * dr;
+                        let b = velocities(sigma, lambda, r_inf, tau, &near)[j];
+                        let err = (g[5] - (a - b) / (2.0 * dr)) * radii[j];
+                        worst = worst.max(err.abs() / scale);
+                        assert!(err.abs() < 1e-6 * scale, "{what}: d/dr {} vs {}", g[5], (a - b) / (2.0 * dr));
+                    } else {
+                        assert_eq!(g[5], 0.0, "the edge's own velocity does not depend on r");
+                    }
+                }
+                let mut four = vec![0.0; radii.len() * RATES];
+                profile_rates(RATES, &problem(sigma, lambda, r_inf), &[tau], &radii, &mut four, None).unwrap();
+                for (a, b) in four.chunks(RATES).zip(pts.chunks(ALL_RATES)) {
+                    assert_eq!(a, &b[..RATES], "the first four values are those of RATES");
+                }
+            }
+        }
+        eprintln!("worst relative difference {worst:e}");
+    }
+
     #[test]
     fn an_edge_stress_or_the_cut_is_refused() {
         let mut out = [0.0; RATES];
         let pr = Problem { edge_stress: 0.1, ..problem(0.5, 1.0, 5.0) };
-        assert!(profile_sensitivities(&pr, &[1.0], &[2.0], &mut out, None).is_err());
-        assert!(profile_sensitivities(&problem(0.5, 1.0, 5.0), &[0.0], &[2.0], &mut out, None).is_err());
+        assert!(profile_rates(RATES, &pr, &[1.0], &[2.0], &mut out, None).is_err());
+        assert!(profile_rates(RATES, &problem(0.5, 1.0, 5.0), &[0.0], &[2.0], &mut out, None).is_err());
     }
 }

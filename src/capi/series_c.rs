@@ -4,7 +4,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 use super::error::{Failure, WoStatus, run};
-use super::profile_rates::{EDGE_RATES, RATES, profile_sensitivities};
+use super::profile_rates::{ALL_RATES, RATES, profile_rates};
 use super::series::{self, Problem, ProfileOut, SeriesOut};
 use super::solver_c::{input, output};
 use crate::solver::Params;
@@ -123,15 +123,53 @@ pub unsafe extern "C" fn wo_profile_sensitivities(
     rates: *mut f64,
     edge: *mut f64,
 ) -> WoStatus {
-    run("wo_profile_sensitivities", || {
+    let pointers = Pointers { times, n_times, radii, n_radii, rates, edge };
+    rates_shim("wo_profile_sensitivities", RATES, problem, pointers)
+}
+
+/// `wo_profile_sensitivities` with six values per point, `rates[(i * n_radii + j) * 6 + q]`
+/// (q: velocity, d/dsigma, d/dlambda, d/dt, d/dR_inf, d/dr): also the derivatives with
+/// respect to the outer radius R_inf and to the current radius r, both at fixed time and
+/// the other parameters held; the edge's into `edge[i * 12 + q]` (its own: d/dr = 0) and,
+/// from the tissue, `edge[i * 12 + 6 + q]` (`edge` may be NULL). Exact derivatives of the
+/// solver's own velocities on the grid the tolerance picks (its degree, element count and
+/// grading length held as R_inf moves); other rules as `wo_profile_sensitivities`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wo_profile_rates(
+    problem: WoProblem,
+    times: *const f64,
+    n_times: usize,
+    radii: *const f64,
+    n_radii: usize,
+    rates: *mut f64,
+    edge: *mut f64,
+) -> WoStatus {
+    let pointers = Pointers { times, n_times, radii, n_radii, rates, edge };
+    rates_shim("wo_profile_rates", ALL_RATES, problem, pointers)
+}
+
+/// The arguments of the two profile-rate shims.
+struct Pointers {
+    times: *const f64,
+    n_times: usize,
+    radii: *const f64,
+    n_radii: usize,
+    rates: *mut f64,
+    edge: *mut f64,
+}
+
+/// A profile-rate call of `width` values per point (twice as many per time at the edge).
+fn rates_shim(name: &str, width: usize, problem: WoProblem, p: Pointers) -> WoStatus {
+    let Pointers { times, n_times, radii, n_radii, rates, edge } = p;
+    run(name, || {
         let count = n_times
             .checked_mul(n_radii)
-            .and_then(|c| c.checked_mul(RATES))
+            .and_then(|c| c.checked_mul(width))
             .ok_or_else(|| Failure::new(WoStatus::WoInvalidArgument, format!("n_times * n_radii = {n_times} * {n_radii} overflows")))?;
         let t = input(times, n_times, "times")?;
         let r = input(radii, n_radii, "radii")?;
         let out = output(rates, count, "rates")?;
-        let edge = optional(edge, n_times.saturating_mul(EDGE_RATES), "edge")?;
-        profile_sensitivities(&problem.problem(), &t, &r, out, edge)
+        let edge = optional(edge, n_times.saturating_mul(2 * width), "edge")?;
+        profile_rates(width, &problem.problem(), &t, &r, out, edge)
     })
 }

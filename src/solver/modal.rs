@@ -37,7 +37,7 @@ use super::galerkin::{self, Functions};
 use super::jacobi;
 use super::mesh::Mesh;
 use super::quadrature::LagrangeBasis;
-use super::sensitivity::LazyRates;
+use super::sensitivity::{LazyRates, LazyShapeRates};
 use nalgebra::{DMatrix, DVector};
 
 /// The lambda-independent modal decomposition of one mesh on `[1, R_inf]`.
@@ -58,6 +58,8 @@ pub(crate) struct Basis {
     pub(crate) outer_row: DVector<f64>,
     /// Their derivatives with respect to `R_inf`, on first use ([`super::sensitivity`]).
     pub(crate) rates: LazyRates,
+    /// The derivatives of the whole mode shapes, on first use ([`super::sensitivity`]).
+    pub(crate) shape_rates: LazyShapeRates,
 }
 
 /// Why a modal decomposition could not be built.
@@ -136,7 +138,16 @@ impl Basis {
             edge_slope_row += (scale * d) * shapes.row(mesh.global(0, i)).transpose();
         }
         let outer_row = shapes.row(shapes.nrows() - 1).transpose();
-        Ok(Self { mesh, mu, shapes, edge_row, edge_slope_row, outer_row, rates: LazyRates::default() })
+        Ok(Self {
+            mesh,
+            mu,
+            shapes,
+            edge_row,
+            edge_slope_row,
+            outer_row,
+            rates: LazyRates::default(),
+            shape_rates: LazyShapeRates::default(),
+        })
     }
 
     pub(crate) fn len(&self) -> usize {

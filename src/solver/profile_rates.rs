@@ -32,6 +32,29 @@
 //! dV/dtau    = sigma (U_tt + U_tX dX/dtau)
 //! ```
 //!
+//! The outer radius `R_inf` moves `mu_k` and `e_k` ([`super::sensitivity::ModeRates`]), the
+//! whole mode shapes at the nodes (`dX/dR_inf = X C`, [`super::sensitivity::ShapeRates`])
+//! and the nodes themselves: the element breaks move with `R_inf`
+//! ([`super::mesh::Mesh::break_rates`]), so at a fixed reference radius `X` the interpolated
+//! sum `S(X) = sum_i s_i l_i(xi(X))` of nodal values `s_i` changes by
+//!
+//! ```text
+//! dS/dR_inf|_X = sum_i (ds_i/dR_inf) l_i(xi) - S_X(X) m(X),   m(X) = b_e' + (xi + 1) / 2 (b_{e+1}' - b_e')
+//! ```
+//!
+//! (`m`: the velocity of the mesh point at `X` in element `[b_e, b_{e+1}]`, 0 at the edge,
+//! which stays at 1). With the modal weights `w_k = e_k (1 - E_k)` of `U - X/6` and
+//! `e_k E_k / nu_k` of `U_t`, `d(X w)/dR_inf = X (C w + w')`, where
+//!
+//! ```text
+//! w'(U)   = e_k' (1 - E_k) - e_k E_k tau mu_k' / nu_k^2
+//! w'(U_t) = e_k' E_k / nu_k + e_k mu_k' E_k (tau - nu_k) / nu_k^3
+//! ```
+//!
+//! give `U_R`, `U_tR`; then as for any parameter `dX/dR_inf = -sigma U_R / J` and
+//! `dV/dR_inf = sigma (U_tR + U_tX dX/dR_inf)`. The derivative in the current radius at
+//! fixed parameters is `dV/dr = sigma U_tX / J` (0 for the edge held).
+//!
 //! The edge velocity (`X = 1` held, the material point of the wound edge) drops the `dX`
 //! terms; a current radius at the edge seen from the tissue keeps them (the velocity is the
 //! same, its derivatives differ by `sigma U_tX dX/dq`). These are the exact derivatives of the discrete solution for times `tau > 0`
@@ -50,6 +73,10 @@ pub struct VelocityRates {
     pub d_sigma: f64,
     pub d_lambda: f64,
     pub d_tau: f64,
+    /// With respect to the outer radius `R_inf` (the current radius held).
+    pub d_r_inf: f64,
+    /// With respect to the current radius (the parameters held; 0 at the edge held).
+    pub d_r: f64,
 }
 
 /// [`VelocityRates`] at the reference radii `x` (in `[1, R_inf]`, from the search of the
@@ -87,34 +114,57 @@ pub fn velocity_rates(
         weights(&|e, nu, d| if d == 0.0 { 0.0 } else { -2.0 * lambda * e * (d / nu) * (tau / nu) }),
         weights(&|e, nu, d| if d == 0.0 { 0.0 } else { 2.0 * lambda * e * (d / nu) * (tau / nu - 1.0) / nu }),
     ];
+    // R_inf moves mu_k and the whole shapes (nodes held): d(X w)/dR_inf = X (C w + w'), with
+    // w' the weights' own rates through e_k' and mu_k' (= nu_k').
+    let (modes, coupling) = (basis.rates(), &basis.shape_rates().coupling);
+    let moved = |c: &DVector<f64>, own: &dyn Fn(f64, f64, f64, f64, f64) -> f64| {
+        let w_rate = DVector::from_fn(n, |k, _| {
+            let (e, nu) = (basis.edge_row[k], basis.mu[k] + lambda * lambda);
+            own(e, nu, (-tau / nu).exp(), modes.edge[k], modes.mu[k])
+        });
+        &basis.shapes * (coupling * c + w_rate)
+    };
+    let r_inf_nodal = [
+        moved(&w[0], &|e, nu, d, de, dmu| de * -(-tau / nu).exp_m1() - if d == 0.0 { 0.0 } else { e * d * (tau / nu) / nu * dmu }),
+        moved(&w[1], &|e, nu, d, de, dmu| de * d / nu + if d == 0.0 { 0.0 } else { e * dmu * d * (tau - nu) / (nu * nu * nu) }),
+    ];
     let nodal = w.map(|c| &basis.shapes * c);
+    let nodal = [&nodal[0], &nodal[1], &nodal[2], &nodal[3], &nodal[4], &r_inf_nodal[0], &r_inf_nodal[1]];
     let mesh = &basis.mesh;
+    let break_rates = mesh.break_rates();
     let lagrange = LagrangeBasis::new(&mesh.reference_nodes);
-    // Values and X-derivatives of the five sums at X.
+    // Values and X-derivatives of the seven sums at X, and the velocity dX/dR_inf of the
+    // mesh point at X (linear between its element's breaks; 0 at the edge, fixed at 1).
     let at = |xr: f64| {
         let (e, xi) = mesh.locate(xr.clamp(1.0, params.r_inf));
         let (val, der) = lagrange.eval(xi);
         let scale = 2.0 / (mesh.breaks[e + 1] - mesh.breaks[e]);
-        let mut out = [(0.0, 0.0); 5];
-        for (o, v) in out.iter_mut().zip(&nodal) {
+        let mut out = [(0.0, 0.0); 7];
+        for (o, v) in out.iter_mut().zip(nodal) {
             for i in 0..val.len() {
                 let node = v[mesh.global(e, i)];
                 o.0 += val[i] * node;
                 o.1 += scale * der[i] * node;
             }
         }
-        out
+        (out, break_rates[e] + 0.5 * (xi + 1.0) * (break_rates[e + 1] - break_rates[e]))
     };
     let rates = |xr: f64, moving: bool| {
-        let [u, ut, utt, ul, utl] = at(xr);
+        let ([u, ut, utt, ul, utl, ur, utr], mesh_rate) = at(xr);
+        // At fixed X the mesh moves under it: d/dR_inf of an interpolated sum is its nodal
+        // rate minus its X-derivative times the mesh point's velocity (X / 6 is not meshed).
+        let (u_r, ut_r) = (ur.0 - u.1 * mesh_rate, utr.0 - ut.1 * mesh_rate);
         let (u, u_x) = (xr.clamp(1.0, params.r_inf) / 6.0 + u.0, 1.0 / 6.0 + u.1);
+        let j = 1.0 + sigma * u_x;
         // dX/dq at fixed r (0 when X is held at the edge).
-        let dx = |d: f64| if moving { -d / (1.0 + sigma * u_x) } else { 0.0 };
+        let dx = |d: f64| if moving { -d / j } else { 0.0 };
         VelocityRates {
             velocity: sigma * ut.0,
             d_sigma: ut.0 + sigma * ut.1 * dx(u),
             d_lambda: sigma * (utl.0 + ut.1 * dx(sigma * ul.0)),
             d_tau: sigma * (utt.0 + ut.1 * dx(sigma * ut.0)),
+            d_r_inf: sigma * (ut_r + ut.1 * dx(sigma * u_r)),
+            d_r: if moving { sigma * ut.1 / j } else { 0.0 },
         }
     };
     Ok((x.iter().map(|&xr| rates(xr, true)).collect(), [rates(1.0, false), rates(1.0, true)]))

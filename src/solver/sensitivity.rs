@@ -90,6 +90,40 @@ impl ModeRates {
     }
 }
 
+/// `dX / dR_inf = X C` of the whole mode shapes (nodal values, the nodes held): with
+/// `G = Y - Z diag(mu)` (the `g_k` of [`ModeRates`]), `C_jk = (X^T G)_jk / (mu_k - mu_j)` for
+/// `j != k` and `C_kk = -(1/2) (X^T Z)_kk`. Only its products with modal weights are needed
+/// (`X (C w)`: `O(n^2)` per weight vector); `C` itself costs two dense products, `O(n^3)`,
+/// once per basis, and only where velocities inside the tissue are differentiated
+/// ([`super::profile_rates`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ShapeRates {
+    pub(crate) coupling: DMatrix<f64>,
+}
+
+impl ShapeRates {
+    fn new(basis: &Basis) -> Self {
+        let rate = galerkin::assemble_r_inf_rate(&basis.mesh);
+        let (x, mu) = (&basis.shapes, &basis.mu);
+        let (y, z) = (4.0 * &rate.mass * x, &rate.stiffness * x);
+        let (xy, xz) = (x.transpose() * y, x.transpose() * z);
+        let coupling = DMatrix::from_fn(mu.len(), mu.len(), |j, k| {
+            if j == k { -0.5 * xz[(k, k)] } else { (xy[(j, k)] - mu[k] * xz[(j, k)]) / (mu[k] - mu[j]) }
+        });
+        Self { coupling }
+    }
+}
+
+/// [`ShapeRates`] on first use, kept with the basis (as [`LazyRates`]).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct LazyShapeRates(OnceLock<ShapeRates>);
+
+impl PartialEq for LazyShapeRates {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
 /// The [`ModeRates`] of a basis, computed on first use and kept with it (measured
 /// 2026-12-03 on a loaded machine, 65 modes: about 0.2 ms, a quarter of the 0.5 to 0.9 ms of
 /// the decomposition; a basis that only ever serves plain series never pays it). Derived from the
@@ -107,6 +141,10 @@ impl PartialEq for LazyRates {
 impl Basis {
     pub(crate) fn rates(&self) -> &ModeRates {
         self.rates.0.get_or_init(|| ModeRates::new(self))
+    }
+
+    pub(crate) fn shape_rates(&self) -> &ShapeRates {
+        self.shape_rates.0.get_or_init(|| ShapeRates::new(self))
     }
 }
 
