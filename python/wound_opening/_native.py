@@ -87,12 +87,12 @@ def _load():
         lib.wo_series_sensitivities.argtypes = [_Problem, _DOUBLES, ctypes.c_size_t] + [
             _DOUBLES
         ] * 4
-        lib.wo_profile_sensitivities.argtypes = lib.wo_profile_series.argtypes
+        lib.wo_profile_rates.argtypes = lib.wo_profile_series.argtypes
         for f in (
             lib.wo_series,
             lib.wo_profile_series,
             lib.wo_series_sensitivities,
-            lib.wo_profile_sensitivities,
+            lib.wo_profile_rates,
         ):
             f.restype = ctypes.c_int
         lib.wo_last_error.restype = ctypes.c_char_p
@@ -181,21 +181,20 @@ def profile_series(
     return u, v
 
 
-def profile_sensitivities(
-    lam: float, sigma: float, r_inf: float, times, radii, *, tolerance=TOLERANCE
-):
+def profile_rates(lam: float, sigma: float, r_inf: float, times, radii, *, tolerance=TOLERANCE):
     """Velocities u_t at CURRENT radii and at the wound edge, with their exact derivatives in
-    sigma, lambda and the dimensionless time at fixed current radius (free edge, times > 0;
-    wo_profile_sensitivities, src/solver/profile_rates.rs). Returns `(points, edge)`: arrays
-    (len(times), len(radii), 4) and (len(times), 2, 4), last axis (u_t, d/dsigma, d/dlambda,
-    d/dt); edge[:, 0] the edge's own (material point held), edge[:, 1] their limit from the
-    tissue (a current radius coming down to the edge)."""
+    sigma, lambda, the dimensionless time, R_inf (the current radius held) and the current
+    radius (free edge, times > 0; wo_profile_rates, src/solver/profile_rates.rs). Returns
+    `(points, edge)`: arrays (len(times), len(radii), 6) and (len(times), 2, 6), last axis
+    (u_t, d/dsigma, d/dlambda, d/dt, d/dR_inf, d/dr); edge[:, 0] the edge's own (material
+    point held: d/dr = 0), edge[:, 1] their limit from the tissue (a current radius coming
+    down to the edge)."""
     lib = _load()
     t, r = _doubles(times), _doubles(radii)
-    points = np.empty((t.size, r.size, 4))
-    edge = np.empty((t.size, 2, 4))
+    points = np.empty((t.size, r.size, 6))
+    edge = np.empty((t.size, 2, 6))
     problem = _Problem(lam, sigma, r_inf, tolerance, 0.0)
-    status = lib.wo_profile_sensitivities(
+    status = lib.wo_profile_rates(
         problem, _ptr(t), t.size, _ptr(r), r.size, _ptr(points), _ptr(edge)
     )
     _check(lib, status)

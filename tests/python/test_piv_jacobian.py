@@ -4,12 +4,13 @@ A vector at current radius r [um] at time t is modelled by the velocity of the t
 R0 / T u_t(X, t / T) with X + u(X, t / T) = r / R0, or by the edge velocity dR/dt when r is
 inside the wound (objective.py). The exact counterpart finds X by Brent's method on the
 Laplace-domain displacement and is differentiated by fourth-order central differences (step
-1e-3: truncation ~1e-12, rounding ~1e-13 / 1e-3). The sigma, lambda and ln T columns are
-exact derivatives of the solver's velocities (src/solver/profile_rates.rs), which differ from
-the exact ones by up to 1e-7 of the largest (lambda = 0, the far field early on: the solver's
-grid is chosen for the wound radius). Measured worst, relative to the column's largest
-value: 6e-8 (lambda > 0) and 1.1e-7 (lambda = 0) in sigma, lambda and ln T; 1e-7 in ln R0 (a
-central difference); the velocities themselves 2e-9 and 8e-8."""
+1e-3: truncation ~1e-12, rounding ~1e-13 / 1e-3). Every column is the exact derivative of the
+solver's velocities (src/solver/profile_rates.rs; ln R0 through R_inf, the moving mesh and
+the current radius r / R0), which differ from the exact ones by up to 1e-7 of the largest
+(lambda = 0, the far field early on: the solver's grid is chosen for the wound radius).
+Measured worst, relative to the column's largest value: 6e-8 (lambda > 0) and 1.1e-7
+(lambda = 0) in sigma, lambda and ln T; 7e-8 (lambda > 0) and 1.2e-7 (lambda = 0) in ln R0;
+the velocities themselves 2e-9 and 8e-8."""
 
 from __future__ import annotations
 

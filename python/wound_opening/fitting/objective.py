@@ -26,13 +26,13 @@ compared with the velocity of the tissue at r. Where r is at or inside the model
 edge R(t) (possible for vectors measured at the edge, for some parameter values), the
 window holds the edge itself: the model value is the edge velocity dR/dt. The model is
 then continuous in the parameters (no penalty branch); such vectors are counted
-(`inside_edge`). The profile columns in sigma, lambda and ln T are exact on the solver's grid
-(`_native.profile_sensitivities`, src/solver/profile_rates.rs: the velocity at fixed current
-radius differentiated through the modal basis and the implicit reference radius, one native
-call per frame), the edge rows' those of the edge velocity; the column in ln R0 is a central
-difference between the outer radii R_inf -+ STEP R_inf (two more decompositions). A frame at
-the cut (t = 0, where the velocity is the instantaneous response) falls back to central
-differences (steps STEP, relative) for all columns.
+(`inside_edge`). The profile columns are exact on the solver's grid (`_native.profile_rates`,
+src/solver/profile_rates.rs: the velocity at fixed current radius differentiated through the
+modal basis, the moving mesh and the implicit reference radius, one native call per frame,
+on the basis of the model's own R_inf), the edge rows' those of the edge velocity; ln R0
+moves both the outer radius R_inf = outer / R0 and the current radius r / R0 of every vector.
+A frame at the cut (t = 0, where the velocity is the instantaneous response) falls back to
+central differences (steps STEP, relative) for all columns.
 """
 
 from __future__ import annotations
@@ -211,47 +211,61 @@ class Objective(Problem):
         return np.concatenate(out)
 
     def _profile_columns(self, theta, r_inf: float) -> np.ndarray:
-        """d (model velocity) / d (sigma, lambda, ln T) of the profile rows, (n_profile, 3).
+        """d (model velocity) / d (ln R0, sigma, lambda, ln T) of the profile rows,
+        (n_profile, 4).
 
-        With the dimensionless velocity V at fixed current radius and tau = t / T, the data's
-        R0 / T V has d/d sigma = R0/T dV/dsigma, d/d lambda = R0/T dV/dlambda and
-        d/d ln T = -(R0/T) (V + tau dV/dtau), exact on the solver's grid; edge rows take the
-        edge's (its material point held). A row switches from tissue to edge where the edge
-        radius e(z) crosses its x = r / R0: the model is continuous there, its slope is not.
-        Where the crossing is within the step s of a coordinate (|g / g'| < s with g = e - x,
-        g' = de/dz: h, sigma dh/dlambda, -tau sigma h'), the column is the central difference
-        over z -+ s of the two one-sided slopes (the edge's own, J_in, and the tissue's limit
-        at the edge, J_out): with the crossing at d = -g / g' and J_+ the slope beyond it
-        (J_in when g' > 0), (J_- (s + d) + J_+ (s - d)) / (2 s). This is the central
-        difference the fit used before, without its evaluations; a one-sided slope there
-        leaves the trust region stepping across the kink (fits stop at a chi^2 higher by
-        ~1e-5 and move the estimates in their 4th digit)."""
+        With the dimensionless velocity V at fixed current radius x = r / R0, tau = t / T and
+        R_inf = outer / R0, the data's R0 / T V has d/d sigma = R0/T dV/dsigma,
+        d/d lambda = R0/T dV/dlambda, d/d ln T = -(R0/T) (V + tau dV/dtau) and
+        d/d ln R0 = R0/T (V - x dV/dx - R_inf dV/dR_inf) (x and R_inf both scale as 1 / R0),
+        exact on the solver's grid; edge rows take the edge's (its material point held:
+        dV/dx = 0). A row switches from tissue to edge where the edge radius e(z) crosses its
+        x: the model is continuous there, its slope is not. With g = e - x and its rate
+        g' (h, sigma dh/dlambda, -tau sigma h' in sigma, lambda, ln T; x - R_inf sigma
+        dh/dR_inf in ln R0, where x moves too), where the crossing is within the step s of a
+        coordinate (|g / g'| < s), the column is the central difference over z -+ s of the two
+        one-sided slopes (the edge's own, J_in, and the tissue's limit at the edge, J_out):
+        with the crossing at d = -g / g' and J_+ the slope beyond it (J_in when g' > 0),
+        (J_- (s + d) + J_+ (s - d)) / (2 s). This is the central difference the fit used
+        before, without its evaluations; a one-sided slope there leaves the trust region
+        stepping across the kink (fits stop at a chi^2 higher by ~1e-5 and move the
+        estimates in their 4th digit)."""
         R0, sigma, lam, T = theta
         tau = self.group_times / T
-        h, dh, dh_dl, _ = self._h_rates(lam, r_inf, tau)
+        h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, tau)
         edge_r = 1.0 + sigma * h
-        slope_e = np.column_stack([h, sigma * dh_dl, -tau * sigma * dh])  # de/dz per group
-        step = np.array([STEP * max(1.0, abs(sigma)), STEP * max(lam, 0.01), STEP])
+        step = np.array([STEP, STEP * max(1.0, abs(sigma)), STEP * max(lam, 0.01), STEP])
 
-        def columns(d, k):  # (V, dV/dsigma, dV/dlambda, dV/dtau) -> the three columns
-            return np.column_stack([d[:, 1], d[:, 2], -(d[:, 0] + tau[k] * d[:, 3])])
+        def columns(d, k, x):  # (V, dV/dsigma, dV/dlambda, dV/dtau, dV/dR_inf, dV/dx) -> z
+            return np.column_stack(
+                [
+                    d[:, 0] - x * d[:, 5] - r_inf * d[:, 4],
+                    d[:, 1],
+                    d[:, 2],
+                    -(d[:, 0] + tau[k] * d[:, 3]),
+                ]
+            )
 
         out = []
         for k, (_, r, _, _) in enumerate(self.groups):
             x = r / R0
             tissue = x > edge_r[k] * (1 + 1e-12)
-            points, edge = _native.profile_sensitivities(
+            points, edge = _native.profile_rates(
                 abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=TOLERANCE_FD
             )
-            j_in = columns(np.repeat(edge[:, 0], x.size, axis=0), k)
+            j_in = columns(np.repeat(edge[:, 0], x.size, axis=0), k, x)
             d = np.repeat(edge[:, 1], x.size, axis=0)
             d[tissue] = points[0]
-            j_out = columns(d, k)
+            j_out = columns(d, k, x)
             j = np.where(tissue[:, None], j_out, j_in)
-            j_plus = np.where(slope_e[k] > 0, j_in, j_out)
-            j_minus = np.where(slope_e[k] > 0, j_out, j_in)
+            slope = np.column_stack(  # g' per row and coordinate
+                [x - r_inf * sigma * dh_dr[k]]
+                + [np.full(x.size, g) for g in (h[k], sigma * dh_dl[k], -tau[k] * sigma * dh[k])]
+            )
+            j_plus = np.where(slope > 0, j_in, j_out)
+            j_minus = np.where(slope > 0, j_out, j_in)
             with np.errstate(divide="ignore", invalid="ignore"):  # g' = 0: never near
-                cross = -(edge_r[k] - x)[:, None] / slope_e[k]
+                cross = -(edge_r[k] - x)[:, None] / slope
                 blend = (j_minus * (step + cross) + j_plus * (step - cross)) / (2 * step)
             near = np.abs(cross) < step
             out.append(np.where(near, blend, j))
@@ -272,14 +286,14 @@ class Objective(Problem):
         """d residuals / d z, (size, 4): see the module docstring. Only `columns` are
         computed (the others are 0; None: all): a profile fit holds one coordinate fixed.
 
-        The radius columns need the modal basis of R_inf alone; every difference in ln R0 of
-        the profile columns is taken between the outer radii rc -+ dr, two more bases."""
+        Every column needs the modal basis of R_inf alone (and its rates), except at a frame
+        at the cut, whose profile columns are central differences (in ln R0 between the outer
+        radii rc -+ dr, two more bases)."""
         columns = (0, 1, 2, 3) if columns is None else columns
         R0, sigma, lam, T = from_z(z)
         r_inf = self.outer / R0
         t = self.t_sorted
         h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, t / T)
-        dl = STEP * max(lam, 0.01)
         with np.errstate(invalid="ignore"):
             dlnT = np.where(t > 0, -(t / T) * R0 * sigma * dh, 0.0)
         jr = np.column_stack(
@@ -287,34 +301,27 @@ class Objective(Problem):
         )
         if self.groups:
             inside = self.inside_edge  # as the last model evaluation left it
-            steps = np.array([STEP, STEP * max(1.0, abs(sigma)), dl, STEP])
-            exact = bool(np.all(self.group_times > 0)) and {1, 2, 3} & set(columns)
-            if exact:
-                theta = (R0, sigma, lam, T)
-                rates = self._profile_columns(theta, r_inf) * np.array(
-                    [1, math.copysign(1, z[2]), 1]
-                )
-            cols = []
-            for i in range(4):
-                if i not in columns:
-                    cols.append(np.zeros(self.n_profile))
-                elif i == 0:  # R0 = outer / R_inf at R_inf = rc -+ dr
-                    dr = STEP * r_inf
-                    rc = max(r_inf, R_INF_MIN + dr)  # centred inside the solver's range
-                    up = self._profile((self.outer / (rc - dr), sigma, lam, T), rc - dr)
-                    down = self._profile((self.outer / (rc + dr), sigma, lam, T), rc + dr)
-                    cols.append((up - down) / math.log((rc + dr) / (rc - dr)))
-                elif exact:
-                    cols.append(rates[:, i - 1])
-                else:  # a frame at the cut: differences
+            if np.all(self.group_times > 0):
+                sign = np.array([1, 1, math.copysign(1, z[2]), 1])
+                profile = self._profile_columns((R0, sigma, lam, T), r_inf) * sign
+            else:  # a frame at the cut: central differences
+                steps = np.array([STEP, STEP * max(1.0, abs(sigma)), STEP * max(lam, 0.01), STEP])
+                profile = np.zeros((self.n_profile, 4))
+                for i in columns:
+                    if i == 0:  # R0 = outer / R_inf at R_inf = rc -+ dr, inside the solver's range
+                        dr = STEP * r_inf
+                        rc = max(r_inf, R_INF_MIN + dr)
+                        up = self._profile((self.outer / (rc - dr), sigma, lam, T), rc - dr)
+                        down = self._profile((self.outer / (rc + dr), sigma, lam, T), rc + dr)
+                        profile[:, 0] = (up - down) / math.log((rc + dr) / (rc - dr))
+                        continue
                     e = np.zeros(4)
                     e[i] = steps[i]
-                    cols.append(
-                        (self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf))
-                        / (2 * steps[i])
-                    )
+                    profile[:, i] = (
+                        self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf)
+                    ) / (2 * steps[i])
             self.inside_edge = inside  # not the differences' shifted points
-            jr = np.vstack([jr, np.column_stack(cols)])
+            jr = np.vstack([jr, profile])
         jr[:, [i for i in range(4) if i not in columns]] = 0.0
         return jr / self.sd[:, None]
 
