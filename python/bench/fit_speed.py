@@ -21,8 +21,10 @@ Each single-wound case except piv_4000 does what `wound-opening fit ... --plot -
 fit() with its intervals, the report (report.write_report) and the figure
 (plots.fit_figure). Each case runs in a subprocess with PYTHONPATH at the current package or
 at `--baseline REV`'s python/ (git archive into a temp dir), alternating, the same native
-library (WOUND_OPENING_LIB). CPU time by time.process_time, native solves by counting calls
-of _native.series and _native.profile_series.
+library (WOUND_OPENING_LIB). CPU time by time.process_time from the call on, the package's
+modules (scipy, matplotlib) imported before: their import, a fixed cost of each process that
+a sweep or a notebook pays once, is its own column. Native solves by counting calls of
+_native.series and _native.profile_series.
 
     python python/bench/fit_speed.py --baseline cee82cd [--quick] [--cases lab_R0_8,piv_4000]
 """
@@ -120,10 +122,13 @@ def _intervals(result) -> dict:
 
 def run_case(name: str, data_file: str, out_dir: str) -> dict:
     """One case in this process (the worker): CPU seconds, solves, estimates and intervals."""
+    begin = time.process_time()
     import wound_opening as wo
     from wound_opening.results.plots import fit_figure
     from wound_opening.results.report import write_report
 
+    wo.fit  # noqa: B018  (the fitter's modules, imported on first use)
+    import_s = time.process_time() - begin
     counts = _count_solves()
     out = Path(out_dir)
     if name == "tissue_3":
@@ -144,7 +149,8 @@ def run_case(name: str, data_file: str, out_dir: str) -> dict:
         cpu = time.process_time() - start
         got = json.loads((out / f"{name}.json").read_text())
         est = {k: [v, None, None] for k, v in _flat_numbers(got.get("estimates", got)).items()}
-        return {"cpu_s": cpu, "fit_s": cpu, "solves": counts["solves"], "values": est}
+        out = {"cpu_s": cpu, "fit_s": cpu, "import_s": import_s, "solves": counts["solves"]}
+        return out | {"values": est}
     d = np.load(data_file)
     radius = wo.RadiusSeries(d["times"], d["radius"])
     profile = (
@@ -161,7 +167,13 @@ def run_case(name: str, data_file: str, out_dir: str) -> dict:
             fit_figure(result, radius, profile, out / f"{name}.png")
     cpu = time.process_time() - start
     values = _intervals(result) | {"chi2": [result.chi2, None, None]}
-    return {"cpu_s": cpu, "fit_s": fit_s, "solves": counts["solves"], "values": values}
+    return {
+        "cpu_s": cpu,
+        "fit_s": fit_s,
+        "import_s": import_s,
+        "solves": counts["solves"],
+        "values": values,
+    }
 
 
 def _flat_numbers(d, prefix="") -> dict:
@@ -260,6 +272,7 @@ def main(argv=None) -> int:
                 row[f"{side}_cpu_s"] = g.get("cpu_s")
                 row[f"{side}_fit_s"] = g.get("fit_s")
                 row[f"{side}_solves"] = g.get("solves")
+                row[f"{side}_import_s"] = g.get("import_s")
                 row[f"{side}_error"] = g.get("error", "")
             if len(got) == 2 and all("values" in g for g in got.values()):
                 row["max_diff"] = agreement(got["baseline"]["values"], got["current"]["values"])
@@ -283,8 +296,8 @@ def _s(x, fmt="{:.2f}") -> str:
 def table(rows) -> str:
     lines = [
         "| case | baseline CPU s | current CPU s | ratio | current fit s | solves (base -> now) "
-        "| estimates and ends agree (to 1 %) |",
-        "|---|---:|---:|---:|---:|---:|---|",
+        "| imports s (base -> now) | estimates and ends agree (to 1 %) |",
+        "|---|---:|---:|---:|---:|---:|---:|---|",
     ]
     for r in rows:
         b, c = r.get("baseline_cpu_s"), r.get("current_cpu_s")
@@ -295,6 +308,7 @@ def table(rows) -> str:
         lines.append(
             f"| {r['case']} | {_s(b)} | {_s(c)} | {ratio} | {_s(r.get('current_fit_s'))} | "
             f"{_s(r.get('baseline_solves'), '{}')} -> {_s(r.get('current_solves'), '{}')} | "
+            f"{_s(r.get('baseline_import_s'))} -> {_s(r.get('current_import_s'))} | "
             f"{agree}{' ' + err if err else ''} |"
         )
     return "\n".join(lines)
