@@ -194,14 +194,24 @@ fn sensitivities_give_the_series_values_and_follow_the_pointer_rules() {
 }
 
 /// The searches of many radii side by side give, bit for bit, what each radius's search
-/// gives alone, and X + u(X, t) is the current radius to a few ulps.
+/// gives alone, and X + u(X, t) is the current radius to a few ulps: with the modal
+/// scheme's slope (Newton's steps inside the bracket) and with a scheme that has none
+/// (TR-BDF2 here: regula falsi alone).
 #[test]
 fn reference_radii_side_by_side_equal_those_found_one_at_a_time() {
-    use wound_opening::capi::series::reference_radii;
-    use wound_opening::solver::{Params, Settings, Solver};
+    use wound_opening::solver::{MeshSpec, Params, Scheme, Settings, Solver};
     let params = Params { lambda: 0.8, sigma: 0.6, r_inf: 12.0 };
-    let mut s = Solver::new(&params, &Settings::for_tolerance(&params, 1e-11).unwrap()).unwrap();
-    s.advance(0.7, 0.1).unwrap();
+    let modal = Solver::new(&params, &Settings::for_tolerance(&params, 1e-11).unwrap()).unwrap();
+    let mesh = MeshSpec { degree: 4, elements: 6, edge_scale: 0.1 };
+    let stepped = Solver::with_scheme(&params, &Scheme::TrBdf2 { mesh, max_step: 0.05 }).unwrap();
+    for mut s in [modal, stepped] {
+        s.advance(0.7, 0.1).unwrap();
+        check_reference_radii(&s);
+    }
+}
+
+fn check_reference_radii(s: &wound_opening::solver::Solver) {
+    use wound_opening::capi::series::reference_radii;
     let ends = s.displacement(&[1.0, 12.0]);
     let (lo, hi) = (1.0 + ends[0], 12.0 + ends[1]);
     let radii: Vec<f64> = (0..=300).map(|j| lo + (hi - lo) * (j as f64 / 300.0).powi(3)).chain([hi, lo, 3.0, 3.0]).collect();

@@ -27,6 +27,11 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     }
     /// `u(r)` at each radius (inside `[1, R_inf]`).
     fn displacement(&self, radii: &[f64]) -> Vec<f64>;
+    /// `(u(r), du/dr(r))` at each radius inside `[1, R_inf]`, where the scheme has the slope
+    /// of its own interpolant (the modal engine); `None` otherwise.
+    fn displacement_slope(&self, _radii: &[f64]) -> Option<Vec<(f64, f64)>> {
+        None
+    }
     /// `[u(1), du/dr(1), u(R_inf)]`. By default from [`Engine::displacement`], the slope a
     /// one-sided difference over 1e-6 of the ring (the comparison schemes' own accuracy).
     fn edges(&self, r_inf: f64) -> [f64; 3] {

@@ -172,6 +172,24 @@ impl Engine for ModalEngine {
         radii.iter().zip(v).map(|(r, v)| self.sigma * r.clamp(1.0, self.op.r_inf) / 6.0 + v).collect()
     }
 
+    /// The same values as [`Engine::displacement`] (the same sums, in the same order), and
+    /// the slope of the interpolant: `sigma / 6 + (2 / (b - a)) sum_i l_i'(x) v_i` in the
+    /// element `[a, b]` holding `r`.
+    fn displacement_slope(&self, radii: &[f64]) -> Option<Vec<(f64, f64)>> {
+        let mesh = &self.op.basis.mesh;
+        let nodal = &self.op.basis.shapes * &self.coeffs;
+        let basis = LagrangeBasis::new(&mesh.reference_nodes);
+        let at = |r: f64| {
+            let (e, x) = mesh.locate(r.clamp(1.0, self.op.r_inf));
+            let (val, der) = basis.eval(x);
+            let v: f64 = val.iter().enumerate().map(|(i, l)| l * nodal[mesh.global(e, i)]).sum();
+            let d: f64 = der.iter().enumerate().map(|(i, l)| l * nodal[mesh.global(e, i)]).sum();
+            let scale = 2.0 / (mesh.breaks[e + 1] - mesh.breaks[e]);
+            (self.sigma * r.clamp(1.0, self.op.r_inf) / 6.0 + v, self.sigma / 6.0 + scale * d)
+        };
+        Some(radii.iter().map(|&r| at(r)).collect())
+    }
+
     /// `u = sigma r / 6 + v`, each term a dot product with a row the basis keeps (the
     /// validity check, O(modes) per step).
     fn edges(&self, _r_inf: f64) -> [f64; 3] {

@@ -374,6 +374,12 @@ impl Solver {
         self.engine.displacement(radii)
     }
 
+    /// Displacement and its radial slope `(u(r), du/dr(r))` at radii inside `[1, R_inf]`,
+    /// for the schemes that interpolate with a slope (the modal one); `None` for the others.
+    pub fn displacement_slope(&self, radii: &[f64]) -> Option<Vec<(f64, f64)>> {
+        self.engine.displacement_slope(radii)
+    }
+
     /// Velocity `u_t(r)` with edge stress `p`, at each requested radius.
     pub fn velocity(&self, p: f64, radii: &[f64]) -> Vec<f64> {
         self.engine.velocity(p, radii)
