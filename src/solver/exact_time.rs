@@ -112,11 +112,12 @@ impl ModalEngine {
         let mesh = &self.op.basis.mesh;
         let nodal = &self.op.basis.shapes * coeffs;
         let basis = LagrangeBasis::new(&mesh.reference_nodes);
+        let (mut val, mut der) = (vec![0.0; basis.len()], vec![0.0; basis.len()]);
         radii
             .iter()
             .map(|&r| {
                 let (e, x) = mesh.locate(r.clamp(1.0, self.op.r_inf));
-                let (val, _) = basis.eval(x);
+                basis.eval_into(x, &mut val, &mut der);
                 val.iter().enumerate().map(|(i, l)| l * nodal[mesh.global(e, i)]).sum()
             })
             .collect()
@@ -179,9 +180,10 @@ impl Engine for ModalEngine {
         let mesh = &self.op.basis.mesh;
         let nodal = &self.op.basis.shapes * &self.coeffs;
         let basis = LagrangeBasis::new(&mesh.reference_nodes);
-        let at = |r: f64| {
+        let (mut val, mut der) = (vec![0.0; basis.len()], vec![0.0; basis.len()]);
+        let mut at = |r: f64| {
             let (e, x) = mesh.locate(r.clamp(1.0, self.op.r_inf));
-            let (val, der) = basis.eval(x);
+            basis.eval_into(x, &mut val, &mut der);
             let v: f64 = val.iter().enumerate().map(|(i, l)| l * nodal[mesh.global(e, i)]).sum();
             let d: f64 = der.iter().enumerate().map(|(i, l)| l * nodal[mesh.global(e, i)]).sum();
             let scale = 2.0 / (mesh.breaks[e + 1] - mesh.breaks[e]);

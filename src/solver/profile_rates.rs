@@ -135,9 +135,10 @@ pub fn velocity_rates(
     let lagrange = LagrangeBasis::new(&mesh.reference_nodes);
     // Values and X-derivatives of the seven sums at X, and the velocity dX/dR_inf of the
     // mesh point at X (linear between its element's breaks; 0 at the edge, fixed at 1).
-    let at = |xr: f64| {
+    let (mut val, mut der) = (vec![0.0; lagrange.len()], vec![0.0; lagrange.len()]);
+    let mut at = |xr: f64| {
         let (e, xi) = mesh.locate(xr.clamp(1.0, params.r_inf));
-        let (val, der) = lagrange.eval(xi);
+        lagrange.eval_into(xi, &mut val, &mut der);
         let scale = 2.0 / (mesh.breaks[e + 1] - mesh.breaks[e]);
         let mut out = [(0.0, 0.0); 7];
         for (o, v) in out.iter_mut().zip(nodal) {
@@ -149,7 +150,7 @@ pub fn velocity_rates(
         }
         (out, break_rates[e] + 0.5 * (xi + 1.0) * (break_rates[e + 1] - break_rates[e]))
     };
-    let rates = |xr: f64, moving: bool| {
+    let mut rates = |xr: f64, moving: bool| {
         let ([u, ut, utt, ul, utl, ur, utr], mesh_rate) = at(xr);
         // At fixed X the mesh moves under it: d/dR_inf of an interpolated sum is its nodal
         // rate minus its X-derivative times the mesh point's velocity (X / 6 is not meshed).
@@ -167,5 +168,6 @@ pub fn velocity_rates(
             d_r: if moving { sigma * ut.1 / j } else { 0.0 },
         }
     };
-    Ok((x.iter().map(|&xr| rates(xr, true)).collect(), [rates(1.0, false), rates(1.0, true)]))
+    let points = x.iter().map(|&xr| rates(xr, true)).collect();
+    Ok((points, [rates(1.0, false), rates(1.0, true)]))
 }

@@ -68,23 +68,35 @@ impl LagrangeBasis {
     ///                 l_k'(x_k) = -sum_{j != k} l_j'(x_k)     (the basis sums to one)
     /// ```
     pub(crate) fn eval(&self, x: f64) -> (Vec<f64>, Vec<f64>) {
+        let (mut val, mut der) = (vec![0.0; self.len()], vec![0.0; self.len()]);
+        self.eval_into(x, &mut val, &mut der);
+        (val, der)
+    }
+
+    /// [`LagrangeBasis::eval`] into `val` and `der` (each `len()` long) without allocating,
+    /// for the loops over many points; `der` first holds `1 / (x - x_m)`.
+    pub(crate) fn eval_into(&self, x: f64, val: &mut [f64], der: &mut [f64]) {
         let n = self.len();
         if let Some(k) = self.nodes.iter().position(|&xk| xk == x) {
-            let mut val = vec![0.0; n];
+            val.fill(0.0);
             val[k] = 1.0;
-            let mut der = vec![0.0; n];
+            der.fill(0.0);
             for j in (0..n).filter(|&j| j != k) {
                 der[j] = self.weights[j] / self.weights[k] / (x - self.nodes[j]);
             }
             der[k] = -der.iter().sum::<f64>();
-            return (val, der);
+            return;
         }
-        let inv: Vec<f64> = self.nodes.iter().map(|&xm| 1.0 / (x - xm)).collect();
-        let total_inv: f64 = inv.iter().sum();
-        let denom: f64 = self.weights.iter().zip(&inv).map(|(w, i)| w * i).sum();
-        let val: Vec<f64> = (0..n).map(|j| self.weights[j] * inv[j] / denom).collect();
-        let der = (0..n).map(|j| val[j] * (total_inv - inv[j])).collect();
-        (val, der)
+        for (d, &xm) in der.iter_mut().zip(&self.nodes) {
+            *d = 1.0 / (x - xm);
+        }
+        let total_inv: f64 = der.iter().sum();
+        let denom: f64 = self.weights.iter().zip(der.iter()).map(|(w, i)| w * i).sum();
+        for j in 0..n {
+            let inv = der[j];
+            val[j] = self.weights[j] * inv / denom;
+            der[j] = val[j] * (total_inv - inv);
+        }
     }
 }
 
