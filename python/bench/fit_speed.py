@@ -22,8 +22,9 @@ fit() with its intervals, the report (report.write_report) and the figure
 (plots.fit_figure). Each case runs in a subprocess with PYTHONPATH at the current package or
 at `--baseline REV`'s python/ (git archive into a temp dir), alternating, the same native
 library (WOUND_OPENING_LIB). CPU time by time.process_time from the call on, the package's
-modules (scipy, matplotlib) imported before: their import, a fixed cost of each process that
-a sweep or a notebook pays once, is its own column. Native solves by counting calls of
+modules (scipy, matplotlib, pandas: the command line reads a lab's file with it) imported
+before: their import, a fixed cost of each process that a sweep or a notebook pays once, is
+its own column. Native solves by counting calls of
 _native.series and _native.profile_series.
 
     python python/bench/fit_speed.py --baseline cee82cd [--quick] [--cases lab_R0_8,piv_4000]
@@ -128,6 +129,8 @@ def run_case(name: str, data_file: str, out_dir: str) -> dict:
     from wound_opening.results.report import write_report
 
     wo.fit  # noqa: B018  (the fitter's modules, imported on first use)
+    import pandas  # noqa: F401  (the tables and figure's; the command line reads lab files with it)
+
     import_s = time.process_time() - begin
     counts = _count_solves()
     out = Path(out_dir)
