@@ -212,6 +212,8 @@ def _draw(result, profile_points: int):
 
     st = status(result)
     fig.suptitle(st.text, color=st.colour, fontsize="medium")
+    for a in fig.axes[2:]:  # the PIV and profile panels: each minor tick is a line and a
+        a.minorticks_off()  # label to lay out, a third of the drawing, saying little there
     return fig
 
 
