@@ -33,10 +33,21 @@ for job in "venv $venv" "debian $debian"; do
 done
 source scripts/venv.sh
 cargo run --release --quiet -- fmu  # the archives, with their Windows and aarch64 binaries
-bash scripts/c_tests.sh
-bash scripts/cross_tests.sh  # the archives' Windows and aarch64 binaries under Wine and qemu
 # The Python code's format and lint (ruff, configured in pyproject.toml).
 ruff format --check python tests/python setup.py
 ruff check python tests/python setup.py
-# Two worker processes (pytest-xdist): the Python tests are independent of each other.
-python -m pytest -q -n 2 tests/python
+# Two worker processes (pytest-xdist): the Python tests are independent of each other. They
+# run beside the C programs under valgrind and the cross binaries under Wine and qemu (one
+# process at a time, ~30 s), their output kept in target/pytest.log and shown after.
+python -m pytest -q -n 2 tests/python >target/pytest.log 2>&1 &
+pytest=$!
+trap 'kill "$venv" "$debian" "$pytest" 2>/dev/null || true' EXIT
+bash scripts/c_tests.sh
+bash scripts/cross_tests.sh  # the archives' Windows and aarch64 binaries under Wine and qemu
+status=0
+wait "$pytest" || status=$?
+cat target/pytest.log
+if ((status)); then
+    echo "error: the Python tests (target/pytest.log) failed with status $status" >&2
+    exit "$status"
+fi
