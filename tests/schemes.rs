@@ -71,14 +71,15 @@ fn paper_scheme_reproduces_its_known_first_order_error() {
     for (lambda, reference) in EXACT {
         let coarse = max_error(lambda, &Scheme::Paper { points: 101, max_step: 1e-3 }, &reference);
         let fine = max_error(lambda, &Scheme::Paper { points: 1001, max_step: 1e-3 }, &reference);
-        let finer_step = max_error(lambda, &Scheme::Paper { points: 1001, max_step: 2.5e-4 }, &reference);
+        let coarser_step = max_error(lambda, &Scheme::Paper { points: 1001, max_step: 4e-3 }, &reference);
         assert!((0.10..0.22).contains(&coarse), "lambda {lambda}: N=101 error {coarse}");
         assert!((0.010..0.020).contains(&fine), "lambda {lambda}: N=1001 error {fine}");
         // First order in space: ten times the points, about a tenth of the error.
         let order = (coarse / fine).log10();
         assert!((order - 1.0).abs() < 0.1, "lambda {lambda}: order {order}");
-        // "whatever dt": the spatial error dominates.
-        assert!((finer_step / fine - 1.0).abs() < 0.05, "lambda {lambda}: {fine} vs {finer_step}");
+        // "whatever dt": the spatial error dominates (four times the step changes the error
+        // by 0.01-0.1 %, measured; a step four times smaller took three quarters of the time).
+        assert!((coarser_step / fine - 1.0).abs() < 0.01, "lambda {lambda}: {fine} vs {coarser_step}");
     }
 }
 
