@@ -9,7 +9,9 @@
  *   5. wo_series (a whole R(t) in one call) against the reference, and wo_profile_series
  *      at current radii r = X + u(X, t) against the handle's profile at X; bad input;
  *      wo_series_sensitivities: the same R(t), and dR/dlambda, dR/dR_inf against central
- *      differences of wo_series (step 1e-4; their own checks are in the Rust and Python tests).
+ *      differences of wo_series (step 1e-4; their own checks are in the Rust and Python tests);
+ *      wo_profile_rates: the velocity of wo_profile_series, its derivatives in R_inf and in
+ *      the current radius against central differences of wo_profile_series.
  * Run under valgrind by scripts/c_tests.sh: no error, no leak.
  */
 #include "wound_opening.h"
@@ -276,6 +278,21 @@ static void series(void) {
         double fd = (up[k] - down[k]) / 2e-3;
         CHECK(fabs(d_r_inf[k] - fd) < 1e-7, "dR/dR_inf at %g: %g vs %g", times[k], d_r_inf[k], fd);
     }
+
+    /* wo_profile_rates at the middle current radius: its velocity, and d/dR_inf and d/dr
+     * against central differences of wo_profile_series (R_inf 10 +- 1e-3 as above; r +- 1e-5). */
+    double rates[6], edge[12], vu, vd, rm = r[1];
+    OK(wo_profile_rates((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &one, 1, &rm, 1, rates, edge));
+    CHECK(fabs(rates[0] - v[1]) < 1e-12, "wo_profile_rates velocity %g vs %g", rates[0], v[1]);
+    OK(wo_profile_series((wo_problem){1.0, 1.0, 10.001, 1e-10, 0.0}, &one, 1, &rm, 1, NULL, &vu));
+    OK(wo_profile_series((wo_problem){1.0, 1.0, 9.999, 1e-10, 0.0}, &one, 1, &rm, 1, NULL, &vd));
+    CHECK(fabs(rates[4] - (vu - vd) / 2e-3) < 1e-7, "du_t/dR_inf %g vs %g", rates[4], (vu - vd) / 2e-3);
+    double rs[2] = {rm - 1e-5, rm + 1e-5}, vs[2];
+    OK(wo_profile_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &one, 1, rs, 2, NULL, vs));
+    CHECK(fabs(rates[5] - (vs[1] - vs[0]) / 2e-5) < 1e-7, "du_t/dr %g vs %g", rates[5], (vs[1] - vs[0]) / 2e-5);
+    CHECK(edge[5] == 0.0, "the edge's own velocity does not depend on r");
+    REFUSED(wo_profile_rates((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &one, 1, &rm, 1, NULL, edge), WO_NULL_POINTER,
+            "rates (with count = 6) is NULL");
 
     double bad_times[2] = {1.0, 0.5}, inside = 1.01;
     REFUSED(wo_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, bad_times, 2, radius, NULL), WO_INVALID_ARGUMENT,
