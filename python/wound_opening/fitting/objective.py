@@ -187,18 +187,14 @@ class Objective(Problem):
         )
         return r - 1.0, v, d_lam, d_r_inf
 
-    def _rows(self, theta, r_inf: float):
-        """Dimensionless group times, the edge velocities sigma h' there, and per group the
-        rows' radii in R0 with the mask of those beyond the model's wound edge (the tissue)."""
-        R0, sigma, lam, T = theta
-        tau = self.group_times / T
-        h, dh = self._h(lam, r_inf, tau)
-        edge_r = 1.0 + sigma * h
+    def _rows(self, R0: float, edge_r: np.ndarray) -> list:
+        """Per group the rows' radii in R0 with the mask of those beyond the model's wound
+        edge (`edge_r`, in R0, per group): the tissue."""
         rows = []
         for k, (_, r, _, _) in enumerate(self.groups):
             x = r / R0
             rows.append((x, x > edge_r[k] * (1 + 1e-12)))
-        return tau, sigma * dh, rows
+        return rows
 
     def _profile(self, theta, r_inf: float) -> np.ndarray:
         """Model velocities [um/s] of the profile rows (group order), the edge velocity for
@@ -206,10 +202,11 @@ class Objective(Problem):
         R0, sigma, lam, T = theta
         if not self.groups:
             return np.empty(0)
-        tau, edge_v, rows = self._rows(theta, r_inf)
+        tau = self.group_times / T
+        h, dh = self._h(lam, r_inf, tau)
         out, inside = [], 0
-        for k, (x, tissue) in enumerate(rows):
-            v = np.full(x.size, edge_v[k])
+        for k, (x, tissue) in enumerate(self._rows(R0, 1.0 + sigma * h)):
+            v = np.full(x.size, sigma * dh[k])
             if np.any(tissue):
                 _, vt = _native.profile_series(
                     abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=self.tolerance
@@ -257,9 +254,7 @@ class Objective(Problem):
             )
 
         out = []
-        for k, (_, r, _, _) in enumerate(self.groups):
-            x = r / R0
-            tissue = x > edge_r[k] * (1 + 1e-12)
+        for k, (x, tissue) in enumerate(self._rows(R0, edge_r)):
             points, edge = _native.profile_rates(
                 abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=self.tolerance
             )
