@@ -52,7 +52,7 @@ pub fn profile_rates(
     let mut e = vec![0.0; times.len() * 2 * width];
     walk(&mut solver, 0.0, times, |i, s| {
         let x = tissue_points(s, radii, r_inf, (i, times[i]))?;
-        let (rates, at_edge) = velocity_rates(&problem.params, &settings, times[i], &x)?;
+        let (rates, at_edge) = velocity_rates(&problem.params, &settings, times[i], &x, width > RATES)?;
         for (j, r) in rates.iter().enumerate() {
             put(&mut p[(i * n + j) * width..][..width], r);
         }

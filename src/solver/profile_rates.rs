@@ -84,12 +84,13 @@ pub struct VelocityRates {
 /// the cut. Returns `(points, [edge, edge from the tissue])`: the edge's own (the material
 /// point `X = 1` held) and the limit of the points' as the current radius comes down to the
 /// edge (`X = 1` moving with the parameters): the one-sided derivatives either side of the
-/// switch from tissue velocity to edge velocity.
+/// switch from tissue velocity to edge velocity. `outer`: also `d_r_inf` (else 0).
 pub fn velocity_rates(
     params: &Params,
     settings: &Settings,
     tau: f64,
     x: &[f64],
+    outer: bool,
 ) -> Result<(Vec<VelocityRates>, [VelocityRates; 2]), SolverError> {
     check_lambda(params.lambda)?;
     check_r_inf(params.r_inf)?;
@@ -116,8 +117,13 @@ pub fn velocity_rates(
     ];
     // R_inf moves mu_k and the whole shapes (nodes held): d(X w)/dR_inf = X (C w + w'), with
     // w' the weights' own rates through e_k' and mu_k' (= nu_k').
-    let (modes, coupling) = (basis.rates(), &basis.shape_rates().coupling);
+    // Without `outer` they are not computed (d_r_inf is then 0): the mode shapes' rates cost
+    // two dense products once per basis.
     let moved = |c: &DVector<f64>, own: &dyn Fn(f64, f64, f64, f64, f64) -> f64| {
+        if !outer {
+            return DVector::zeros(basis.shapes.nrows());
+        }
+        let (modes, coupling) = (basis.rates(), &basis.shape_rates().coupling);
         let w_rate = DVector::from_fn(n, |k, _| {
             let (e, nu) = (basis.edge_row[k], basis.mu[k] + lambda * lambda);
             own(e, nu, (-tau / nu).exp(), modes.edge[k], modes.mu[k])
