@@ -30,15 +30,18 @@ R0, SIGMA, T, OUTER = 10.0, 0.5, 10.0, 100.0
 QUANTITIES = ("R0_um", "sigma", "lambda", "T_s", "zeta_over_G_s_per_um2")
 
 
-def one(job):
-    lam, seed, frames, noise = job
+def data(lam: float, seed: int, frames: int = 120, noise: float = 0.01) -> RadiusSeries:
+    """The radius series of draw `seed` at `lam`, its noise given."""
     t = np.linspace(0.5, 60.0, frames)
     clean = R0 * we.edge(lam, SIGMA, OUTER / R0, t / T)[0]
     sd = noise * R0 * (we.final_radius(SIGMA, OUTER / R0) - we.initial_radius(SIGMA))
     rng = np.random.default_rng(seed)
-    result = fit(
-        RadiusSeries(t, clean + sd * rng.standard_normal(t.size), sd), outer_radius_um=OUTER
-    )
+    return RadiusSeries(t, clean + sd * rng.standard_normal(t.size), sd)
+
+
+def one(job):
+    lam, seed, frames, noise = job
+    result = fit(data(lam, seed, frames, noise), outer_radius_um=OUTER)
     if not result.converged:
         return lam, None
     truth = {

@@ -42,6 +42,14 @@ it is used, for a parameter whose estimate has correlation rho with psi_hat (fro
 Jacobian with psi's column), wherever lambda's interval reaches 0; with the noise estimated
 it is scaled by F(1, dof)'s 95 % point over chi^2_1's. The bound can thus only widen these
 intervals, and only by a few per cent: an under-coverage larger than that is not the bound's.
+
+Two valleys. Next to the bound the radius data can allow a second local optimum (one valley
+at lambda = 0, one at lambda ~ 0.4 in the friction regime), and then the truth lies in one
+while the minimum is in the other in a fair share of draws: delta chi^2 at the truth is the
+valleys' gap plus its own chi^2_1 (95 % point 5.5 for R0 at lambda = 0.05, measured), which
+no single-valley law gives. Where a free fit from the estimate moved to lambda = 0, or
+another optimum of the fit, lies within VALLEYS thresholds, the threshold is the larger of
+q(rho) and the law of the several valleys' local Gaussian model (valley_law.py).
 """
 
 from __future__ import annotations
@@ -51,12 +59,19 @@ import math
 import numpy as np
 from scipy import optimize, special
 
-from .intervals import profile_at
+from .._native import SolverError
+from .local import local_fit
+from .valley_law import psi_jacobian, valley_thresholds
 
 #: Angles of the quadrature of P(LR > c) (the integrand is smooth between the four cones).
 ANGLES = 20000
-#: Relative step of lambda for psi's column at lambda = 0: (r(lambda = d) - r(0)) / d^2.
-PSI_STEP = 1e-2
+#: Valleys further than this many regular thresholds above the minimum are left out of the
+#: several valleys' law: the fit's minimum is never there.
+VALLEYS = 3.0
+#: Evaluations of the free fit that looks for a valley next to lambda = 0: one converges in
+#: ~20 where there is one (the friction regime, radius only); on the flat valley of
+#: plateau-only data (R0 -> 0.1 um, 12 ms a solve) it would crawl for its 200.
+FREE_NFEV = 40
 
 
 def quantile(p: float, noise_given: bool, dof: int) -> float:
@@ -104,13 +119,11 @@ def psi_correlations(problem, z, gradients: dict) -> dict:
     difference (r(PSI_STEP) - r(0)) / PSI_STEP^2 (exact to O(PSI_STEP^2): r is even in
     lambda). Coordinates the problem holds fixed are left out."""
     z = np.asarray(z, float)
-    jac = problem.jacobian(z)
     if z[2] > 1e-6:
+        jac = problem.jacobian(z)
         jac[:, 2] = jac[:, 2] / (2 * z[2])
     else:
-        up = z.copy()
-        up[2] = PSI_STEP
-        jac[:, 2] = (problem.residuals(up) - problem.residuals(z)) / PSI_STEP**2
+        jac = psi_jacobian(problem, z, zero=1e-6)[1]
     free = [i for i in range(4) if i not in problem.fixed]
     if 2 not in free:
         return {}
@@ -139,23 +152,66 @@ GRADIENTS = {
 }
 
 
-def thresholds(problem, z, chi2_min: float, loss: str, noise_given: bool, dof: int) -> dict:
+def thresholds(
+    problem, z, chi2_min: float, loss: str, noise_given: bool, dof: int, others=()
+) -> tuple[dict, list]:
     """name -> the threshold of its 95 % interval where it is not `regular` (module
-    docstring): lambda's where its estimate is 0; the others' wherever lambda's interval
-    reaches 0 (its estimate 0, or delta chi^2 at lambda = 0 below the regular threshold,
-    one constrained fit; a fit that fails there counts as reaching it). Nothing with
-    lambda held fixed or bounded above 0 by the user (the bound is then the user's)."""
+    docstring): lambda's where its estimate is 0; the others' q(rho) wherever lambda's
+    interval reaches 0 (its estimate 0, or delta chi^2 at lambda = 0 below the regular
+    threshold, one constrained fit). Where delta chi^2 at lambda = 0 is below VALLEYS
+    thresholds and a second valley lies there (a free fit from that constrained fit, and
+    `others`: the fit's other optima, (z, delta chi^2)), the larger of that and the several
+    valleys' law (valley_law.py; least squares only). Nothing with lambda held fixed or
+    bounded above 0 by the user (the bound is then the user's). Returns (the thresholds,
+    the valleys found beyond `others`: (z, delta chi^2), for the walks to start from)."""
     if 2 in problem.fixed or problem.bounds()[0][2] > 0:
-        return {}
+        return {}, []
     base = regular(noise_given, dof)
     out = {}
+    start = None  # where a second valley is looked for: lambda's profile at 0
     if z[2] <= 1e-8:
         out["lambda"] = mixture(noise_given, dof)
+        reaches = True
     else:
-        delta0 = float(profile_at(problem, z, chi2_min, 2, [0.0], loss=loss)[0])
-        if delta0 >= base:
-            return out
+        try:
+            start, held, res = local_fit(
+                problem, z, fixed=2, value=0.0, loss=loss, tol=1e-7, max_nfev=100
+            )
+        except SolverError:
+            start, held, res = None, chi2_min, None
+        reaches = held - chi2_min < base or res is None or res.status == 0  # unsure: reached
+        if not reaches and held - chi2_min >= VALLEYS * base:
+            return out, []
     scale = base / quantile(0.95, True, 0)
-    for name, rho in psi_correlations(problem, z, GRADIENTS).items():
-        out[name] = scale * nuisance_quantile(rho)
+    if reaches:
+        for name, rho in psi_correlations(problem, z, GRADIENTS).items():
+            out[name] = scale * nuisance_quantile(rho)
+    if loss != "linear":
+        return out, []
+    valleys = _valleys(problem, z, start, chi2_min, others, base)
+    if len(valleys) > 1:
+        law = valley_thresholds(problem, valleys, GRADIENTS)
+        out |= {name: max(out.get(name, 0.0), scale * q) for name, q in law.items()}
+    known = [np.asarray(v, float) for v, _ in others]
+    new = [(v, d) for v, d in valleys[1:] if not any(np.array_equal(v, w) for w in known)]
+    return out, new
+
+
+def _valleys(problem, z, start, chi2_min, others, base) -> list:
+    """(z, delta chi^2) of the estimate, of the optimum a free fit from `start` (lambda's
+    profile at 0; None: none) converges to within FREE_NFEV evaluations, and of `others`, those
+    within VALLEYS x `base` and more than 1e-2 apart in some coordinate (stages.alternates'
+    rule)."""
+    candidates = list(others)
+    try:
+        if start is not None:
+            found, c, res = local_fit(problem, start, tol=1e-7, max_nfev=FREE_NFEV)
+            if res.status > 0:  # an optimum: a fit still crawling is on the estimate's valley
+                candidates.insert(0, (found, c - chi2_min))
+    except SolverError:
+        pass
+    out = [(np.asarray(z, float), 0.0)]
+    for v, d in candidates:
+        if d < VALLEYS * base and all(np.max(np.abs(v - w)) > 1e-2 for w, _ in out):
+            out.append((np.asarray(v, float), max(float(d), 0.0)))
     return out

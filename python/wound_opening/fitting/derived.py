@@ -151,8 +151,9 @@ def derived_profiles(
     cov_w = A cov_z A^T with A = dw/dz) and the start of the other coordinates.
     `thresholds`: kind -> its own threshold where lambda's bound changes it (bounds.py)."""
     out = {}
-    centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for kind in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um"):
+        own = (thresholds or {}).get(kind)
+        centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < (own or threshold)]
         if kind != "zeta_over_G_s_per_um2" and obj.fixed.get(2) == 0.0:
             out[kind] = Profile(
                 0.0, 0.0, False, [(0.0, 0.0)]
@@ -191,7 +192,6 @@ def derived_profiles(
             return (edge if mine else limit), mine
 
         w_centres = [(rep.to_w(c), d) for c, d in centres]
-        own = (thresholds or {}).get(kind)
         lo, hi, points, bounded = hull(
             rep, k, w_centres, chi2_min, own or threshold, step, slope, loss, side_limit
         )

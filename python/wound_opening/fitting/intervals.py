@@ -250,17 +250,19 @@ def profile_all(
     thresholds=None,
 ) -> dict:
     """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z.
-    `alternates`: other local optima (z, delta chi^2) below the threshold. The confidence
+    `alternates`: other local optima (z, delta chi^2), those below the threshold centres
+    of walks. The confidence
     set of a parameter may then be two intervals (a barrier between the valleys rises above
     the threshold): each is walked from its own optimum and the hull is reported.
     `thresholds`: name -> a parameter's own threshold where lambda's bound changes it
     (bounds.py; recorded in its Profile)."""
     out = {}
     lims = obj.bounds()
-    centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < threshold]
     for i, name in enumerate(NAMES):
         if i in obj.fixed:
             continue
+        own = (thresholds or {}).get(name)
+        centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < (own or threshold)]
         user_bound = obj.user_bound
         default = (0.05, 0.05 * abs(z_hat[1]) + 0.01, 0.1, 0.1)[i]
         se = math.sqrt(max(cov_z[i, i], 0.0))
@@ -275,7 +277,6 @@ def profile_all(
             box_edge = lims[0 if direction < 0 else 1][i]
             return limit, user_bound(i, direction) and limit == box_edge
 
-        own = (thresholds or {}).get(name)
         lo, hi, walked, _ = hull(
             obj, i, centres, chi2_min, own or threshold, step, slope, loss, side_limit
         )

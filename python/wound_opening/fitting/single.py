@@ -104,7 +104,10 @@ def fit(
     profiles = {}
     if intervals and not judged.reasons:
         dof = max(obj.size - n_free, 1)
-        near = bound_thresholds(obj, z, chi2_cost, loss, not any(data.estimated), dof)
+        near, found = bound_thresholds(
+            obj, z, chi2_cost, loss, not any(data.estimated), dof, others
+        )
+        others += found  # a valley at lambda ~ 0 the fit's starts did not end in
         profiles = _profiles(
             obj, z, chi2_cost, judged.threshold, cov_z, loss, others, derived, near
         )
