@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from bench.bound_coverage import OUTER, R0, SIGMA, T, data
-from scipy import optimize, stats
+from scipy import integrate, optimize, stats
 
 from wound_opening.fitting.bounds import (
     GRADIENTS,
@@ -19,7 +19,8 @@ from wound_opening.fitting.bounds import (
 )
 from wound_opening.fitting.problem import Problem
 from wound_opening.fitting.single import fit
-from wound_opening.fitting.valley_law import valley_thresholds
+from wound_opening.fitting.valley_law import DRAWS as DRAWS_FIT
+from wound_opening.fitting.valley_law import ratios, valley_thresholds, whitened
 
 #: Draws of the law in the tests, and the binomial bound on its 95 % point's error: the
 #: empirical 95 % point of n draws lies between the law's (95 -+ 4 sd) % points, sd =
@@ -62,12 +63,18 @@ def _problem(rho):
     return Quadratic(A, np.zeros(60))
 
 
+def _alone(problem, z):
+    """Draws of the ratio with the valley at z alone (valley_law.ratios)."""
+    free = [0, 1, 2, 3]
+    local = [(z, *whitened(problem, z, free))]
+    return ratios(local, 0, free, GRADIENTS, DRAWS, np.random.default_rng(5))[1]
+
+
 def test_one_valley_inside_the_bounds_gives_chi2_1():
     problem = _problem(0.5)
-    z = np.array([0.0, 0.0, 1.0, 0.0])  # lambda = 1: psi's bound far away
-    law = valley_thresholds(problem, [(z, 0.0)], GRADIENTS, draws=DRAWS)
+    draws = _alone(problem, np.array([0.0, 0.0, 1.0, 0.0]))  # lambda = 1: the bound far away
     for name in GRADIENTS:
-        _between(law[name], lambda p: stats.chi2.ppf(p, 1))
+        _between(np.quantile(draws[name], 0.95), lambda p: stats.chi2.ppf(p, 1))
 
 
 @pytest.mark.parametrize("rho", [0.5, 0.95])
@@ -76,7 +83,7 @@ def test_one_valley_on_lambdas_bound_gives_the_nuisance_quantile(rho):
     95 % point q(rho) is an exact integral."""
     problem = _problem(rho)
     z = np.zeros(4)
-    law = valley_thresholds(problem, [(z, 0.0)], GRADIENTS, draws=DRAWS)
+    draws = _alone(problem, z)
     corr = psi_correlations(problem, z, GRADIENTS)
     for name in GRADIENTS:
         r = corr[name]
@@ -85,7 +92,67 @@ def test_one_valley_on_lambdas_bound_gives_the_nuisance_quantile(rho):
             return optimize.brentq(lambda c: exceedance(c, r) - (1 - p), 0.5, 50.0)
 
         assert ppf(0.95) == pytest.approx(nuisance_quantile(r), abs=1e-4)
-        _between(law[name], ppf)
+        _between(np.quantile(draws[name], 0.95), ppf)
+
+
+class TwoValleys(Quadratic):
+    """The 60-point problem (its columns times 3: standard errors of ~0.05) with a second
+    valley where z0 > 0.25: the same model moved to the optimum `other`, plus a vector w
+    outside the model's columns, |w|^2 = `gap` (the second valley's chi^2 above the
+    first's, whose optimum is (0, 0, 1, 0) with residuals 0)."""
+
+    def __init__(self, other, gap):
+        A = 3 * _problem(0.5).A
+        super().__init__(A, A @ _f(INNER))
+        w = np.random.default_rng(7).standard_normal(A.shape[0])
+        w -= A @ np.linalg.lstsq(A, w, rcond=None)[0]
+        self.shift = A @ (_f(INNER) - _f(other)) + w * np.sqrt(gap / (w @ w))
+
+    def residuals(self, z):
+        return super().residuals(z) + (self.shift if z[0] > 0.25 else 0.0)
+
+
+INNER = np.array([0.0, 0.0, 1.0, 0.0])
+
+
+def _f(z):
+    return np.array([z[0], z[1], z[2] ** 2, z[3]])
+
+
+def _two_valley_ppf(p, gap):
+    """The p point of X^2 + max(0, 2 sqrt(gap) Z - gap), X, Z independent N(0, 1)."""
+
+    def sf(c):
+        def inner(z):
+            m = max(0.0, 2 * np.sqrt(gap) * z - gap)
+            return stats.chi2.sf(max(c - m, 0.0), 1) * stats.norm.pdf(z)
+
+        return integrate.quad(inner, -10, 10, points=[np.sqrt(gap) / 2], limit=200)[0]
+
+    return optimize.brentq(lambda c: sf(c) - (1 - p), 0.1, 50.0)
+
+
+@pytest.mark.parametrize("gap", [900.0, 0.4])
+def test_a_second_valley_gives_the_law_of_its_gap(gap):
+    """The second valley is the first moved by 0.5 in R0, sigma and T (10 standard errors:
+    held at the truth it never holds the constrained minimum) with the same Jacobian, so
+    with the truth in either valley the ratio at the truth is X^2 + max(0, f1 - f2) with
+    f1 - f2 = 2 sqrt(gap) Z - gap, the other valley's advantage: an exact law. 900 above it
+    never holds the minimum, and the threshold is chi^2_1's to the last digits (the control
+    variate); 0.4 above it does in 38 % of the draws, and the threshold is that law's
+    95 % point, 4.33: 0.49 above chi^2_1's."""
+    other = np.array([0.5, -0.5, 1.0, 0.5])
+    problem = TwoValleys(other, gap)
+    d = float(np.sum(problem.residuals(other) ** 2) - np.sum(problem.residuals(INNER) ** 2))
+    assert d == pytest.approx(gap)
+    law = valley_thresholds(problem, [(INNER, 0.0), (other, d)], GRADIENTS, nuisance_quantile)
+    for name in ("R0_um", "sigma", "T_s"):
+        if gap > 100:
+            assert law[name] == pytest.approx(stats.chi2.ppf(0.95, 1), abs=1e-9)
+        else:
+            spread = 4 * np.sqrt(0.05 * 0.95 / DRAWS_FIT)
+            lo, hi = (_two_valley_ppf(0.95 + k * spread, gap) for k in (-1, 1))
+            assert lo <= law[name] <= hi, (name, lo, law[name], hi)
 
 
 # Draws of bench/bound_coverage.py (lambda = 0.05) whose 95 % interval missed the truth with

@@ -190,7 +190,7 @@ def thresholds(
         return out, []
     valleys = _valleys(problem, z, start, chi2_min, others, base)
     if len(valleys) > 1:
-        law = valley_thresholds(problem, valleys, GRADIENTS)
+        law = valley_thresholds(problem, valleys, GRADIENTS, nuisance_quantile)
         out |= {name: max(out.get(name, 0.0), scale * q) for name, q in law.items()}
     known = [np.asarray(v, float) for v, _ in others]
     new = [(v, d) for v, d in valleys[1:] if not any(np.array_equal(v, w) for w in known)]

@@ -26,7 +26,11 @@ each valley's point as the truth is estimated from DRAWS draws; the valleys the 
 as truths are those whose delta chi^2 lies below that point (the test there, inverted),
 and the largest of their points is the threshold: like bounds.q(rho), the largest over the
 truths the data allow. With one valley this law is chi^2_1 (or, on the
-bound, bounds.py's mixture), so it is only computed where there are two or more.
+bound, bounds.py's mixture), so it is only computed where there are two or more; and the
+same draws give the ratio of the truth's valley alone, whose exact point corrects the
+estimate (a control variate: Q(valleys) - Q(alone) + exact), so that a valley that never
+holds the minimum changes nothing, and the sampling error is only that of the other
+valleys' effect.
 """
 
 from __future__ import annotations
@@ -40,6 +44,8 @@ import numpy as np
 DRAWS = 2000
 #: Relative step of lambda for psi's column at lambda = 0.
 PSI_STEP = 1e-2
+#: chi^2_1's 95 % point.
+CHI2_95 = 3.841458820694124
 #: Draws per block (the noise of a block is a size x BLOCK matrix).
 BLOCK = 500
 
@@ -57,7 +63,7 @@ def psi_jacobian(problem, z, zero: float = 1e-8) -> tuple[np.ndarray, np.ndarray
     return r, jac
 
 
-def _whitened(problem, z, free):
+def whitened(problem, z, free):
     """(residuals, Jacobian over `free`, index of psi among them or None) at a valley."""
     r, jac = psi_jacobian(problem, z)
     on_bound = 2 in free and z[2] <= 1e-8
@@ -92,41 +98,75 @@ def _least(a, J, G, c, psi):
     return out
 
 
-def valley_thresholds(problem, valleys, gradients, draws=DRAWS, seed=0):
+def valley_thresholds(problem, valleys, gradients, one_valley, draws=DRAWS, seed=0):
     """name -> the 95 % point of delta chi^2 at the truth of each quantity g^T z (gradients:
     name -> g over z's four coordinates), the largest over the valleys (z, delta chi^2 at
     z; the first the estimate) that are truths the data allow: whose delta lies below the
     95 % point at themselves (the test at that truth, inverted). Every valley given is one
-    the fit may end in. Only for the linear loss. Coordinates the problem holds fixed are
-    left out."""
+    the fit may end in. `one_valley(rho)`: the exact 95 % point of the ratio with the truth's
+    valley alone, on lambda's bound (bounds.nuisance_quantile; chi^2_1's inside), the
+    control variate (`_law`). Only for the linear loss. Coordinates the problem holds fixed
+    are left out."""
     free = [i for i in range(4) if i not in problem.fixed]
-    local = [(np.asarray(z, float), *_whitened(problem, z, free)) for z, _ in valleys]
+    local = [(np.asarray(z, float), *whitened(problem, z, free)) for z, _ in valleys]
     rng = np.random.default_rng(seed)
     out = {name: 0.0 for name in gradients}
-    for (zj, rj, _, _), (_, dj) in zip(local, valleys):
-        law = _law(local, zj, rj, free, gradients, draws, rng)
+    for j, (_, dj) in enumerate(valleys):
+        law = _law(local, j, free, gradients, one_valley, draws, rng)
         for name, q in law.items():
             if dj <= q:
                 out[name] = max(out[name], q)
     return out
 
 
-def _law(local, zj, rj, free, gradients, draws, rng) -> dict:
-    """name -> the 95 % point of delta chi^2 at the truth zj (its residuals rj)."""
-    lr = {name: [] for name in gradients}
+def _law(local, j, free, gradients, one_valley, draws, rng) -> dict:
+    """name -> the 95 % point of delta chi^2 with valley j the truth.
+
+    The same draws give the ratio of valley j alone, whose law is known exactly (chi^2_1
+    inside the bounds, bounds.py's q(rho) on lambda's bound, rho from valley j's
+    Jacobian): the estimate is Q(all valleys) - Q(valley j) + exact (a control variate).
+    Where the other valleys never hold the minimum the two ratios are equal draw by draw and
+    the estimate is exact; otherwise only the valleys' effect carries the sampling error."""
+    many, alone = ratios(local, j, free, gradients, draws, rng)
+    _, _, Jj, pj = local[j]
+    out = {}
+    for name, g in gradients.items():
+        exact = _exact(Jj, pj, np.asarray(g, float)[free], one_valley)
+        q = np.quantile(many[name], 0.95) - np.quantile(alone[name], 0.95)
+        out[name] = float(q + exact)
+    return out
+
+
+def ratios(local, j, free, gradients, draws, rng) -> tuple[dict, dict]:
+    """Draws of delta chi^2 at the truth of each quantity, valley j the truth: (name -> with
+    every valley, name -> with valley j alone). `local`: per valley (z, residuals, Jacobian
+    over `free`, psi's index or None) as `whitened` gives them."""
+    zj, rj, _, _ = local[j]
+    many = {name: [] for name in gradients}
+    alone = {name: [] for name in gradients}
     empty = np.zeros((len(free), 0))
     for start in range(0, draws, BLOCK):
         e = rng.standard_normal((rj.size, min(BLOCK, draws - start)))
         shifted = [(zk, (rk - rj)[:, None] - e, Jk, pk) for zk, rk, Jk, pk in local]
-        full = np.min([_least(a, J, empty, np.zeros(0), p) for _, a, J, p in shifted], axis=0)
+        fulls = [_least(a, J, empty, np.zeros(0), p) for _, a, J, p in shifted]
         for name, g in gradients.items():
             gf = np.asarray(g, float)[free][:, None]
-            held = np.min(
-                [
-                    _least(a, J, gf, np.array([gf[:, 0] @ (zj - zk)[free]]), p)
-                    for zk, a, J, p in shifted
-                ],
-                axis=0,
-            )
-            lr[name].append(held - full)
-    return {name: float(np.quantile(np.concatenate(v), 0.95)) for name, v in lr.items()}
+            held = [
+                _least(a, J, gf, np.array([gf[:, 0] @ (zj - zk)[free]]), p)
+                for zk, a, J, p in shifted
+            ]
+            many[name].append(np.min(held, axis=0) - np.min(fulls, axis=0))
+            alone[name].append(held[j] - fulls[j])
+    join = np.concatenate
+    return {n: join(v) for n, v in many.items()}, {n: join(v) for n, v in alone.items()}
+
+
+def _exact(J, psi, g, one_valley) -> float:
+    """The 95 % point of the ratio of one valley with Jacobian J: chi^2_1's where psi is None
+    (inside the bounds), else one_valley(rho), rho = corr(g^T z_hat, psi_hat)."""
+    if psi is None:
+        return CHI2_95
+    cov = np.linalg.pinv(J.T @ J)
+    var = float(g @ cov @ g)
+    rho = float(g @ cov[:, psi]) / np.sqrt(var * cov[psi, psi]) if var > 0 else 0.0
+    return one_valley(rho)
