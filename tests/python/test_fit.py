@@ -59,8 +59,9 @@ def test_radius_only_fit_reaches_the_optimum_and_covers_the_truth(lam, sigma, T,
 def test_the_jacobian_matches_differences_of_the_exact_solution():
     """Columns of d R_um / d z against fourth-order central differences (step 1e-3) of the
     Laplace-domain solution: truncation ~1e-12, rounding ~1e-14 / 1e-3. The objective's columns
-    are exact (sigma, T) or exact derivatives of the solver's curve (lambda, ln R0: objective.py);
-    measured worst 3.6e-11 of the column's scale (the central differences they replaced: 1e-7)."""
+    are exact (sigma, T) or exact derivatives of the solver's curve (lambda, ln R0: objective.py)
+    computed at the fit's tolerance, 1e-9 of the opening: measured worst 2.8e-9 of the column's
+    scale (3.6e-11 at 1e-10; the central differences they replaced: 1e-7)."""
     t = np.linspace(0.5, 60, 40)
     series = RadiusSeries(t, 10 + 0 * t, 1.0)
     obj = Objective(series, None, 87.0)
@@ -83,7 +84,7 @@ def test_the_jacobian_matches_differences_of_the_exact_solution():
                 12 * e[i]
             )
             scale = max(np.max(np.abs(ref)), 1e-3 * np.max(np.abs(jac)))
-            assert np.max(np.abs(jac[:, i] - ref)) < 1e-9 * scale, (
+            assert np.max(np.abs(jac[:, i] - ref)) < 1e-8 * scale, (
                 theta,
                 NAMES[i],
                 np.max(np.abs(jac[:, i] - ref)),
