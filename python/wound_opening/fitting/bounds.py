@@ -92,6 +92,11 @@ def mixture(noise_given: bool, dof: int) -> float:
 
 def exceedance(c: float, rho: float) -> float:
     """P(LR > c) for a parameter whose estimate has correlation rho with psi_hat, psi = 0."""
+    return _tail(c, _gains(rho))
+
+
+def _gains(rho: float) -> np.ndarray:
+    """g(w) at ANGLES angles w (module docstring: LR = R^2 g(w)), 0 where g <= 0."""
     w = (np.arange(ANGLES) + 0.5) * (2 * math.pi / ANGLES)
     x, y = np.cos(w), np.sin(w)
     s = math.sqrt(max(1 - rho * rho, 1e-12))
@@ -102,14 +107,20 @@ def exceedance(c: float, rho: float) -> float:
         np.where(star >= 0, x * x, x * x + star**2 / s**2),
         np.where(star >= 0, x * x - psi**2, (x - rho * psi) ** 2 / s**2),
     )
-    with np.errstate(divide="ignore", over="ignore"):
-        return float(np.mean(np.where(g > 0, np.exp(-c / (2 * np.maximum(g, 1e-300))), 0.0)))
+    return g[g > 0]
+
+
+def _tail(c: float, g: np.ndarray) -> float:
+    """(1 / 2 pi) integral of exp(-c / (2 g(w))) over the angles where g > 0."""
+    with np.errstate(under="ignore"):
+        return float(np.sum(np.exp(-c / (2 * g)))) / ANGLES
 
 
 def nuisance_quantile(rho: float) -> float:
-    """q(rho): the 95 % point of the LR with lambda's truth on its bound (module docstring)."""
-    rho = float(np.clip(rho, -0.999999, 0.999999))
-    return float(optimize.brentq(lambda c: exceedance(c, rho) - 0.05, 1.0, 50.0, xtol=1e-6))
+    """q(rho): the 95 % point of the LR with lambda's truth on its bound (module docstring);
+    g(w) is computed once, the root found on it."""
+    g = _gains(float(np.clip(rho, -0.999999, 0.999999)))
+    return float(optimize.brentq(lambda c: _tail(c, g) - 0.05, 1.0, 50.0, xtol=1e-6))
 
 
 def psi_correlations(problem, z, gradients: dict) -> dict:
