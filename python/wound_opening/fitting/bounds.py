@@ -61,7 +61,7 @@ from scipy import optimize, special
 
 from .._native import SolverError
 from .local import local_fit
-from .valley_law import psi_jacobian, valley_thresholds
+from .valley_law import correlation, psi_jacobian, valley_thresholds
 
 #: Angles of the quadrature of P(LR > c) (the integrand is smooth between the four cones).
 ANGLES = 20000
@@ -142,13 +142,11 @@ def psi_correlations(problem, z, gradients: dict) -> dict:
         cov = np.linalg.inv(jac[:, free].T @ jac[:, free])
     except np.linalg.LinAlgError:
         return {}
-    k = free.index(2)
     out = {}
     for name, grad in gradients.items():
-        g = np.asarray(grad, float)[free]
-        var = float(g @ cov @ g)
-        if var > 0 and cov[k, k] > 0:
-            out[name] = float(g @ cov[:, k]) / math.sqrt(var * cov[k, k])
+        rho = correlation(cov, free.index(2), np.asarray(grad, float)[free])
+        if rho is not None:
+            out[name] = rho
     return out
 
 
@@ -199,30 +197,32 @@ def thresholds(
             out[name] = scale * nuisance_quantile(rho)
     if loss != "linear":
         return out, []
-    valleys = _valleys(problem, z, start, chi2_min, others, base)
+    found = _free_valley(problem, start, chi2_min)
+    valleys = _valleys(z, found + list(others), VALLEYS * base)
     if len(valleys) > 1:
         law = valley_thresholds(problem, valleys, GRADIENTS, nuisance_quantile)
         out |= {name: max(out.get(name, 0.0), scale * q) for name, q in law.items()}
-    known = [np.asarray(v, float) for v, _ in others]
-    new = [(v, d) for v, d in valleys[1:] if not any(np.array_equal(v, w) for w in known)]
-    return out, new
+    return out, [v for v in valleys[1:2] if found and v[0] is found[0][0]]
 
 
-def _valleys(problem, z, start, chi2_min, others, base) -> list:
-    """(z, delta chi^2) of the estimate, of the optimum a free fit from `start` (lambda's
-    profile at 0; None: none) converges to within FREE_NFEV evaluations, and of `others`, those
-    within VALLEYS x `base` and more than 1e-2 apart in some coordinate (stages.alternates'
-    rule)."""
-    candidates = list(others)
+def _free_valley(problem, start, chi2_min) -> list:
+    """[(z, delta chi^2)] of the optimum a free fit from `start` (lambda's profile at 0;
+    None: none) converges to within FREE_NFEV evaluations, or []."""
+    if start is None:
+        return []
     try:
-        if start is not None:
-            found, c, res = local_fit(problem, start, tol=1e-7, max_nfev=FREE_NFEV)
-            if res.status > 0:  # an optimum: a fit still crawling is on the estimate's valley
-                candidates.insert(0, (found, c - chi2_min))
+        found, c, res = local_fit(problem, start, tol=1e-7, max_nfev=FREE_NFEV)
     except SolverError:
-        pass
+        return []
+    # an optimum: a fit still crawling is on the estimate's valley
+    return [(found, c - chi2_min)] if res.status > 0 else []
+
+
+def _valleys(z, candidates, within: float) -> list:
+    """(z, delta chi^2) of the estimate and of the candidates below `within`, each more than
+    1e-2 from those before it in some coordinate (stages.alternates' rule)."""
     out = [(np.asarray(z, float), 0.0)]
     for v, d in candidates:
-        if d < VALLEYS * base and all(np.max(np.abs(v - w)) > 1e-2 for w, _ in out):
-            out.append((np.asarray(v, float), max(float(d), 0.0)))
+        if d < within and all(np.max(np.abs(v - w)) > 1e-2 for w, _ in out):
+            out.append((v, max(float(d), 0.0)))
     return out

@@ -36,6 +36,7 @@ valleys' effect.
 from __future__ import annotations
 
 import numpy as np
+from scipy import special
 
 #: Draws of the Gaussian model per truth: the 95 % point of 2000 draws lies between the
 #: law's 94.0 % and 96.0 % points (two binomial standard deviations; for chi^2_1, 3.54 and
@@ -45,7 +46,7 @@ DRAWS = 2000
 #: Relative step of lambda for psi's column at lambda = 0.
 PSI_STEP = 1e-2
 #: chi^2_1's 95 % point.
-CHI2_95 = 3.841458820694124
+CHI2_95 = float(special.chdtri(1, 0.05))
 #: Draws per block (the noise of a block is a size x BLOCK matrix).
 BLOCK = 500
 
@@ -163,10 +164,18 @@ def ratios(local, j, free, gradients, draws, rng) -> tuple[dict, dict]:
 
 def _exact(J, psi, g, one_valley) -> float:
     """The 95 % point of the ratio of one valley with Jacobian J: chi^2_1's where psi is None
-    (inside the bounds), else one_valley(rho), rho = corr(g^T z_hat, psi_hat)."""
+    (inside the bounds), else one_valley(rho), rho = corr(g^T z_hat, psi_hat) (0 where
+    either variance vanishes)."""
     if psi is None:
         return CHI2_95
-    cov = np.linalg.pinv(J.T @ J)
+    rho = correlation(np.linalg.pinv(J.T @ J), psi, g)
+    return one_valley(0.0 if rho is None else rho)
+
+
+def correlation(cov, k: int, g) -> float | None:
+    """corr(g^T z_hat, z_hat[k]) under the covariance `cov`; None where either variance is
+    not positive."""
     var = float(g @ cov @ g)
-    rho = float(g @ cov[:, psi]) / np.sqrt(var * cov[psi, psi]) if var > 0 else 0.0
-    return one_valley(rho)
+    if var > 0 and cov[k, k] > 0:
+        return float(g @ cov[:, k]) / float(np.sqrt(var * cov[k, k]))
+    return None
