@@ -180,7 +180,7 @@ def test_a_profile_end_past_a_wall_is_not_cut_inside_the_allowed_region():
 
     from wound_opening.fitting.intervals import crossing
 
-    def constrained(v):
+    def constrained(v, bracket=None):
         return None, (0.8 if v < 1.5 else 1800.0), False
 
     root = math.sqrt(3.84)
@@ -189,7 +189,7 @@ def test_a_profile_end_past_a_wall_is_not_cut_inside_the_allowed_region():
     )
     assert not open_end and 1.5 <= end < 1.5 + 3.0 / 2**4, end
 
-    def mirrored(v):
+    def mirrored(v, bracket=None):
         return None, (0.8 if v > -1.5 else 1800.0), False
 
     end, _, _ = crossing(

@@ -66,3 +66,28 @@ def test_a_crossing_of_t_on_the_small_lambda_branch_is_tested_on_the_viscous_one
     assert viscous and np.allclose(viscous[0][1][[0, 1]], z_in[[0, 1]]), got
     along_tau = [w for u, w in got if u == math.log(1188.0)]
     assert any(abs(w[2] ** 2 * 1188.0 - 800.0) < 1e-6 for w in along_tau), got
+
+
+def test_a_watched_fit_stops_where_its_question_is_answered():
+    """local_fit's watching (what valleys.beyond and the walks' second fits use): a fit stops
+    at its first point under `below`, and where it comes within NEAR of a point of `ends`,
+    returning that point; one whose watch never triggers is the plain fit, bit for bit."""
+    from wound_opening.fitting.local import NEAR
+
+    obj = viscous_short_recording(5e-2, 8)
+    start = to_z((10.8, 0.5, 0.02, 8e4))
+    z, chi2, res = local_fit(obj, start, fixed=0, value=math.log(10.0), tol=1e-7)
+    assert res.status > 0 and res.nfev > 5, res
+    first = obj.residuals(np.r_[math.log(10.0), start[1:]])
+    below = chi2 + 0.5 * (float(first @ first) - chi2)  # passed on the way down
+    w, c, stopped = local_fit(obj, start, fixed=0, value=math.log(10.0), tol=1e-7, below=below)
+    assert stopped.status == -2 and c < below and stopped.nfev < res.nfev, stopped
+    assert c == float(np.sum(obj.residuals(w) ** 2)) and w[0] == math.log(10.0)
+    w, c, arrived = local_fit(obj, start, fixed=0, value=math.log(10.0), tol=1e-7, ends=[z])
+    assert arrived.status == -2 and arrived.nfev < res.nfev and np.array_equal(w, z), arrived
+    assert c == chi2
+    far = z + 10 * NEAR
+    w, c, same = local_fit(
+        obj, start, fixed=0, value=math.log(10.0), tol=1e-7, below=chi2 - 1.0, ends=[far]
+    )
+    assert np.array_equal(w, z) and c == chi2 and same.nfev == res.nfev

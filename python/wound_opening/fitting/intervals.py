@@ -10,9 +10,11 @@ sqrt(delta) is close to linear in the parameter near the optimum: the first poin
 at the crossing a quadratic profile with the Jacobian's standard error has (sqrt(threshold)
 standard errors), each next one just beyond the crossing predicted by the line through the
 last two (a move between 1/100 and 4 times the previous one), and the bracketed crossing is
-refined by regula falsi on sqrt(delta) (`crossing`). Each point is a fit of the other three
-from a predicted start, at tolerances 1e-7: a looser relative cost change (1e-5) lets fits
-on the flat, curved valleys of plateau-only data stop short and report false crossings.
+refined by regula falsi on sqrt(delta) (`crossing`: each refining fit starts from the
+interpolation of the fits at the bracket's ends, which lie in the same valley). Each point
+is a fit of the other three from a predicted start, at tolerances 1e-7: a looser relative
+cost change (1e-5) lets fits on the flat, curved valleys of plateau-only data stop short
+and report false crossings.
 lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
 and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1 from the
 estimate. An end that reaches such a search limit is open (None): the data do not bound it.
@@ -99,20 +101,30 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
             move = slope * (v - v1)
         return z1 + np.clip(move, -1.0, 1.0)  # at most a factor e in R0, T; 1 in sigma, lambda
 
-    def constrained(v):
+    def constrained(v, bracket=None):
         """chi^2 at fixed v from the predicted start; where that looks like a crossing, also
         from the last profile point, keeping the lower (a false crossing would shorten the
-        interval). A crossing found by fits that ran out of evaluations (a flat, curved
-        valley they crawl along) is not trusted: `unsure` ends the walk with an open end.
+        interval; the second fit stops where it reaches the first one's end, local.py).
+        Inside a bracket being refined (`bracket`: the fitted points (za, zb) at its ends,
+        za inside) the start is their interpolation at v and the second start za. A
+        crossing found by fits that ran out of evaluations (a flat, curved valley they
+        crawl along) is not trusted: `unsure` ends the walk with an open end.
         The fits at tolerances 1e-7 can stop short on such a valley with a converged status
         (early-time data: Delta chi^2 = 5.7 where the minimum is 0.02), so a crossing is
         confirmed by fits at 1e-10 continued while they lower chi^2 by CONFIRM or more.
         Neither is a point whose fit puts R0 or T on a search bound (`_on_search_bound`):
         the bound, not the data, then holds the profile."""
-        z, chi2, res = local_fit(obj, start(v), fixed=i, value=v, loss=loss, tol=1e-7)
+        if bracket is None:
+            first, second = start(v), path[-1][1]
+        else:
+            (a, za), (b, zb) = bracket
+            first, second = za + (zb - za) * (v - a) / (b - a), za
+        z, chi2, res = local_fit(obj, first, fixed=i, value=v, loss=loss, tol=1e-7)
         unsure = False
         if chi2 - chi2_min >= threshold:
-            z2, chi2b, res2 = local_fit(obj, path[-1][1], fixed=i, value=v, loss=loss, tol=1e-7)
+            z2, chi2b, res2 = local_fit(
+                obj, second, fixed=i, value=v, loss=loss, tol=1e-7, ends=[z]
+            )
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2
             for _ in range(3):  # a crossing stands only where a fit at tolerances 1e-10 confirms it
@@ -129,9 +141,9 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
 
     plain = constrained
 
-    def constrained(v):  # noqa: F811  (a point the solver refuses ends the walk, open)
+    def constrained(v, bracket=None):  # noqa: F811  (a point the solver refuses ends the walk, open)
         try:
-            return plain(v)
+            return plain(v, bracket)
         except SolverError:
             return path[-1][1], math.inf, True
 
@@ -149,7 +161,8 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
             found = beyond(obj, i, path[-1][1], v, direction, chi2_min + threshold, loss)
             if found is None:
                 s = math.sqrt(delta)
-                return crossing(constrained, points, prev_v, prev_s - root, v, s - root, root)
+                ends = (path[-1][1], z)
+                return crossing(constrained, points, prev_v, prev_s - root, v, s - root, root, ends)
             v, z, delta = found[0], found[1], max(found[2] - chi2_min, 0.0)
             points.append((v, delta))
             if direction * (v - limit) >= 0:  # a valley at or past the search limit: open
@@ -167,7 +180,7 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
     return None, True, points
 
 
-def crossing(constrained, points, a, fa, b, fb, root):
+def crossing(constrained, points, a, fa, b, fb, root, ends=(None, None)):
     """The end between a (inside, fa = sqrt(delta) - root < 0) and b (outside, fb >= 0):
     regula falsi with the Illinois modification on sqrt(delta), which is close to linear in
     the parameter, until sqrt(delta) is within ROOT_TOL of the threshold's (delta within
@@ -179,14 +192,16 @@ def crossing(constrained, points, a, fa, b, fb, root):
     end: after two steps that keep the same end the next bisects, so the bracket at least
     halves every third step. A bracket not located within REFINE steps ends at its
     outside end b (delta >= threshold there: the interval is never cut inside the region the
-    data allow). Returns (end, False, points) or (None, True, points) if a refining fit is
-    unsure."""
+    data allow). `ends`: the fitted points at a and b; each refining fit starts from their
+    interpolation (`constrained(c, bracket)`), and its point becomes the new end's. Returns
+    (end, False, points) or (None, True, points) if a refining fit is unsure."""
     last, repeat, wa, wb = 0, 0, fa, fb  # wa, wb: the Illinois-weighted values the secant uses
+    za, zb = ends
     for _ in range(REFINE):
         if min(-fa, fb) < ROOT_TOL * root or fb - fa < BRACKET * root:
             return a + (b - a) * (-fa) / (fb - fa), False, points
         c = 0.5 * (a + b) if repeat >= 2 else a + (b - a) * (-wa) / (wb - wa)
-        _, dc, unsure = constrained(c)
+        zc, dc, unsure = constrained(c, None if za is None else ((a, za), (b, zb)))
         if unsure:
             return None, True, points
         points.append((c, dc))
@@ -195,10 +210,10 @@ def crossing(constrained, points, a, fa, b, fb, root):
         repeat = repeat + 1 if side == last else 0
         last = side
         if side < 0:
-            a, fa, wa = c, fc, fc
+            a, fa, wa, za = c, fc, fc, zc
             wb *= 0.5 if repeat == 1 else 1.0
         else:
-            b, fb, wb = c, fc, fc
+            b, fb, wb, zb = c, fc, fc, zc
             wa *= 0.5 if repeat == 1 else 1.0
     return b, False, points
 

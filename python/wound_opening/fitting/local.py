@@ -33,6 +33,14 @@ def cost(res: np.ndarray, loss: str = "linear") -> float:
     return float(np.sum(z))
 
 
+#: A fit that comes this near (in each coordinate) to a point of `ends` ends there.
+NEAR = 1e-2
+
+
+class _Stop(Exception):
+    """A point where a watched fit stops: (z, cost or None, why)."""
+
+
 def local_fit(
     obj: Problem,
     z0,
@@ -41,10 +49,18 @@ def local_fit(
     loss: str = "linear",
     tol: float = 1e-12,
     max_nfev: int = 200,
+    *,
+    below: float | None = None,
+    ends=(),
 ):
     """Minimise the cost of the problem `obj` (problem.py: any dimension) from z0, with
     coordinate `fixed` held at `value` if given, and the coordinates `obj.fixed` (the user's
-    fixed parameters) held at theirs. Returns (z, cost at z, least_squares result)."""
+    fixed parameters) held at theirs. Returns (z, cost at z, least_squares result).
+
+    A watched fit stops early (result status -2): at its first point of cost under `below`
+    (the question asked was whether it gets there), and where it comes within NEAR (in each
+    coordinate) of a point of `ends` (where earlier fits at the same held value ended: it
+    would end there too), returning that point."""
     held = dict(obj.fixed)
     if fixed is not None:
         held[fixed] = value
@@ -84,18 +100,40 @@ def local_fit(
         return v
 
     columns = free if held else None  # the columns the fit needs
-    res = optimize.least_squares(
-        lambda x: obj.residuals(full(x)),
-        stretch(z[free]),
-        jac=jac,
-        bounds=(stretch(lower[free]), stretch(upper[free])),
-        method="trf",
-        x_scale="jac",
-        loss=loss,
-        xtol=tol,
-        ftol=tol,
-        gtol=tol,
-        max_nfev=max_nfev,
-    )
+    evaluations = 0
+
+    def residuals(x):
+        nonlocal evaluations
+        evaluations += 1
+        w = full(x)
+        r = obj.residuals(w)
+        if below is not None and (c := cost(r, loss)) < below:
+            raise _Stop(w, c, f"cost {c:.6g} under {below:.6g}")
+        for e in ends:
+            if np.max(np.abs(w - e)) < NEAR:
+                raise _Stop(np.array(e, dtype=float), None, "at an earlier fit's end")
+        return r
+
+    try:
+        res = optimize.least_squares(
+            residuals,
+            stretch(z[free]),
+            jac=jac,
+            bounds=(stretch(lower[free]), stretch(upper[free])),
+            method="trf",
+            x_scale="jac",
+            loss=loss,
+            xtol=tol,
+            ftol=tol,
+            gtol=tol,
+            max_nfev=max_nfev,
+        )
+    except _Stop as stop:
+        w, c, why = stop.args
+        c = cost(obj.residuals(w), loss) if c is None else c
+        result = optimize.OptimizeResult(
+            x=w[free], status=-2, nfev=evaluations, success=False, message=why
+        )
+        return w, c, result
     z = full(res.x)
     return z, cost(obj.residuals(z), loss), res

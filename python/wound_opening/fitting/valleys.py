@@ -21,7 +21,9 @@ beyond it, from starts on the other branch, falls back under the threshold. The 
               VISCOUS, T = tau_c / VISCOUS^2; with lambda_c < 1 also at tau = s_c, the time
               scale s_c = T_c (1 + lambda_c^2) the global grid pairs across regimes) and the
               friction point (lambda = 0, T = s_c), fitted at their own value of the
-              profiled coordinate where that lies beyond v, else at v.
+              profiled coordinate where that lies beyond v, else at v (not in lambda's
+              own profile: at lambda = v a branch point is no longer on its branch, and
+              the viscous point's T there lay orders of magnitude from any valley).
 
 "Beyond" is in the profiled coordinate of the problem walked (ln R0, sigma, lambda, ln T, or
 a derived ln q read through its reparametrisation): for R0 and sigma, which neither curve
@@ -29,8 +31,11 @@ moves, the other branch is tried at v itself; for lambda, ln T and a derived rat
 where the curve takes it. A valley further than the walk's search limit (T = 10 s from an
 estimate T = 8e4 s, limit x100) leaves that end open: the data do not bound it in the
 search range. Each fit has at most BUDGET evaluations, so an ordinary crossing costs at most
-five bounded fits; the first that falls under the threshold is returned and the walk goes
-on from it. Problems without the four parameters (several wounds) are not checked.
+five bounded fits, fewer in practice: a fit stops at its first point under the threshold
+(that fit is then continued to its minimum, returned, and the walk goes on from it), and
+where it comes within local.NEAR of where an earlier start's fit at the same value ended
+above it (the same valley). Repeated starts are tried once. Problems without the four
+parameters (several wounds) are not checked.
 """
 
 from __future__ import annotations
@@ -100,6 +105,7 @@ def starts(problem, i: int, w_in, v: float, direction: int):
     if maps is None:
         return []
     to_z, to_w = maps
+    plain = not hasattr(problem, "to_w")  # the coordinates are z themselves
     lower, upper = problem.bounds()
     w_in = np.asarray(w_in, dtype=float)
     at_v = w_in.copy()
@@ -112,7 +118,7 @@ def starts(problem, i: int, w_in, v: float, direction: int):
             w = to_w(s)
             if direction * (w[i] - v) > 0:  # the other branch lies beyond the crossing
                 candidates.append((w[i], s))
-            else:
+            elif not (plain and i == 2):  # lambda itself tells the branches apart
                 w[i] = v
                 candidates.append((v, to_z(w)))
         for u, s in candidates:
@@ -120,7 +126,9 @@ def starts(problem, i: int, w_in, v: float, direction: int):
                 continue  # the walk's own start, near enough
             w = to_w(s)
             if np.all(np.isfinite(w)) and lower[i] <= u <= upper[i]:
-                out.append((u, np.clip(w, lower, upper)))
+                w = np.clip(w, lower, upper)
+                if not any(u == o and np.array_equal(w, ow) for o, ow in out):  # no repeats
+                    out.append((u, w))
     except (ValueError, OverflowError, ZeroDivisionError):
         pass
     return out
@@ -128,14 +136,29 @@ def starts(problem, i: int, w_in, v: float, direction: int):
 
 def beyond(problem, i, w_in, v, direction, chi2_max, loss):
     """The first start of `starts` whose constrained fit (at most BUDGET evaluations) falls
-    below chi2_max: (value, w, chi^2), or None (the crossing stands)."""
+    below chi2_max: (value, w, chi^2) of the fit continued from its first point below, or
+    None (the crossing stands). A fit stops at its first point below chi2_max, and where it
+    comes near where an earlier start's fit at the same value ended (above: local.py)."""
+    ends: dict[float, list] = {}
     for u, w0 in starts(problem, i, w_in, v, direction):
+        known = ends.setdefault(u, [])
         try:
-            w, chi2, _ = local_fit(
-                problem, w0, fixed=i, value=u, loss=loss, tol=1e-7, max_nfev=BUDGET
+            w, chi2, res = local_fit(
+                problem,
+                w0,
+                fixed=i,
+                value=u,
+                loss=loss,
+                tol=1e-7,
+                max_nfev=BUDGET,
+                below=chi2_max,
+                ends=known,
             )
+            if chi2 < chi2_max:
+                w, chi2, _ = local_fit(problem, w, fixed=i, value=u, loss=loss, tol=1e-7)
+                return u, w, chi2
         except SolverError:
             continue
-        if chi2 < chi2_max:
-            return u, w, chi2
+        if res.status != -2:
+            known.append(w)
     return None
