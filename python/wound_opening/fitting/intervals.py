@@ -158,7 +158,7 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
         if unsure:
             return None, True, points
         if delta >= threshold:  # a crossing stands if no valley lies beyond it (valleys.py)
-            found = beyond(obj, i, path[-1][1], v, direction, chi2_min + threshold, loss)
+            found = beyond(obj, i, path[-1][1], v, direction, chi2_min + threshold, loss, z)
             if found is None:
                 s = math.sqrt(delta)
                 ends = (path[-1][1], z)

@@ -33,7 +33,7 @@ def cost(res: np.ndarray, loss: str = "linear") -> float:
     return float(np.sum(z))
 
 
-#: A fit that comes this near (in each coordinate) to a point of `ends` ends there.
+#: A fit that comes this near (in each coordinate it moves) to a point of `ends` ends there.
 NEAR = 1e-2
 
 
@@ -59,8 +59,8 @@ def local_fit(
 
     A watched fit stops early (result status -2): at its first point of cost under `below`
     (the question asked was whether it gets there), and where it comes within NEAR (in each
-    coordinate) of a point of `ends` (where earlier fits at the same held value ended: it
-    would end there too), returning that point."""
+    coordinate it moves, lambda as asinh(lambda)) of a point of `ends` (where earlier fits
+    at the same held value ended: it would end there too), returning that point."""
     held = dict(obj.fixed)
     if fixed is not None:
         held[fixed] = value
@@ -101,6 +101,7 @@ def local_fit(
 
     columns = free if held else None  # the columns the fit needs
     evaluations = 0
+    arrivals = [(e, stretch(e[free])) for e in (np.array(p, dtype=float) for p in ends)]
 
     def residuals(x):
         nonlocal evaluations
@@ -109,9 +110,9 @@ def local_fit(
         r = obj.residuals(w)
         if below is not None and (c := cost(r, loss)) < below:
             raise _Stop(w, c, f"cost {c:.6g} under {below:.6g}")
-        for e in ends:
-            if np.max(np.abs(w - e)) < NEAR:
-                raise _Stop(np.array(e, dtype=float), None, "at an earlier fit's end")
+        for e, xe in arrivals:
+            if np.max(np.abs(x - xe)) < NEAR:
+                raise _Stop(e, None, "at an earlier fit's end")
         return r
 
     try:

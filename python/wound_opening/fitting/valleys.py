@@ -134,12 +134,13 @@ def starts(problem, i: int, w_in, v: float, direction: int):
     return out
 
 
-def beyond(problem, i, w_in, v, direction, chi2_max, loss):
+def beyond(problem, i, w_in, v, direction, chi2_max, loss, w_v=None):
     """The first start of `starts` whose constrained fit (at most BUDGET evaluations) falls
     below chi2_max: (value, w, chi^2) of the fit continued from its first point below, or
     None (the crossing stands). A fit stops at its first point below chi2_max, and where it
-    comes near where an earlier start's fit at the same value ended (above: local.py)."""
-    ends: dict[float, list] = {}
+    comes near where an earlier fit at the same value ended above it (local.py): an earlier
+    start's, or at v the walk's own (`w_v`)."""
+    ends: dict[float, list] = {v: [] if w_v is None else [w_v]}
     for u, w0 in starts(problem, i, w_in, v, direction):
         known = ends.setdefault(u, [])
         try:
