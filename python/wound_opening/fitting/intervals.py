@@ -335,7 +335,8 @@ def profile_at(
     previous value's optimum moved along the line through the last two (as `walk_side`
     predicts), and where that fit does not converge or delta jumps by more than JUMP from the
     previous value, also from the previous optimum itself and then from the estimate,
-    keeping the lowest (a start equal to one tried is not fitted again): one start alone can
+    keeping the lowest (a start equal to one tried is not fitted again, and one whose fit
+    reaches where an earlier one at that value ended stops there): one start alone can
     end in a higher valley and draw a spike. A value
     whose fits all stop without converging within `max_nfev` evaluations, or that the solver
     refuses, gives nan (its chi^2 would only bound the profile from above). For drawing a
@@ -355,7 +356,7 @@ def profile_at(
                 if len(path) >= 2 and path[-2][0] != v1
                 else 0
             )
-            best, tried = None, []
+            best, tried, ended = None, [], []
             for start in (z1 + np.clip(move, -1.0, 1.0), z1, z_hat):
                 if best is not None and best[1] - chi2_min < JUMP + (out[prev] if prev >= 0 else 0):
                     break
@@ -364,12 +365,21 @@ def profile_at(
                 tried.append(start)
                 try:
                     z, chi2, res = local_fit(
-                        obj, start, fixed=i, value=v, loss=loss, tol=1e-7, max_nfev=max_nfev
+                        obj,
+                        start,
+                        fixed=i,
+                        value=v,
+                        loss=loss,
+                        tol=1e-7,
+                        max_nfev=max_nfev,
+                        ends=ended,
                     )
                 except SolverError:
                     continue
-                if res.status > 0 and (best is None or chi2 < best[1]):
-                    best = (z, chi2)
+                if res.status > 0:
+                    ended.append(z)  # a later start that reaches it ends there (local.py)
+                    if best is None or chi2 < best[1]:
+                        best = (z, chi2)
             if best is not None:
                 out[k] = max(best[1] - chi2_min, 0.0)
                 path.append((v, best[0]))
