@@ -71,12 +71,12 @@ def test_the_report_and_the_plot_are_one_drawing(series, monkeypatch, tmp_path):
 
 def _fake_fits(monkeypatch, module, ends):
     """Replace `module.local_fit` by a record of its calls: `ends(z0, max_nfev)` gives
-    (z, cost, status) of each fit."""
+    (z, cost, status) of each fit (its watching, `below` and `ends`, not imitated)."""
     from scipy.optimize import OptimizeResult
 
     calls = []
 
-    def fake(obj, z0, fixed=None, value=None, loss="linear", tol=1e-12, max_nfev=200):
+    def fake(obj, z0, fixed=None, value=None, loss="linear", tol=1e-12, max_nfev=200, **watch):
         z0 = np.array(z0, dtype=float)
         calls.append((z0.copy(), max_nfev))
         z, c, status = ends(z0, max_nfev)
