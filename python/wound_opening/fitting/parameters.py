@@ -179,6 +179,29 @@ class Spec:
         return float(sum(((theta[i] - m) / sd) ** 2 for i, (m, sd) in self.priors.items()))
 
 
+def g_modulus(p, lo: float, hi: float, prior) -> tuple:
+    """(value, sd) of G from its parameter `p` (fixed: sd 0; or a prior (mean, sd)), its bounds
+    (refused: the data do not depend on G) and its checked prior, or ValueError."""
+    if math.isfinite(lo) or math.isfinite(hi):
+        raise ValueError(
+            f"{G_NAME}: bounds are not supported (the data do not depend on G): give a fixed "
+            "value or a prior"
+        )
+    if not p.vary:
+        if prior is not None:
+            raise ValueError(f"{G_NAME}: fixed and with a prior: give one of them")
+        G = (checked_finite(G_NAME, "value", p.value), 0.0)
+    elif prior is not None:
+        G = prior
+    else:
+        raise ValueError(
+            f"{G_NAME}: give a fixed value (vary=False) or a prior (the data do not depend on G)"
+        )
+    if not G[0] > 0:
+        raise ValueError(f"{G_NAME}: {G[0]:g} Pa: a shear modulus must be > 0")
+    return G
+
+
 def specification(params, outer_radius_um: float) -> Spec:
     """Check `params` (Parameters, an lmfit.Parameters, a dict name -> Parameter, or None)
     and return a Spec; ValueError naming the parameter and the reason otherwise."""
@@ -219,24 +242,7 @@ def specification(params, outer_radius_um: float) -> Spec:
                 raise ValueError(f"{name}: prior sd = {sd:g}: a standard deviation must be > 0")
             prior = (mean, sd)
         if name == G_NAME:
-            if math.isfinite(lo) or math.isfinite(hi):
-                raise ValueError(
-                    f"{name}: bounds are not supported (the data do not depend on G): "
-                    "give a fixed value or a prior"
-                )
-            if not p.vary:
-                if prior is not None:
-                    raise ValueError(f"{name}: fixed and with a prior: give one of them")
-                G = (checked_finite(name, "value", p.value), 0.0)
-            elif prior is not None:
-                G = prior
-            else:
-                raise ValueError(
-                    f"{name}: give a fixed value (vary=False) or a prior (the data do not depend "
-                    f"on G)"
-                )
-            if not G[0] > 0:
-                raise ValueError(f"{name}: {G[0]:g} Pa: a shear modulus must be > 0")
+            G = g_modulus(p, lo, hi, prior)
             continue
         i = NAMES.index(name)
         a, b = _accepted_range(i, outer_radius_um)

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..results.names import ETA, SHARED
-from .parameters import G_NAME, Parameters, checked_finite
+from .parameters import G_NAME, Parameters, checked_finite, g_modulus
 from .problem import Problem
 
 UNITS = {SHARED[0]: "um", SHARED[1]: "1 (tension / G)", SHARED[2]: "s/um^2", "R0_um": "um"}
@@ -106,27 +106,6 @@ class TissueSpec:
         return out
 
 
-def _g(p, lo, hi, prior) -> tuple:
-    if math.isfinite(lo) or math.isfinite(hi):
-        raise ValueError(
-            f"{G_NAME}: bounds are not supported (the data do not depend on G): give a fixed "
-            "value or a prior"
-        )
-    if not p.vary:
-        if prior is not None:
-            raise ValueError(f"{G_NAME}: fixed and with a prior: give one of them")
-        G = (checked_finite(G_NAME, "value", p.value), 0.0)
-    elif prior is not None:
-        G = prior
-    else:
-        raise ValueError(
-            f"{G_NAME}: give a fixed value (vary=False) or a prior (the data do not depend on G)"
-        )
-    if not G[0] > 0:
-        raise ValueError(f"{G_NAME}: {G[0]:g} Pa: a shear modulus must be > 0")
-    return G
-
-
 def _allowed(i: int) -> tuple[float, float, bool]:
     """(lower, upper, lower included) of coordinate i's values in own units."""
     return (
@@ -164,7 +143,7 @@ def tissue_specification(params, names) -> TissueSpec:
                 raise ValueError(f"{name}: prior sd = {sd:g}: a standard deviation must be > 0")
             prior = (mean, sd)
         if name == G_NAME:
-            G = _g(p, lo, hi, prior)
+            G = g_modulus(p, lo, hi, prior)
             continue
         i = _index(name, names)
         a, b, closed = _allowed(i)

@@ -198,19 +198,30 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     parts.append("<h2>Estimates</h2>" + _estimates(result))
     parts.append(_flagged(result))
     if result.converged:
-        png = base64.b64encode(figure_png(result)).decode("ascii")
         parts.append(
-            '<h2>Figure</h2><img alt="data, fit, residuals and profile likelihoods" '
-            f'src="data:image/png;base64,{png}">'
+            figure_html(figure_png(result), "data, fit, residuals and profile likelihoods")
         )
-    parts += [
+    return document("Wound-opening fit", parts, command)
+
+
+def figure_html(png: bytes, alt: str) -> str:
+    """The report's figure section: the PNG inline (base64), `alt` its text."""
+    data = base64.b64encode(png).decode("ascii")
+    return f'<h2>Figure</h2><img alt="{html.escape(alt)}" src="data:image/png;base64,{data}">'
+
+
+def document(title: str, parts: list, command: str) -> str:
+    """The HTML page of a report: `parts` (HTML), then the software's versions and the
+    command that made it."""
+    parts = [
+        *parts,
         "<h2>Software and command</h2>",
         html_table(["component", "version"], list(software().items())),
         f"<p>Command: <code>{html.escape(command)}</code></p>",
     ]
     return (
-        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>Wound-opening '
-        "fit</title>"
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        f"<title>{html.escape(title)}</title>"
         f"<style>{STYLE}</style></head><body>\n" + "\n".join(parts) + "\n</body></html>\n"
     )
 

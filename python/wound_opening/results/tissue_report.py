@@ -14,7 +14,6 @@ single fit's (report.py), with
 
 from __future__ import annotations
 
-import base64
 import datetime
 import html
 import io
@@ -23,15 +22,15 @@ from pathlib import Path
 
 from .names import ETA, SHARED
 from .report import (
-    STYLE,
+    document,
     end_cell,
+    figure_html,
     html_table,
     inputs,
     material_html,
     number_cell,
     settings_html,
     sig,
-    software,
     status_html,
 )
 from .status import radii
@@ -164,21 +163,9 @@ def render(result, wounds, *, command: str | None = None, now=None) -> str:
     parts.append("<h2>Wounds</h2>")
     parts += [_wound(result, k, w) for k, w in enumerate(wounds)]
     if result.converged:
-        png = base64.b64encode(figure_png(result)).decode("ascii")
-        parts.append(
-            "<h2>Figure</h2><img alt=\"each wound's data and fit, residuals, profile "
-            f'likelihoods of the shared material" src="data:image/png;base64,{png}">'
-        )
-    parts += [
-        "<h2>Software and command</h2>",
-        html_table(["component", "version"], list(software().items())),
-        f"<p>Command: <code>{html.escape(command)}</code></p>",
-    ]
-    return (
-        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>Wound-opening '
-        "fit of several wounds</title>"
-        f"<style>{STYLE}</style></head><body>\n" + "\n".join(parts) + "\n</body></html>\n"
-    )
+        alt = "each wound's data and fit, residuals, profile likelihoods of the shared material"
+        parts.append(figure_html(figure_png(result), alt))
+    return document("Wound-opening fit of several wounds", parts, command)
 
 
 def write_report(path, result, wounds, *, command: str | None = None) -> Path:
