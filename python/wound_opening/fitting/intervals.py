@@ -104,7 +104,8 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
     def constrained(v, bracket=None):
         """chi^2 at fixed v from the predicted start; where that looks like a crossing, also
         from the last profile point, keeping the lower (a false crossing would shorten the
-        interval; the second fit stops where it reaches the first one's end, local.py).
+        interval; the second fit stops where it reaches the first one's end if that one
+        converged, local.py).
         Inside a bracket being refined (`bracket`: the fitted points (za, zb) at its ends,
         za inside) the start is their interpolation at v and the second start za. A
         crossing found by fits that ran out of evaluations (a flat, curved valley they
@@ -123,7 +124,13 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
         unsure = False
         if chi2 - chi2_min >= threshold:
             z2, chi2b, res2 = local_fit(
-                obj, second, fixed=i, value=v, loss=loss, tol=1e-7, ends=[z]
+                obj,
+                second,
+                fixed=i,
+                value=v,
+                loss=loss,
+                tol=1e-7,
+                ends=[z] if res.status > 0 else [],
             )
             if chi2b < chi2:
                 z, chi2, res = z2, chi2b, res2

@@ -160,6 +160,6 @@ def beyond(problem, i, w_in, v, direction, chi2_max, loss, w_v=None):
                 return u, w, chi2
         except SolverError:
             continue
-        if res.status != -2:
+        if res.status > 0:  # converged above the threshold: a later start reaching it stops
             known.append(w)
     return None
