@@ -1,0 +1,222 @@
+"""What each command of `wound-opening` (cli.py) does with its parsed arguments: `fit` (one
+wound, or several sharing a material), `sweep` and `simulate`. Each prints its results and
+writes the files asked for; bad input raises (InputError, ValueError, OSError), which the
+command line turns into one line and exit code 2."""
+
+from __future__ import annotations
+
+import shlex
+import sys
+
+from .cli_checks import check_cut, prepare, prepare_wounds
+
+
+def fit_command(args) -> None:
+    from .cli_inputs import read_lab_inputs
+    from .fitting.parameters import from_options
+    from .fitting.single import fit
+    from .inputs.columns import InputError, float_list
+    from .inputs.lab_files import read_profile, read_radius
+
+    for path in [] if args.area_col else args.radius_csv:  # cli_checks.py (Fiji tables: fiji.py)
+        check_cut(path, args)
+    units = dict(
+        time_unit=args.time_unit,
+        length_unit=args.length_unit,
+        pixel_size_um=args.pixel_size_um,
+        cut_time=args.cut_time,
+    )
+    outer = float_list(args.outer_radius_um, "--outer-radius-um")
+    profiles = [
+        read_profile(
+            p,
+            time_col=args.piv_time_col,
+            r_col=args.piv_r_col,
+            velocity_col=args.piv_velocity_col,
+            sd_col=args.piv_velocity_sd_col,
+            noise_um_s=args.velocity_noise_um_s,
+            **units,
+        )
+        for p in args.profile or []
+    ]
+    lab = read_lab_inputs(args)  # Fiji tables and PIV fields (cli_inputs.py); None without them
+    profiles = lab.profiles if lab else profiles
+    if args.wound_col or len(args.radius_csv) > 1:
+        return _fit_wounds(args, units, outer, profiles, lab)
+    if len(outer) > 1 or len(profiles) > 1:
+        raise InputError(
+            f"one radius file (one wound) takes one outer radius and at most one --profile, got "
+            f"{len(outer)} and {len(profiles)}"
+        )
+    radius = (lab.radii[0] if lab else None) or read_radius(
+        args.radius_csv[0],
+        time_col=args.time_col,
+        radius_col=args.radius_col,
+        sd_col=args.radius_sd_col,
+        noise_um=args.radius_noise_um,
+        **units,
+    )
+    radius, profile = prepare(args, radius, profiles[0] if profiles else None)  # cli_checks.py
+    params = from_options(args.fix, args.bound, args.prior)
+    result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
+    from .results.settings import from_options as settings_from
+
+    result.settings = settings_from(args, series=(radius, profile))
+    print(result.summary())
+    if args.json:
+        with open(args.json, "w") as f:
+            f.write(result.to_json() + "\n")
+    if args.report:
+        from .results.report import write_report
+
+        write_report(args.report, result, radius, profile, command=_command_line())
+        print(f"report -> {args.report}")
+    if not result.converged:
+        if args.plot or args.export:
+            print("no figure and no export: the fit did not converge", file=sys.stderr)
+        return 1
+    if args.plot:
+        from .results.plots import fit_figure
+
+        fit_figure(result, radius, profile, args.plot)
+    if args.export:
+        print("exported: " + ", ".join(map(str, result.export(args.export))))
+    return 0
+
+
+def _command_line() -> str:
+    return "wound-opening " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+
+
+def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
+    """Several wounds of one tissue: one radius file each, or one long table with --wound-col."""
+    from .fitting.wounds import Wound, fit_wounds
+    from .inputs.columns import InputError
+    from .inputs.lab_files import read_radius, read_wounds
+
+    columns = dict(
+        time_col=args.time_col,
+        radius_col=args.radius_col,
+        sd_col=args.radius_sd_col,
+        noise_um=args.radius_noise_um,
+        **units,
+    )
+    if lab:
+        series = lab.series
+    elif args.wound_col:
+        if len(args.radius_csv) > 1:
+            raise InputError(
+                f"--wound-col reads one long table with every wound: {len(args.radius_csv)} files "
+                f"given"
+            )
+        series = read_wounds(args.radius_csv[0], wound_col=args.wound_col, **columns)
+    else:
+        series = {path: read_radius(path, **columns) for path in args.radius_csv}
+    names = list(series)
+    if len(outer) not in (1, len(names)):
+        raise InputError(
+            f"--outer-radius-um: {len(outer)} values for {len(names)} wounds "
+            f"({', '.join(names)}): give "
+            "one for all or one per wound, in this order"
+        )
+    if profiles and len(profiles) != len(names):
+        raise InputError(
+            f"--profile: {len(profiles)} files for {len(names)} wounds ({', '.join(names)}): give "
+            f"one "
+            "per wound, in this order, or none"
+        )
+    series, profiles = prepare_wounds(args, series, profiles)  # cli_checks.py
+    from .fitting.tissue_spec import from_tissue_options
+    from .results.settings import from_options as settings_from
+
+    params = from_tissue_options(args.fix, args.bound, args.prior, names)
+    wounds = [
+        Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
+        for k, (name, s) in enumerate(series.items())
+    ]
+    result = fit_wounds(wounds, loss=args.loss, params=params)
+    result.settings = settings_from(args, names, [*series.values(), *(profiles or [])])
+    print(result.summary())
+    if args.json:
+        with open(args.json, "w") as f:
+            f.write(result.to_json() + "\n")
+    if args.report:
+        from .results.tissue_report import write_report
+
+        write_report(args.report, result, wounds, command=_command_line())
+        print(f"report -> {args.report}")
+    if not result.converged:
+        if args.plot or args.export:
+            print("no figure and no export: the fit did not converge", file=sys.stderr)
+        return 1
+    if args.plot:
+        from .results.tissue_plots import tissue_figure
+
+        tissue_figure(result, args.plot)
+    if args.export:
+        print("exported: " + ", ".join(map(str, result.export(args.export))))
+    return 0
+
+
+def sweep_command(args) -> None:
+    from .inputs.columns import float_list
+    from .sweeping import sweep
+
+    grid = {
+        "lambda": float_list(args.lam, "--lambda"),
+        "sigma": float_list(args.sigma, "--sigma"),
+        "R_inf": float_list(args.r_inf, "--R-inf"),
+    }
+    df = sweep(
+        grid,
+        times=float_list(args.times, "--times"),
+        R0_um=args.R0_um,
+        T_s=args.T_s,
+        scheduler=args.scheduler,
+        processes=args.processes,
+    )
+    df.to_csv(args.csv, index=False)  # shortest digits that read back to the same doubles
+    if args.parquet:
+        df.to_parquet(args.parquet)
+    if args.plot:
+        from .results.plots import sweep_figure
+
+        sweep_figure(df, args.plot)
+    print(f"{len(df)} rows -> {args.csv}")
+
+
+def simulate_command(args) -> None:
+    import numpy as np
+
+    from .inputs.columns import float_list
+    from .model import simulate
+
+    times = (
+        float_list(args.times, "--times") if args.times else np.linspace(0, args.t_end, args.points)
+    )
+    radii = float_list(args.radii_um, "--radii-um") if args.radii_um else None
+    sim = simulate(
+        times,
+        lam=args.lam,
+        sigma=args.sigma,
+        R0_um=args.R0_um,
+        T_s=args.T_s,
+        outer_radius_um=args.outer_radius_um,
+        edge_stress_pa=args.edge_stress_pa,
+        G_pa=args.G_pa,
+        eta_pa_s=args.eta_pa_s,
+        zeta_pa_s_per_um2=args.zeta_pa_s_per_um2,
+        tension_pa=args.tension_pa,
+        radii_um=radii,
+    )
+    frame = sim.to_frame()
+    if args.csv:
+        frame.to_csv(args.csv, index=False)  # shortest digits that read back to the same doubles
+    else:
+        print(frame.to_string(index=False, float_format=lambda x: f"{x:.6g}"))
+    if args.plot:
+        from .results.plots import simulate_figure
+
+        simulate_figure(sim, args.plot)
+    if args.csv:
+        print(f"{len(times)} times -> {args.csv}")
