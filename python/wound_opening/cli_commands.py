@@ -63,22 +63,36 @@ def fit_command(args) -> None:
 
     result.settings = settings_from(args, series=(radius, profile))
     print(result.summary())
+
+    def report(path):
+        from .results.report import write_report
+
+        write_report(path, result, radius, profile, command=_command_line())
+
+    def figure(path):
+        from .results.plots import fit_figure
+
+        fit_figure(result, radius, profile, path)
+
+    return _outputs(args, result, report, figure)
+
+
+def _outputs(args, result, report, figure) -> int:
+    """The fit's files: --json, --report (`report(path)`) and, if it converged, --plot
+    (`figure(path)`) and --export; the exit code (1: not converged). The report and the
+    figure import matplotlib only when asked for."""
     if args.json:
         with open(args.json, "w") as f:
             f.write(result.to_json() + "\n")
     if args.report:
-        from .results.report import write_report
-
-        write_report(args.report, result, radius, profile, command=_command_line())
+        report(args.report)
         print(f"report -> {args.report}")
     if not result.converged:
         if args.plot or args.export:
             print("no figure and no export: the fit did not converge", file=sys.stderr)
         return 1
     if args.plot:
-        from .results.plots import fit_figure
-
-        fit_figure(result, radius, profile, args.plot)
+        figure(args.plot)
     if args.export:
         print("exported: " + ", ".join(map(str, result.export(args.export))))
     return 0
@@ -137,25 +151,18 @@ def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
     result = fit_wounds(wounds, loss=args.loss, params=params)
     result.settings = settings_from(args, names, [*series.values(), *(profiles or [])])
     print(result.summary())
-    if args.json:
-        with open(args.json, "w") as f:
-            f.write(result.to_json() + "\n")
-    if args.report:
+
+    def report(path):
         from .results.tissue_report import write_report
 
-        write_report(args.report, result, wounds, command=_command_line())
-        print(f"report -> {args.report}")
-    if not result.converged:
-        if args.plot or args.export:
-            print("no figure and no export: the fit did not converge", file=sys.stderr)
-        return 1
-    if args.plot:
+        write_report(path, result, wounds, command=_command_line())
+
+    def figure(path):
         from .results.tissue_plots import tissue_figure
 
-        tissue_figure(result, args.plot)
-    if args.export:
-        print("exported: " + ", ".join(map(str, result.export(args.export))))
-    return 0
+        tissue_figure(result, path)
+
+    return _outputs(args, result, report, figure)
 
 
 def sweep_command(args) -> None:
