@@ -118,6 +118,12 @@ def fit_figure(
     return drawn_once(result, profile_points, lambda: _draw(result, profile_points), path, 120)
 
 
+#: Titles at the top of their axes, where the automatic placement (which measures every
+#: tick label of the x axis to lift a title over ticks on top, which these figures do not
+#: have) would put them too: a fifth of the drawing's time saved (0.44 -> 0.36 s measured).
+FIXED_TITLES = {"axes.titley": 1.0}
+
+
 def drawn_once(result, key, draw, path, dpi: int):
     """The figure `draw()` makes, written as PNG to `path` (a file name or a binary file
     object; None: not written), returned closed; a figure written once is kept with the
@@ -127,7 +133,8 @@ def drawn_once(result, key, draw, path, dpi: int):
     if path is not None and cache is not None and key in cache:
         fig, png = cache[key]
     else:
-        fig = draw()
+        with plt.rc_context(FIXED_TITLES):
+            fig = draw()
         png = None
         if path is not None:
             buf = io.BytesIO()
