@@ -69,7 +69,8 @@ def _delta_at_truth(result, truth) -> dict:
     """delta chi^2 at each parameter's truth: a fit of the other three (tolerances 1e-12,
     up to 2000 evaluations) from the truth and from the estimate, the lower kept. Its law
     is what the threshold calibrates."""
-    obj, z_hat, chi2_min = result.refit.args
+    optimum = result.refit.__self__  # the fit's Optimum (fitting/optimum.py)
+    obj, z_hat, chi2_min = optimum.problem, optimum.z, optimum.chi2
     z_true = to_z([truth[n] for n in QUANTITIES[:4]])
     out = {}
     for i, name in enumerate(QUANTITIES[:4]):

@@ -140,14 +140,16 @@ def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
             "per wound, in this order, or none"
         )
     series, profiles = prepare_wounds(args, series, profiles)  # cli_checks.py
-    from .fitting.tissue_spec import from_tissue_options
+    from .fitting.parameters import from_options
+    from .fitting.wounds import tissue_coordinates
     from .results.settings import from_options as settings_from
 
-    params = from_tissue_options(args.fix, args.bound, args.prior, names)
     wounds = [
         Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
         for k, (name, s) in enumerate(series.items())
     ]
+    coordinates = tissue_coordinates(names, [w.outer_radius_um for w in wounds])
+    params = from_options(args.fix, args.bound, args.prior, coordinates)
     result = fit_wounds(wounds, loss=args.loss, params=params)
     result.settings = settings_from(args, names, [*series.values(), *(profiles or [])])
     print(result.summary())

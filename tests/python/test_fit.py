@@ -227,15 +227,14 @@ def test_a_profile_held_by_a_search_bound_is_open():
     sigma ~ 100. Walking sigma up, the fits stay pinned to that bound and the profile rises
     because of it, not of the data: the end is open (sigma not identified), never a finite
     end that an interval around sigma ~ 100 would then report."""
-    from wound_opening.fitting.intervals import walk_side
+    from wound_opening.fitting.intervals import Walk, walk_side
     from wound_opening.fitting.local import local_fit
 
     radius, _ = draw("plateau", 0.0, 4e-2, 1001)
     obj = Objective(radius, None, 100.0)
     z, chi2, _ = local_fit(obj, to_z((0.2, 100.0, 50.0, 0.004)), max_nfev=40)
-    end, open_end, _ = walk_side(
-        obj, 1, z, chi2, 3.84, 10.0, 1, z[1] + 10 * abs(z[1]) + 1, np.eye(4)[1], "linear"
-    )
+    walk = Walk(obj, 1, chi2, 3.84, 10.0, np.eye(4)[1], "linear")
+    end, open_end, _ = walk_side(walk, z, 1, z[1] + 10 * abs(z[1]) + 1)
     assert end is None and open_end, end
 
 
@@ -246,13 +245,12 @@ def test_a_crossing_on_a_curved_valley_is_confirmed_by_a_tight_fit():
     down must not close R0's interval above the truth."""
     import math
 
-    from wound_opening.fitting.intervals import walk_side
+    from wound_opening.fitting.intervals import Walk, walk_side
     from wound_opening.fitting.local import local_fit
 
     radius, _ = draw("early", 0.5, 1e-2, 1004)
     obj = Objective(radius, None, 100.0)
     z, chi2, _ = local_fit(obj, to_z((10.39, 0.264, 50.0, 0.0026)))
-    end, _, _ = walk_side(
-        obj, 0, z, chi2, 3.84, 0.01, -1, z[0] - math.log(3.0), np.eye(4)[0], "linear"
-    )
+    walk = Walk(obj, 0, chi2, 3.84, 0.01, np.eye(4)[0], "linear")
+    end, _, _ = walk_side(walk, z, -1, z[0] - math.log(3.0))
     assert end is None or math.exp(end) < 10.0, math.exp(end)

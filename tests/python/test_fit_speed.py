@@ -35,7 +35,7 @@ def test_a_fit_in_asinh_coordinates_reaches_the_optimum_of_the_plain_coordinates
     """Free, and held at R0 = 7.7 um or T = 30 s (where the fit runs along lambda^2 T =
     const to large lambda): the same optimum, chi^2 to 1e-9 of it, from the same start."""
     data = Objective(series, None, OUTER)
-    stretched = Constrained(data, specification(None, OUTER))
+    stretched = Constrained(data, specification(None, data.coordinates))
     assert stretched.stretched == (1, 2)
     start = to_z((R0 * 1.05, 0.6, 1.5, 2.0))
     plain = local_fit(data, start, fixed, value, max_nfev=2000)

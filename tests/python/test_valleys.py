@@ -10,7 +10,7 @@ import math
 import numpy as np
 import wound_exact as we
 
-from wound_opening.fitting.intervals import walk_side
+from wound_opening.fitting.intervals import Walk, walk_side
 from wound_opening.fitting.local import local_fit
 from wound_opening.fitting.objective import Objective, to_z
 from wound_opening.inputs.series import RadiusSeries
@@ -36,18 +36,8 @@ def test_a_crossing_with_a_valley_beyond_it_does_not_stand():
     assert z[2] < 0.5, z  # the small-lambda branch
     J = obj.jacobian(z)
     cov = np.linalg.inv(J.T @ J)
-    end, _, points = walk_side(
-        obj,
-        0,
-        z,
-        chi2,
-        3.84,
-        math.sqrt(cov[0, 0]),
-        -1,
-        z[0] - math.log(3.0),
-        cov[:, 0] / cov[0, 0],
-        "linear",
-    )
+    walk = Walk(obj, 0, chi2, 3.84, math.sqrt(cov[0, 0]), cov[:, 0] / cov[0, 0], "linear")
+    end, _, points = walk_side(walk, z, -1, z[0] - math.log(3.0))
     inside = [v for v, d in points if d < 3.84]
     assert end is None or end <= min(inside), (end, points)
     assert min(inside) < math.log(3.6), points

@@ -33,7 +33,8 @@ import math
 import numpy as np
 
 from ..results.profiles import Profile
-from .intervals import hull
+from .coordinates import Coordinate, Coordinates, factor
+from .optimum import Optimum, Target
 from .problem import Problem
 
 #: kind -> (c, {i: a_i}, the coordinates it may replace, in order of preference)
@@ -42,6 +43,7 @@ MONOMIALS = {
     "zeta_over_G_s_per_um2": (math.log(4.0), {0: -2.0, 3: 1.0}, (3, 0)),
     "viscous_length_um": (0.0, {0: 1.0, 2: 1.0}, (2, 0)),
 }
+UNITS = {"tau_s": "s", "zeta_over_G_s_per_um2": "s/um^2", "viscous_length_um": "um"}
 
 
 def _y(i: int, z_i: float) -> float:
@@ -62,7 +64,14 @@ class Reparametrised(Problem):
         # one.
         free.sort(key=lambda k: k in bounded)
         self.k = free[0] if free else None  # None: the quantity is held fixed
-        self.stretched = tuple(getattr(obj, "stretched", ())) if self.k != 2 else ()
+        self.stretched = obj.stretched if self.k != 2 else ()
+        if self.k is not None:  # w_k = ln q, searched a factor 100 either way
+            own = Coordinate(kind, UNITS[kind], log=True, lower=0.0, window=factor(1e2), step=0.05)
+            self.coordinates = Coordinates(
+                tuple(own if i == self.k else c for i, c in enumerate(obj.coordinates))
+            )
+        if obj.wound_maps is not None:  # the wound's z through w (valleys.py)
+            self.wound_maps = (self.to_z, self.to_w, False)
         #: The replaced coordinate carries a bound of the user's that is not a box in w (the
         #: others it depends on are not all fixed): the walk could not honour it.
         self.unenforceable = (
@@ -104,6 +113,11 @@ class Reparametrised(Problem):
                 dz[k, i] = -(a / self.a[k]) * (1 / w[i] if i == 2 else 1.0) * dzk_dyk
         return self.obj.jacobian(z) @ dz
 
+    def user_bound(self, i: int, side: int) -> bool:
+        """The user's bound of the objective's coordinate i (mapped to w_k where it is a box
+        in w: `bounds`)."""
+        return self.obj.user_bound(i, side)
+
     def gradient(self, z) -> np.ndarray:
         """d w_k / d z: the row of dw/dz that differs from the identity."""
         g = np.zeros(4)
@@ -134,26 +148,14 @@ class Reparametrised(Problem):
         return lower, upper
 
 
-def derived_profiles(
-    obj,
-    z_hat,
-    chi2_min: float,
-    threshold: float,
-    loss: str = "linear",
-    alternates=(),
-    cov_z=None,
-    thresholds=None,
-) -> dict:
-    """Profile (interval in the quantity's units) of tau, zeta/G and the viscous length;
-    with other optima below the threshold (`alternates`: (z, delta chi^2)), the hull of the
-    intervals walked from each (as likelihood.profile_all does). `cov_z`, the Jacobian's
-    covariance in z, gives the first step (the standard error of w_k, from
-    cov_w = A cov_z A^T with A = dw/dz) and the start of the other coordinates.
-    `thresholds`: kind -> its own threshold where lambda's bound changes it (bounds.py)."""
+def derived_profiles(optimum: Optimum) -> dict:
+    """Profile (interval in the quantity's units) of tau, zeta/G and the viscous length,
+    each walked by `optimum.profile` in the reparametrisation where it is a coordinate;
+    with other optima below the threshold, the hull of the intervals walked from each."""
+    obj = optimum.problem
     out = {}
     for kind in ("tau_s", "zeta_over_G_s_per_um2", "viscous_length_um"):
-        own = (thresholds or {}).get(kind)
-        centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < (own or threshold)]
+        centres = optimum.centres(optimum.threshold_of(kind))
         if kind != "zeta_over_G_s_per_um2" and obj.fixed.get(2) == 0.0:
             out[kind] = Profile(
                 0.0, 0.0, False, [(0.0, 0.0)]
@@ -163,41 +165,11 @@ def derived_profiles(
             out[kind] = Profile(0.0, None, True)
             continue
         rep = Reparametrised(obj, kind)
-        k = rep.k
-        if k is None:  # every coordinate it depends on is fixed
-            q = rep.value(z_hat)
+        if rep.k is None:  # every coordinate it depends on is fixed
+            q = rep.value(optimum.z)
             out[kind] = Profile(q, q, False, [(q, 0.0)])
             continue
         if rep.unenforceable:  # not computed: the walk would leave the user's bounds
             continue
-        step, slope = 0.05, np.eye(4)[k]
-        if cov_z is not None and np.all(np.isfinite(cov_z)):
-            A = np.eye(4)
-            A[k] = rep.gradient(z_hat)
-            cov_w = A @ cov_z @ A.T
-            if cov_w[k, k] > 0:
-                step = float(np.clip(math.sqrt(cov_w[k, k]), 5e-4, 1.0))
-                slope = cov_w[:, k] / cov_w[k, k]
-        box = rep.bounds()
-
-        def side_limit(w, direction, k=k, box=box):
-            limit = w[k] + direction * math.log(100.0)
-            # finite only for a user's bound mapped from the replaced coordinate's
-            edge = box[0 if direction < 0 else 1][k]
-            mine = (
-                math.isfinite(edge)
-                and direction * (edge - limit) < 0
-                and obj.user_bound(k, direction)
-            )
-            return (edge if mine else limit), mine
-
-        w_centres = [(rep.to_w(c), d) for c, d in centres]
-        lo, hi, points, bounded = hull(
-            rep, k, w_centres, chi2_min, own or threshold, step, slope, loss, side_limit
-        )
-        lo = None if lo is None else math.exp(lo)
-        hi = None if hi is None else math.exp(hi)
-        out[kind] = Profile(
-            lo, hi, False, sorted((math.exp(v), d) for v, d in points), tuple(bounded), own
-        )
+        out[kind] = optimum.profile(Target(rep.k, rep))
     return out

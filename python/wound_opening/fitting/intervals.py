@@ -28,14 +28,13 @@ from that fit.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from .._native import SolverError
-from ..results.names import NAMES
-from ..results.profiles import Profile
 from .local import local_fit
-from .objective import LAMBDA_MAX, Objective
+from .problem import Problem
 from .valleys import beyond
 
 #: An interval end is located to where sqrt(delta chi^2) is within this fraction of the
@@ -51,22 +50,6 @@ CONFIRM = 0.01
 REFINE = 16
 
 
-def _limits(i: int, z: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> tuple[float, float]:
-    lo, hi = _limits_around(i, z)
-    return max(lo, lower[i]), min(hi, upper[i])
-
-
-def _limits_around(i: int, z: np.ndarray) -> tuple[float, float]:
-    if i == 0:
-        return z[0] - math.log(3.0), z[0] + math.log(3.0)
-    if i == 1:
-        span = 10 * abs(z[1]) + 1
-        return z[1] - span, z[1] + span
-    if i == 2:
-        return 0.0, LAMBDA_MAX
-    return z[3] - math.log(1e2), z[3] + math.log(1e2)
-
-
 def _on_search_bound(obj, z: np.ndarray, fixed: int) -> bool:
     """Whether ln R0 or ln T (coordinates 0 and 3, other than the profiled one) lies on its
     search bound (Objective.bounds: R0 from 1 % of the smallest radius to the outer radius /
@@ -77,18 +60,33 @@ def _on_search_bound(obj, z: np.ndarray, fixed: int) -> bool:
     return any(k != fixed and not (lower[k] + 1e-6 < z[k] < upper[k] - 1e-6) for k in (0, 3))
 
 
-def _own_units(i: int, v: float) -> float:
-    return math.exp(v) if i in (0, 3) else v
+@dataclass(frozen=True)
+class Walk:
+    """What one profile walk holds fixed: coordinate `i` of `problem` profiled against the
+    optimum's chi^2 (`chi2_min`) up to `threshold`, its first move `step` (times the
+    threshold's square root) and the other coordinates' prediction `slope` (d z / d z_i, the
+    Jacobian's regression line), fits under `loss`. Built by optimum.Optimum.profile."""
+
+    problem: Problem
+    i: int
+    chi2_min: float
+    threshold: float
+    step: float
+    slope: np.ndarray
+    loss: str = "linear"
 
 
-def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope, loss, delta0=0.0):
-    """Walk one side; return (end in z coordinates or None, at limit, points).
+def walk_side(walk: Walk, z_hat, direction: int, limit: float, delta0: float = 0.0):
+    """Walk one side from the optimum z_hat (delta chi^2 `delta0` above the best) towards
+    `limit`; return (end in z coordinates or None, at limit, points).
 
     Each constrained fit starts from a prediction of the other parameters: along the
     Jacobian's regression line `slope` (d z / d z_i) for the first step, then extrapolated
     from the last two profile points (the profile of lambda at fixed tau = lambda^2 T bends
     T strongly: a start at the previous point alone can end in a worse local minimum)."""
 
+    obj, i, chi2_min, threshold = walk.problem, walk.i, walk.chi2_min, walk.threshold
+    loss, slope = walk.loss, walk.slope
     root = math.sqrt(threshold)
     path = [(z_hat[i], z_hat)]
 
@@ -146,30 +144,32 @@ def walk_side(obj, i, z_hat, chi2_min, threshold, step, direction, limit, slope,
             unsure = res.status == 0
         return z, max(chi2 - chi2_min, 0.0), unsure or _on_search_bound(obj, z, i)
 
-    plain = constrained
-
-    def constrained(v, bracket=None):  # noqa: F811  (a point the solver refuses ends the walk, open)
+    def refused_open(v, bracket=None):  # a point the solver refuses ends the walk, open
         try:
-            return plain(v, bracket)
+            return constrained(v, bracket)
         except SolverError:
             return path[-1][1], math.inf, True
 
     prev_v, prev_s = z_hat[i], math.sqrt(delta0)
-    move = step * root  # aimed at the crossing of a quadratic profile with the Jacobian's error
+    move = (
+        walk.step * root
+    )  # aimed at the crossing of a quadratic profile with the Jacobian's error
     points = []
     for _ in range(16):
         v = prev_v + direction * move
         v = min(v, limit) if direction > 0 else max(v, limit)
-        z, delta, unsure = constrained(v)
+        z, delta, unsure = refused_open(v)
         points.append((v, delta))
         if unsure:
             return None, True, points
         if delta >= threshold:  # a crossing stands if no valley lies beyond it (valleys.py)
-            found = beyond(obj, i, path[-1][1], v, direction, chi2_min + threshold, loss, z)
+            found = beyond(walk, path[-1][1], v, direction, z)
             if found is None:
                 s = math.sqrt(delta)
                 ends = (path[-1][1], z)
-                return crossing(constrained, points, prev_v, prev_s - root, v, s - root, root, ends)
+                return crossing(
+                    refused_open, points, prev_v, prev_s - root, v, s - root, root, ends
+                )
             v, z, delta = found[0], found[1], max(found[2] - chi2_min, 0.0)
             points.append((v, delta))
             if direction * (v - limit) >= 0:  # a valley at or past the search limit: open
@@ -225,16 +225,17 @@ def crossing(constrained, points, a, fa, b, fb, root, ends=(None, None)):
     return b, False, points
 
 
-def hull(problem, k, centres, chi2_min, threshold, step, slope, loss, side_limit):
-    """The profile interval of coordinate k of `problem`, walked by walk_side down and up
-    from every optimum of `centres` ((coordinates, delta chi^2), the best first; another
-    optimum below the threshold may lie in a second valley, past a barrier above it): an
-    optimum inside the interval found so far adds nothing, and the hull of the ends is
-    reported. `side_limit(centre, direction)` gives the search limit of that side and
-    whether it is the user's bound (an end there is the user's, not the data's).
+def hull(walk: Walk, centres, side_limit):
+    """The profile interval of `walk`'s coordinate k, walked by walk_side down and up from
+    every optimum of `centres` ((coordinates, delta chi^2), the best first; another optimum
+    below the threshold may lie in a second valley, past a barrier above it): an optimum
+    inside the interval found so far adds nothing, and the hull of the ends is reported.
+    `side_limit(centre, direction)` gives the search limit of that side and whether it is
+    the user's bound (an end there is the user's, not the data's).
 
     Returns (lower, upper, points, (lower end by the user's bound, upper end by it)); an
     end is None where that side is open."""
+    k = walk.i
     ends = {-1: [], 1: []}
     bounded = {-1: False, 1: False}
     points = []
@@ -248,10 +249,8 @@ def hull(problem, k, centres, chi2_min, threshold, step, slope, loss, side_limit
                 got.append(limit if mine else None)
                 bounded[direction] |= mine
                 continue
-            end, _, pts = walk_side(
-                problem, k, centre, chi2_min, threshold, step, direction, limit, slope, loss, delta0
-            )
-            if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < threshold:
+            end, _, pts = walk_side(walk, centre, direction, limit, delta0)
+            if mine and end is None and pts and pts[-1][0] == limit and pts[-1][1] < walk.threshold:
                 end = limit  # the walk reached the user's bound inside the threshold
                 bounded[direction] = True
             got.append(end)
@@ -261,74 +260,13 @@ def hull(problem, k, centres, chi2_min, threshold, step, slope, loss, side_limit
     return lower, upper, points, (bounded[-1], bounded[1])
 
 
-def profile_all(
-    obj: Objective,
-    z_hat: np.ndarray,
-    chi2_min: float,
-    threshold: float,
-    cov_z: np.ndarray,
-    loss: str = "linear",
-    alternates=(),
-    thresholds=None,
-) -> dict:
-    """Profiles of the four parameters (by name); cov_z is the Jacobian's covariance in z.
-    `alternates`: other local optima (z, delta chi^2), those below the threshold centres
-    of walks. The confidence
-    set of a parameter may then be two intervals (a barrier between the valleys rises above
-    the threshold): each is walked from its own optimum and the hull is reported.
-    `thresholds`: name -> a parameter's own threshold where lambda's bound changes it
-    (bounds.py; recorded in its Profile)."""
-    out = {}
-    lims = obj.bounds()
-    for i, name in enumerate(NAMES):
-        if i in obj.fixed:
-            continue
-        own = (thresholds or {}).get(name)
-        centres = [(z_hat, 0.0)] + [(a, d) for a, d in alternates if d < (own or threshold)]
-        user_bound = obj.user_bound
-        default = (0.05, 0.05 * abs(z_hat[1]) + 0.01, 0.1, 0.1)[i]
-        se = math.sqrt(max(cov_z[i, i], 0.0))
-        slope = np.nan_to_num(cov_z[:, i] / cov_z[i, i]) if cov_z[i, i] > 0 else np.zeros(4)
-        slope[i] = 1.0
-        step = float(
-            np.clip(se if math.isfinite(se) and se > 0 else default, default * 0.01, default * 20)
-        )
-
-        def side_limit(centre, direction, i=i):
-            limit = _limits(i, centre, *lims)[0 if direction < 0 else 1]
-            box_edge = lims[0 if direction < 0 else 1][i]
-            return limit, user_bound(i, direction) and limit == box_edge
-
-        lo, hi, walked, _ = hull(
-            obj, i, centres, chi2_min, own or threshold, step, slope, loss, side_limit
-        )
-        points = [(z_hat[i], 0.0)] + walked
-        lo_open = lo is None
-        at_bound = i == 2 and lo_open  # lambda's lower end is its bound 0
-        lower = 0.0 if at_bound else (None if lo is None else _own_units(i, lo))
-        upper = None if hi is None else _own_units(i, hi)
-        bounded = (
-            lo is not None and user_bound(i, -1) and lo == lims[0][i],
-            hi is not None and user_bound(i, 1) and hi == lims[1][i],
-        )
-        out[name] = Profile(
-            lower,
-            upper,
-            at_bound,
-            [(_own_units(i, v), d) for v, d in sorted(points)],
-            bounded,
-            own,
-        )
-    return out
-
-
 #: A rise of delta chi^2 between neighbouring values of profile_at beyond which the value is
 #: also fitted from the estimate (a start in a higher valley gives such jumps).
 JUMP = 1.0
 
 
 def profile_at(
-    obj: Objective,
+    obj: Problem,
     z_hat: np.ndarray,
     chi2_min: float,
     i: int,
@@ -347,7 +285,7 @@ def profile_at(
     end in a higher valley and draw a spike. A value
     whose fits all stop without converging within `max_nfev` evaluations, or that the solver
     refuses, gives nan (its chi^2 would only bound the profile from above). For drawing a
-    profile finely; the intervals come from `profile_all`."""
+    profile finely; the intervals come from `optimum.Optimum.profile`."""
 
     values = np.asarray(values, dtype=float)
     out = np.full(values.size, np.nan)

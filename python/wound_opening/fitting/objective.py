@@ -44,6 +44,7 @@ import math
 import numpy as np
 
 from .. import _native
+from .coordinates import Coordinate, Coordinates, between, factor, span
 from .problem import Problem
 
 #: Largest lambda searched: a viscous length of 50 R0, beyond which the tissues of these
@@ -82,11 +83,60 @@ def from_z(z) -> tuple[float, float, float, float]:
     return math.exp(z[0]), float(z[1]), lam if lam >= LAMBDA_SOLVER_MIN else 0.0, math.exp(z[3])
 
 
+def r0_coordinate(name: str, outer_radius_um: float) -> Coordinate:
+    """A wound's R0 [um], below the outer radius / R_INF_MIN, searched a factor 3 either way."""
+    return Coordinate(
+        name,
+        "um",
+        log=True,
+        lower=0.0,
+        upper=outer_radius_um / R_INF_MIN,
+        window=factor(3.0),
+        step=0.05,
+        note=" (R0 below the outer radius / 1.001)",
+    )
+
+
+def wound_coordinates(outer_radius_um: float) -> Coordinates:
+    """One wound's coordinates z = (ln R0, sigma, lambda, ln T) by name, with the values a fit
+    of a wound in a tissue of that outer radius accepts (R0 below outer / R_INF_MIN), their
+    profile windows (R0 a factor 3, sigma 10 |sigma| + 1, lambda its whole range, T a factor
+    100 either way) and first steps; the user's fit moves asinh of sigma and lambda."""
+    return Coordinates(
+        (
+            r0_coordinate("R0_um", outer_radius_um),
+            Coordinate(
+                "sigma",
+                "1 (tension / G)",
+                window=span(),
+                step=lambda z_hat: 0.05 * abs(z_hat[1]) + 0.01,
+                stretched=True,
+            ),
+            Coordinate(
+                "lambda",
+                "1 (viscous length / R0)",
+                lower=0.0,
+                upper=LAMBDA_MAX,
+                closed=True,
+                window=between(0.0, LAMBDA_MAX),
+                stretched=True,
+            ),
+            Coordinate("T_s", "s", log=True, lower=0.0, window=factor(1e2)),
+        )
+    )
+
+
+def _as_z(w) -> np.ndarray:
+    return np.asarray(w, dtype=float)
+
+
 class Objective(Problem):
     """Residuals (model - data) / uncertainty, radius points first, then profile points.
     `sd` holds the per-point uncertainties: the data's own where given, else a first guess
     (`estimated` says which data sets: radius, profile) that `estimate_noise` scales to the
     residuals."""
+
+    wound_maps = (_as_z, _as_z, True)  # its coordinates are the wound's z
 
     def __init__(self, radius, profile, outer_radius_um: float):
         self.outer = float(outer_radius_um)
@@ -115,6 +165,7 @@ class Objective(Problem):
         self.tolerance = TOLERANCE_PIV if self.groups else TOLERANCE_FIT
         self.evaluations = 0
         self.inside_edge = 0
+        self.coordinates = wound_coordinates(self.outer)
 
     def _uncertainties(self, radius, profile) -> tuple[np.ndarray, list]:
         """Initial per-point uncertainties and which data sets have theirs estimated: 1 % of

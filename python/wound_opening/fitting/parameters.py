@@ -23,6 +23,12 @@ freedom (n + priors - free parameters) all count it. A fixed parameter leaves ev
 bound is a box constraint of the optimiser and a limit of the profile walks; an interval
 that reaches a bound ends there (`Profile.bounded`).
 
+The same specification serves one wound (`fit`: R0_um, sigma, lambda, T_s) and several
+(`fit_wounds`: viscous_length_um, tension_over_G, zeta_over_G_s_per_um2, R0_um[NAME]): the
+names, accepted ranges and units are the coordinates the problem declares
+(coordinates.py), and every form of the user's knowledge (Parameters, lmfit.Parameters, a
+dict or a list of Parameter objects) is read and refused alike.
+
 G_pa does not enter the model (R(t) and the velocities depend on G only through lambda,
 sigma and T): it takes a fixed value or a prior and serves the absolute eta, zeta and
 tension (material.py).
@@ -35,20 +41,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..results.names import NAMES
-from .objective import LAMBDA_MAX, Objective, from_z
+from .coordinates import G_NAME, Coordinates
 from .problem import Problem
-
-#: The fit parameters (NAMES) and G, which only scales the absolute material values.
-G_NAME = "G_pa"
-ACCEPTED = NAMES + (G_NAME,)
-UNITS = {
-    "R0_um": "um",
-    "sigma": "1 (tension / G)",
-    "lambda": "1 (viscous length / R0)",
-    "T_s": "s",
-    G_NAME: "Pa",
-}
 
 
 @dataclass
@@ -87,10 +81,15 @@ def _number(option: str, text: str) -> float:
         raise ValueError(f"{option}: {text!r} is not a number") from None
 
 
-def from_options(fix=(), bound=(), prior=(), accepted=ACCEPTED) -> Parameters:
+def from_options(fix=(), bound=(), prior=(), coordinates: Coordinates | None = None) -> Parameters:
     """Parameters from the command line's NAME=VALUE (--fix), NAME=MIN:MAX (--bound, either
     side may be empty) and NAME=MEAN:SD (--prior) strings; checked by `specification`.
-    `accepted`: the names allowed (one wound's by default; tissue_spec.accepted for several)."""
+    `coordinates`: the problem's, whose names (and G_pa) are accepted (one wound's by
+    default)."""
+    if coordinates is None:
+        from .objective import wound_coordinates
+
+        coordinates = wound_coordinates(math.inf)
     params = Parameters()
 
     def entry(option: str, text: str) -> tuple[Parameter, str]:
@@ -101,11 +100,11 @@ def from_options(fix=(), bound=(), prior=(), accepted=ACCEPTED) -> Parameters:
                 f"{option} {text!r}: expected NAME="
                 + {"--fix": "VALUE", "--bound": "MIN:MAX", "--prior": "MEAN:SD"}[option]
             )
-        if name not in accepted:
-            raise ValueError(
-                f"{option} {text!r}: parameter {name!r} is unknown: expected one of "
-                f"{', '.join(accepted)}"
-            )
+        if name != G_NAME:
+            try:
+                coordinates.index(name)
+            except ValueError as e:
+                raise ValueError(f"{option} {text!r}: {e}") from None
         return params.get(name) or params.add(name), rest.strip()
 
     for text in fix:
@@ -137,35 +136,30 @@ def checked_finite(name: str, what: str, x) -> float:
     return x
 
 
-def _accepted_range(i: int, outer: float) -> tuple[float, float]:
-    """The values the fit can represent: R0 in (0, outer / 1.001), sigma any, lambda in
-    [0, LAMBDA_MAX], T > 0."""
-    return ((0.0, outer / 1.001), (-math.inf, math.inf), (0.0, LAMBDA_MAX), (0.0, math.inf))[i]
-
-
 @dataclass
 class Spec:
-    """The checked specification in theta units (index into NAMES): values held fixed,
-    bounds (lo, hi), priors (mean, sd); G fixed or with a prior, or None."""
+    """The checked specification in own units, by coordinate index: values held fixed,
+    bounds (lo, hi), priors (mean, sd); G fixed or with a prior, or None; `n` coordinates."""
 
     fixed: dict
     bounds: dict
     priors: dict
     G: tuple[float, float] | None = None  # (value or mean, sd; sd = 0 when fixed)
+    n: int = 4
 
     @property
     def free(self) -> list[int]:
-        return [i for i in range(4) if i not in self.fixed]
+        return [i for i in range(self.n) if i not in self.fixed]
 
     def clip(self, i: int, x: float) -> float:
-        """x moved into parameter i's bounds (its fixed value if fixed)."""
+        """x moved into coordinate i's bounds (its fixed value if fixed)."""
         if i in self.fixed:
             return self.fixed[i]
         lo, hi = self.bounds.get(i, (-math.inf, math.inf))
         return min(max(x, lo), hi)
 
     def describe(self, i: int) -> dict:
-        """Parameter i's specification for the result: fixed, bounds, prior."""
+        """Coordinate i's specification for the result: fixed, bounds, prior."""
         out = {}
         if i in self.fixed:
             out["fixed"] = True
@@ -202,23 +196,37 @@ def g_modulus(p, lo: float, hi: float, prior) -> tuple:
     return G
 
 
-def specification(params, outer_radius_um: float) -> Spec:
-    """Check `params` (Parameters, an lmfit.Parameters, a dict name -> Parameter, or None)
-    and return a Spec; ValueError naming the parameter and the reason otherwise."""
-    fixed, bounds, priors, G = {}, {}, {}, None
-    items = (
-        []
-        if params is None
-        else list(params.values())
-        if hasattr(params, "values")
+def _items(params) -> list:
+    """The Parameter-like objects of `params`: a mapping's values, or a sequence's items."""
+    if params is None:
+        return []
+    return (
+        list(params.values())
+        if isinstance(params, dict) or hasattr(params, "values")
         else list(params)
     )
-    for p in items:
+
+
+def _prior(name: str, prior) -> tuple[float, float] | None:
+    if prior is None:
+        return None
+    if not (isinstance(prior, (tuple, list)) and len(prior) == 2):
+        raise ValueError(f"{name}: prior = {prior!r}: expected (mean, sd)")
+    mean = checked_finite(name, "prior mean", prior[0])
+    sd = checked_finite(name, "prior sd", prior[1])
+    if not sd > 0:
+        raise ValueError(f"{name}: prior sd = {sd:g}: a standard deviation must be > 0")
+    return mean, sd
+
+
+def specification(params, coordinates: Coordinates) -> Spec:
+    """Check `params` (Parameters, an lmfit.Parameters, a dict name -> Parameter, a list of
+    Parameter objects, or None) against the problem's `coordinates` and return a Spec;
+    ValueError naming the parameter and the reason otherwise."""
+    fixed, bounds, priors, G = {}, {}, {}, None
+    for p in _items(params):
         name = getattr(p, "name", None)
-        if name not in ACCEPTED:
-            raise ValueError(
-                f"parameter {name!r} is unknown: expected one of {', '.join(ACCEPTED)}"
-            )
+        i = None if name == G_NAME else coordinates.index(name)
         if getattr(p, "expr", None):
             raise ValueError(
                 f"{name}: expressions (expr = {p.expr!r}) are not supported: fix, bound or give a "
@@ -230,110 +238,89 @@ def specification(params, outer_radius_um: float) -> Spec:
             raise ValueError(f"{name}: a bound is NaN")
         if not lo < hi:
             raise ValueError(f"{name}: min = {lo:g} is not below max = {hi:g}")
-        prior = getattr(p, "prior", None)
-        if prior is not None:
-            if not (isinstance(prior, (tuple, list)) and len(prior) == 2):
-                raise ValueError(f"{name}: prior = {prior!r}: expected (mean, sd)")
-            mean, sd = (
-                checked_finite(name, "prior mean", prior[0]),
-                checked_finite(name, "prior sd", prior[1]),
-            )
-            if not sd > 0:
-                raise ValueError(f"{name}: prior sd = {sd:g}: a standard deviation must be > 0")
-            prior = (mean, sd)
-        if name == G_NAME:
+        prior = _prior(name, getattr(p, "prior", None))
+        if i is None:
             G = g_modulus(p, lo, hi, prior)
             continue
-        i = NAMES.index(name)
-        a, b = _accepted_range(i, outer_radius_um)
+        c = coordinates[i]
         if not p.vary:
             if prior is not None or math.isfinite(lo) or math.isfinite(hi):
                 raise ValueError(f"{name}: a fixed parameter takes no bounds and no prior")
             v = checked_finite(name, "value", p.value)
-            if not (a < v < b or (i == 2 and v == 0.0)):
+            if not c.accepts(v):
                 raise ValueError(
-                    f"{name} = {v:g}: outside the accepted range ({a:g}, {b:g}) {UNITS[name]}"
-                    + (" (R0 below the outer radius / 1.001)" if i == 0 else "")
+                    f"{name} = {v:g}: outside the accepted range {c.range_text()}{c.note}"
                 )
             fixed[i] = v
             continue
         if math.isfinite(lo) or math.isfinite(hi):
-            lo_in, hi_in = max(lo, a), min(hi, b)
-            if not lo_in < hi_in:
+            if not max(lo, c.lower) < min(hi, c.upper):
                 raise ValueError(
                     f"{name}: bounds [{lo:g}, {hi:g}] leave nothing of the accepted range "
-                    f"({a:g}, {b:g}) {UNITS[name]}"
+                    f"{c.range_text()}"
                 )
             bounds[i] = (lo, hi)
         if prior is not None:
             priors[i] = prior
-    if len(fixed) == 4:
+    if len(fixed) == len(coordinates):
         raise ValueError(
-            "every fit parameter is fixed: leave at least one of R0_um, sigma, lambda, T_s free"
+            f"every fit parameter is fixed: leave at least one of {', '.join(coordinates.names)} "
+            "free"
         )
-    return Spec(fixed, bounds, priors, G)
-
-
-def _z(i: int, x: float) -> float:
-    """Coordinate i of z = (ln R0, sigma, lambda, ln T) for parameter value x."""
-    return math.log(x) if i in (0, 3) else x
+    return Spec(fixed, bounds, priors, G, len(coordinates))
 
 
 class Constrained(Problem):
-    """The objective of the data with the specification: residuals and Jacobian with one row
-    per prior appended, bounds narrowed to the user's, coordinates held fixed (`fixed`, in z,
-    honoured by local.local_fit). The data's own objective is `obj`."""
+    """A problem with the user's specification: residuals and Jacobian with one row per
+    prior appended, bounds narrowed to the user's, coordinates held fixed (`fixed`, in z,
+    honoured by local.local_fit). The problem's own objective is `inner`, its coordinates
+    are its declared ones (`coordinates`); the fits move asinh of those declared
+    `stretched`."""
 
-    stretched = (1, 2)  # sigma and lambda: its fits move asinh of them (local.py)
-
-    def __init__(self, obj: Objective, spec: Spec):
-        self.obj, self.spec = obj, spec
-        self.fixed = {i: _z(i, v) for i, v in spec.fixed.items()}
+    def __init__(self, inner: Problem, spec: Spec):
+        self.inner, self.spec = inner, spec
+        self.coordinates = inner.coordinates
+        self.fixed = {i: self.coordinates[i].to_z(v) for i, v in spec.fixed.items()}
         self.user_bounded = frozenset(spec.bounds)
-        self.t_sorted, self.radius, self.outer = obj.t_sorted, obj.radius, obj.outer
-        self.n_radius, self.n_profile = obj.n_radius, obj.n_profile
+        self.stretched = self.coordinates.stretched()
+        self.wound_maps = inner.wound_maps
 
     @property
     def size(self) -> int:
-        return self.obj.size + len(self.spec.priors)
+        return self.inner.size + len(self.spec.priors)
 
     @property
-    def sd(self):
-        return self.obj.sd
+    def free(self) -> list[int]:
+        return self.spec.free
 
     def prior_residuals(self, z) -> np.ndarray:
-        theta = from_z(z)
-        return np.array([(theta[i] - m) / sd for i, (m, sd) in self.spec.priors.items()])
+        c = self.coordinates
+        return np.array([(c[i].own(z[i]) - m) / sd for i, (m, sd) in self.spec.priors.items()])
 
     def residuals(self, z) -> np.ndarray:
-        return np.concatenate([self.obj.residuals(z), self.prior_residuals(z)])
+        return np.concatenate([self.inner.residuals(z), self.prior_residuals(z)])
 
     def jacobian(self, z, columns=None) -> np.ndarray:
-        """The data's Jacobian and, per prior, d theta_i / d z_i / sd in column i."""
-        columns = (0, 1, 2, 3) if columns is None else columns
-        theta = from_z(z)
-        rows = np.zeros((len(self.spec.priors), 4))
+        """The data's Jacobian and, per prior, d value_i / d z_i / sd in column i."""
+        n = len(self.coordinates)
+        wanted = range(n) if columns is None else columns
+        rows = np.zeros((len(self.spec.priors), n))
         for k, (i, (_, sd)) in enumerate(self.spec.priors.items()):
-            if i in columns:
-                rows[k, i] = (theta[i] if i in (0, 3) else 1.0) / sd
-        return np.vstack([self.obj.jacobian(z, columns), rows])
+            if i in wanted:
+                rows[k, i] = self.coordinates[i].d_own(z[i]) / sd
+        return np.vstack([self.inner.jacobian(z, columns), rows])
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """The accepted bounds (Objective.bounds) narrowed to the user's, in z."""
-        lower, upper = self.obj.bounds()
+        """The data's bounds narrowed to the user's, in z."""
+        lower, upper = self.inner.bounds()
         for i, (lo, hi) in self.spec.bounds.items():
-            if i in (0, 3):
-                lo, hi = (
-                    (math.log(lo) if lo > 0 else -math.inf),
-                    (math.log(hi) if hi > 0 else -math.inf),
-                )
-            lower[i], upper[i] = max(lower[i], lo), min(upper[i], hi)
+            c = self.coordinates[i]
+            lower[i], upper[i] = max(lower[i], c.bound_z(lo)), min(upper[i], c.bound_z(hi))
         return lower, upper
 
     def user_bound(self, i: int, side: int) -> bool:
         """Whether the limit of coordinate i on `side` (-1 lower, +1 upper) is the user's."""
         if i not in self.spec.bounds:
             return False
-        default = self.obj.bounds()[0 if side < 0 else 1][i]
-        mine = self.bounds()[0 if side < 0 else 1][i]
-        return bool(mine != default)
+        k = 0 if side < 0 else 1
+        return bool(self.bounds()[k][i] != self.inner.bounds()[k][i])

@@ -4,7 +4,8 @@ walker and the starts treat one wound (objective.Objective), the user's constrai
 and several wounds (wounds.Tissue, wounds.EtaCoordinate) alike.
 
 A problem maps coordinates z (a vector of `len(bounds()[0])` numbers) to weighted residuals
-(model - data) / uncertainty, `size` of them, with their Jacobian d residuals / d z.
+(model - data) / uncertainty, `size` of them, with their Jacobian d residuals / d z. A problem
+the user constrains declares its `coordinates` by name (coordinates.py).
 """
 
 from __future__ import annotations
@@ -30,6 +31,12 @@ class Problem(Protocol):
     #: Coordinates that are lambda (>= 0): local.local_fit moves asinh of them, in which the
     #: valley along lambda^2 T = const (ln T = const - 2 ln lambda) is straight for lambda >> 1.
     stretched = ()
+    #: The problem's coordinates by name (coordinates.Coordinates), where the user names them.
+    coordinates = None
+    #: (to z, from z, plain) where the problem's coordinates map to one wound's four
+    #: parameters z = (ln R0, sigma, lambda, ln T) (valleys.py looks for other branches of
+    #: the wound's model there; plain: they are z themselves), else None (several wounds).
+    wound_maps = None
 
     @property
     def size(self) -> int:

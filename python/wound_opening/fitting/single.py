@@ -22,21 +22,18 @@ prior is one more residual; the degrees of freedom are n + priors - free paramet
 
 from __future__ import annotations
 
-from functools import partial
-
 import numpy as np
 
 from ..inputs.series import RadiusSeries, VelocityProfile, check_against
 from ..results.export import data_points
 from ..results.names import NAMES
-from ..results.profiles import Profile
 from ..results.result import FitResult, ParameterReport
 from .bounds import thresholds as bound_thresholds
 from .derived import derived_profiles
 from .gof import as_dicts, series_tests
-from .intervals import profile_all, profile_at
 from .local import cost
-from .objective import Objective, from_z
+from .objective import Objective, from_z, wound_coordinates
+from .optimum import Optimum
 from .parameters import Constrained, specification
 from .plausibility import intervals_of, time_scale_warnings
 from .recording import check_recording
@@ -63,7 +60,7 @@ def fit(
     check_loss(loss)
     check_against(radius, profile, outer_radius_um)
     recording = check_recording(radius, profile)  # refuses a unit mistake, a closing wound
-    spec = specification(params, outer_radius_um)
+    spec = specification(params, wound_coordinates(outer_radius_um))
     data = Objective(radius, profile, outer_radius_um)
     n_free = len(spec.free)
     if data.size < n_free + 1:
@@ -101,16 +98,18 @@ def fit(
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
     others = alternates(obj, z, ends, chi2_cost, loss)  # other local optima a profile may reach
+    optimum = Optimum(obj, z, chi2_cost, loss, judged.threshold, cov_z, others)
     profiles = {}
     if intervals and not judged.reasons:
         dof = max(obj.size - n_free, 1)
         near, found = bound_thresholds(
             obj, z, chi2_cost, loss, not any(data.estimated), dof, others
         )
-        others += found  # a valley at lambda ~ 0 the fit's starts did not end in
-        profiles = _profiles(
-            obj, z, chi2_cost, judged.threshold, cov_z, loss, others, derived, near
-        )
+        optimum.alternates = others + found  # a valley at lambda ~ 0 the starts did not end in
+        optimum.thresholds = near
+        profiles = {name: optimum.profile(optimum.target(name)) for name in NAMES}
+        if derived:
+            profiles |= derived_profiles(optimum)
     reports = {
         name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name), spec.describe(i))
         for i, name in enumerate(NAMES)
@@ -146,11 +145,15 @@ def fit(
         plausibility=recording
         + list(judged.warnings)
         + time_scale_warnings(
-            theta, obj.outer, radius, profile, intervals_of(reports, profiles) if profiles else None
+            theta,
+            data.outer,
+            radius,
+            profile,
+            intervals_of(reports, profiles) if profiles else None,
         ),
         points=data_points(data, z, judged.flagged),
         residual_runs=as_dicts(judged.runs),
-        refit=partial(profile_at, obj, z, chi2_cost, loss=loss) if not judged.reasons else None,
+        refit=optimum.profile_at if not judged.reasons else None,
     )
 
 
@@ -180,25 +183,3 @@ def _local_fits(obj: Constrained, data: Objective, spec, loss: str):
     if any(data.estimated):
         best = refit_at_noise(obj, [data], lambda k, z: z, best, loss, len(spec.free) / data.size)
     return best, ends
-
-
-def _profiles(
-    obj: Constrained,
-    z,
-    chi2_min: float,
-    threshold: float,
-    cov_z,
-    loss: str,
-    others,
-    derived: bool,
-    near: dict,
-):
-    """The parameters' profiles (and the derived values' with `derived`); a fixed
-    parameter's is its value. `near`: the thresholds lambda's bound changes (bounds.py)."""
-    profiles = profile_all(obj, z, chi2_min, threshold, cov_z, loss, others, near)
-    if profiles and derived:
-        profiles |= derived_profiles(obj, z, chi2_min, threshold, loss, others, cov_z, near)
-    if profiles:
-        for i, v in obj.spec.fixed.items():
-            profiles[NAMES[i]] = Profile(v, v, False, [(v, 0.0)])
-    return profiles

@@ -55,17 +55,6 @@ BUDGET = 60
 SAME = 0.05
 
 
-def coordinates(problem):
-    """(to z, from z) of a problem with the four parameters (one wound, constrained or a
-    derived quantity's reparametrisation), or None for others (several wounds)."""
-    wound = getattr(problem, "obj", problem)
-    if not hasattr(wound, "t_sorted") or len(problem.bounds()[0]) != 4:
-        return None
-    if hasattr(problem, "to_z") and hasattr(problem, "to_w"):
-        return problem.to_z, problem.to_w
-    return (lambda w: np.asarray(w, dtype=float)), (lambda z: np.asarray(z, dtype=float))
-
-
 def _moved(zc: np.ndarray, z: np.ndarray) -> list[np.ndarray]:
     """z (zc with the profiled value set) with lambda or T moved to keep tau_c, or T to keep
     zeta_c; only those that differ from z."""
@@ -101,11 +90,9 @@ def starts(problem, i: int, w_in, v: float, direction: int):
     """(value, start) pairs in the problem's coordinates for a crossing at v of coordinate
     i, w_in the last point inside the threshold; [] for a problem without the four
     parameters. A value may lie beyond the walk's limit (the caller's to judge)."""
-    maps = coordinates(problem)
-    if maps is None:
+    if problem.wound_maps is None:
         return []
-    to_z, to_w = maps
-    plain = not hasattr(problem, "to_w")  # the coordinates are z themselves
+    to_z, to_w, plain = problem.wound_maps
     lower, upper = problem.bounds()
     w_in = np.asarray(w_in, dtype=float)
     at_v = w_in.copy()
@@ -134,12 +121,15 @@ def starts(problem, i: int, w_in, v: float, direction: int):
     return out
 
 
-def beyond(problem, i, w_in, v, direction, chi2_max, loss, w_v=None):
-    """The first start of `starts` whose constrained fit (at most BUDGET evaluations) falls
-    below chi2_max: (value, w, chi^2) of the fit continued from its first point below, or
+def beyond(walk, w_in, v, direction, w_v=None):
+    """For the profile `walk` (intervals.Walk) crossing at v from w_in: the first start of
+    `starts` whose constrained fit (at most BUDGET evaluations) falls below its chi^2 at the
+    threshold, chi2_max: (value, w, chi^2) of the fit continued from its first point below, or
     None (the crossing stands). A fit stops at its first point below chi2_max, and where it
     comes near where an earlier fit at the same value ended above it (local.py): an earlier
     start's, or at v the walk's own (`w_v`)."""
+    problem, i, loss = walk.problem, walk.i, walk.loss
+    chi2_max = walk.chi2_min + walk.threshold
     ends: dict[float, list] = {v: [] if w_v is None else [w_v]}
     for u, w0 in starts(problem, i, w_in, v, direction):
         known = ends.setdefault(u, [])

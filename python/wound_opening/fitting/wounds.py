@@ -44,15 +44,17 @@ from ..results.export import data_points
 from ..results.names import ETA, SHARED
 from ..results.result import ParameterReport
 from ..results.wounds import TissueFitResult
+from .coordinates import G_NAME, Coordinate, Coordinates, factor, span
 from .gof import as_dicts, series_tests
 from .local import cost
-from .objective import LAMBDA_MAX, Objective, from_z
+from .objective import LAMBDA_MAX, Objective, from_z, r0_coordinate
+from .optimum import Optimum
+from .parameters import Constrained, specification
 from .plausibility import time_scale_warnings, tissue_intervals
 from .problem import Problem
 from .recording import check_recording
 from .single import fit
 from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
-from .tissue_spec import ConstrainedTissue, tissue_specification
 from .wound_profiles import LN4, EtaCoordinate, shared_profiles
 
 #: Points each wound needs: its start is a fit of its own four parameters (fitting.fit).
@@ -70,12 +72,67 @@ class Wound:
     name: str | None = None
 
 
+#: One wound's names, refused with a hint in a fit of several.
+SINGLE_ONLY = ("sigma", "lambda", "T_s", "R0_um")
+
+
+def tissue_coordinates(names, outers) -> Coordinates:
+    """The coordinates y of wounds `names` in tissues of outer radii `outers` (module
+    docstring), by name: the shared l, tension/G and zeta/G, then R0_um[NAME] of each wound
+    (also R0_um[K], K from 1). Profiles search l from 0 to LAMBDA_MAX times the largest R0,
+    sigma within 10 |sigma| + 1, zeta/G a factor 100 and each R0 a factor 3 either way."""
+
+    def l_window(centre, y_hat, i):
+        return 0.0, LAMBDA_MAX * math.exp(max(y_hat[3:]))
+
+    shared = (
+        Coordinate(
+            SHARED[0],
+            "um",
+            lower=0.0,
+            closed=True,
+            window=l_window,
+            step=lambda y_hat: 0.1 * math.exp(float(np.median(y_hat[3:]))),
+        ),
+        Coordinate(
+            SHARED[1],
+            "1 (tension / G)",
+            window=span(),
+            step=lambda y_hat: 0.05 * abs(y_hat[1]) + 0.01,
+        ),
+        Coordinate(SHARED[2], "s/um^2", log=True, lower=0.0, window=factor(1e2)),
+    )
+    radii = tuple(r0_coordinate(f"R0_um[{n}]", outer) for n, outer in zip(names, outers))
+
+    def unknown(name: str) -> str:
+        if name == ETA:
+            return (
+                f"{ETA} is not a coordinate of the fit of several wounds (eta/G = l^2 zeta/G / 4): "
+                f"constrain {SHARED[0]} or {SHARED[2]} instead"
+            )
+        hint = (
+            f" ({name} is one wound's parameter: with several wounds use "
+            f"{', '.join(SHARED)} or R0_um[NAME])"
+            if name in SINGLE_ONLY
+            else ""
+        )
+        return (
+            f"parameter {name!r} is unknown for several wounds{hint}: expected one of "
+            f"{', '.join(SHARED + (G_NAME,))}, R0_um[NAME] or R0_um[K] with NAME one of "
+            f"{', '.join(names)} (K from 1 to {len(names)})"
+        )
+
+    aliases = {f"R0_um[{k + 1}]": 3 + k for k in range(len(names))}
+    return Coordinates(shared + radii, aliases, unknown)
+
+
 class Tissue(Problem):
     """The wounds' Objectives as one objective in y (see the module docstring)."""
 
-    def __init__(self, parts: list[Objective]):
+    def __init__(self, parts: list[Objective], names):
         self.parts = parts
         self.n = 3 + len(parts)
+        self.coordinates = tissue_coordinates(names, [p.outer for p in parts])
 
     @property
     def size(self) -> int:
@@ -166,7 +223,7 @@ def _combine(tissue: Tissue, singles, cost, count: int = 3) -> list[np.ndarray]:
     sigma = float(np.median([t[1] for t in ok]))
     r0 = [
         t[0] if t is not None else float(np.min(p.radius)) / (1 + sigma / 6)
-        for t, p in zip(singles, tissue.parts)
+        for t, p in zip(singles, tissue.inner.parts)
     ]
     ln_r0 = [math.log(r) for r in r0]
     zg = [4 * t[3] / t[0] ** 2 for t in ok]
@@ -213,14 +270,15 @@ def fit_wounds(
     `experiments`: Wound objects. `loss` and the noise of each data set as in `fit`.
     `params`: a Parameters (parameters.py) fixing, bounding or giving a prior to
     viscous_length_um, tension_over_G, zeta_over_G_s_per_um2, R0_um[NAME], and G_pa fixed
-    or with a prior for the absolute eta, zeta and tension (tissue_spec.py).
+    or with a prior for the absolute eta, zeta and tension (parameters.py, read against
+    the tissue's coordinates: tissue_coordinates).
     Returns a TissueFitResult."""
     check_loss(loss)
     wounds = _wounds(experiments)
-    spec = tissue_specification(params, [w.name for w in wounds])
     parts = [Objective(w.radius, w.profile, w.outer_radius_um) for w in wounds]
-    tissue = Tissue(parts)
-    obj = ConstrainedTissue(tissue, spec)
+    tissue = Tissue(parts, [w.name for w in wounds])
+    spec = specification(params, tissue.coordinates)
+    obj = Constrained(tissue, spec)
     n_free = len(obj.free)
     best, ends = _local_fits(obj, wounds, loss)
     y, chi2_cost, res = best
@@ -250,11 +308,8 @@ def fit_wounds(
     held = list(obj.fixed)
     cov[held, :], cov[:, held] = 0.0, 0.0  # no variance
     others = alternates(obj, y, ends, chi2_cost, loss)
-    profiles = (
-        shared_profiles(obj, y, chi2_cost, threshold, cov, loss, others)
-        if intervals and not reasons
-        else {}
-    )
+    optimum = Optimum(obj, y, chi2_cost, loss, threshold, cov, others)
+    profiles = shared_profiles(optimum) if intervals and not reasons else {}
     # standard errors in each quantity's own units: d quantity / d y_i
     own = np.array([1.0, 1.0, math.exp(y[2])] + [math.exp(v) for v in y[3:]])
     with np.errstate(invalid="ignore"):
@@ -342,7 +397,7 @@ def fit_wounds(
     )
 
 
-def _local_fits(tissue: ConstrainedTissue, wounds, loss: str):
+def _local_fits(tissue: Constrained, wounds, loss: str):
     """The best local fit from the starts the wounds fitted alone give, at the estimated
     noise where any is estimated; (best (y, cost, result), the ends of every fit)."""
     singles = []
@@ -369,7 +424,8 @@ def _local_fits(tissue: ConstrainedTissue, wounds, loss: str):
             "fit_wounds: the model could not be evaluated from any start: "
             + "; ".join(failures[:2])
         )
-    if any(any(p.estimated) for p in tissue.parts):
+    parts = tissue.inner.parts
+    if any(any(p.estimated) for p in parts):
         share = len(tissue.free) / tissue.size
-        best = refit_at_noise(tissue, tissue.parts, lambda k, y: tissue.z(y, k), best, loss, share)
+        best = refit_at_noise(tissue, parts, lambda k, y: tissue.inner.z(y, k), best, loss, share)
     return best, ends
