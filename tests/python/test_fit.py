@@ -151,7 +151,7 @@ def test_small_coverage_sample(design, lam, noise):
 def test_profile_interval_ends_lie_on_the_threshold():
     """Each end of a PIV fit's four intervals: chi^2 minimised over the other three there
     (tolerances 1e-12, started at the estimate) exceeds the minimum by the threshold to
-    2e-3 of it, the precision likelihood.py locates the crossing to."""
+    2e-3 of it, the precision intervals.py locates the crossing to."""
     from wound_opening.fitting.local import local_fit
 
     radius, profile = draw("piv", 0.5, 1e-2, 7)

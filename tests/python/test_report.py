@@ -225,7 +225,7 @@ def test_profile_at_is_zero_at_the_estimate_and_on_the_threshold_at_the_interval
         lo, hi = result.reports[name].ci95
         d = result.profile_at(name, [lo, result.reports[name].estimate, hi])
         assert d[1] == pytest.approx(0, abs=1e-6)
-        # the ends are located to delta within ~2e-3 of the threshold (likelihood.ROOT_TOL)
+        # the ends are located to delta within ~2e-3 of the threshold (intervals.ROOT_TOL)
         # its own threshold where lambda's bound 0 is within reach (fitting/bounds.py)
         threshold = result.reports[name].profile.threshold or result.threshold
         np.testing.assert_allclose(d[[0, 2]], threshold, rtol=5e-3)

@@ -1,6 +1,7 @@
-"""Likelihood profiles: for each parameter, chi^2 minimised over the other three at fixed
-values of it, walked outward from the estimate on both sides until it rises by the
-threshold (3.84, or the F quantile with an estimated noise) or a limit is reached.
+"""The profile walker: for one coordinate of a problem (a `Walk`, which optimum.Optimum.profile
+builds), chi^2 minimised over the other coordinates at fixed values of it, walked outward
+from the estimate on both sides until it rises by the threshold (3.84, or the F quantile
+with an estimated noise) or a search limit is reached.
 
 ```text
 delta(v) = min over the others of chi^2 - chi^2_min,   95 % interval = { v : delta(v) < threshold }
@@ -15,9 +16,10 @@ interpolation of the fits at the bracket's ends, which lie in the same valley). 
 is a fit of the other three from a predicted start, at tolerances 1e-7: a looser relative
 cost change (1e-5) lets fits on the flat, curved valleys of plateau-only data stop short
 and report false crossings.
-lambda stops at its bound 0 (an interval [0, hi] is closed there: the data allow lambda = 0)
-and at LAMBDA_MAX; ln T and ln R0 at a factor 100 and 3, sigma at 10 |sigma| + 1 from the
-estimate. An end that reaches such a search limit is open (None): the data do not bound it.
+The search limits are the coordinate's window (coordinates.py; one wound: lambda from its
+bound 0, where an interval [0, hi] is closed, to LAMBDA_MAX, ln T and ln R0 a factor 100 and
+3, sigma 10 |sigma| + 1 from the estimate). An end that reaches such a search limit is open
+(None): the data do not bound it.
 An end that reaches a bound of the user's (parameters.py) is that bound (`bounded`), as an
 estimate on such a bound gives that end. Parameters the user holds fixed are not profiled.
 A crossing stands only if no fit beyond it from the other branch (valleys.py: along

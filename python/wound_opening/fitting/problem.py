@@ -1,7 +1,7 @@
 """The protocol every objective of a fit implements, so that the local fit, the interval
 walker and the starts treat one wound (objective.Objective), the user's constraints
 (parameters.Constrained), a reparametrisation for a derived value (derived.Reparametrised)
-and several wounds (wounds.Tissue, wounds.EtaCoordinate) alike.
+and several wounds (wounds.Tissue, wound_profiles.EtaCoordinate) alike.
 
 A problem maps coordinates z (a vector of `len(bounds()[0])` numbers) to weighted residuals
 (model - data) / uncertainty, `size` of them, with their Jacobian d residuals / d z. A problem

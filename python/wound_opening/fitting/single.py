@@ -1,7 +1,7 @@
 """`fit`: weighted least squares of the model on a wound radius series and/or a PIV velocity
 profile, for R0_um, sigma, lambda (>= 0) and T_s, with profile-likelihood intervals.
 
-1. Global stage (start.py): a lambda x time-scale grid with R0 and sigma solved linearly at
+1. Global stage (starts.py): a lambda x time-scale grid with R0 and sigma solved linearly at
    each point; the four best distinct points start local fits.
 2. Local fits (local.py): scipy.optimize.least_squares with the objective's Jacobian
    (objective.py), tolerances 1e-12; the best of the starts is kept.
@@ -9,8 +9,8 @@ profile, for R0_um, sigma, lambda (>= 0) and T_s, with profile-likelihood interv
    (degrees of freedom shared in proportion to the points; 1.4826 x the median absolute
    residual with a robust loss); with an estimated noise the intervals use the F(1, dof)
    quantile instead of chi^2(1) (3.84).
-4. Intervals: profile likelihood (likelihood.py), also of tau, zeta/G and the viscous length
-   (derived.py); standard errors from the Jacobian.
+4. Intervals: profile likelihood (optimum.py, intervals.py), also of tau, zeta/G and the
+   viscous length (derived.py); standard errors from the Jacobian.
 5. Verdict: converged only if the optimiser reports convergence, the Jacobian has full rank,
    with the noise given chi^2 is consistent with its degrees of freedom (p >= 1e-6), and the
    signs of each series' residuals show no systematic misfit (runs test, gof.py).

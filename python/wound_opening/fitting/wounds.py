@@ -24,7 +24,7 @@ wound's Objective.jacobian in z_k = (ln R0_k, sigma, lambda_k, ln T_k):
     d lambda_k / d l = 1 / R0_k,   d lambda_k / d ln R0_k = -lambda_k,
     d ln T_k / d ln zeta/G = 1,    d ln T_k / d ln R0_k = 2,   d ln R0_k / d ln R0_k = 1.
 
-Stages, as for one wound (fitting.py): starts from each wound fitted alone (no intervals)
+Stages, as for one wound (single.py): starts from each wound fitted alone (no intervals)
 combined, and from a coarse grid in l; local fits (local.py); noise given or estimated per
 data set of each wound; the verdict (optimiser, rank of the Jacobian, chi^2, the runs test of
 each wound's series: gof.py); profile likelihood intervals of l, tension/G, zeta/G, eta/G

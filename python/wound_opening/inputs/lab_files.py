@@ -5,7 +5,7 @@ column names and units, converted to the fit's units (um, s, um/s, times since t
     length [um] = length_file x (1 for um, pixel_size_um for px)
     v [um/s]    = v_file x length factor / time factor      (velocity in length unit per time unit)
 
-Uncertainty columns are in the unit of their column. Errors name the file line (tables.py)."""
+Uncertainty columns are in the unit of their column. Errors name the file line (columns.py)."""
 
 from __future__ import annotations
 
