@@ -210,7 +210,7 @@ def test_a_given_centre_the_flow_does_not_point_away_from_is_refused(option):
     from test_lab_readers import readme_lab_command
 
     from wound_opening.cli import parser
-    from wound_opening.cli_inputs import read_lab_inputs
+    from wound_opening.cli.lab import read_lab_inputs
 
     argv = readme_lab_command().split()[1:] + [option, "{:g},{:g}".format(*lab.CENTRE_PX)]
     if option == "--centre-px":
@@ -226,7 +226,7 @@ def test_openpiv_lengths_in_um_read_as_px_are_refused(tmp_path):
     from test_lab_readers import readme_lab_command
 
     from wound_opening.cli import parser
-    from wound_opening.cli_inputs import read_lab_inputs
+    from wound_opening.cli.lab import read_lab_inputs
 
     lab.write_openpiv(tmp_path / "px", R0)
     um = openpiv_as(tmp_path / "px", tmp_path / "um", [0, 1, 2, 3, 4, 5], "x\ty\tu\tv\tflags\tmask")
@@ -349,7 +349,7 @@ def test_piv_velocities_in_another_unit_than_the_edge_speed_are_refused(tmp_path
     from test_lab_readers import readme_lab_command
 
     from wound_opening.cli import parser
-    from wound_opening.cli_inputs import read_lab_inputs
+    from wound_opening.cli.lab import read_lab_inputs
 
     lab.write_fiji(tmp_path / "r.csv", R0)
     lab.write_openpiv(tmp_path / "piv", R0)

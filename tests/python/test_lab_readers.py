@@ -219,7 +219,7 @@ def test_the_readme_lab_command_fits_fiji_and_pivlab_covering_the_truth(tmp_path
 
 def test_the_report_hashes_every_raw_file_read_with_its_counts():
     from wound_opening.cli import parser
-    from wound_opening.cli_inputs import read_lab_inputs
+    from wound_opening.cli.lab import read_lab_inputs
     from wound_opening.results.report import raw_files_section
 
     argv = shlex.split(readme_lab_command())[1:]
@@ -234,7 +234,7 @@ def test_the_report_hashes_every_raw_file_read_with_its_counts():
 
 def test_a_centre_given_in_pixels_is_used_as_given():
     from wound_opening.cli import parser
-    from wound_opening.cli_inputs import read_lab_inputs
+    from wound_opening.cli.lab import read_lab_inputs
 
     argv = shlex.split(readme_lab_command())[1:]
     px = ",".join(f"{c:g}" for c in lab.CENTRE_PX)

@@ -16,7 +16,7 @@ import pytest
 import wound_exact as we
 
 from wound_opening.cli import parser
-from wound_opening.cli_checks import check_cut, prepare, prepare_wounds
+from wound_opening.cli.commands import prepare, prepare_wounds
 from wound_opening.fitting.plausibility import intervals_of, time_scale_warnings, unit_warnings
 from wound_opening.fitting.recording import check_recording
 from wound_opening.fitting.single import fit
@@ -99,10 +99,10 @@ def test_a_cut_time_in_s_with_times_in_ms_is_refused(tmp_path):
     assert done.returncode == 2, (done.returncode, done.stdout, done.stderr)
     assert "is the cut time in s? (give --cut-time 5000)" in done.stderr, done.stderr
     with pytest.raises(InputError, match="is after every recorded time"):
-        check_cut(
-            path, args_of(path, "--time-col", "time", "--time-unit", "ms", "--cut-time", "9e4")
-        )
-    check_cut(path, args_of(path, "--time-col", "time", "--time-unit", "ms", "--cut-time", "5000"))
+        read_radius(path, time_col="time", time_unit="ms", cut_time=9e4)
+    with pytest.raises(InputError, match=r"is the cut time in s\? \(give --cut-time 5000\)"):
+        read_radius(path, time_col="time", time_unit="ms", cut_time=5)  # the API checks it too
+    read_radius(path, time_col="time", time_unit="ms", cut_time=5000)
 
 
 def test_a_late_first_sample_is_warned_about():
@@ -219,7 +219,6 @@ def test_a_fit_with_its_intervals_asks_no_unit_question_of_an_unidentified_T():
 def test_correct_recordings_in_s_ms_and_min_pass_without_a_warning(tmp_path, unit):
     path = write(tmp_path / f"{unit}.csv", TIMES, opening(TIMES), unit=unit, cut=2.0)
     args = args_of(path, "--time-col", "time", "--time-unit", unit, "--cut-time", "2")
-    check_cut(path, args)
     radius = read_radius(path, time_col="time", time_unit=unit, cut_time=2.0, noise_um=NOISE)
     np.testing.assert_allclose(radius.times_s, TIMES, rtol=1e-9)
     radius, _ = prepare(args, radius)

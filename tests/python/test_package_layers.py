@@ -2,10 +2,10 @@
 (docs/layout.md): every import of every module (function-local ones included), read from
 the source, goes down the layers, and no chain of imports leads back to where it started.
 
-Layers, highest first: the command line (cli.py, cli_commands.py, cli_checks.py,
-cli_inputs.py); fitting/ (which builds results from inputs); results/ (which knows the
-inputs' records, not the fit); inputs/; the simulation side (model, sweeping, material,
-shipped, _native). The package's __init__ imports nothing but lazily by name.
+Layers, highest first: the command line (cli/: its options, commands, lab-file options,
+checks and the report's settings); fitting/ (which builds results from inputs); results/
+(which knows the inputs' records, not the fit); inputs/; the simulation side (model,
+sweeping, material, shipped, _native). The package's __init__ imports nothing but lazily by name.
 """
 
 from __future__ import annotations
@@ -17,9 +17,6 @@ PACKAGE = Path(__file__).resolve().parents[2] / "python" / "wound_opening"
 #: Anything else: 0 (simulation).
 LAYERS = {
     "cli": 4,
-    "cli_commands": 4,
-    "cli_inputs": 4,
-    "cli_checks": 4,
     "fitting": 3,
     "results": 2,
     "inputs": 1,
@@ -200,7 +197,7 @@ def test_a_radius_file_goes_down_the_layers_from_the_command_line_to_the_optimis
     assert not errors, errors
     assert reached, "the trace did not reach local_fit"
     assert {
-        "wound_opening.cli",
+        "wound_opening.cli.commands",
         "wound_opening.inputs.lab_files",
         "wound_opening.fitting.single",
     } <= entered

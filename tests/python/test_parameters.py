@@ -16,7 +16,7 @@ from scipy import optimize
 import wound_opening as wo
 from wound_opening.fitting.derived import Reparametrised
 from wound_opening.fitting.local import local_fit
-from wound_opening.fitting.objective import Objective, to_z
+from wound_opening.fitting.objective import Objective, to_z, wound_coordinates
 from wound_opening.fitting.parameters import Parameter, Parameters, from_options
 
 LAM, SIGMA, R0, T, OUTER, NOISE = 0.5, 0.5, 10.0, 10.0, 100.0, 0.05
@@ -172,11 +172,16 @@ def test_an_lmfit_style_object_with_an_expression_is_refused_and_one_without_is_
 )
 def test_command_line_constraints_are_parsed_or_refused(fix, bound, prior, message):
     with pytest.raises(ValueError, match=message):
-        from_options(fix, bound, prior)
+        from_options(wound_coordinates(OUTER), fix, bound, prior)
 
 
 def test_command_line_constraints_build_the_parameters():
-    p = from_options(["R0_um=10"], ["lambda=0:5", "T_s=1:"], ["G_pa=1200:200", "T_s=8:2"])
+    p = from_options(
+        wound_coordinates(OUTER),
+        ["R0_um=10"],
+        ["lambda=0:5", "T_s=1:"],
+        ["G_pa=1200:200", "T_s=8:2"],
+    )
     assert p["R0_um"] == Parameter("R0_um", 10.0, False)
     assert (p["lambda"].min, p["lambda"].max) == (0.0, 5.0)
     assert (p["T_s"].min, p["T_s"].max, p["T_s"].prior) == (1.0, math.inf, (8.0, 2.0))

@@ -1,7 +1,7 @@
 """One vocabulary for one wound and several: every form of what the user knows (Parameters,
 an lmfit-style dict, a list of Parameter objects, None) is read, or refused with the same
 reason, by `fit` and by `fit_wounds`, since both read it against the coordinates their
-problem declares (fitting/coordinates.py, fitting/parameters.py)."""
+problem declares (fitting/parameters.py, fitting/parameters.py)."""
 
 from __future__ import annotations
 

@@ -334,7 +334,7 @@ def test_the_source_distribution_carries_what_builds_the_wheel(tmp_path):
         "include/wound_opening.h",
     }
     assert crate <= names, sorted(crate - names)
-    assert {"setup.py", "pyproject.toml", "python/wound_opening/cli.py"} <= names
+    assert {"setup.py", "pyproject.toml", "python/wound_opening/cli/options.py"} <= names
     assert not any(n.startswith(("target/", ".venv/", "dist/", "build/")) for n in names), sorted(
         names
     )

@@ -1,4 +1,4 @@
-"""The fit: the coordinates each problem declares by name (coordinates.py), weighted residuals
+"""The fit: the coordinates each problem declares by name (parameters.py), weighted residuals
 and Jacobian of one wound (objective.py) and of several wounds of one tissue (wounds.py),
 the user's knowledge read against those coordinates (parameters.py), starts (starts.py),
 local fits (local.py), the stages and verdict (stages.py), the optimum and its profile

@@ -33,8 +33,8 @@ import math
 import numpy as np
 
 from ..results.profiles import Profile
-from .coordinates import Coordinate, Coordinates, factor
 from .optimum import Optimum, Target
+from .parameters import Coordinate, Coordinates, factor
 from .problem import Problem
 
 #: kind -> (c, {i: a_i}, the coordinates it may replace, in order of preference)

@@ -16,7 +16,7 @@ interpolation of the fits at the bracket's ends, which lie in the same valley). 
 is a fit of the other three from a predicted start, at tolerances 1e-7: a looser relative
 cost change (1e-5) lets fits on the flat, curved valleys of plateau-only data stop short
 and report false crossings.
-The search limits are the coordinate's window (coordinates.py; one wound: lambda from its
+The search limits are the coordinate's window (parameters.py; one wound: lambda from its
 bound 0, where an interval [0, hi] is closed, to LAMBDA_MAX, ln T and ln R0 a factor 100 and
 3, sigma 10 |sigma| + 1 from the estimate). An end that reaches such a search limit is open
 (None): the data do not bound it.

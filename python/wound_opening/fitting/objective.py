@@ -44,7 +44,7 @@ import math
 import numpy as np
 
 from .. import _native
-from .coordinates import Coordinate, Coordinates, between, factor, span
+from .parameters import Coordinate, Coordinates, between, factor, span
 from .problem import Problem
 
 #: Largest lambda searched: a viscous length of 50 R0, beyond which the tissues of these

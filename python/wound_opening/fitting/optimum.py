@@ -20,7 +20,7 @@ For the target's coordinate w_k (with A = d w / d z, identity but for row k):
     slope = cov_w[:, k] / cov_w[k, k]   (the other coordinates' start prediction)
 
 and the walk (intervals.walk_side) runs from the optimum and from every alternate below the
-threshold to the search window the coordinate declares (coordinates.py), narrowed to the
+threshold to the search window the coordinate declares (parameters.py), narrowed to the
 problem's bounds; an end on a bound of the user's is that bound.
 """
 

@@ -1,5 +1,23 @@
-"""What the user knows before the fit: parameters held fixed, bounded, or given a Gaussian
-prior, lmfit-style.
+"""The fit's parameters by name, and what the user knows of them.
+
+**Coordinates.** Each problem declares its coordinates (`Coordinate`, `Coordinates`): what
+a fit moves, how the user names it, what values it accepts and how its profile is
+searched. A coordinate is a value in its own units v (R0 in um, sigma, lambda, ...) moved
+by the optimiser as z = ln v (`log`) or z = v. Everything that treats coordinates by name
+reads them: the user's specification below (which names exist, their accepted ranges and
+units in refusals, fixed values and bounds carried into z, priors in own units), local fits
+(`stretched`: the fit moves asinh z), and the profile walks (optimum.py: the search window
+around a centre and the first step). A new nuisance parameter of a problem (a cut time
+inside a frame interval, an outline offset, a noise level) enters the fit by one more
+`Coordinate` in its problem's `coordinates`; docs/layout.md shows one.
+
+    windows                  search limits of a profile walk around a centre c (in z)
+    factor(f)                c -/+ ln f           (a log coordinate: a factor f either way)
+    span()                   c -/+ (10 |c| + 1)
+    between(lo, hi)          [lo, hi]
+
+**What the user knows**: parameters held fixed, bounded, or given a Gaussian prior,
+lmfit-style.
 
     params = Parameters()
     params.add("R0_um", value=10, vary=False)           # fixed (the radius of the cut)
@@ -26,7 +44,7 @@ that reaches a bound ends there (`Profile.bounded`).
 The same specification serves one wound (`fit`: R0_um, sigma, lambda, T_s) and several
 (`fit_wounds`: viscous_length_um, tension_over_G, zeta_over_G_s_per_um2, R0_um[NAME]): the
 names, accepted ranges and units are the coordinates the problem declares
-(coordinates.py), and every form of the user's knowledge (Parameters, lmfit.Parameters, a
+(parameters.py), and every form of the user's knowledge (Parameters, lmfit.Parameters, a
 dict or a list of Parameter objects) is read and refused alike.
 
 G_pa does not enter the model (R(t) and the velocities depend on G only through lambda,
@@ -37,12 +55,127 @@ tension (material.py).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from .coordinates import G_NAME, Coordinates
 from .problem import Problem
+
+#: A profile walk's search limits (lower, upper in z) around a centre (z of the problem) for
+#: coordinate i, with the optimum z_hat: an end that reaches one is open.
+Window = Callable[[np.ndarray, np.ndarray, int], tuple[float, float]]
+
+
+def factor(f: float) -> Window:
+    """A factor f either way of a log coordinate's centre."""
+    step = math.log(f)
+    return lambda centre, z_hat, i: (centre[i] - step, centre[i] + step)
+
+
+def span() -> Window:
+    """10 |c| + 1 either way of the centre c (sigma: a pre-stress of either sign)."""
+
+    def window(centre, z_hat, i):
+        width = 10 * abs(centre[i]) + 1
+        return centre[i] - width, centre[i] + width
+
+    return window
+
+
+def between(lo: float, hi: float) -> Window:
+    """A fixed range (lambda from its bound 0 to LAMBDA_MAX)."""
+    return lambda centre, z_hat, i: (lo, hi)
+
+
+@dataclass(frozen=True)
+class Coordinate:
+    """One coordinate of a problem.
+
+    `name` and `unit` are the user's (specification, refusals, results); values are
+    accepted in (lower, upper), and at `lower` too where `closed` (lambda = 0); `note`
+    follows a refusal of a value outside them. `window` and `step` (a number, or a function
+    of the optimum z_hat) set its profile walk's search limits and first step where the
+    Jacobian gives none; `stretched`: the user's fit moves asinh z (local.py: the valley
+    along lambda^2 T = const is straight in asinh lambda for lambda >> 1)."""
+
+    name: str
+    unit: str
+    log: bool = False
+    lower: float = -math.inf
+    upper: float = math.inf
+    closed: bool = False
+    window: Window = span()
+    step: float | Callable[[np.ndarray], float] = 0.1
+    stretched: bool = False
+    note: str = ""
+
+    def to_z(self, v: float) -> float:
+        """z of the value v (own units)."""
+        return math.log(v) if self.log else v
+
+    def bound_z(self, v: float) -> float:
+        """z of a bound v (own units): a non-positive bound of a log coordinate is -inf."""
+        if not self.log:
+            return v
+        return math.log(v) if v > 0 else -math.inf
+
+    def own(self, z: float) -> float:
+        """The value (own units) at z."""
+        return math.exp(z) if self.log else z
+
+    def d_own(self, z: float) -> float:
+        """d value / d z at z."""
+        return math.exp(z) if self.log else 1.0
+
+    def accepts(self, v: float) -> bool:
+        return self.lower < v < self.upper or (self.closed and v == self.lower)
+
+    def first_step(self, z_hat: np.ndarray) -> float:
+        return float(self.step(z_hat) if callable(self.step) else self.step)
+
+    def range_text(self) -> str:
+        return f"({self.lower:g}, {self.upper:g}) {self.unit}"
+
+
+class Coordinates(tuple):
+    """A problem's coordinates in order (z[i] is coordinate i), found by name; `aliases` maps
+    further names to an index (a wound's R0 by its number), `unknown(name)` says why a name
+    is none of them (default: the names accepted, and G_pa)."""
+
+    def __new__(cls, items: Sequence[Coordinate], aliases=None, unknown=None):
+        self = super().__new__(cls, items)
+        self.aliases = dict(aliases or {})
+        self.unknown = unknown or self._unknown
+        return self
+
+    def _unknown(self, name: str) -> str:
+        return f"parameter {name!r} is unknown: expected one of {', '.join(self.names + (G_NAME,))}"
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(c.name for c in self)
+
+    def index(self, name: str) -> int:
+        """The index of `name` (or an alias); ValueError saying why it is unknown."""
+        for i, c in enumerate(self):
+            if c.name == name:
+                return i
+        if name in self.aliases:
+            return self.aliases[name]
+        raise ValueError(self.unknown(name))
+
+    def stretched(self) -> tuple[int, ...]:
+        return tuple(i for i, c in enumerate(self) if c.stretched)
+
+    def own(self, z) -> tuple[float, ...]:
+        """Every coordinate's value in own units at z."""
+        return tuple(c.own(v) for c, v in zip(self, z))
+
+
+#: G, which only scales the absolute material values: a name every fit accepts (fixed or a
+#: prior), not a coordinate (the data do not depend on it).
+G_NAME = "G_pa"
 
 
 @dataclass
@@ -81,15 +214,11 @@ def _number(option: str, text: str) -> float:
         raise ValueError(f"{option}: {text!r} is not a number") from None
 
 
-def from_options(fix=(), bound=(), prior=(), coordinates: Coordinates | None = None) -> Parameters:
+def from_options(coordinates: Coordinates, fix=(), bound=(), prior=()) -> Parameters:
     """Parameters from the command line's NAME=VALUE (--fix), NAME=MIN:MAX (--bound, either
-    side may be empty) and NAME=MEAN:SD (--prior) strings; checked by `specification`.
-    `coordinates`: the problem's, whose names (and G_pa) are accepted (one wound's by
-    default)."""
-    if coordinates is None:
-        from .objective import wound_coordinates
-
-        coordinates = wound_coordinates(math.inf)
+    side may be empty) and NAME=MEAN:SD (--prior) strings, whose names are the problem's
+    `coordinates` (objective.wound_coordinates, wounds.tissue_coordinates) and G_pa; the
+    values are checked by `specification`."""
     params = Parameters()
 
     def entry(option: str, text: str) -> tuple[Parameter, str]:

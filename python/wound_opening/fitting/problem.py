@@ -5,7 +5,7 @@ and several wounds (wounds.Tissue, wound_profiles.EtaCoordinate) alike.
 
 A problem maps coordinates z (a vector of `len(bounds()[0])` numbers) to weighted residuals
 (model - data) / uncertainty, `size` of them, with their Jacobian d residuals / d z. A problem
-the user constrains declares its `coordinates` by name (coordinates.py).
+the user constrains declares its `coordinates` by name (parameters.py).
 """
 
 from __future__ import annotations

@@ -11,9 +11,9 @@ import numpy as np
 
 from ..results.names import ETA, SHARED
 from ..results.profiles import Profile
-from .coordinates import Coordinate, Coordinates, factor
 from .objective import LAMBDA_MAX
 from .optimum import Optimum, Target
+from .parameters import Coordinate, Coordinates, factor
 from .problem import Problem
 
 LN4 = math.log(4.0)

@@ -44,12 +44,11 @@ from ..results.export import data_points
 from ..results.names import ETA, SHARED
 from ..results.result import ParameterReport
 from ..results.wounds import TissueFitResult
-from .coordinates import G_NAME, Coordinate, Coordinates, factor, span
 from .gof import as_dicts, series_tests
 from .local import cost
 from .objective import LAMBDA_MAX, Objective, from_z, r0_coordinate
 from .optimum import Optimum
-from .parameters import Constrained, specification
+from .parameters import G_NAME, Constrained, Coordinate, Coordinates, factor, span, specification
 from .plausibility import time_scale_warnings, tissue_intervals
 from .problem import Problem
 from .recording import check_recording

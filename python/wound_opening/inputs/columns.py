@@ -12,6 +12,7 @@ a `,`-separated file has `.` decimals."""
 from __future__ import annotations
 
 import csv
+import io
 import math
 from dataclasses import dataclass
 
@@ -37,10 +38,11 @@ class Table:
         return int(self.lines[k])
 
 
-def _text_lines(path: str) -> list[str]:
+def _text(path: str) -> str:
+    """The file's text, read once (a UTF-8 byte-order mark dropped)."""
     try:
         with open(path, encoding="utf-8-sig", newline="") as f:
-            return f.read().splitlines()
+            return f.read()
     except OSError as e:
         raise InputError(f"{path}: cannot read the file ({e.strerror})") from None
     except UnicodeDecodeError:
@@ -80,15 +82,20 @@ def read_columns(
     min_rows: int = MIN_POINTS,
     optional: tuple[str, ...] = (),
     label: str | None = None,
+    check_times=None,
 ) -> Table:
     """The named columns of a CSV file, checked: every cell a finite number, the time column
     (default: the first of `columns`) >= `cut_time` and (if `ascending`) non-decreasing, at least
     `min_rows` rows. Columns in `optional` are read too when the header has them. `label`: a
-    column of names (kept as text, none empty; a wound id): times ascend within each name."""
+    column of names (kept as text, none empty; a wound id): times ascend within each name.
+    `check_times(t)`: a check of every row's time (in the file's unit) before any row is
+    refused as before the cut (lab_files.check_cut: a cut time in another unit). The file is
+    read once."""
     import pandas as pd
 
     time_column = time_column or columns[0]
-    text = _text_lines(path)
+    content = _text(path)
+    text = content.splitlines()
     numbered = [(n, s) for n, s in enumerate(text, start=1) if _is_data(s)]
     if not numbered:
         raise InputError(f"{path}: no header: expected the columns {', '.join(map(repr, columns))}")
@@ -106,10 +113,9 @@ def read_columns(
     body = numbered[1:]
     try:
         frame = pd.read_csv(
-            path,
+            io.StringIO(content),
             sep=sep,
             comment=COMMENT,
-            encoding="utf-8-sig",
             dtype=str,
             na_filter=False,
             skip_blank_lines=True,
@@ -205,6 +211,8 @@ def read_columns(
         data[label] = names.to_numpy(dtype=str)
         ids = pd.factorize(names)[0]
     t = data[time_column]
+    if check_times is not None:
+        check_times(t)
     if t.size and np.any(t < cut_time):
         k = int(np.flatnonzero(t < cut_time)[0])
         raise InputError(

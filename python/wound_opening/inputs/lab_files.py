@@ -65,6 +65,40 @@ def _factors(
     return TIME_UNITS[time_unit], float(pixel_size_um)
 
 
+#: A cut time this many frame intervals before the first time is "at the start".
+CUT_FRAMES = 3
+
+
+def check_cut(path: str, times, unit: str, cut: float) -> None:
+    """Refuse a cut time after every recorded time (`times`, in the file's unit), or more
+    than CUT_FRAMES frame intervals before the first while the same number in another unit
+    falls within CUT_FRAMES frame intervals before it (a cut time in s with the times in ms),
+    naming the cut time to give."""
+    t = np.unique(times)
+    if t.size < 2:
+        return
+    dt = float(np.median(np.diff(t)))
+    near = [
+        (u, cut * TIME_UNITS[u] / TIME_UNITS[unit])
+        for u in TIME_UNITS
+        if u != unit and t[0] - CUT_FRAMES * dt <= cut * TIME_UNITS[u] / TIME_UNITS[unit] <= t[0]
+    ]
+    where = f"{path}: the cut at {cut:g} {unit} (--cut-time, in the times' unit {unit})"
+    span = f"the times run from {t[0]:g} to {t[-1]:g} {unit}, frames {dt:g} {unit} apart"
+    hint = "".join(
+        f"; {cut:g} {u} = {c:g} {unit} is where the recording starts: is the cut time in {u}? "
+        f"(give --cut-time {c:g})"
+        for u, c in near
+    )
+    if cut > t[-1]:
+        raise InputError(f"{where} is after every recorded time ({span}): all data before it{hint}")
+    if t[0] - cut > CUT_FRAMES * dt and near:
+        raise InputError(
+            f"{where} is {(t[0] - cut) / dt:.0f} frame intervals before the first time ({span})"
+            f"{hint}"
+        )
+
+
 def _cut(cut_time: float) -> float:
     if not math.isfinite(cut_time):
         raise InputError(f"cut time {cut_time}: must be finite")
@@ -151,6 +185,7 @@ def _radius_series(
         min_rows=MIN_POINTS,
         optional=() if sd_col else ("radius_sd_um",),
         label=wound_col,
+        check_times=lambda t: check_cut(path, t, time_unit, cut),
     )
     c = table.columns
     sd = c.get(sd_col or "radius_sd_um")

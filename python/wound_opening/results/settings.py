@@ -1,5 +1,5 @@
 """The recording's settings, as a report prints them: taken from the inputs (the command
-line's options, the series read), not from the command line's text.
+line's options, cli/commands.py, and the series read), not from the command line's text.
 
 `FitResult.settings` and `TissueFitResult.settings` hold a dict with these keys (each may be
 missing or None: not given):
@@ -37,48 +37,6 @@ LABELS = {
     "centre_px": "wound centre (px)",
     "outer_radius_um": "outer radius (µm)",
 }
-
-
-def from_options(args, wounds=None, series=()) -> dict:
-    """The settings the command line's `args` (cli.parser's fit) give; `wounds`: the names
-    of the wounds in order (several radius files or a long table), None for one wound;
-    `series`: the series read (their raw files go under "raw_files")."""
-    radius_cols = {"time": args.time_col, "radius": args.radius_col}
-    if args.radius_sd_col:
-        radius_cols["sd"] = args.radius_sd_col
-    if getattr(args, "wound_col", None):
-        radius_cols["wound"] = args.wound_col
-    piv_cols = {"time": args.piv_time_col, "r": args.piv_r_col, "velocity": args.piv_velocity_col}
-    if args.piv_velocity_sd_col:
-        piv_cols["sd"] = args.piv_velocity_sd_col
-    files = []
-    names = list(wounds) if wounds else [None] * len(args.radius_csv)
-    if getattr(args, "wound_col", None):
-        files.append(
-            {"wound": None, "data": "radius", "path": args.radius_csv[0]} | {"columns": radius_cols}
-        )
-    else:
-        for name, path in zip(names, args.radius_csv):
-            files.append({"wound": name, "data": "radius", "path": path, "columns": radius_cols})
-    for k, path in enumerate(args.profile or []):
-        name = names[k] if k < len(names) else None
-        files.append({"wound": name, "data": "velocity profile", "path": path, "columns": piv_cols})
-    out = {
-        "cut_time": args.cut_time,
-        "time_unit": args.time_unit,
-        "length_unit": args.length_unit,
-        "pixel_size_um": args.pixel_size_um,
-        "outer_radius_um": args.outer_radius_um,
-        "files": files,
-    }
-    for key in ("frame_interval_s", "centre_um", "centre_px"):
-        value = getattr(args, key, None)
-        if value is not None:
-            out[key] = value
-    raw = raw_files(series)
-    if raw:
-        out["raw_files"] = raw
-    return out
 
 
 def raw_files(series) -> list:

@@ -1,6 +1,6 @@
 """The command line's lab files: Fiji Results tables as the radius files, PIVlab or OpenPIV
 folders as the velocity profiles, the wound centre and the rings (inputs/fiji.py, piv.py,
-centre.py, rings.py). cli.py calls `add_lab_file_arguments(parser)` and, in its fit,
+centre.py, rings.py). options.py calls `add_lab_file_arguments(parser)` and, in its fit,
 `read_lab_inputs(args)`: None when no lab-file option is given (the plain CSV readers run),
 else every wound's (name, RadiusSeries, VelocityProfile or None) in order."""
 
@@ -124,8 +124,8 @@ def read_lab_inputs(args):
     """LabInputs of the lab-file options, or None without them (module docstring)."""
     if not _lab_mode(args):
         return None
-    from .inputs.columns import InputError, float_list
-    from .inputs.lab_files import read_radius
+    from ..inputs.columns import InputError, float_list
+    from ..inputs.lab_files import read_radius
 
     if args.piv and args.profile:
         raise InputError("give the velocities either as --profile CSV files or as --piv fields")
@@ -168,10 +168,10 @@ def read_lab_inputs(args):
 
 
 def _fiji(args, path):
-    from .inputs.fiji import read_fiji
+    from ..inputs.fiji import read_fiji
 
     if args.time_unit != "s" or args.cut_time:
-        from .inputs.columns import InputError
+        from ..inputs.columns import InputError
 
         raise InputError(
             "a Fiji table's times come from its frames: give --frame-interval-s and "
@@ -190,8 +190,8 @@ def _fiji(args, path):
 
 
 def _centres(args, n: int) -> list:
-    from .inputs.centre import Centre, parse_point
-    from .inputs.columns import InputError
+    from ..inputs.centre import Centre, parse_point
+    from ..inputs.columns import InputError
 
     if args.centre_um and args.centre_px:
         raise InputError("give the wound centre in um or in px, not both")
@@ -211,9 +211,9 @@ def _centres(args, n: int) -> list:
 
 
 def _piv(args, where, radius, outer, centre):
-    from .inputs.columns import InputError
-    from .inputs.piv import Frames, read_field
-    from .inputs.rings import field_profile
+    from ..inputs.columns import InputError
+    from ..inputs.piv import Frames, read_field
+    from ..inputs.rings import field_profile
 
     if args.frame_interval_s is None or args.cut_after_frame is None:
         raise InputError("--piv needs --frame-interval-s and --cut-after-frame (the pairs' times)")

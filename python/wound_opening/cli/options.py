@@ -8,8 +8,7 @@ import argparse
 import os
 import sys
 
-from .cli_checks import add_arguments
-from .cli_commands import fit_command, simulate_command, sweep_command
+from .commands import fit_command, simulate_command, sweep_command
 
 
 class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
@@ -23,8 +22,24 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
         return super()._get_help_string(action)
 
 
+def frames_to_fit(group) -> None:
+    """--until-max and --until-s on the fit's parser (or one of its groups)."""
+    group.add_argument(
+        "--until-max",
+        action="store_true",
+        help="fit the radius only up to its maximum before a sustained decrease (a wound that "
+        "closes again after opening; the decrease decided with the noise, docs/fitting.md)",
+    )
+    group.add_argument(
+        "--until-s",
+        type=float,
+        metavar="T",
+        help="fit only the times up to T (s) after the cut, radius and profile",
+    )
+
+
 def parser() -> argparse.ArgumentParser:
-    from .cli_inputs import add_lab_file_arguments
+    from .lab import add_lab_file_arguments
 
     top = argparse.ArgumentParser(
         prog="wound-opening",
@@ -172,7 +187,7 @@ def parser() -> argparse.ArgumentParser:
         metavar="TIME",
         help="time of the cut in the files' time unit, subtracted from every time (default 0)",
     )
-    add_arguments(c)  # --until-max, --until-s (cli_checks.py)
+    frames_to_fit(c)  # --until-max, --until-s
     f.add_argument(
         "--loss",
         choices=("linear", "soft_l1", "cauchy"),
@@ -209,7 +224,7 @@ def parser() -> argparse.ArgumentParser:
         help="a Gaussian prior (mean, standard deviation), e.g. --prior G_pa=1200:200 (AFM), "
         "--prior T_s=8:2; it enters chi^2 as ((value - MEAN) / SD)^2",
     )
-    add_lab_file_arguments(f)  # Fiji tables, PIVlab and OpenPIV fields (cli_inputs.py)
+    add_lab_file_arguments(f)  # Fiji tables, PIVlab and OpenPIV fields (lab.py)
     f.set_defaults(run=fit_command)
 
     s = sub.add_parser(
@@ -333,8 +348,8 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
-    from ._native import NativeLibraryMissing
-    from .inputs.columns import InputError
+    from .._native import NativeLibraryMissing
+    from ..inputs.columns import InputError
 
     try:
         code = args.run(args) or 0
@@ -348,7 +363,3 @@ def main(argv=None) -> int:
         print(f"wound-opening {args.command}: error: {message}", file=sys.stderr)
         return 2
     return code
-
-
-if __name__ == "__main__":
-    sys.exit(main())

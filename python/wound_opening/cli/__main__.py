@@ -1,0 +1,7 @@
+"""`python -m wound_opening.cli`: the command line."""
+
+import sys
+
+from .options import main
+
+sys.exit(main())
