@@ -19,7 +19,7 @@ from ..results.settings import raw_files
 
 
 def fit_command(args) -> None:
-    from ..fitting.objective import wound_coordinates
+    from ..fitting.objective import NUISANCES, wound_coordinates
     from ..fitting.parameters import from_options
     from ..fitting.single import fit
     from ..inputs.columns import InputError, float_list
@@ -63,7 +63,8 @@ def fit_command(args) -> None:
         **units,
     )
     radius, profile = prepare(args, radius, profiles[0] if profiles else None)
-    params = from_options(wound_coordinates(outer[0]), args.fix, args.bound, args.prior)
+    names = wound_coordinates(outer[0], NUISANCES)  # a nuisance named joins the fit
+    params = from_options(names, args.fix, args.bound, args.prior)
     result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
     result.settings = settings_of(args, series=(radius, profile))
     print(result.summary())

@@ -61,7 +61,7 @@ from scipy import optimize, special
 
 from .._native import SolverError
 from .local import local_fit
-from .valley_law import correlation, psi_jacobian, valley_thresholds
+from .valley_law import correlation, padded, psi_jacobian, valley_thresholds
 
 #: Angles of the quadrature of P(LR > c) (the integrand is smooth between the four cones).
 ANGLES = 20000
@@ -135,7 +135,7 @@ def psi_correlations(problem, z, gradients: dict) -> dict:
         jac[:, 2] = jac[:, 2] / (2 * z[2])
     else:
         jac = psi_jacobian(problem, z, zero=1e-6)[1]
-    free = [i for i in range(4) if i not in problem.fixed]
+    free = [i for i in range(len(z)) if i not in problem.fixed]
     if 2 not in free:
         return {}
     try:
@@ -144,7 +144,7 @@ def psi_correlations(problem, z, gradients: dict) -> dict:
         return {}
     out = {}
     for name, grad in gradients.items():
-        rho = correlation(cov, free.index(2), np.asarray(grad, float)[free])
+        rho = correlation(cov, free.index(2), padded(grad, len(z))[free])
         if rho is not None:
             out[name] = rho
     return out

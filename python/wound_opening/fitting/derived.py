@@ -105,7 +105,7 @@ class Reparametrised(Problem):
     def jacobian(self, w, columns=None):
         """dr/dw by the chain rule, every column (`columns` is not used)."""
         z = self.to_z(w)
-        k, dz = self.k, np.eye(4)
+        k, dz = self.k, np.eye(len(w))
         dzk_dyk = z[k] if k == 2 else 1.0
         dz[k, k] = dzk_dyk / self.a[k]
         for i, a in self.a.items():
@@ -120,7 +120,7 @@ class Reparametrised(Problem):
 
     def gradient(self, z) -> np.ndarray:
         """d w_k / d z: the row of dw/dz that differs from the identity."""
-        g = np.zeros(4)
+        g = np.zeros(len(z))
         for i, a in self.a.items():
             g[i] = a / z[i] if i == 2 else a
         return g

@@ -97,11 +97,30 @@ def r0_coordinate(name: str, outer_radius_um: float) -> Coordinate:
     )
 
 
-def wound_coordinates(outer_radius_um: float) -> Coordinates:
+#: The radial offset of the measured outline from the tissue's edge [um]: every measured
+#: radius is R(t) + offset (a threshold that puts the edge a few tenths of a micrometre out),
+#: so d residual / d offset = 1 / sd on the radius rows and 0 on the PIV rows.
+OUTLINE_OFFSET = Coordinate("outline_offset_um", "um", window=span(), step=0.05)
+#: The time of the cut on the data's clock [s], when the times given are counted from an
+#: earlier instant (frame N, the last before the laser fired): every time t is t - cut after
+#: the cut, the cut lies before the first data time (Objective.bounds), and a bound of the
+#: user's says between which frames (params.add("cut_s", max=frame_interval)). The model
+#: depends on t only through (t - cut) / T, so d/d cut = -(1/T) d/d tau: on a radius row
+#: J_lnT / (t - cut), on a PIV row (J_lnT + v) / (t - cut), v the model velocity.
+CUT = Coordinate("cut_s", "s", lower=0.0, closed=True, window=between(0.0, math.inf), step=0.01)
+#: The nuisances a one-wound fit can add after its four parameters, by name: each is one
+#: declaration here and its term in Objective.model and Objective.jacobian. A fit adds the
+#: ones the user names in its Parameters (fixed: a known value; free, bounded or with a
+#: prior: fitted).
+NUISANCES = {c.name: c for c in (OUTLINE_OFFSET, CUT)}
+
+
+def wound_coordinates(outer_radius_um: float, nuisances=()) -> Coordinates:
     """One wound's coordinates z = (ln R0, sigma, lambda, ln T) by name, with the values a fit
     of a wound in a tissue of that outer radius accepts (R0 below outer / R_INF_MIN), their
     profile windows (R0 a factor 3, sigma 10 |sigma| + 1, lambda its whole range, T a factor
-    100 either way) and first steps; the user's fit moves asinh of sigma and lambda."""
+    100 either way) and first steps; the user's fit moves asinh of sigma and lambda. Then
+    the `nuisances` named (NUISANCES)."""
     return Coordinates(
         (
             r0_coordinate("R0_um", outer_radius_um),
@@ -123,6 +142,7 @@ def wound_coordinates(outer_radius_um: float) -> Coordinates:
             ),
             Coordinate("T_s", "s", log=True, lower=0.0, window=factor(1e2)),
         )
+        + tuple(NUISANCES[name] for name in nuisances)
     )
 
 
@@ -138,7 +158,7 @@ class Objective(Problem):
 
     wound_maps = (_as_z, _as_z, True)  # its coordinates are the wound's z
 
-    def __init__(self, radius, profile, outer_radius_um: float):
+    def __init__(self, radius, profile, outer_radius_um: float, nuisances=()):
         self.outer = float(outer_radius_um)
         self.inputs = (radius, profile)  # the series read (rows, file lines)
         t = np.asarray(radius.times_s, dtype=float)
@@ -165,7 +185,11 @@ class Objective(Problem):
         self.tolerance = TOLERANCE_PIV if self.groups else TOLERANCE_FIT
         self.evaluations = 0
         self.inside_edge = 0
-        self.coordinates = wound_coordinates(self.outer)
+        self.coordinates = wound_coordinates(self.outer, nuisances)
+        names = self.coordinates.names
+        #: the outline offset's and the cut time's index in z, or None
+        self.offset = names.index(OUTLINE_OFFSET.name) if OUTLINE_OFFSET.name in names else None
+        self.cut = names.index(CUT.name) if CUT.name in names else None
 
     def _uncertainties(self, radius, profile) -> tuple[np.ndarray, list]:
         """Initial per-point uncertainties and which data sets have theirs estimated: 1 % of
@@ -219,7 +243,18 @@ class Objective(Problem):
             [math.log(0.01 * float(np.min(self.radius))), -np.inf, 0.0, math.log(1e-6 * t_max)]
         )
         upper = np.array([math.log(self.outer / 1.001), np.inf, LAMBDA_MAX, math.log(1e6 * t_max)])
+        extra = self.coordinates[4:]  # nuisances: their accepted ranges
+        lower = np.append(lower, [c.bound_z(c.lower) for c in extra])
+        upper = np.append(upper, [c.bound_z(c.upper) for c in extra])
+        if self.cut is not None:  # the cut before every time (a frame at the cut excluded)
+            first = min(float(self.t_sorted[0]), float(np.min(self.group_times, initial=np.inf)))
+            upper[self.cut] = min(upper[self.cut], first * (1 - 1e-9))
         return lower, upper
+
+    def since_cut(self, z) -> tuple[np.ndarray, np.ndarray]:
+        """The radius and the PIV groups' times after the cut at z [s]."""
+        cut = 0.0 if self.cut is None else z[self.cut]
+        return self.t_sorted - cut, self.group_times - cut
 
     @property
     def size(self) -> int:
@@ -249,13 +284,14 @@ class Objective(Problem):
             rows.append((x, x > edge_r[k] * (1 + 1e-12)))
         return rows
 
-    def _profile(self, theta, r_inf: float) -> np.ndarray:
-        """Model velocities [um/s] of the profile rows (group order), the edge velocity for
-        rows at or inside the model's wound edge; sets `inside_edge`."""
+    def _profile(self, theta, r_inf: float, times) -> np.ndarray:
+        """Model velocities [um/s] of the profile rows (group order) at the groups' `times`
+        after the cut, the edge velocity for rows at or inside the model's wound edge; sets
+        `inside_edge`."""
         R0, sigma, lam, T = theta
         if not self.groups:
             return np.empty(0)
-        tau = self.group_times / T
+        tau = times / T
         h, dh = self._h(lam, r_inf, tau)
         out, inside = [], 0
         for k, (x, tissue) in enumerate(self._rows(R0, 1.0 + sigma * h)):
@@ -270,7 +306,7 @@ class Objective(Problem):
         self.inside_edge = inside
         return np.concatenate(out)
 
-    def _profile_columns(self, theta, r_inf: float) -> np.ndarray:
+    def _profile_columns(self, theta, r_inf: float, times) -> np.ndarray:
         """d (model velocity) / d (ln R0, sigma, lambda, ln T) of the profile rows,
         (n_profile, 4).
 
@@ -291,7 +327,7 @@ class Objective(Problem):
         stepping across the kink (fits stop at a chi^2 higher by ~1e-5 and move the
         estimates in their 4th digit)."""
         R0, sigma, lam, T = theta
-        tau = self.group_times / T
+        tau = times / T
         h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, tau)
         edge_r = 1.0 + sigma * h
         step = np.array([STEP, STEP * max(1.0, abs(sigma)), STEP * max(lam, 0.01), STEP])
@@ -334,23 +370,27 @@ class Objective(Problem):
         R0, sigma, lam, T = theta = from_z(z)
         r_inf = self.outer / R0
         self.evaluations += 1
-        h, _ = self._h(lam, r_inf, self.t_sorted / T)
-        return np.concatenate([R0 * (1 + sigma * h), self._profile(theta, r_inf)])
+        t, times = self.since_cut(z)
+        h, _ = self._h(lam, r_inf, t / T)
+        radius = R0 * (1 + sigma * h) + (0.0 if self.offset is None else z[self.offset])
+        return np.concatenate([radius, self._profile(theta, r_inf, times)])
 
     def residuals(self, z) -> np.ndarray:
         return (self.model(z) - self.data()) / self.sd
 
     def jacobian(self, z, columns=None) -> np.ndarray:
-        """d residuals / d z, (size, 4): see the module docstring. Only `columns` are
-        computed (the others are 0; None: all): a profile fit holds one coordinate fixed.
+        """d residuals / d z, (size, n): see the module docstring (a nuisance's column: its
+        declaration). Only `columns` are computed (the others are 0; None: all): a profile fit
+        holds one coordinate fixed.
 
         Every column needs the modal basis of R_inf alone (and its rates), except at a frame
         at the cut, whose profile columns are central differences (in ln R0 between the outer
         radii rc -+ dr, two more bases)."""
-        columns = (0, 1, 2, 3) if columns is None else columns
-        R0, sigma, lam, T = from_z(z)
+        n = len(self.coordinates)
+        columns = range(n) if columns is None else columns
+        R0, sigma, lam, T = theta = from_z(z)
         r_inf = self.outer / R0
-        t = self.t_sorted
+        t, times = self.since_cut(z)
         h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, t / T)
         with np.errstate(invalid="ignore"):
             dlnT = np.where(t > 0, -(t / T) * R0 * sigma * dh, 0.0)
@@ -359,29 +399,49 @@ class Objective(Problem):
         )
         if self.groups:
             inside = self.inside_edge  # as the last model evaluation left it
-            if np.all(self.group_times > 0):
+            if np.all(times > 0):
                 sign = np.array([1, 1, math.copysign(1, z[2]), 1])
-                profile = self._profile_columns((R0, sigma, lam, T), r_inf) * sign
+                profile = self._profile_columns(theta, r_inf, times) * sign
             else:  # a frame at the cut: central differences
                 steps = np.array([STEP, STEP * max(1.0, abs(sigma)), STEP * max(lam, 0.01), STEP])
                 profile = np.zeros((self.n_profile, 4))
                 for i in columns:
+                    if i >= 4:  # a nuisance: its column is its declaration's
+                        continue
                     if i == 0:  # R0 = outer / R_inf at R_inf = rc -+ dr, inside the solver's range
                         dr = STEP * r_inf
                         rc = max(r_inf, R_INF_MIN + dr)
-                        up = self._profile((self.outer / (rc - dr), sigma, lam, T), rc - dr)
-                        down = self._profile((self.outer / (rc + dr), sigma, lam, T), rc + dr)
+                        up = self._profile((self.outer / (rc - dr), sigma, lam, T), rc - dr, times)
+                        down = self._profile(
+                            (self.outer / (rc + dr), sigma, lam, T), rc + dr, times
+                        )
                         profile[:, 0] = (up - down) / math.log((rc + dr) / (rc - dr))
                         continue
-                    e = np.zeros(4)
+                    e = np.zeros(len(z))
                     e[i] = steps[i]
                     profile[:, i] = (
-                        self._profile(from_z(z + e), r_inf) - self._profile(from_z(z - e), r_inf)
+                        self._profile(from_z(z + e), r_inf, times)
+                        - self._profile(from_z(z - e), r_inf, times)
                     ) / (2 * steps[i])
             self.inside_edge = inside  # not the differences' shifted points
             jr = np.vstack([jr, profile])
-        jr[:, [i for i in range(4) if i not in columns]] = 0.0
+        if n > 4:
+            jr = np.hstack([jr, np.zeros((self.size, n - 4))])
+            if self.offset is not None:
+                jr[: self.n_radius, self.offset] = 1.0
+            if self.cut is not None and self.cut in columns:
+                jr[:, self.cut] = self._cut_column(theta, r_inf, t, times, jr[:, 3])
+        jr[:, [i for i in range(n) if i not in columns]] = 0.0
         return jr / self.sd[:, None]
+
+    def _cut_column(self, theta, r_inf, t, times, d_ln_t) -> np.ndarray:
+        """d model / d cut (CUT's declaration): (d model / d ln T + the model velocity on the
+        PIV rows) / (t - cut)."""
+        inside = self.inside_edge
+        v = self._profile(theta, r_inf, times)
+        self.inside_edge = inside
+        after = np.concatenate([t] + [np.full(g[1].size, s) for g, s in zip(self.groups, times)])
+        return (d_ln_t + np.concatenate([np.zeros(self.n_radius), v])) / after
 
     def split(self, res: np.ndarray):
         """(radius part, profile part) of a vector over the data points."""

@@ -109,6 +109,9 @@ class Coordinate:
     step: float | Callable[[np.ndarray], float] = 0.1
     stretched: bool = False
     note: str = ""
+    #: Where a fit starts it (own units) when no stage estimates it: a nuisance's neutral
+    #: value (a zero offset).
+    start: float = 0.0
 
     def to_z(self, v: float) -> float:
         """z of the value v (own units)."""
@@ -334,6 +337,11 @@ def _items(params) -> list:
         if isinstance(params, dict) or hasattr(params, "values")
         else list(params)
     )
+
+
+def names(params) -> set:
+    """The names `params` (any form `specification` reads) gives."""
+    return {getattr(p, "name", None) for p in _items(params)}
 
 
 def _prior(name: str, prior) -> tuple[float, float] | None:

@@ -26,15 +26,14 @@ import numpy as np
 
 from ..inputs.series import RadiusSeries, VelocityProfile, check_against
 from ..results.export import data_points
-from ..results.names import NAMES
 from ..results.result import FitResult, ParameterReport
 from .bounds import thresholds as bound_thresholds
 from .derived import derived_profiles
 from .gof import as_dicts, series_tests
 from .local import cost
-from .objective import Objective, from_z, wound_coordinates
+from .objective import NUISANCES, Objective, from_z, wound_coordinates
 from .optimum import Optimum
-from .parameters import Constrained, specification
+from .parameters import Constrained, names, specification
 from .plausibility import intervals_of, time_scale_warnings
 from .recording import check_recording
 from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
@@ -56,12 +55,14 @@ def fit(
     `intervals`: the parameters' profile likelihoods; `derived`: also those of tau, zeta/G
     and the viscous length (without them these are reported not identified).
     `params`: a Parameters (parameters.py; or an lmfit.Parameters) fixing, bounding or
-    giving a prior to R0_um, sigma, lambda, T_s, and G_pa fixed or with a prior."""
+    giving a prior to R0_um, sigma, lambda, T_s, and G_pa fixed or with a prior; a nuisance
+    it names (objective.NUISANCES: outline_offset_um) joins the fit, given or fitted."""
     check_loss(loss)
     check_against(radius, profile, outer_radius_um)
     recording = check_recording(radius, profile)  # refuses a unit mistake, a closing wound
-    spec = specification(params, wound_coordinates(outer_radius_um))
-    data = Objective(radius, profile, outer_radius_um)
+    nuisances = [n for n in NUISANCES if n in names(params)]
+    spec = specification(params, wound_coordinates(outer_radius_um, nuisances))
+    data = Objective(radius, profile, outer_radius_um, nuisances)
     n_free = len(spec.free)
     if data.size < n_free + 1:
         raise ValueError(
@@ -88,10 +89,10 @@ def fit(
     cov_z = judged.cov
     held = list(spec.fixed)
     cov_z[held, :], cov_z[:, held] = 0.0, 0.0  # no variance
-    theta = tuple(
-        spec.fixed.get(i, v) for i, v in enumerate(from_z(z))
-    )  # a fixed value as given, not exp(ln v)
-    scale = np.array([theta[0], 1.0, 1.0, theta[3]])  # d theta / d z
+    coordinates = data.coordinates
+    own = [spec.fixed.get(i, v) for i, v in enumerate(from_z(z) + coordinates.own(z)[4:])]
+    theta = tuple(own[:4])  # a fixed value as given, not exp(ln v)
+    scale = np.array([c.d_own(v) for c, v in zip(coordinates, z)])  # d value / d z
     cov = cov_z * np.outer(scale, scale)
     with np.errstate(invalid="ignore"):
         se = np.sqrt(np.diag(cov))
@@ -107,12 +108,12 @@ def fit(
         )
         optimum.alternates = others + found  # a valley at lambda ~ 0 the starts did not end in
         optimum.thresholds = near
-        profiles = {name: optimum.profile(optimum.target(name)) for name in NAMES}
+        profiles = {name: optimum.profile(optimum.target(name)) for name in coordinates.names}
         if derived:
             profiles |= derived_profiles(optimum)
     reports = {
-        name: ParameterReport(name, theta[i], float(se[i]), profiles.get(name), spec.describe(i))
-        for i, name in enumerate(NAMES)
+        name: ParameterReport(name, own[i], float(se[i]), profiles.get(name), spec.describe(i))
+        for i, name in enumerate(coordinates.names)
     }
     data.residuals(z)  # inside_edge at the optimum
     radius_res = data.split(residuals * data.sd)[0]
@@ -141,7 +142,7 @@ def fit(
         loss=loss,
         outliers=outliers(data, judged.flagged),
         piv_at_edge=data.inside_edge,
-        derived_profiles={name: p for name, p in profiles.items() if name not in NAMES},
+        derived_profiles={n: p for n, p in profiles.items() if n not in coordinates.names},
         plausibility=recording
         + list(judged.warnings)
         + time_scale_warnings(

@@ -45,7 +45,7 @@ def _linear(obj: Objective, lam: float, T: float, r_inf: float, w: np.ndarray, s
     )
     h = h - 1.0
     fixed = {} if spec is None else spec.fixed
-    y = obj.radius * w
+    y = (obj.radius - _offset(obj, spec)) * w
     if 0 in fixed and 1 in fixed:
         c0, c1 = fixed[0], fixed[0] * fixed[1]
     elif 0 in fixed:
@@ -66,9 +66,26 @@ def _linear(obj: Objective, lam: float, T: float, r_inf: float, w: np.ndarray, s
     return R0, sigma, float(np.sum((R0 * (1 + sigma * h) * w - y) ** 2))
 
 
+def _nuisances(obj: Objective, spec) -> list[float]:
+    """The nuisances' starts (own units, after the four parameters): each its declared start
+    or fixed value, in its bounds."""
+    return [
+        c.start if spec is None else spec.clip(4 + k, c.start)
+        for k, c in enumerate(obj.coordinates[4:])
+    ]
+
+
+def _offset(obj: Objective, spec) -> float:
+    """The outline offset the grid's radii are taken to carry (its start or fixed value)."""
+    return 0.0 if obj.offset is None else _nuisances(obj, spec)[obj.offset - 4]
+
+
 def grid_starts(obj: Objective, cost, count: int = 4, spec=None) -> list[np.ndarray]:
     """The `count` best distinct grid points (not neighbours on the grid) by `cost(z)`;
-    `spec` (parameters.Spec): fixed values, bounds and priors to honour."""
+    `spec` (parameters.Spec): fixed values, bounds and priors to honour. A nuisance starts
+    at its declared start (or fixed value)."""
+    tail = _nuisances(obj, spec)
+    tail_z = [c.to_z(v) for c, v in zip(obj.coordinates[4:], tail)]
     t = obj.t_sorted
     positive = t[t > 0]
     t_last = float(t[-1]) if t[-1] > 0 else 1.0
@@ -93,9 +110,8 @@ def grid_starts(obj: Objective, cost, count: int = 4, spec=None) -> list[np.ndar
                 continue
             if lin is not None and obj.outer / lin[0] > 1.001:
                 theta = (lin[0], lin[1], lam, T)
-                ranked.append(
-                    (lin[2] + (0.0 if spec is None else spec.prior_chi2(theta)), i, j, to_z(theta))
-                )
+                prior = 0.0 if spec is None else spec.prior_chi2(theta + tuple(tail))
+                ranked.append((lin[2] + prior, i, j, np.append(to_z(theta), tail_z)))
     ranked.sort(key=lambda s: s[0])
     scored = []
     for _, i, j, z in ranked[:RESCORED] if obj.n_profile else ranked:

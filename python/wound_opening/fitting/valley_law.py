@@ -51,6 +51,14 @@ CHI2_95 = float(special.chdtri(1, 0.05))
 BLOCK = 500
 
 
+def padded(g, n: int) -> np.ndarray:
+    """A gradient over one wound's four parameters as one over n coordinates (a problem's
+    nuisances after them: the quantity does not depend on them)."""
+    out = np.zeros(n)
+    out[: len(g)] = g
+    return out
+
+
 def psi_jacobian(problem, z, zero: float = 1e-8) -> tuple[np.ndarray, np.ndarray]:
     """(residuals, Jacobian) at z, where lambda = z[2] is 0 (at most `zero`) with psi =
     lambda^2's column in place of lambda's (which vanishes there): (r(PSI_STEP) - r(z)) /
@@ -108,7 +116,8 @@ def valley_thresholds(problem, valleys, gradients, one_valley, draws=DRAWS, seed
     valley alone, on lambda's bound (bounds.nuisance_quantile; chi^2_1's inside), the
     control variate (`_law`). Only for the linear loss. Coordinates the problem holds fixed
     are left out."""
-    free = [i for i in range(4) if i not in problem.fixed]
+    n = len(valleys[0][0])
+    free = [i for i in range(n) if i not in problem.fixed]
     local = [(np.asarray(z, float), *whitened(problem, z, free)) for z, _ in valleys]
     rng = np.random.default_rng(seed)
     out = {name: 0.0 for name in gradients}
@@ -132,7 +141,7 @@ def _law(local, j, free, gradients, one_valley, draws, rng) -> dict:
     _, _, Jj, pj = local[j]
     out = {}
     for name, g in gradients.items():
-        exact = _exact(Jj, pj, np.asarray(g, float)[free], one_valley)
+        exact = _exact(Jj, pj, padded(g, local[j][0].size)[free], one_valley)
         q = np.quantile(many[name], 0.95) - np.quantile(alone[name], 0.95)
         out[name] = float(q + exact)
     return out
@@ -151,7 +160,7 @@ def ratios(local, j, free, gradients, draws, rng) -> tuple[dict, dict]:
         shifted = [(zk, (rk - rj)[:, None] - e, Jk, pk) for zk, rk, Jk, pk in local]
         fulls = [_least(a, J, empty, np.zeros(0), p) for _, a, J, p in shifted]
         for name, g in gradients.items():
-            gf = np.asarray(g, float)[free][:, None]
+            gf = padded(g, zj.size)[free][:, None]
             held = [
                 _least(a, J, gf, np.array([gf[:, 0] @ (zj - zk)[free]]), p)
                 for zk, a, J, p in shifted

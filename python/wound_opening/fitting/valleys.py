@@ -55,17 +55,24 @@ BUDGET = 60
 SAME = 0.05
 
 
+def _with(z: np.ndarray, i: int, *values: float) -> np.ndarray:
+    """z with coordinates i, i + 1, ... set to `values` (the others, nuisances too, kept)."""
+    out = np.array(z, dtype=float)
+    out[i : i + len(values)] = values
+    return out
+
+
 def _moved(zc: np.ndarray, z: np.ndarray) -> list[np.ndarray]:
     """z (zc with the profiled value set) with lambda or T moved to keep tau_c, or T to keep
     zeta_c; only those that differ from z."""
     tau = zc[2] ** 2 * math.exp(zc[3])
     out = []
     if abs(z[3] - zc[3]) > 1e-12 and tau > 0:  # T moved: lambda along tau = const
-        out.append(np.r_[z[:2], math.sqrt(tau / math.exp(z[3])), z[3]])
+        out.append(_with(z, 2, math.sqrt(tau / math.exp(z[3]))))
     if abs(z[2] - zc[2]) > 1e-12 and z[2] > 0 and tau > 0:  # lambda moved: T along tau
-        out.append(np.r_[z[:3], math.log(tau / z[2] ** 2)])
+        out.append(_with(z, 3, math.log(tau / z[2] ** 2)))
     if abs(z[0] - zc[0]) > 1e-12:  # R0 moved: T along zeta = 4 T / R0^2
-        out.append(np.r_[z[:3], zc[3] + 2 * (z[0] - zc[0])])
+        out.append(_with(z, 3, zc[3] + 2 * (z[0] - zc[0])))
     return [s for s in out if np.max(np.abs(s - z)) > 1e-6]
 
 
@@ -80,9 +87,9 @@ def _other_branches(zc: np.ndarray) -> list[np.ndarray]:
     if lam < VISCOUS:
         for k, tau in enumerate(taus):
             if tau > 0 and all(o <= 0 or abs(math.log(tau / o)) > math.log(2) for o in taus[:k]):
-                out.append(np.r_[zc[:2], VISCOUS, math.log(tau / VISCOUS**2)])
+                out.append(_with(zc, 2, VISCOUS, math.log(tau / VISCOUS**2)))
     if lam > 0:
-        out.append(np.r_[zc[:2], 0.0, math.log(s)])
+        out.append(_with(zc, 2, 0.0, math.log(s)))
     return out
 
 

@@ -278,8 +278,7 @@ class FitResult:
                 "settings": self.settings,
             }
         params = {}
-        for name in NAMES:
-            rep = self.reports[name]
+        for name, rep in self.reports.items():  # the four parameters, then any nuisance
             params[name] = {
                 "estimate": rep.estimate,
                 "stderr": rep.stderr if math.isfinite(rep.stderr) else None,
@@ -301,7 +300,7 @@ class FitResult:
             "material": self.material,
             "residual_rms_um": self.residual_rms_um,
             "correlation": {
-                "order": list(NAMES),
+                "order": list(self.reports),
                 "matrix": np.nan_to_num(self.correlation).tolist(),
             },
             "outer_radius_um": self.outer_radius_um,
@@ -334,8 +333,7 @@ class FitResult:
             f"{'parameter':<10} {'estimate':>11} {'stderr':>10}   95 % interval (profile)   "
             f"identified"
         ]
-        for name in NAMES:
-            rep = self.reports[name]
+        for name, rep in self.reports.items():  # the four parameters, then any nuisance
             lo, hi = rep.ci95
             if rep.constraint.get("fixed"):
                 lines.append(f"{name:<10} {rep.estimate:>11.5g} {'':>10}   fixed")
