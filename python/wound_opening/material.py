@@ -259,18 +259,26 @@ def material_report(result) -> dict:
         }
     if result.G is None:
         return out
-    mu, sd = result.G
-    out["G_pa"] = {"estimate": mu, "sd": sd, "fixed": sd == 0, "unit": "Pa"}
     profiles = dict(result.derived_profiles) | {"tension_over_G": result.reports["sigma"].profile}
+    return out | absolute_values(
+        out, {r: profiles.get(RATIOS[r][0]) for r in RATIOS}, result.G, result.threshold
+    )
+
+
+def absolute_values(ratios: dict, profiles: dict, G: tuple, threshold: float) -> dict:
+    """G and the absolute eta, zeta and tension of a fit's material ratios (`ratios`: name
+    -> {estimate, interval_computed}; `profiles`: ratio -> its Profile or None), one wound's
+    or several's: each the ratio times G, its interval by absolute_interval over the ratio's
+    profile and G's prior (a ratio held fixed: G's sqrt(threshold) sd band)."""
+    mu, sd = G
+    out = {"G_pa": {"estimate": mu, "sd": sd, "fixed": sd == 0, "unit": "Pa"}}
     for name, (ratio, unit) in ABSOLUTE.items():
-        q = out[ratio]["estimate"]
-        profile = profiles.get(RATIOS[ratio][0])
+        q = ratios[ratio]["estimate"]
+        profile = profiles.get(ratio)
         lo = hi = None
         if profile is not None and not profile.at_bound:
-            if (
-                profile.lower is not None and profile.lower == profile.upper
-            ):  # the ratio is held fixed
-                k = math.sqrt(result.threshold) * sd
+            if profile.lower is not None and profile.lower == profile.upper:  # held fixed
+                k = math.sqrt(threshold) * sd
                 lo, hi = sorted((q * (mu - k), q * (mu + k)))
             else:
                 _, lo, hi = absolute_interval(
@@ -278,8 +286,8 @@ def material_report(result) -> dict:
                     profile.lower,
                     profile.upper,
                     profile.points,
-                    result.G,
-                    result.threshold,
+                    G,
+                    threshold,
                     log=ratio != "tension_over_G",
                     bounded=profile.bounded,
                 )
@@ -288,6 +296,6 @@ def material_report(result) -> dict:
             "ci95": [lo, hi],
             "identifiable": lo is not None and hi is not None,
             "unit": unit,
-            "interval_computed": out[ratio]["interval_computed"],
+            "interval_computed": ratios[ratio]["interval_computed"],
         }
     return out

@@ -30,6 +30,23 @@ from matplotlib import ticker  # noqa: E402
 from ..model import half_opening_time, opening_fraction  # noqa: E402
 from .names import NAMES  # noqa: E402
 from .numbers import interval  # noqa: E402
+from .status import radii  # noqa: E402
+
+
+def text_box(ax, text: str) -> None:
+    """The estimates written in a box at the top left of a radius panel (one wound's or
+    several's)."""
+    ax.text(
+        0.02,
+        0.97,
+        text,
+        transform=ax.transAxes,
+        va="top",
+        fontsize="small",
+        family="monospace",
+        bbox={"fc": "white", "ec": "0.7", "alpha": 0.9},
+    )
+
 
 LABELS = {"R0_um": "R₀ (µm)", "sigma": "σ", "lambda": "λ", "T_s": "T (s)"}
 SYMBOLS = {"R0_um": ("R₀", " µm"), "sigma": ("σ", ""), "lambda": ("λ", ""), "T_s": ("T", " s")}
@@ -178,16 +195,7 @@ def _draw(result, profile_points: int):
     time_axis(ax, t)
     ax.set(ylabel="wound radius (µm)")
     ax.legend(loc="lower right", fontsize="small")
-    ax.text(
-        0.02,
-        0.97,
-        estimates_text(result),
-        transform=ax.transAxes,
-        va="top",
-        fontsize="small",
-        family="monospace",
-        bbox={"fc": "white", "ec": "0.7", "alpha": 0.9},
-    )
+    text_box(ax, estimates_text(result))
     res = fig.add_subplot(grid[1, width], sharex=ax)
     errorbar_points(res, t, pts.residual_um.to_numpy(), pts.sd_um.to_numpy(), flagged, None)
     res.axhline(0, c="gray", lw=0.8)
@@ -397,8 +405,8 @@ def sweep_figure(df, path, *, R0_um: float | None = None, T_s: float | None = No
         style = styles[int(np.searchsorted(r_infs, r_inf)) % len(styles)]
         a.plot(tau * T, opening_fraction(lam, r_inf, tau), style, c=colour, lw=1.2)
         first = group[group.sigma == group.sigma.iloc[0]]
-        R1 = R0 * (1 + first.sigma.to_numpy() / 6)
-        Rf = R0 * (1 + 2 / 3 * first.sigma.to_numpy() * r_inf**2 / (r_inf**2 - 1))
+        ends = radii(R0, first.sigma.to_numpy(), R0 * r_inf)
+        R1, Rf = ends["R1_um"], ends["R_final_um"]
         a.plot(first[time], (first[radius] - R1) / (Rf - R1), "o", ms=4, c=colour)
     time_axis(a, tau * T)
     a.set(

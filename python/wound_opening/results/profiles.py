@@ -21,6 +21,18 @@ class Profile:
     #: nearby: fitting/bounds.py); None: the fit's `threshold`.
     threshold: float | None = None
 
+    @property
+    def identifies(self) -> bool:
+        """Both interval ends set by the data (a rise of the profile by the threshold): an
+        interval reaching lambda's bound 0 does not identify it (it only bounds it above),
+        nor does an end on a bound the user set."""
+        return (
+            self.lower is not None
+            and self.upper is not None
+            and not self.at_bound
+            and not any(self.bounded)
+        )
+
 
 def own_thresholds(profiles: dict) -> dict:
     """name -> the threshold of a profile that has its own (lambda's bound nearby)."""

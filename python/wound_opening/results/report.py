@@ -189,12 +189,7 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
         f"residual rms {sig(result.residual_rms_um, 4)} µm; {result.n_points[0]} radii, "
         f"{result.n_points[1]} velocities.</p>",
     ]
-    if result.warnings:
-        parts.append(
-            "<ul>"
-            + "".join(f"<li>warning: {html.escape(w)}</li>" for w in result.warnings)
-            + "</ul>"
-        )
+    parts.append(warnings_html(result))
     parts.append("<h2>Estimates</h2>" + _estimates(result))
     parts.append(_flagged(result))
     if result.converged:
@@ -358,3 +353,12 @@ def write_report(path, result, radius, profile=None, *, command: str | None = No
     path = Path(path)
     path.write_text(render(result, radius, profile, command=command), encoding="utf-8")
     return path
+
+
+def warnings_html(result) -> str:
+    """A fit's warnings (one wound's or several's) as a list, or nothing."""
+    if not result.warnings:
+        return ""
+    return (
+        "<ul>" + "".join(f"<li>warning: {html.escape(w)}</li>" for w in result.warnings) + "</ul>"
+    )

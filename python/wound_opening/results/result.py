@@ -15,6 +15,7 @@ from .export import tables as data_tables
 from .names import NAMES
 from .numbers import interval as interval_text
 from .profiles import Profile, own_thresholds, threshold_line
+from .status import radii
 
 
 @dataclass
@@ -34,17 +35,9 @@ class ParameterReport:
 
     @property
     def identifiable(self) -> bool:
-        """Both interval ends set by the data (a rise of the profile by the threshold);
-        lambda's interval reaching its bound 0 does not identify it (only bounds it above), nor
-        does an end on a bound the user set. A fixed parameter counts as identified."""
-        p = self.profile
-        return (
-            p is not None
-            and p.lower is not None
-            and p.upper is not None
-            and not p.at_bound
-            and not any(p.bounded)
-        )
+        """Its profile identifies it (Profile.identifies). A fixed parameter counts as
+        identified."""
+        return self.profile is not None and self.profile.identifies
 
 
 def chi2_warning(result) -> list:
@@ -160,7 +153,6 @@ class FitResult:
         their own profile intervals (derived.py); tension/G is sigma; R1 and R_final count as
         identified when R0 and sigma are."""
         R0, sigma, lam, T = self.theta
-        r_inf = self.outer_radius_um / R0
         out = {}
         for name, value in (
             ("tau_s", lam**2 * T),
@@ -168,23 +160,14 @@ class FitResult:
             ("viscous_length_um", lam * R0),
         ):
             p = self.derived_profiles.get(name)
-            ok = (
-                p is not None
-                and p.lower is not None
-                and p.upper is not None
-                and not p.at_bound
-                and not any(p.bounded)
-            )
+            ok = p is not None and p.identifies
             out[name] = (value, (None, None) if p is None else (p.lower, p.upper), ok)
         s = self.reports["sigma"]
         out["tension_over_G"] = (sigma, s.ci95, s.identifiable)
         both = self.reports["R0_um"].identifiable and s.identifiable
-        out["R1_um"] = (R0 * (1 + sigma / 6), (None, None), both)
-        out["R_final_um"] = (
-            R0 * (1 + 2 * sigma / 3 * r_inf**2 / (r_inf**2 - 1)),
-            (None, None),
-            both,
-        )
+        out |= {
+            k: (v, (None, None), both) for k, v in radii(R0, sigma, self.outer_radius_um).items()
+        }
         return out
 
     def _derived_computed(self) -> dict:

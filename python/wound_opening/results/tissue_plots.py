@@ -13,7 +13,7 @@ import numpy as np
 
 from .names import ETA, SHARED
 from .numbers import interval, material_lines
-from .plots import drawn_once, errorbar_points, plt, time_axis
+from .plots import drawn_once, errorbar_points, plt, text_box, time_axis
 from .status import status
 
 LABELS = {
@@ -107,16 +107,7 @@ def _draw(result):
     time_axis(ax, np.concatenate(times))
     ax.set(ylabel="wound radius (µm)")
     ax.legend(loc="lower right", fontsize="small", title="wound (data ± noise, fit)")
-    ax.text(
-        0.02,
-        0.97,
-        _text(result),
-        transform=ax.transAxes,
-        va="top",
-        fontsize="small",
-        family="monospace",
-        bbox={"fc": "white", "ec": "0.7", "alpha": 0.9},
-    )
+    text_box(ax, _text(result))
     res.axhline(0, c="gray", lw=0.8)
     res.set(xlabel="time since the cut (s)", ylabel="(data − fit) / noise")
     if pax is not None:

@@ -32,6 +32,7 @@ from .report import (
     settings_html,
     sig,
     status_html,
+    warnings_html,
 )
 from .status import radii
 
@@ -150,12 +151,7 @@ def render(result, wounds, *, command: str | None = None, now=None) -> str:
         f"noise {'given' if result.noise_given else 'estimated from the residuals'}; loss "
         f"{html.escape(result.loss)}.</p>",
     ]
-    if result.warnings:
-        parts.append(
-            "<ul>"
-            + "".join(f"<li>warning: {html.escape(w)}</li>" for w in result.warnings)
-            + "</ul>"
-        )
+    parts.append(warnings_html(result))
     if result.converged:
         parts += ["<h2>Shared material</h2>", material_html(result.material), _shared(result)]
     else:

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..material import ABSOLUTE, RATIOS, absolute_interval
+from ..material import RATIOS, absolute_values
 from .names import ETA, SHARED
 from .numbers import end, material_lines
 from .result import ParameterReport, chi2_warning, fmt, outlier_warning, verdict_fields
@@ -87,35 +87,8 @@ class TissueFitResult:
             }
         if self.G is None:
             return out
-        mu, sd = self.G
-        out["G_pa"] = {"estimate": mu, "sd": sd, "fixed": sd == 0, "unit": "Pa"}
-        for name, (ratio, unit) in ABSOLUTE.items():
-            rep = self.shared[ratio]
-            p, q = rep.profile, rep.estimate
-            lo = hi = None
-            if p is not None and not p.at_bound:
-                if p.lower is not None and p.lower == p.upper:  # the ratio held fixed
-                    k = math.sqrt(self.threshold) * sd
-                    lo, hi = sorted((q * (mu - k), q * (mu + k)))
-                else:
-                    _, lo, hi = absolute_interval(
-                        q,
-                        p.lower,
-                        p.upper,
-                        p.points,
-                        self.G,
-                        self.threshold,
-                        log=ratio != "tension_over_G",
-                        bounded=p.bounded,
-                    )
-            out[name] = {
-                "estimate": q * mu,
-                "ci95": [lo, hi],
-                "identifiable": lo is not None and hi is not None,
-                "unit": unit,
-                "interval_computed": p is not None,
-            }
-        return out
+        profiles = {name: self.shared[name].profile for name in RATIOS}
+        return out | absolute_values(out, profiles, self.G, self.threshold)
 
     def physics(self) -> tuple[list, list]:
         """(forbidden estimates, intervals reaching forbidden values): status.py."""
