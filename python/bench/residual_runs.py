@@ -14,7 +14,8 @@ import itertools
 import time
 
 from bench.fit_designs import clean, draw
-from wound_opening.fitting.gof import P_FAIL, P_WARN
+from wound_opening.fitting.gof import RUNS_FAIL_P as P_FAIL
+from wound_opening.fitting.gof import RUNS_WARN_P as P_WARN
 from wound_opening.fitting.parameters import Parameters
 from wound_opening.fitting.single import fit
 from wound_opening.inputs.series import RadiusSeries, VelocityProfile

@@ -246,7 +246,7 @@ def material_report(result) -> dict:
     """The material values of a fit: eta/G, zeta/G, tension/G and the viscous length with
     their profile intervals, and with G given (fixed or a prior) G, eta, zeta and the
     tension with theirs. name -> {estimate, ci95, identifiable, unit, interval_computed}."""
-    derived, computed = result._derived_all(), result._derived_computed()
+    derived, computed = result.derived_values(), result.derived_computed()
     out = {}
     for name, (ratio, unit) in RATIOS.items():
         v, ci, ok = derived[ratio]

@@ -36,7 +36,7 @@ function K(s) = -1/2 sum log(1 - 2 s mu_j) (relative error below 5 % at p = 6e-4
 a Monte Carlo of 40 points). The residuals of a fit lose the directions of the Jacobian's
 columns, which are smooth in time (low eigenvalues of A): that makes d larger, so this p is
 conservative for them. Each series' p-value is the smaller of the two tests' times 2
-(Bonferroni). A series with p < P_FAIL makes the fit fail, one with p < P_WARN gives a
+(Bonferroni). A series with p < RUNS_FAIL_P makes the fit fail, one with p < RUNS_WARN_P gives a
 warning.
 """
 
@@ -48,8 +48,10 @@ import numpy as np
 from scipy import optimize
 from scipy.special import gammaln, ndtr
 
-#: Runs-test p-value below which a series makes the fit fail, and below which a warning is given.
-P_FAIL, P_WARN = 1e-4, 1e-3
+#: The residual runs test of a series (Bonferroni over its two tests): a p-value below
+#: RUNS_FAIL_P makes the fit fail, one below RUNS_WARN_P is a warning. (The chi^2 test's
+#: own thresholds: results/result.py, CHI2_FAIL_P.)
+RUNS_FAIL_P, RUNS_WARN_P = 1e-4, 1e-3
 CAUSES = (
     "the model cannot describe this series: a wrong fixed value (--fix), a wound that closes "
     "again, a wrong outer radius or a wrong time of the cut"
@@ -200,7 +202,7 @@ def series_tests(obj, residuals, prefix: str = "") -> list[Runs]:
 
 
 def level(t: Runs) -> str:
-    return "fail" if t.p_value < P_FAIL else ("warn" if t.p_value < P_WARN else "ok")
+    return "fail" if t.p_value < RUNS_FAIL_P else ("warn" if t.p_value < RUNS_WARN_P else "ok")
 
 
 def as_dicts(tests) -> list[dict]:

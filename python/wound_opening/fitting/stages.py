@@ -16,15 +16,13 @@ from scipy import special
 
 from .._native import SolverError
 from ..inputs.series import where
+from ..results.result import CHI2_FAIL_P
 from .bounds import regular
 from .gof import judge_series
 from .local import cost, local_fit
 from .objective import Objective
 from .problem import Problem
 
-#: chi^2 p-value below which the model is said not to describe the data (fit failed), and
-#: below which a warning is given.
-P_FAIL, P_WARN = 1e-6, 1e-3
 #: A cost drop this small (chi^2 units) moves a 95 % interval end (chi^2 + 3.84) negligibly:
 #: a fit that ran out of evaluations on a flat valley is converged if a restart drops less.
 FLAT = 0.01
@@ -151,7 +149,7 @@ def verdict(
     flagged = np.flatnonzero(np.abs(residuals) > OUTLIER) if loss != "linear" else np.empty(0, int)
     chi2 = float(np.sum(np.delete(residuals, flagged) ** 2) + extra_chi2)
     p_value = float(special.chdtrc(max(dof - flagged.size, 1), chi2)) if noise_given else None
-    if p_value is not None and p_value < P_FAIL:
+    if p_value is not None and p_value < CHI2_FAIL_P:
         reasons.append(
             f"chi^2 = {chi2:.4g} for {dof - flagged.size} degrees of freedom (p = {p_value:.2g}): "
             "the model does not describe the data with the given noise"

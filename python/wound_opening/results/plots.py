@@ -144,9 +144,9 @@ FIXED_TITLES = {"axes.titley": 1.0}
 def drawn_once(result, key, draw, path, dpi: int):
     """The figure `draw()` makes, written as PNG to `path` (a file name or a binary file
     object; None: not written), returned closed; a figure written once is kept with the
-    result (`_figures`: key -> (figure, PNG bytes)), so the report's and the command line's
+    result (`figures`: key -> (figure, PNG bytes)), so the report's and the command line's
     `--plot` are one drawing."""
-    cache = getattr(result, "_figures", None)
+    cache = result.figures
     if path is not None and cache is not None and key in cache:
         fig, png = cache[key]
     else:

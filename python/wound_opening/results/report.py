@@ -261,9 +261,9 @@ def _estimates(result) -> str:
         ["parameter", "estimate", "stderr", "95 % lower", "95 % upper", "", "advice"], rows
     )
     out = material_html(result.material) + model
-    computed = result._derived_computed()
+    computed = result.derived_computed()
     rows = []
-    for k, (v, (lo, hi), ok) in result._derived_all().items():
+    for k, (v, (lo, hi), ok) in result.derived_values().items():
         if k not in ("R1_um", "R_final_um"):  # the others are material values
             continue
         state = (

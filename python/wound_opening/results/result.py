@@ -40,9 +40,15 @@ class ParameterReport:
         return self.profile is not None and self.profile.identifies
 
 
+#: The chi^2 test of a fit with the noise given: a p-value below CHI2_FAIL_P says the model
+#: does not describe the data (the fit fails: fitting/stages.py), one below CHI2_WARN_P
+#: is a warning. (The residual runs' own thresholds: fitting/gof.py, RUNS_FAIL_P.)
+CHI2_FAIL_P, CHI2_WARN_P = 1e-6, 1e-3
+
+
 def chi2_warning(result) -> list:
-    """A converged fit whose chi^2 p-value (noise given) is below 1e-3."""
-    if result.converged and result.p_value is not None and result.p_value < 1e-3:
+    """A converged fit whose chi^2 p-value (noise given) is below CHI2_WARN_P."""
+    if result.converged and result.p_value is not None and result.p_value < CHI2_WARN_P:
         return [
             f"chi^2 / dof = {result.chi2 / result.dof:.3g} (p = {result.p_value:.2g}): the model "
             f"describes the "
@@ -123,7 +129,7 @@ class FitResult:
     refit: object = field(default=None, repr=False, compare=False)
     _profile_cache: dict = field(default_factory=dict, repr=False, compare=False)
     #: The figures drawn (plots.drawn_once): key -> (figure, PNG bytes).
-    _figures: dict = field(default_factory=dict, repr=False, compare=False)
+    figures: dict = field(default_factory=dict, repr=False, compare=False)
     #: The recording's settings (settings.py): cut, units, pixel size, frames, files; filled
     #: by the command line (or a reader), printed by the report.
     settings: dict = field(default_factory=dict)
@@ -148,7 +154,7 @@ class FitResult:
             list(self.plausibility) + chi2_warning(self) + outlier_warning(self.outliers, self.loss)
         )
 
-    def _derived_all(self) -> dict:
+    def derived_values(self) -> dict:
         """name -> (value, (lower, upper), identified). tau, zeta/G and the viscous length have
         their own profile intervals (derived.py); tension/G is sigma; R1 and R_final count as
         identified when R0 and sigma are."""
@@ -170,7 +176,7 @@ class FitResult:
         }
         return out
 
-    def _derived_computed(self) -> dict:
+    def derived_computed(self) -> dict:
         """name -> whether the profiles that judge it were computed (intervals=True,
         derived=True)."""
         has = {n: self.reports[n].profile is not None for n in NAMES}
@@ -188,11 +194,13 @@ class FitResult:
     def derived(self) -> dict:
         """Derived values, None where not identified: tau = eta/G [s], zeta/G = 4 T / R0^2
         [s/um^2], tension/G = sigma, the viscous length lambda R0 [um], R1 and R_final [um]."""
-        return {k: (v if ok else None) for k, (v, _, ok) in self._derived_all().items()}
+        return {k: (v if ok else None) for k, (v, _, ok) in self.derived_values().items()}
 
     @property
     def derived_ci95(self) -> dict:
-        return {k: list(ci) for k, (_, ci, _) in self._derived_all().items() if ci != (None, None)}
+        return {
+            k: list(ci) for k, (_, ci, _) in self.derived_values().items() if ci != (None, None)
+        }
 
     def advice(self, name: str) -> str:
         """Why a parameter is not identified and which data would identify it ("" if it is)."""
@@ -337,9 +345,9 @@ class FitResult:
             )
             lines.append(f"{name:<10} {rep.estimate:>11.5g} {rep.stderr:>10.3g}   {interval}{note}")
         lines += [f"  {self.advice(n)}" for n in NAMES if self.advice(n)]
-        computed = self._derived_computed()
+        computed = self.derived_computed()
         radii = {
-            k: d for k, d in self._derived_all().items() if k in ("R1_um", "R_final_um")
+            k: d for k, d in self.derived_values().items() if k in ("R1_um", "R_final_um")
         }  # the rest: material
         lines.append(
             "derived: "

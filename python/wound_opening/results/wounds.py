@@ -57,7 +57,7 @@ class TissueFitResult:
     settings: dict = field(default_factory=dict)
     _material: tuple = field(default=(None, None), repr=False, compare=False)
     #: The figures drawn (plots.drawn_once): key -> (figure, PNG bytes).
-    _figures: dict = field(default_factory=dict, repr=False, compare=False)
+    figures: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def material(self) -> dict:
