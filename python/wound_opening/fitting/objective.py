@@ -251,6 +251,10 @@ class Objective(Problem):
             upper[self.cut] = min(upper[self.cut], first * (1 - 1e-9))
         return lower, upper
 
+    def vanishing(self, z) -> list:
+        """lambda on its bound 0: its column is 0 (R depends on lambda^2)."""
+        return [2] if z[2] <= 1e-8 else []
+
     def since_cut(self, z) -> tuple[np.ndarray, np.ndarray]:
         """The radius and the PIV groups' times after the cut at z [s]."""
         cut = 0.0 if self.cut is None else z[self.cut]

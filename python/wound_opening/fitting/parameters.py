@@ -455,6 +455,9 @@ class Constrained(Problem):
             lower[i], upper[i] = max(lower[i], c.bound_z(lo)), min(upper[i], c.bound_z(hi))
         return lower, upper
 
+    def vanishing(self, z) -> list:
+        return self.inner.vanishing(z)
+
     def user_bound(self, i: int, side: int) -> bool:
         """Whether the limit of coordinate i on `side` (-1 lower, +1 upper) is the user's."""
         if i not in self.spec.bounds:

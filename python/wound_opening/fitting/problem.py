@@ -56,6 +56,11 @@ class Problem(Protocol):
         """Lower and upper bounds of z (possibly infinite)."""
         ...
 
+    def vanishing(self, z) -> list:
+        """The coordinates whose Jacobian column vanishes at z (lambda, or the viscous length,
+        on its bound 0: the model depends on its square): the verdict judges the others."""
+        return []
+
     def user_bound(self, i: int, side: int) -> bool:
         """Whether the limit of coordinate i on `side` (-1 lower, +1 upper) is the user's
         (an interval ending there ends at a bound the user set, not at a rise)."""

@@ -32,11 +32,10 @@ from .derived import derived_profiles
 from .gof import as_dicts, series_tests
 from .local import cost
 from .objective import NUISANCES, Objective, from_z, wound_coordinates
-from .optimum import Optimum
 from .parameters import Constrained, names, specification
 from .plausibility import intervals_of, time_scale_warnings
 from .recording import check_recording
-from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
+from .stages import check_loss, outliers, settle
 from .starts import grid_starts
 
 
@@ -69,26 +68,17 @@ def fit(
             f"fit: {data.size} data points for {n_free} free parameters: need at least {n_free + 1}"
         )
     obj = Constrained(data, spec)  # the data with the priors, bounds and fixed parameters
-    best, ends = _local_fits(obj, data, spec, loss)
-    z, chi2_cost, res = best  # residuals, Jacobian and chi^2 below at the point reported
-    residuals = data.residuals(z)
-    # lambda on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
-    free = [i for i in spec.free if not (i == 2 and z[2] <= 1e-8)]
-    judged = verdict(
-        residuals,
-        obj.jacobian(z),
-        free,
-        res,
-        dof=max(obj.size - n_free, 1),  # the priors count as data
-        noise_given=not any(data.estimated),
-        loss=loss,
-        extra_chi2=float(np.sum(obj.prior_residuals(z) ** 2)),
-        what=f"the {n_free} free parameters",
-        runs=series_tests(data, residuals),
+    optimum, judged = settle(
+        obj,
+        [data],
+        lambda k, z: z,
+        _starts(obj, data, spec, loss),
+        loss,
+        lambda residuals: series_tests(data, residuals),
+        "fit",
+        f"the {n_free} free parameters",
     )
-    cov_z = judged.cov
-    held = list(spec.fixed)
-    cov_z[held, :], cov_z[:, held] = 0.0, 0.0  # no variance
+    z, chi2_cost, cov_z = optimum.z, optimum.chi2, optimum.cov
     coordinates = data.coordinates
     own = [spec.fixed.get(i, v) for i, v in enumerate(from_z(z) + coordinates.own(z)[4:])]
     theta = tuple(own[:4])  # a fixed value as given, not exp(ln v)
@@ -98,15 +88,13 @@ def fit(
         se = np.sqrt(np.diag(cov))
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(se, se)
-    others = alternates(obj, z, ends, chi2_cost, loss)  # other local optima a profile may reach
-    optimum = Optimum(obj, z, chi2_cost, loss, judged.threshold, cov_z, others)
     profiles = {}
     if intervals and not judged.reasons:
         dof = max(obj.size - n_free, 1)
         near, found = bound_thresholds(
-            obj, z, chi2_cost, loss, not any(data.estimated), dof, others
+            obj, z, chi2_cost, loss, not any(data.estimated), dof, optimum.alternates
         )
-        optimum.alternates = others + found  # a valley at lambda ~ 0 the starts did not end in
+        optimum.alternates += found  # a valley at lambda ~ 0 the starts did not end in
         optimum.thresholds = near
         profiles = {name: optimum.profile(optimum.target(name)) for name in coordinates.names}
         if derived:
@@ -115,7 +103,7 @@ def fit(
         name: ParameterReport(name, own[i], float(se[i]), profiles.get(name), spec.describe(i))
         for i, name in enumerate(coordinates.names)
     }
-    data.residuals(z)  # inside_edge at the optimum
+    residuals = data.residuals(z)  # and inside_edge at the optimum
     radius_res = data.split(residuals * data.sd)[0]
     return FitResult(
         theta=theta,
@@ -158,9 +146,8 @@ def fit(
     )
 
 
-def _local_fits(obj: Constrained, data: Objective, spec, loss: str):
-    """The best local fit from the grid's starts, at the estimated noise where it is
-    estimated; (best (z, cost, result), the ends of every fit)."""
+def _starts(obj: Constrained, data: Objective, spec, loss: str) -> list:
+    """The global grid's starts (starts.py), or ValueError where none describes the data."""
 
     def objective_cost(z):
         return cost(obj.residuals(z), loss)
@@ -176,11 +163,4 @@ def _local_fits(obj: Constrained, data: Objective, spec, loss: str):
                 else ""
             )
         )
-    best, failures, ends = best_of(obj, starts, loss)
-    if best is None:
-        raise ValueError(
-            "fit: the model could not be evaluated from any start: " + "; ".join(failures[:2])
-        )
-    if any(data.estimated):
-        best = refit_at_noise(obj, [data], lambda k, z: z, best, loss, len(spec.free) / data.size)
-    return best, ends
+    return starts

@@ -205,3 +205,40 @@ def outliers(obj: Objective, flagged) -> dict:
         for k in sorted(rows[key])
     ]
     return out
+
+
+def settle(obj, parts, z_of, starts, loss: str, runs, who: str, what: str = "the parameters"):
+    """From `starts` to the optimum, one wound's or several's: the best local fit
+    (`best_of`), refitted at the estimated noise where any of the Objectives `parts` has its
+    noise estimated (`refit_at_noise`, at coordinates `z_of(k, z)`); the verdict at it
+    (`verdict`: the problem's vanishing columns left out, the priors counted as data,
+    `runs(residuals)` the series' runs tests); the covariance with the held coordinates'
+    rows and columns 0; the other local optima (`alternates`). Returns (Optimum, Verdict).
+    `who` names the fit in a refusal, `what` what a singular Jacobian leaves undetermined."""
+    from .optimum import Optimum
+
+    best, failures, ends = best_of(obj, starts, loss)
+    if best is None:
+        raise ValueError(
+            f"{who}: the model could not be evaluated from any start: " + "; ".join(failures[:2])
+        )
+    if any(any(p.estimated) for p in parts):
+        best = refit_at_noise(obj, parts, z_of, best, loss, len(obj.free) / obj.inner.size)
+    z, chi2, res = best
+    residuals = obj.inner.residuals(z)
+    judged = verdict(
+        residuals,
+        obj.jacobian(z),
+        [i for i in obj.free if i not in obj.vanishing(z)],
+        res,
+        dof=max(obj.size - len(obj.free), 1),
+        noise_given=not any(any(p.estimated) for p in parts),
+        loss=loss,
+        extra_chi2=float(np.sum(obj.prior_residuals(z) ** 2)),
+        what=what,
+        runs=runs(residuals),
+    )
+    held = list(obj.fixed)
+    judged.cov[held, :], judged.cov[:, held] = 0.0, 0.0  # no variance
+    others = alternates(obj, z, ends, chi2, loss)
+    return Optimum(obj, z, chi2, loss, judged.threshold, judged.cov, others), judged

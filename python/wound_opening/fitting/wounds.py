@@ -47,13 +47,12 @@ from ..results.wounds import TissueFitResult
 from .gof import as_dicts, series_tests
 from .local import cost
 from .objective import LAMBDA_MAX, Objective, from_z, r0_coordinate
-from .optimum import Optimum
 from .parameters import G_NAME, Constrained, Coordinate, Coordinates, factor, span, specification
 from .plausibility import time_scale_warnings, tissue_intervals
 from .problem import Problem
 from .recording import check_recording
 from .single import fit
-from .stages import alternates, best_of, check_loss, outliers, refit_at_noise, verdict
+from .stages import check_loss, outliers, settle
 from .wound_profiles import LN4, EtaCoordinate, shared_profiles
 
 #: Points each wound needs: its start is a fit of its own four parameters (fitting.fit).
@@ -164,6 +163,11 @@ class Tissue(Problem):
             a[3, 2], a[3, 3 + k] = 1.0, 2.0
             blocks.append(p.jacobian(z) @ a)
         return np.vstack(blocks)
+
+    def vanishing(self, y) -> list:
+        """l on its bound 0 (relative to the largest R0): its column is 0 (R depends on
+        lambda^2)."""
+        return [0] if y[0] <= 1e-8 * math.exp(max(y[3:])) else []
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Each wound's bounds (Objective.bounds) on its R0 and T, carried to y: l from 0 to a
@@ -278,39 +282,32 @@ def fit_wounds(
     tissue = Tissue(parts, [w.name for w in wounds])
     spec = specification(params, tissue.coordinates)
     obj = Constrained(tissue, spec)
-    n_free = len(obj.free)
-    best, ends = _local_fits(obj, wounds, loss)
-    y, chi2_cost, res = best
-    noise_given = not any(any(p.estimated) for p in parts)
-    dof = max(obj.size - n_free, 1)
-    residuals = tissue.residuals(y)
-    # l on its bound 0: its column is 0 (R depends on lambda^2); the others are judged alone
-    free = [i for i in obj.free if not (i == 0 and y[0] <= 1e-8 * math.exp(max(y[3:])))]
     cuts = np.cumsum([0] + [p.size for p in parts])
-    runs = [
-        t
-        for k, (p, w) in enumerate(zip(parts, wounds))
-        for t in series_tests(p, residuals[cuts[k] : cuts[k + 1]], f"wound {w.name}: ")
-    ]
-    judged = verdict(
-        residuals,
-        obj.jacobian(y),
-        free,
-        res,
-        dof=dof,
-        noise_given=noise_given,
-        loss=loss,
-        extra_chi2=float(np.sum(obj.prior_residuals(y) ** 2)),
-        runs=runs,
+
+    def runs(residuals):
+        return [
+            t
+            for k, (p, w) in enumerate(zip(parts, wounds))
+            for t in series_tests(p, residuals[cuts[k] : cuts[k + 1]], f"wound {w.name}: ")
+        ]
+
+    optimum, judged = settle(
+        obj,
+        parts,
+        lambda k, y: tissue.z(y, k),
+        _starts(obj, wounds, loss),
+        loss,
+        runs,
+        "fit_wounds",
     )
-    reasons, threshold, cov, flagged = judged.reasons, judged.threshold, judged.cov, judged.flagged
-    held = list(obj.fixed)
-    cov[held, :], cov[:, held] = 0.0, 0.0  # no variance
-    others = alternates(obj, y, ends, chi2_cost, loss)
-    optimum = Optimum(obj, y, chi2_cost, loss, threshold, cov, others)
+    y, cov = optimum.z, optimum.cov
+    reasons, threshold, flagged = judged.reasons, judged.threshold, judged.flagged
+    residuals = tissue.residuals(y)
+    noise_given = not any(any(p.estimated) for p in parts)
+    dof = max(obj.size - len(obj.free), 1)
     profiles = shared_profiles(optimum) if intervals and not reasons else {}
     # standard errors in each quantity's own units: d quantity / d y_i
-    own = np.array([1.0, 1.0, math.exp(y[2])] + [math.exp(v) for v in y[3:]])
+    own = np.array([c.d_own(v) for c, v in zip(tissue.coordinates, y)])
     with np.errstate(invalid="ignore"):
         se = np.sqrt(np.diag(cov)) * own
     eta = y[0] ** 2 * math.exp(y[2]) / 4
@@ -396,9 +393,8 @@ def fit_wounds(
     )
 
 
-def _local_fits(tissue: Constrained, wounds, loss: str):
-    """The best local fit from the starts the wounds fitted alone give, at the estimated
-    noise where any is estimated; (best (y, cost, result), the ends of every fit)."""
+def _starts(tissue: Constrained, wounds, loss: str) -> list:
+    """Starts from the wounds fitted alone (fit without intervals), combined (_combine)."""
     singles = []
     for w in wounds:
         try:
@@ -417,14 +413,4 @@ def _local_fits(tissue: Constrained, wounds, loss: str):
     def tissue_cost(y):
         return cost(tissue.residuals(y), loss)
 
-    best, failures, ends = best_of(tissue, _combine(tissue, singles, tissue_cost), loss)
-    if best is None:
-        raise ValueError(
-            "fit_wounds: the model could not be evaluated from any start: "
-            + "; ".join(failures[:2])
-        )
-    parts = tissue.inner.parts
-    if any(any(p.estimated) for p in parts):
-        share = len(tissue.free) / tissue.size
-        best = refit_at_noise(tissue, parts, lambda k, y: tissue.inner.z(y, k), best, loss, share)
-    return best, ends
+    return _combine(tissue, singles, tissue_cost)
