@@ -15,7 +15,10 @@ cd "$(dirname "$0")/.."
 mkdir -p target
 bash scripts/venv.sh >target/setup_venv.log 2>&1 &
 venv=$!
-bash scripts/cross.sh valgrind chromium >target/setup_debian.log 2>&1 &
+# ecospy (tests/python/test_ssp_readers.py) loads libtbb.so.12: a library, so dpkg, not a command, says it is there.
+{ bash scripts/cross.sh valgrind chromium && { dpkg -s libtbb12 >/dev/null 2>&1 ||
+    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libtbb12 </dev/null; }; }; } \
+    >target/setup_debian.log 2>&1 &
 debian=$!
 trap 'kill "$venv" "$debian" 2>/dev/null || true' EXIT  # a failed step ends the set-up too
 cargo fmt --check  # the crate's format (rustfmt.toml)
