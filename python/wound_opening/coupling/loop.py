@@ -1,9 +1,11 @@
 """A co-simulation master for WoundOpening and a closure model, with fmpy's FMU2Slave
 (fmpy is needed here only: `pip install fmpy`).
 
-The wound FMU takes the edge stress as input and gives the wound radius; the
-PurseString FMU takes the radius and gives the edge stress p = T_c(t) / (h R). The
-loop is Gauss-Seidel over communication steps of size `step`:
+The wound FMU takes the edge stress as input and gives the wound radius; the closure FMU
+takes the radius and gives the edge stress, PurseString's p = T_c(t) / (h R). Any FMI 2.0
+co-simulation closure fits: a `Closure` names its radius input and its edge-stress output,
+or a line-tension output from which the loop computes p = T_c / (h R) (docs/closure.md).
+The loop is Gauss-Seidel over communication steps of size `step`:
 
     at t_n:   R_n = wound.wound_radius            (no direct feedthrough from the input)
               purse.wound_radius <- R_n;  p_n = purse.edge_stress(t_n, R_n)
