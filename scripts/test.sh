@@ -5,7 +5,7 @@
 # and workers on 127.0.0.1) and each FMU's documentation page rendered in headless Chromium.
 # Installs what it needs: .venv (scripts/venv.sh), the Rust cross targets, and with apt-get
 # the cross linkers, Wine, qemu-user, valgrind and chromium when they are missing
-# (scripts/cross.sh).
+# (scripts/cross.sh), and libtbb12 (ecospy's library, for the SSP readers' tests).
 #
 # The set-up waits on the network and dpkg, the Rust build on the CPU: the venv and the
 # Debian packages are installed in the background while the host's crate compiles and its

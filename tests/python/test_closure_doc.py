@@ -56,14 +56,20 @@ def test_the_ring_couples_by_its_own_names_as_purse_string_does(ring_fmu, fmu_pa
     assert np.max(np.abs(ring.wound_radius - purse.wound_radius)) <= 1e-12 * scale
     assert np.max(np.abs(ring.closure["tension"] - purse.line_tension)) <= 1e-12 * 6500
     assert purse.wound_radius.max() - purse.wound_radius[-1] > 3.0  # a live coupling
-    # The page's printed values.
-    assert f"{ring.wound_radius[-1]:.4f} um, {ring.closure['tension'][-1]:.1f} pN" in (
-        DOC.read_text()
-    )
     # Read through its line tension, with Laplace's law applied by the loop: the same run.
     by_tension = Closure(radius="radius", edge_stress=None, line_tension="tension", thickness_um=5)
     again = couple(fmu_path, ring_fmu, closure=by_tension, purse_params=RING_PARAMS, **kw)
     assert np.max(np.abs(again.wound_radius - ring.wound_radius)) <= 1e-12 * scale
+
+
+def test_the_pages_couple_block_prints_what_it_says(ring_fmu, monkeypatch, capsys):
+    block = re.search(r"<!-- couple example:[^\n]*\n```python\n(.*?)```", DOC.read_text(), re.S)
+    assert block, "docs/closure.md lost its marked couple() example"
+    monkeypatch.chdir(Path(ring_fmu).parent)
+    exec(compile(block.group(1), str(DOC), "exec"), {})
+    printed = capsys.readouterr().out.strip()
+    assert re.match(r"\d+\.\d{4} um, \d+\.\d pN$", printed), printed
+    assert f"# {printed}" in block.group(1)  # the value the page states
 
 
 def test_a_wrong_name_or_type_is_refused_with_what_the_fmu_has(ring_fmu, fmu_path):
@@ -85,7 +91,8 @@ def test_the_ssp_built_for_the_ring_runs_in_libcosim(ring_fmu, fmu_path, tmp_pat
 
     ssp = tmp_path / "RingClosure.ssp"
     build = [sys.executable, str(ROOT / "python" / "coupling" / "ssp.py"), "build", ring_fmu]
-    build += ["--radius", "radius", "--edge-stress", "stress", "--wound-fmu", fmu_path]
+    # docs/closure.md's command (the wound: the package's archive, the one built here).
+    build += ["--radius", "radius", "--edge-stress", "stress"]
     build += ["--set", "cables=2", "--set", "cable_tension=3250", "--out", str(ssp)]
     done = subprocess.run(build, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
