@@ -126,7 +126,9 @@ def test_the_pages_fold_numbers():
     c, c_star, t_star, stable, unstable, at_fold = fold()
     text = DOC.read_text()
     for number in (
-        f"c = {c:g} and c* = {c_star:.5f}",
+        f"R_final = {2 * at_fold / WOUND_EXAMPLE['R0']:.5f}, c = {c:g} and c* = {c_star:.5f}",
+        f"R1 = {1 + WOUND_EXAMPLE['sigma'] / 6:.5f}",
+        f"{100 * (c_star / c - 1):.1f} % more tension",
         f"T_max* = c* h R0 sigma G = {t_star:.1f} pN",
         f"{100 * (1 - c / c_star):.1f} % below it",
         f"{stable:.4f} um",
