@@ -83,3 +83,16 @@ def test_ecos_runs_the_file_with_its_named_parameter_set(ssp_path, example):
     finally:
         sim.terminate()
     assert_agrees(radius, example)
+
+
+def test_ecos_applies_no_parameter_set_unless_named(ssp_path):
+    """docs/fmi.md: without the set's name ecos keeps the FMUs' own start values."""
+    from ecospy import EcosSimulation
+
+    sim = EcosSimulation(ssp_path=ssp_path, step_size=STEP)
+    try:
+        sim.init()
+        assert sim.get_real("wound::R0") == 1.0  # WoundOpening's start value, not 10
+        assert sim.get_real("purse::T_max") == 6500.0  # PurseString's start = the example's
+    finally:
+        sim.terminate()
