@@ -5,7 +5,7 @@
 # and workers on 127.0.0.1) and each FMU's documentation page rendered in headless Chromium.
 # Installs what it needs: .venv (scripts/venv.sh), the Rust cross targets, and with apt-get
 # the cross linkers, Wine, qemu-user, valgrind and chromium when they are missing
-# (scripts/cross.sh).
+# (scripts/cross.sh), and libtbb12 (ecospy's library, for the SSP readers' tests).
 #
 # The set-up waits on the network and dpkg, the Rust build on the CPU: the venv and the
 # Debian packages are installed in the background while the host's crate compiles and its
@@ -15,7 +15,10 @@ cd "$(dirname "$0")/.."
 mkdir -p target
 bash scripts/venv.sh >target/setup_venv.log 2>&1 &
 venv=$!
-bash scripts/cross.sh valgrind chromium >target/setup_debian.log 2>&1 &
+# ecospy (tests/python/test_ssp_readers.py) loads libtbb.so.12: a library, so dpkg, not a command, says it is there.
+{ bash scripts/cross.sh valgrind chromium && { dpkg -s libtbb12 >/dev/null 2>&1 ||
+    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libtbb12 </dev/null; }; }; } \
+    >target/setup_debian.log 2>&1 &
 debian=$!
 trap 'kill "$venv" "$debian" 2>/dev/null || true' EXIT  # a failed step ends the set-up too
 cargo fmt --check  # the crate's format (rustfmt.toml)

@@ -111,9 +111,11 @@ fn binary_entries(binaries: &[platforms::Binary], version: Fmi, id: &str) -> Vec
 
 /// Writes the archive next to `path` and renames it into place, so that a master loading
 /// `path` meanwhile (a test, a wheel build copying it) reads the old archive or the new one,
-/// never a partial file.
+/// never a partial file. The partial file is this process's own: two writers at once (the
+/// test command's cross tests and its wheel build each run `fmu`) never rename each other's.
 fn write_zip(path: &Path, entries: &[(String, Vec<u8>)]) -> Result<(), BoxError> {
-    let partial = path.with_extension("fmu.partial");
+    let name = path.file_name().and_then(|n| n.to_str()).ok_or("archive path without a file name")?;
+    let partial = path.with_file_name(format!("{name}.partial-{}", std::process::id()));
     write_zip_to(&partial, entries)?;
     std::fs::rename(&partial, path)?;
     Ok(())

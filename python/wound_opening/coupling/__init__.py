@@ -4,8 +4,11 @@ wheel with the archives.
 
     fmu_start_values(...)      start values by the FMU's names (start.py; also
                                wound_opening.fmu_start_values)
-    loop.couple(...)           the fmpy master: WoundOpening + PurseString, Gauss-Seidel
-                               (needs fmpy); loop.observed_order, the worked example's values
+    loop.couple(...)           the fmpy master: WoundOpening + a closure FMU (PurseString, or
+                               any other named by a loop.Closure), Gauss-Seidel (needs fmpy);
+                               loop.observed_order, the worked example's values
+    ssp_file.build(...)        an SSP file of WoundOpening and a closure FMU (docs/closure.md;
+                               `python python/coupling/ssp.py build`)
     python -m wound_opening.coupling --out out
                                the worked example: opening, then purse-string closure
                                (example.py; CSV files and a chart)
