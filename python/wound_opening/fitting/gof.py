@@ -50,7 +50,7 @@ from scipy.special import gammaln, ndtr
 
 #: The residual runs test of a series (Bonferroni over its two tests): a p-value below
 #: RUNS_FAIL_P makes the fit fail, one below RUNS_WARN_P is a warning. (The chi^2 test's
-#: own thresholds: results/result.py, CHI2_FAIL_P.)
+#: own thresholds: results/outcome.py, CHI2_FAIL_P.)
 RUNS_FAIL_P, RUNS_WARN_P = 1e-4, 1e-3
 CAUSES = (
     "the model cannot describe this series: a wrong fixed value (--fix), a wound that closes "

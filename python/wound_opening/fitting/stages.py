@@ -16,7 +16,7 @@ from scipy import special
 
 from .._native import SolverError
 from ..inputs.series import where
-from ..results.result import CHI2_FAIL_P
+from ..results.outcome import CHI2_FAIL_P
 from .bounds import regular
 from .gof import judge_series
 from .local import cost, local_fit

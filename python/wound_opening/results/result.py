@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import copy
-import json
 import math
 from dataclasses import dataclass, field
 
@@ -14,6 +13,7 @@ from .export import export as export_csv
 from .export import tables as data_tables
 from .names import NAMES
 from .numbers import interval as interval_text
+from .outcome import Outcome, chi2_warning, outlier_warning, verdict_fields
 from .profiles import Profile, own_thresholds, threshold_line
 from .status import radii
 
@@ -40,99 +40,31 @@ class ParameterReport:
         return self.profile is not None and self.profile.identifies
 
 
-#: The chi^2 test of a fit with the noise given: a p-value below CHI2_FAIL_P says the model
-#: does not describe the data (the fit fails: fitting/stages.py), one below CHI2_WARN_P
-#: is a warning. (The residual runs' own thresholds: fitting/gof.py, RUNS_FAIL_P.)
-CHI2_FAIL_P, CHI2_WARN_P = 1e-6, 1e-3
-
-
-def chi2_warning(result) -> list:
-    """A converged fit whose chi^2 p-value (noise given) is below CHI2_WARN_P."""
-    if result.converged and result.p_value is not None and result.p_value < CHI2_WARN_P:
-        return [
-            f"chi^2 / dof = {result.chi2 / result.dof:.3g} (p = {result.p_value:.2g}): the model "
-            f"describes the "
-            "data worse than the given noise allows"
-        ]
-    return []
-
-
-def outlier_warning(outliers: dict, loss: str) -> list:
-    """The points a robust loss flagged (fitting._outliers: rows, and "where" each is)."""
-    n_out = len(outliers.get("radius", [])) + len(outliers.get("profile", []))
-    if not n_out:
-        return []
-    return [
-        f"{n_out} points down-weighted by the {loss} loss (|residual| > 3 noise): "
-        + "; ".join(outliers.get("where", []))
-    ]
-
-
-#: The verdict's fields that FitResult and TissueFitResult report first in to_dict().
-VERDICT = (
-    "converged",
-    "reasons",
-    "warnings",
-    "optimizer",
-    "chi2",
-    "dof",
-    "p_value",
-    "noise_given",
-    "loss",
-    "residual_runs",
-)
-
-
-def verdict_fields(result) -> dict:
-    return {name: getattr(result, name) for name in VERDICT}
-
-
 def fmt(x) -> str:
     return "open" if x is None else f"{x:.4g}"
 
 
 @dataclass
-class FitResult:
+class FitResult(Outcome):
+    """The result of `fit` (one wound): Outcome's verdict and these."""
+
     theta: tuple[float, float, float, float]
     reports: dict
     correlation: np.ndarray
-    chi2: float
-    threshold: float
     outer_radius_um: float
     residual_rms_um: float
     noise: tuple[float, float]
     n_points: tuple[int, int]
     has_profile: bool
-    evaluations: int
-    converged: bool = True
-    reasons: list = field(default_factory=list)
-    optimizer: dict = field(default_factory=dict)
-    dof: int = 0
-    p_value: float | None = None
-    noise_given: bool = False
-    loss: str = "linear"
     outliers: dict = field(default_factory=dict)
     piv_at_edge: int = 0
     derived_profiles: dict = field(default_factory=dict)
-    #: The fitted time scale against the sampling (plausibility.py).
-    plausibility: list = field(default_factory=list)
-    #: The runs and Durbin-Watson tests of each series' residuals (fitting/gof.py): dicts
-    #: with "series", "runs", "expected", "points", "p_runs", "durbin_watson",
-    #: "p_durbin_watson", "p_value" (the smaller times 2), "level" (ok, warn, fail).
-    residual_runs: list = field(default_factory=list)
-    #: G [Pa] given for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
-    G: tuple | None = None
     #: The data in the input's order with the model, the noise used and the flags (export.py).
     points: dict = field(default_factory=dict)
     #: (objective, z, chi^2 at the optimum, loss): for profiles at more values (profile_at).
     #: (i, values of z_i) -> delta chi^2: the profile of coordinate i by constrained fits.
     refit: object = field(default=None, repr=False, compare=False)
     _profile_cache: dict = field(default_factory=dict, repr=False, compare=False)
-    #: The figures drawn (plots.drawn_once): key -> (figure, PNG bytes).
-    figures: dict = field(default_factory=dict, repr=False, compare=False)
-    #: The recording's settings (settings.py): cut, units, pixel size, frames, files; filled
-    #: by the command line (or a reader), printed by the report.
-    settings: dict = field(default_factory=dict)
 
     def physics(self) -> tuple[list, list]:
         """(forbidden estimates, intervals reaching forbidden values): status.py."""
@@ -313,9 +245,6 @@ class FitResult:
         if cached is None or cached[0] != key:
             cached = self._profile_cache["material"] = (key, material_report(self))
         return copy.deepcopy(cached[1])
-
-    def to_json(self, **kwargs) -> str:
-        return json.dumps(self.to_dict(), **({"indent": 2} | kwargs))
 
     def summary(self) -> str:
         if not self.converged:

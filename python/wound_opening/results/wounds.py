@@ -5,7 +5,6 @@ each wound's lambda = l / R0 and T = (zeta/G) R0^2 / 4, the verdict and chi^2.""
 from __future__ import annotations
 
 import copy
-import json
 import math
 from dataclasses import dataclass, field
 
@@ -14,7 +13,8 @@ import numpy as np
 from ..material import RATIOS, absolute_values
 from .names import ETA, SHARED
 from .numbers import end, material_lines
-from .result import ParameterReport, chi2_warning, fmt, outlier_warning, verdict_fields
+from .outcome import Outcome, chi2_warning, outlier_warning, verdict_fields
+from .result import ParameterReport, fmt
 from .status import judge, radii
 from .status import status as physical_status
 
@@ -32,32 +32,15 @@ ADVICE = {
 
 
 @dataclass
-class TissueFitResult:
+class TissueFitResult(Outcome):
+    """The result of `fit_wounds` (several wounds of one tissue): Outcome's verdict and these."""
+
     shared: dict  # name -> ParameterReport: SHARED and ETA
     r0: list  # ParameterReport of each wound's R0_um
     # per wound: name, theta (R0, sigma, lambda, T), outer radius, points, chi2, noise, ...
     wounds: list
     correlation: np.ndarray  # in y = (l, sigma, ln zeta/G, ln R0_1 ...)
-    chi2: float
-    dof: int
-    p_value: float | None
-    threshold: float
-    noise_given: bool
-    loss: str
-    converged: bool = True
-    reasons: list = field(default_factory=list)
-    optimizer: dict = field(default_factory=dict)
-    evaluations: int = 0
-    plausibility: list = field(default_factory=list)
-    #: The runs tests of the wounds' series (FitResult.residual_runs).
-    residual_runs: list = field(default_factory=list)
-    #: G [Pa] for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
-    G: tuple | None = None
-    #: The recording's settings (results/settings.py): cut, units, pixel size, frames, files.
-    settings: dict = field(default_factory=dict)
     _material: tuple = field(default=(None, None), repr=False, compare=False)
-    #: The figures drawn (plots.drawn_once): key -> (figure, PNG bytes).
-    figures: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def material(self) -> dict:
@@ -232,9 +215,6 @@ class TissueFitResult:
             "delta_chi2_95": self.threshold,
             "correlation": {"order": order, "matrix": np.nan_to_num(self.correlation).tolist()},
         }
-
-    def to_json(self, **kwargs) -> str:
-        return json.dumps(self.to_dict(), **({"indent": 2} | kwargs))
 
     def summary(self) -> str:
         if not self.converged:
