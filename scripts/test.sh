@@ -13,9 +13,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p target
+bash scripts/cross.sh --zig  # the Linux linker (.cargo/config.toml): every host build links with it
 bash scripts/venv.sh >target/setup_venv.log 2>&1 &
 venv=$!
-bash scripts/cross.sh valgrind chromium >target/setup_debian.log 2>&1 &
+bash scripts/cross.sh --tests valgrind chromium >target/setup_debian.log 2>&1 &
 debian=$!
 trap 'kill "$venv" "$debian" 2>/dev/null || true' EXIT  # a failed step ends the set-up too
 cargo fmt --check  # the crate's format (rustfmt.toml)
@@ -32,7 +33,7 @@ for job in "venv $venv" "debian $debian"; do
     fi
 done
 source scripts/venv.sh
-cargo run --release --quiet -- fmu  # the archives, with their Windows and aarch64 binaries
+cargo run --release --quiet -- fmu  # the archives, with their Windows, aarch64 Linux and macOS binaries
 # The Python code's format and lint (ruff, configured in pyproject.toml).
 ruff format --check python tests/python setup.py
 ruff check python tests/python setup.py
