@@ -106,8 +106,16 @@ def read(path: Path) -> list[Slice]:
     slices = []
     for header in MachO(str(path)).headers:
         image = data[header.offset : header.offset + header.size]
-        s = Slice(ARCHS.get(header.header.cputype, "?"), header.header.filetype, None, [], None,
-                  [], 0, None)
+        s = Slice(
+            ARCHS.get(header.header.cputype, "?"),
+            header.header.filetype,
+            None,
+            [],
+            None,
+            [],
+            0,
+            None,
+        )
         for lc, cmd, payload in header.commands:
             name = mach_o.LC_NAMES.get(lc.cmd)
             if name == "LC_ID_DYLIB":

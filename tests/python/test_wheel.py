@@ -119,7 +119,10 @@ def build_wheel(dist: Path) -> Path:
 #: (the headers of each platform's library are checked in test_desk_binaries.py).
 WHEEL_LIBRARIES = {
     "manylinux_2_17_x86_64": ("libwound_opening.so", lambda b: b[:4] == b"\x7fELF" and b[18] == 62),
-    "manylinux_2_17_aarch64": ("libwound_opening.so", lambda b: b[:4] == b"\x7fELF" and b[18] == 183),
+    "manylinux_2_17_aarch64": (
+        "libwound_opening.so",
+        lambda b: b[:4] == b"\x7fELF" and b[18] == 183,
+    ),
     "win_amd64": (
         "wound_opening.dll",
         lambda b: b[:2] == b"MZ" and b[int.from_bytes(b[60:64], "little") + 4 :][:2] == b"\x64\x86",
@@ -138,7 +141,10 @@ def check_platform_wheels(host_wheel: Path, out: Path) -> dict[str, Path]:
     host = zipfile.ZipFile(host_wheel)
     common = set(host.namelist()) - {"wound_opening/libwound_opening.so"}
     common = {n for n in common if not n.endswith("dist-info/RECORD")}
-    wheels = {p.name.rsplit("-", 1)[1].removesuffix(".whl"): p for p in platform_wheels.main(host_wheel, ROOT / "target" / "fmu", out)}
+    wheels = {
+        p.name.rsplit("-", 1)[1].removesuffix(".whl"): p
+        for p in platform_wheels.main(host_wheel, ROOT / "target" / "fmu", out)
+    }
     assert sorted(wheels) == sorted(WHEEL_LIBRARIES)
     for tag, path in wheels.items():
         library, is_native = WHEEL_LIBRARIES[tag]
@@ -156,7 +162,9 @@ def check_platform_wheels(host_wheel: Path, out: Path) -> dict[str, Path]:
             assert {r[0] for r in rows} == names, tag
             for name, digest, size in rows:
                 if name != record:
-                    assert platform_wheels.record_line(name, z.read(name)) == f"{name},{digest},{size}"
+                    assert (
+                        platform_wheels.record_line(name, z.read(name)) == f"{name},{digest},{size}"
+                    )
             for name in common - {n for n in names if n.endswith("dist-info/WHEEL")}:
                 assert z.read(name) == host.read(name), (tag, name)
     return wheels
