@@ -9,8 +9,8 @@ rewritten with the new hashes).
 
 The tags: the Linux libraries need glibc 2.17 at most (manylinux_2_17,
 tests/python/test_desk_binaries.py), the Windows one is x86_64 (win_amd64), the macOS one
-is darwin64's universal library (x86_64 from macOS 10.13, arm64 from 11.0:
-macosx_10_13_universal2, which pip accepts on both).
+is darwin64's universal library (x86_64 from macOS 10.12, arm64 from 11.0:
+macosx_10_12_universal2, which pip accepts on both).
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ PLATFORMS = {
         "binaries/x86_64-windows/WoundOpening.dll",
         "wound_opening.dll",
     ),
-    "macosx_10_13_universal2": (
+    "macosx_10_12_universal2": (
         "WoundOpening.fmu",
         "binaries/darwin64/WoundOpening.dylib",
         "libwound_opening.dylib",

@@ -40,11 +40,13 @@ pub struct Binary {
     pub bytes: Vec<u8>,
 }
 
-/// The oldest macOS a darwin library loads on (`MACOSX_DEPLOYMENT_TARGET`, written into
-/// its LC_BUILD_VERSION): 10.13 on Intel, 11.0 (the first for Apple Silicon) on arm64.
+/// The oldest macOS a darwin library loads on, written into its LC_BUILD_VERSION: rustc's
+/// own minimum for the target (10.12 on Intel; 11.0, the first for Apple Silicon, on arm64),
+/// since the build leaves `MACOSX_DEPLOYMENT_TARGET` unset, so that one cargo invocation
+/// builds both.
 pub fn minimum_macos(triple: &str) -> Option<&'static str> {
     match triple {
-        "x86_64-apple-darwin" => Some("10.13"),
+        "x86_64-apple-darwin" => Some("10.12"),
         "aarch64-apple-darwin" => Some("11.0"),
         _ => None,
     }
@@ -91,16 +93,20 @@ pub fn binaries(profile: &Path) -> Result<Vec<Binary>, BoxError> {
     let mut out = vec![read_binary(host, profile)?];
     let target_dir = profile.parent().ok_or("profile directory has no parent")?;
     let stubs = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/macos-stubs/libSystem.tbd");
+    let mut triples = Vec::new();
     for triple in CROSS_TARGETS.into_iter().filter(|t| *t != host) {
         if !target_installed(triple) {
             eprintln!("note: Rust target {triple} not installed: no {triple} binary (bash scripts/cross.sh installs it)");
-            continue;
-        }
-        if minimum_macos(triple).is_some() && !stubs.is_file() {
+        } else if minimum_macos(triple).is_some() && !stubs.is_file() {
             eprintln!("note: no {}: no {triple} binary (bash scripts/cross.sh writes it)", stubs.display());
-            continue;
+        } else {
+            triples.push(triple);
         }
-        cross_build(triple, target_dir)?;
+    }
+    if !triples.is_empty() {
+        cross_build(&triples, target_dir)?;
+    }
+    for triple in triples {
         out.push(read_binary(triple, &target_dir.join(triple).join("release"))?);
     }
     let (darwin, mut out): (Vec<Binary>, Vec<Binary>) = out.into_iter().partition(|b| b.fmi2 == Some("darwin64"));
@@ -133,21 +139,24 @@ fn target_installed(triple: &str) -> bool {
     }
 }
 
-/// `cargo build --release --lib --no-default-features --target <triple>`, with the linker
-/// of .cargo/config.toml: the library alone, without the packaging's dependencies.
-fn cross_build(triple: &str, target_dir: &Path) -> Result<(), BoxError> {
+/// `cargo build --release --lib --no-default-features --target <triple>...`, with the
+/// linkers of .cargo/config.toml: the library alone, without the packaging's dependencies.
+/// One invocation for every target: cargo then compiles them side by side, one target's
+/// single-threaded stages (a crate's front end, a link) beside another's.
+fn cross_build(triples: &[&str], target_dir: &Path) -> Result<(), BoxError> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut command = Command::new(cargo);
-    command
-        .args(["build", "--release", "--quiet", "--lib", "--no-default-features", "--target", triple, "--target-dir"])
-        .arg(target_dir)
-        .current_dir(env!("CARGO_MANIFEST_DIR"));
-    if let Some(version) = minimum_macos(triple) {
-        command.env("MACOSX_DEPLOYMENT_TARGET", version);
+    command.args(["build", "--release", "--quiet", "--lib", "--no-default-features", "--target-dir"]).arg(target_dir);
+    for triple in triples {
+        command.args(["--target", triple]);
     }
-    let status = command.status()?;
+    let status = command.env_remove("MACOSX_DEPLOYMENT_TARGET").current_dir(env!("CARGO_MANIFEST_DIR")).status()?;
     if !status.success() {
-        return Err(format!("cargo build --release --lib --target {triple} failed (its linker: bash scripts/cross.sh)").into());
+        return Err(format!(
+            "cargo build --release --lib --target {} failed (the linkers: bash scripts/cross.sh)",
+            triples.join(" --target ")
+        )
+        .into());
     }
     Ok(())
 }

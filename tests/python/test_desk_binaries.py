@@ -27,7 +27,7 @@ DARWIN = {
     "fmi3": {"x86_64-darwin": ["x86_64"], "aarch64-darwin": ["arm64"]},
 }
 LINUX = {"fmi2": ("linux64", "aarch64-linux"), "fmi3": ("x86_64-linux", "aarch64-linux")}
-MINIMUM_MACOS = {"x86_64": (10, 13), "arm64": (11, 0)}
+MINIMUM_MACOS = {"x86_64": (10, 12), "arm64": (11, 0)}
 MH_DYLIB = 6
 GLIBC_FLOOR = (2, 17)
 CASES = [(a, v) for v, archives in (("fmi2", FMI2), ("fmi3", FMI3)) for a in archives]

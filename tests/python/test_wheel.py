@@ -127,7 +127,7 @@ WHEEL_LIBRARIES = {
         "wound_opening.dll",
         lambda b: b[:2] == b"MZ" and b[int.from_bytes(b[60:64], "little") + 4 :][:2] == b"\x64\x86",
     ),
-    "macosx_10_13_universal2": ("libwound_opening.dylib", lambda b: b[:4] == b"\xca\xfe\xba\xbe"),
+    "macosx_10_12_universal2": ("libwound_opening.dylib", lambda b: b[:4] == b"\xca\xfe\xba\xbe"),
 }
 
 
