@@ -3,9 +3,9 @@
 # (scripts/c_tests.sh) and, cross-built, under Wine and qemu-user (scripts/cross_tests.sh),
 # then the FMUs driven by fmpy, the Python package (its Dask tests start their own scheduler
 # and workers on 127.0.0.1) and each FMU's documentation page rendered in headless Chromium.
-# Installs what it needs: .venv (scripts/venv.sh), the Rust cross targets, and with apt-get
-# the cross linkers, Wine, qemu-user, valgrind and chromium when they are missing
-# (scripts/cross.sh).
+# Installs what it needs: .venv (scripts/venv.sh), zig (the Linux linker, first: every
+# cargo build links with it), the Rust cross targets, and with apt-get the cross linkers,
+# Wine, qemu-user, valgrind and chromium when they are missing (scripts/cross.sh --tests).
 #
 # The set-up waits on the network and dpkg, the Rust build on the CPU: the venv and the
 # Debian packages are installed in the background while the host's crate compiles and its
