@@ -2,8 +2,9 @@
 (.cargo/config.toml): zig's `libSystem.tbd` (the `ziglang` package of this interpreter, a
 text list of the symbols each library of /usr/lib/system exports), with its architecture
 names made those of ld64.lld (`arm64e-macos` -> `arm64-macos`; Mac Catalyst and arm64e.x1
-left out), as libSystem.tbd and, for Rust's `-lc -lm`, libc.tbd and libm.tbd (on macOS both
-are libSystem itself).
+left out), as usr/lib/libSystem.tbd and, for Rust's `-lc -lm`, usr/lib/libc.tbd and
+usr/lib/libm.tbd (on macOS both are libSystem itself): OUT_DIR is then a minimal SDK root
+(SDKROOT, which rustc hands to the linker as -syslibroot).
 
     python python/macos_stubs.py OUT_DIR
 """
@@ -26,9 +27,10 @@ def targets(match: re.Match) -> str:
 def main(out: Path) -> None:
     source = Path(ziglang.__file__).parent / "lib" / "libc" / "darwin" / "libSystem.tbd"
     text = re.sub(r"targets:\s*\[([^\]]*)\]", targets, source.read_text())
-    out.mkdir(parents=True, exist_ok=True)
+    lib = out / "usr" / "lib"
+    lib.mkdir(parents=True, exist_ok=True)
     for name in ("libSystem.tbd", "libc.tbd", "libm.tbd"):
-        (out / name).write_text(text)
+        (lib / name).write_text(text)
 
 
 if __name__ == "__main__":

@@ -24,7 +24,7 @@ if [ ! -x "$tools/bin/cargo-zigbuild" ]; then
     "$tools/bin/python" -m pip install --quiet --disable-pip-version-check ziglang==0.17.1 cargo-zigbuild==0.24.1
 fi
 [ "${1:-}" = --zig ] && exit 0
-if [ ! -f target/macos-stubs/libSystem.tbd ]; then
+if [ ! -f target/macos-stubs/usr/lib/libSystem.tbd ]; then
     "$tools/bin/python" python/macos_stubs.py target/macos-stubs
 fi
 targets=(x86_64-pc-windows-gnu aarch64-unknown-linux-gnu x86_64-apple-darwin aarch64-apple-darwin)

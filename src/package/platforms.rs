@@ -92,7 +92,8 @@ pub fn binaries(profile: &Path) -> Result<Vec<Binary>, BoxError> {
     let host = host_triple()?;
     let mut out = vec![read_binary(host, profile)?];
     let target_dir = profile.parent().ok_or("profile directory has no parent")?;
-    let stubs = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/macos-stubs/libSystem.tbd");
+    let sdk = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/macos-stubs");
+    let stubs = sdk.join("usr/lib/libSystem.tbd");
     let mut triples = Vec::new();
     for triple in CROSS_TARGETS.into_iter().filter(|t| *t != host) {
         if !target_installed(triple) {
@@ -104,7 +105,7 @@ pub fn binaries(profile: &Path) -> Result<Vec<Binary>, BoxError> {
         }
     }
     if !triples.is_empty() {
-        cross_build(&triples, target_dir)?;
+        cross_build(&triples, target_dir, &sdk)?;
     }
     for triple in triples {
         out.push(read_binary(triple, &target_dir.join(triple).join("release"))?);
@@ -142,15 +143,16 @@ fn target_installed(triple: &str) -> bool {
 /// `cargo build --release --lib --no-default-features --target <triple>...`, with the
 /// linkers of .cargo/config.toml: the library alone, without the packaging's dependencies.
 /// One invocation for every target: cargo then compiles them side by side, one target's
-/// single-threaded stages (a crate's front end, a link) beside another's.
-fn cross_build(triples: &[&str], target_dir: &Path) -> Result<(), BoxError> {
+/// single-threaded stages (a crate's front end, a link) beside another's. `sdk` (the
+/// libSystem stubs) is the macOS SDK root for rustc (SDKROOT).
+fn cross_build(triples: &[&str], target_dir: &Path, sdk: &Path) -> Result<(), BoxError> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut command = Command::new(cargo);
     command.args(["build", "--release", "--quiet", "--lib", "--no-default-features", "--target-dir"]).arg(target_dir);
     for triple in triples {
         command.args(["--target", triple]);
     }
-    let status = command.env_remove("MACOSX_DEPLOYMENT_TARGET").current_dir(env!("CARGO_MANIFEST_DIR")).status()?;
+    let status = command.env_remove("MACOSX_DEPLOYMENT_TARGET").env("SDKROOT", sdk).current_dir(env!("CARGO_MANIFEST_DIR")).status()?;
     if !status.success() {
         return Err(format!(
             "cargo build --release --lib --target {} failed (the linkers: bash scripts/cross.sh)",
