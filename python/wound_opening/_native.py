@@ -3,7 +3,8 @@
 Everything here is dimensionless (lengths in R0, time in T, stresses in G); `model.py`
 converts. The library is loaded once per process: from `$WOUND_OPENING_LIB` when it is set
 (an explicit choice, and the only place then looked at), else from the first of the
-installed package (a wheel carries `wound_opening/libwound_opening.so`) and
+installed package (a wheel carries `wound_opening/libwound_opening.so`, or the `.dylib` or
+`wound_opening.dll` of macOS and Windows) and
 `target/release/libwound_opening.so` of the checkout (built by `cargo build --release`;
 editable install).
 Each worker process of a sweep loads it itself (nothing native crosses a pickle).
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -20,7 +22,10 @@ import numpy as np
 from .shipped import candidates, first_file
 
 ENV_VAR = "WOUND_OPENING_LIB"
-LIB_NAME = "libwound_opening.so"
+#: The file name cargo gives the library on this platform (a wheel keeps it).
+LIB_NAME = {"win32": "wound_opening.dll", "darwin": "libwound_opening.dylib"}.get(
+    sys.platform, "libwound_opening.so"
+)
 
 #: Grid accuracy asked of the solver (relative to the opening amplitude R_final - R1).
 TOLERANCE = 1e-10

@@ -4,13 +4,15 @@
 //! WoundOpening.fmu
 //! ├── modelDescription.xml             (generated from the model's table: fmi::fmi2::xml)
 //! ├── binaries/linux64/WoundOpening.so (the cdylib built beside this executable)
-//! ├── binaries/win64/WoundOpening.dll, binaries/aarch64-linux/WoundOpening.so
+//! ├── binaries/win64/WoundOpening.dll, binaries/aarch64-linux/WoundOpening.so,
+//! │   binaries/darwin64/WoundOpening.dylib (x86_64 + arm64)
 //! │                                    (cross-built when their targets are installed: platforms.rs)
 //! ├── documentation/index.html         (generated: model, variables, plots of the results)
 //! └── extra/org.fmi-standard.fmi-ls-ref/fmi-ls-manifest.xml, WoundOpening_out.csv
 //! WoundOpening-me.fmu                  (FMI 2.0 Model Exchange; WoundOpening.fmu is co-simulation)
 //! WoundOpening-fmi3.fmu                (FMI 3.0: both interfaces, binaries/x86_64-linux/WoundOpening.so,
-//!                                       x86_64-windows/WoundOpening.dll, aarch64-linux/WoundOpening.so)
+//!                                       x86_64-windows/WoundOpening.dll, aarch64-linux/WoundOpening.so,
+//!                                       x86_64-darwin/ and aarch64-darwin/WoundOpening.dylib)
 //! PurseString.fmu, PurseString-fmi3.fmu (the same cdylib: it picks the model by GUID)
 //!
 //! Nothing here names a model: every archive comes from the table of models (models::MODELS).
@@ -21,6 +23,7 @@ mod docs;
 mod platforms;
 mod reference;
 mod ssp;
+mod universal;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -99,12 +102,12 @@ enum Fmi {
 fn binary_entries(binaries: &[platforms::Binary], version: Fmi, id: &str) -> Vec<(String, Vec<u8>)> {
     binaries
         .iter()
-        .map(|b| {
+        .filter_map(|b| {
             let folder = match version {
                 Fmi::Two => b.fmi2,
                 Fmi::Three => b.fmi3,
-            };
-            (format!("binaries/{folder}/{id}{}", b.suffix), b.bytes.clone())
+            }?;
+            Some((format!("binaries/{folder}/{id}{}", b.suffix), b.bytes.clone()))
         })
         .collect()
 }

@@ -21,6 +21,7 @@ import zipfile
 from pathlib import Path
 from xml.etree import ElementTree
 
+import macho
 import numpy as np
 import pytest
 import wound_exact
@@ -36,8 +37,14 @@ STATE_TIME = 1.0
 # Every platform folder of the archives (src/package/platforms.rs), with the command that
 # lists a binary's exported functions (the cross binutils of scripts/cross.sh).
 PLATFORMS = {
-    "WoundOpening.fmu": ("linux64", "aarch64-linux", "win64"),
-    "WoundOpening-fmi3.fmu": ("x86_64-linux", "aarch64-linux", "x86_64-windows"),
+    "WoundOpening.fmu": ("linux64", "aarch64-linux", "win64", "darwin64"),
+    "WoundOpening-fmi3.fmu": (
+        "x86_64-linux",
+        "aarch64-linux",
+        "x86_64-windows",
+        "x86_64-darwin",
+        "aarch64-darwin",
+    ),
 }
 
 
@@ -48,6 +55,10 @@ def exported_symbols(fmu: Path, folder: str = "linux64") -> list[str]:
     with tempfile.TemporaryDirectory() as tmp:
         library = Path(tmp) / Path(name).name
         library.write_bytes(data)
+        if library.suffix == ".dylib":  # dyld's export trie, of each architecture
+            exports = {tuple(s.exports) for s in macho.read(library)}
+            assert len(exports) == 1, exports
+            return [name.removeprefix("_") for name in exports.pop()]
         if library.suffix == ".dll":  # the PE export table: "[   0] name" lines
             out = subprocess.run(
                 ["x86_64-w64-mingw32-objdump", "-p", str(library)],

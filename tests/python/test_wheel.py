@@ -114,6 +114,62 @@ def build_wheel(dist: Path) -> Path:
     return path
 
 
+#: platform tag -> the library a wheel of that tag holds, and how its first bytes begin:
+#: ELF of e_machine x86_64 (62) or aarch64 (183), PE of machine x86_64, universal Mach-O
+#: (the headers of each platform's library are checked in test_desk_binaries.py).
+WHEEL_LIBRARIES = {
+    "manylinux_2_17_x86_64": ("libwound_opening.so", lambda b: b[:4] == b"\x7fELF" and b[18] == 62),
+    "manylinux_2_17_aarch64": (
+        "libwound_opening.so",
+        lambda b: b[:4] == b"\x7fELF" and b[18] == 183,
+    ),
+    "win_amd64": (
+        "wound_opening.dll",
+        lambda b: b[:2] == b"MZ" and b[int.from_bytes(b[60:64], "little") + 4 :][:2] == b"\x64\x86",
+    ),
+    "macosx_10_12_universal2": ("libwound_opening.dylib", lambda b: b[:4] == b"\xca\xfe\xba\xbe"),
+}
+
+
+def check_platform_wheels(host_wheel: Path, out: Path) -> dict[str, Path]:
+    """python/platform_wheels.py on the host's wheel: one wheel per platform, each with the
+    host wheel's files but the library, its own platform's library under the name
+    `wound_opening._native` loads there, its tag in WHEEL and file name, a RECORD whose
+    hashes match every file; the same library as the archives carry."""
+    import platform_wheels
+
+    host = zipfile.ZipFile(host_wheel)
+    common = set(host.namelist()) - {"wound_opening/libwound_opening.so"}
+    common = {n for n in common if not n.endswith("dist-info/RECORD")}
+    wheels = {
+        p.name.rsplit("-", 1)[1].removesuffix(".whl"): p
+        for p in platform_wheels.main(host_wheel, ROOT / "target" / "fmu", out)
+    }
+    assert sorted(wheels) == sorted(WHEEL_LIBRARIES)
+    for tag, path in wheels.items():
+        library, is_native = WHEEL_LIBRARIES[tag]
+        with zipfile.ZipFile(path) as z:
+            names = set(z.namelist())
+            record = next(n for n in names if n.endswith(".dist-info/RECORD"))
+            assert names - {record} == common | {f"wound_opening/{library}"}, tag
+            native = z.read(f"wound_opening/{library}")
+            assert is_native(native), tag
+            archive, member, _ = platform_wheels.PLATFORMS[tag]
+            assert native == zipfile.ZipFile(host.open(f"wound_opening/fmu/{archive}")).read(member)
+            wheel_file = next(n for n in names if n.endswith(".dist-info/WHEEL"))
+            assert f"Tag: py3-none-{tag}" in z.read(wheel_file).decode().splitlines(), tag
+            rows = [r.split(",") for r in z.read(record).decode().splitlines()]
+            assert {r[0] for r in rows} == names, tag
+            for name, digest, size in rows:
+                if name != record:
+                    assert (
+                        platform_wheels.record_line(name, z.read(name)) == f"{name},{digest},{size}"
+                    )
+            for name in common - {n for n in names if n.endswith("dist-info/WHEEL")}:
+                assert z.read(name) == host.read(name), (tag, name)
+    return wheels
+
+
 def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
     """One test, one build: builds share the checkout's build/ folder, so two in parallel
     (pytest-xdist) would race on it."""
@@ -127,6 +183,9 @@ def test_wheel_installs_and_runs_without_rust_or_checkout(tmp_path):
     } <= names
     # ctypes, no CPython ABI: any Python 3, one platform.
     assert wheel.name.endswith("-py3-none-linux_x86_64.whl"), wheel.name
+    # scripts/wheel.sh's wheels, made from it; the manylinux x86_64 one is installed below.
+    wheels = check_platform_wheels(wheel, tmp_path / "platforms")
+    wheel = wheels["manylinux_2_17_x86_64"]
 
     venv, work = tmp_path / "venv", tmp_path / "work"
     work.mkdir()
