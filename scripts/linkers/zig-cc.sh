@@ -5,6 +5,12 @@
 # target/cross-tools (the PyPI packages cargo-zigbuild and ziglang: bash scripts/cross.sh).
 tools="$(cd "$(dirname "$0")/../.." && pwd)/target/cross-tools"
 if [ ! -x "$tools/bin/cargo-zigbuild" ]; then
+    # Without zig (a plain `cargo build` before any script ran), the host's own library links
+    # with its C compiler: it runs here, without the glibc 2.17 floor the scripts' builds have
+    # (the archives and wheels: the test command checks the floor).
+    case "$(basename "$0")" in
+    "$(uname -m)"-linux-gnu.*) exec cc "$@" ;;
+    esac
     echo "error: no $tools/bin/cargo-zigbuild (the Linux linker): run bash scripts/cross.sh" >&2
     exit 1
 fi
