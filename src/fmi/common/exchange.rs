@@ -56,9 +56,9 @@ impl Instance {
         if !(t.is_finite() && t >= self.clock.start) {
             return Err(format!("time = {t} is invalid: it must be finite and >= startTime = {}", self.clock.start));
         }
+        self.model.set_time(t - self.clock.start)?;
         self.clock.time = t;
-        let since = self.clock.since_start();
-        self.model.set_time(since)
+        Ok(())
     }
 
     pub fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), Rejected> {

@@ -243,7 +243,7 @@ impl Instance {
     /// Values of the listed variables, all of type `kind` (Integers are exact in f64).
     fn get_values(&mut self, kind: Kind, vrs: &[u32]) -> Result<Vec<f64>, Rejected> {
         let d = self.description();
-        let mut named = Vec::with_capacity(vrs.len());
+        let mut named = Vec::new();
         for &v in vrs {
             named.push(d.named(kind, v)?);
         }
@@ -294,7 +294,7 @@ impl Instance {
     /// rejection sets none of them.
     fn set_values(&mut self, kind: Kind, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
         let d = self.description();
-        let mut checked = Vec::with_capacity(vrs.len());
+        let mut checked = Vec::new();
         let mut states = Vec::new();
         for (&v, &x) in vrs.iter().zip(values) {
             self.settable_now(v)?;
@@ -327,8 +327,19 @@ impl Instance {
             }
             checked.push((v, self.model.check(v, x)?));
         }
+        if states.is_empty() {
+            checked.into_iter().for_each(|(v, x)| self.model.set(v, x));
+            return Ok(());
+        }
+        // States with other variables: the states are the model's to check (after the
+        // inputs they are read under), so the whole call is undone if it refuses them.
+        if let Some((k, x)) = states.iter().find(|(_, x)| !x.is_finite()) {
+            let name = d.state_name(Named::State(*k));
+            return Err(format!("{name} = {x} is invalid: states must be finite"));
+        }
+        let before = self.model.boxed_clone();
         checked.into_iter().for_each(|(v, x)| self.model.set(v, x));
-        self.set_some_states(&states)
+        self.set_some_states(&states).inspect_err(|_| self.model = before)
     }
 
     /// Model Exchange: continuous states set one by one with `fmi2SetReal` /

@@ -92,21 +92,36 @@ impl WoundModel {
     pub(super) fn set_exchange_states(&mut self, time: f64, x: &[f64]) -> Result<(), Rejected> {
         let ode = self.exchange_ode();
         let used = ode.as_ref().map_or(0, |o| o.x.len());
-        self.exchange.spare = x[used..].to_vec();
         match ode {
-            Some(ode) => self.set_departure(time / self.scales.time, &ode, &x[..used]),
+            Some(ode) => self.set_departure(self.model_time(time)?, &ode, &x[..used])?,
             None => {
-                let (t, p) = (time / self.scales.time, self.p());
-                self.solver.as_mut().expect("prepare() builds the solver").set_ode_state(t, &[], p).map_err(|e| e.to_string())
+                let (t, p) = (self.model_time(time)?, self.p());
+                self.solver.as_mut().expect("prepare() builds the solver").set_ode_state(t, &[], p).map_err(|e| e.to_string())?
             }
         }
+        self.exchange.spare = x[used..].to_vec();
+        Ok(())
+    }
+
+    /// `time` (seconds since the cut) in T, refused with the range where it overflows.
+    fn model_time(&self, time: f64) -> Result<f64, Rejected> {
+        let t = time / self.scales.time;
+        if t.is_finite() {
+            return Ok(t);
+        }
+        Err(format!(
+            "time = {time:e} s since the cut is beyond the range of the time scale T = {:e} s: accepted: times up to {:.3e} s (the largest double in T)",
+            self.scales.time,
+            f64::MAX * self.scales.time
+        ))
     }
 
     /// The master's time moves the physical state along `c0` with the states kept.
     pub(super) fn exchange_time(&mut self, time: f64) -> Result<(), Rejected> {
+        let t = self.model_time(time)?;
         let Some(ode) = self.exchange_ode() else { return Ok(()) };
         let y = self.departure(&ode);
-        self.set_departure(time / self.scales.time, &ode, &y)
+        self.set_departure(t, &ode, &y)
     }
 
     /// `y_k' = ((p0 - p) X_k - y_k) / nu_k` per second of master time.
