@@ -20,6 +20,7 @@
 //! ([`reference_radii`]).
 
 use super::error::{Failure, WoStatus};
+use super::solver_c::zeros;
 use crate::solver::{Params, Settings, Solver, check_edge_stress, radius_sensitivities};
 
 /// One problem of a series call: parameters, accuracy target and the constant edge stress.
@@ -83,8 +84,8 @@ pub fn series(problem: &Problem, times: &[f64], radius: &mut [f64], velocity: Op
     check_times(times)?;
     let mut solver = start(problem)?;
     let p = problem.edge_stress;
-    let mut r = vec![0.0; times.len()];
-    let mut v = vec![0.0; times.len()];
+    let mut r = zeros(times.len(), "radius")?;
+    let mut v = if velocity.is_some() { zeros(times.len(), "velocity")? } else { Vec::new() };
     let want_velocity = velocity.is_some();
     walk(&mut solver, p, times, |i, s| {
         r[i] = s.wound_radius();
@@ -115,8 +116,11 @@ pub struct SeriesOut<'a> {
 /// grading length held fixed: no decomposition beyond the one of `series`). Every output is
 /// written only on success.
 pub fn series_sensitivities(problem: &Problem, times: &[f64], radius: &mut [f64], out: SeriesOut<'_>) -> Result<(), Failure> {
-    let mut r = vec![0.0; times.len()];
-    let mut v = out.velocity.as_ref().map(|_| vec![0.0; times.len()]);
+    let mut r = zeros(times.len(), "radius")?;
+    let mut v = match out.velocity {
+        Some(_) => Some(zeros(times.len(), "velocity")?),
+        None => None,
+    };
     series(problem, times, &mut r, v.as_deref_mut())?;
     let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
     let d = radius_sensitivities(&problem.params, &settings, problem.edge_stress, times)?;
@@ -288,8 +292,8 @@ pub fn profile_series(problem: &Problem, times: &[f64], radii: &[f64], out: Prof
     let mut solver = start(problem)?;
     let (p, r_inf) = (problem.edge_stress, problem.params.r_inf);
     let n = radii.len();
-    let mut u = vec![0.0; times.len() * n];
-    let mut v = vec![0.0; times.len() * n];
+    let mut u = zeros(times.len() * n, "u")?;
+    let mut v = if out.velocity.is_some() { zeros(times.len() * n, "v")? } else { Vec::new() };
     let want_velocity = out.velocity.is_some();
     walk(&mut solver, p, times, |i, s| {
         let x = tissue_points(s, radii, r_inf, (i, times[i]))?;
