@@ -25,18 +25,8 @@ const OUTPUTS: [u32; 3] = [Vr::EdgeStress as u32, Vr::WoundRadius as u32, Vr::Ed
 /// An FMI 2.0 Model Exchange instance in Continuous-Time Mode at `t`, lambda 0.5, with the
 /// edge stress changed after initialization and the states moved off 0.
 fn me2(t: f64) -> fmi2Component {
-    let (name, guid) = (CString::new("me").unwrap(), CString::new(WOUND).unwrap());
-    let callbacks = fmi2CallbackFunctions::NONE;
-    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_MODEL_EXCHANGE, guid.as_ptr(), c"".as_ptr(), &callbacks, 0, 0) };
-    assert!(!c.is_null());
+    let c = continuous_time(&[(Vr::Lambda as u32, 0.5)]);
     unsafe {
-        assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), OK);
-        assert_eq!(set_real(c, Vr::Lambda as u32, 0.5), OK);
-        assert_eq!(fmi2EnterInitializationMode(c), OK);
-        assert_eq!(fmi2ExitInitializationMode(c), OK);
-        let mut info = std::mem::zeroed();
-        assert_eq!(fmi2NewDiscreteStates(c, &mut info), OK);
-        assert_eq!(fmi2EnterContinuousTimeMode(c), OK);
         assert_eq!(fmi2SetTime(c, t), OK);
         assert_eq!(set_real(c, EDGE, 0.2), OK);
         let x: Vec<f64> = (0..NX).map(|k| 1e-3 / (k + 1) as f64).collect();

@@ -402,6 +402,11 @@ impl Solver {
     /// Set the coordinates of [`Solver::ode`] at time `time`, the state having evolved
     /// under `p`. Refused for a length other than the ODE's, for values that are not
     /// finite, and for schemes without an ODE.
+    ///
+    /// The velocity split's reference follows from the time alone: at `time = 0` nothing
+    /// has evolved (the cut: the uniform tension at rest under `sigma`, so an edge stress
+    /// `p != sigma` meets the closed-form instantaneous response); at any later time the
+    /// state has evolved under `p` and its unresolved fast modes are at rest under it.
     pub fn set_ode_state(&mut self, time: f64, x: &[f64], p: f64) -> Result<(), SolverError> {
         let want = self.engine.ode(p).map_or(0, |o| o.x.len());
         if x.len() != want {
@@ -411,7 +416,8 @@ impl Solver {
             return Err(SolverError::StateNotFinite);
         }
         check_edge_stress(p)?;
-        if !self.engine.set_ode_state(x, p) {
+        let reference = if time == 0.0 { self.sigma } else { p };
+        if !self.engine.set_ode_state(x, reference) {
             return Err(SolverError::StateLength(0, x.len()));
         }
         self.time = time;

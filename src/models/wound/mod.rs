@@ -145,6 +145,14 @@ impl WoundModel {
         self.solver.as_ref().expect("prepare() builds the solver before outputs, steps and derivatives")
     }
 
+    /// The states' nominals under the edge stress `p` (in G).
+    fn nominals_at(&self, p: f64) -> Vec<f64> {
+        let mut n = self.solver.as_ref().and_then(|s| s.ode_nominals(p)).unwrap_or_default();
+        let spare = n.iter().copied().fold(0.0, f64::max);
+        n.resize(MODEL_EXCHANGE_STATES, if spare > 0.0 { spare } else { 1.0 });
+        n
+    }
+
     /// Dimensionless edge stress.
     fn p(&self) -> f64 {
         self.edge_stress / self.scales.stress
@@ -264,6 +272,9 @@ impl FmuModel for WoundModel {
             Vr::ValidityWarning => f64::from(u8::from(self.validity_warning)),
             Vr::WoundRadius => self.scales.length * self.solver().wound_radius(),
             Vr::EdgeVelocity => {
+                if let Some(v) = self.evolved_edge_velocity() {
+                    return v;
+                }
                 let (solver, p) = (self.solver(), self.p());
                 if !solver.edge_velocity_defined(p) {
                     let Ok(mean) = solver.mean_edge_velocity(p, MEAN_WINDOW).map(|v| self.scales.velocity() * v) else {
@@ -451,11 +462,13 @@ impl FmuModel for WoundModel {
     /// Nominals of the modal coordinates ([`Solver::ode_nominals`]: the edge-stress scale
     /// times each mode's edge value), read by integrators for their absolute tolerance;
     /// the inert spare states take the largest.
+    /// Those of the reference's edge stress (they move at events only).
     fn nominals(&self) -> Vec<f64> {
-        let mut n = self.solver.as_ref().and_then(|s| s.ode_nominals(self.p())).unwrap_or_default();
-        let spare = n.iter().copied().fold(0.0, f64::max);
-        n.resize(MODEL_EXCHANGE_STATES, if spare > 0.0 { spare } else { 1.0 });
-        n
+        self.nominals_at(self.exchange.reference.as_ref().map_or(self.p(), |r| r.p))
+    }
+
+    fn update_discrete_states(&mut self) -> (bool, bool) {
+        self.exchange_event()
     }
 
     fn derivatives(&self, _time: f64) -> Vec<f64> {
