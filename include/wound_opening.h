@@ -267,8 +267,9 @@ fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real *x_nomina
 
 // Create a solver at t = 0 (just after the cut, in uniform tension) for lambda = 0 or in
 // [1e-150, 1e6], sigma in (-6, 1e6] and R_inf in [1.001, 1e6], on the cheapest grid whose wound radius stays within
-// `tolerance` (> 0) of the exact solution, relative to the opening amplitude, for
-// t >= 0.01. On success `*solver` is the new solver; on failure it is set to NULL.
+// `tolerance` (> 0) of the exact solution for t >= 0.01, relative to the larger of the free
+// opening and the one under the edge stress p applied: max(|sigma|, |sigma - p|) S with
+// S = 2 R_inf^2 / (3 (R_inf^2 - 1)) - 1/6. On success `*solver` is the new solver; on failure it is set to NULL.
 wo_status wo_solver_new(double lambda,
                         double sigma,
                         double r_inf,

@@ -74,8 +74,9 @@ pub(super) fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mu
 
 /// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda = 0 or in
 /// [1e-150, 1e6], sigma in (-6, 1e6] and R_inf in [1.001, 1e6], on the cheapest grid whose wound radius stays within
-/// `tolerance` (> 0) of the exact solution, relative to the opening amplitude, for
-/// t >= 0.01. On success `*solver` is the new solver; on failure it is set to NULL.
+/// `tolerance` (> 0) of the exact solution for t >= 0.01, relative to the larger of the free
+/// opening and the one under the edge stress p applied: max(|sigma|, |sigma - p|) S with
+/// S = 2 R_inf^2 / (3 (R_inf^2 - 1)) - 1/6. On success `*solver` is the new solver; on failure it is set to NULL.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wo_solver_new(lambda: f64, sigma: f64, r_inf: f64, tolerance: f64, solver: *mut *mut WoSolver) -> WoStatus {
     run("wo_solver_new", || {
