@@ -125,6 +125,8 @@ fn fmi2_set_time_beyond_the_time_scale_is_refused_with_the_range() {
     model.set(Vr::TimeScale as u32, 1e-12);
     model.prepare().unwrap();
     model.enter_model_exchange();
+    let why = model.step(0.0, 1e300).unwrap_err();
+    assert!(why.contains("a step of 1e300 s is beyond the range of the time scale T = 1e-12 s"), "{why}");
     let why = model.set_time(1e300).unwrap_err();
     assert!(why.contains("beyond the range of the time scale T = 1e-12 s") && why.contains("1.798e296 s"), "{why}");
 }

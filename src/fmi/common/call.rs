@@ -21,6 +21,9 @@ pub struct Dialect {
     pub get_before_initialization: bool,
     /// Configuration Mode exists: an FMU state saved there can be restored.
     pub configuration_mode: bool,
+    /// The arguments of the directional derivative as this version names them: the
+    /// unknowns, the knowns and the seed.
+    pub derivative_arguments: [&'static str; 3],
 }
 
 /// The FMI calls, for the state-machine check and the call log.

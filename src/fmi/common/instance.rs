@@ -417,17 +417,19 @@ impl Instance {
                         (true, false) => " or a state derivative",
                     };
                     Err(format!(
-                        "{} (value reference {v}) is {article} {role} but a {what} must be a Real {}{also}",
+                        "{} (value reference {v}) is {article} {role} but {} {what} must be a Real {}{also}",
                         d.state_name(named),
+                        if what.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" },
                         want.as_str()
                     ))
                 }
             }
         };
-        unknowns.iter().try_for_each(|&v| role(v, Causality::Output, false, "vUnknown_ref entry"))?;
-        knowns.iter().try_for_each(|&v| role(v, Causality::Input, true, "vKnown_ref entry"))?;
+        let [unknown, known, seed_name] = self.dialect.derivative_arguments;
+        unknowns.iter().try_for_each(|&v| role(v, Causality::Output, false, &format!("{unknown} entry")))?;
+        knowns.iter().try_for_each(|&v| role(v, Causality::Input, true, &format!("{known} entry")))?;
         if let Some(x) = seed.iter().find(|x| !x.is_finite()) {
-            return Err(format!("dvKnown = {x} is invalid: it must be finite"));
+            return Err(format!("{seed_name} = {x} is invalid: it must be finite"));
         }
         self.prepare()?;
         self.model.jacobian(unknowns, knowns, self.clock.since_start())
@@ -453,7 +455,7 @@ impl Instance {
         match got.iter().position(|x| !x.is_finite()) {
             Some(i) => {
                 let name = d.named(Kind::Real, names[i]).map_or_else(|_| names[i].to_string(), |n| d.state_name(n));
-                Err(format!("the derivative of {name} overflows for this dvKnown"))
+                Err(format!("the derivative of {name} overflows for this {}", self.dialect.derivative_arguments[2]))
             }
             None => Ok(got.to_vec()),
         }

@@ -8,7 +8,8 @@ use crate::fmi::fmi2::names as fmi2;
 
 /// FMI 3.0, section 2.3.2: fmi3Get* also reads start values in Instantiated and
 /// Configuration Mode.
-pub const FMI3: Dialect = Dialect { name, text, get_before_initialization: true, configuration_mode: true };
+pub const FMI3: Dialect =
+    Dialect { name, text, get_before_initialization: true, configuration_mode: true, derivative_arguments: ["unknowns", "knowns", "seed"] };
 
 /// The FMI 3.0 name, where it is not the FMI 2.0 one with `fmi3` for `fmi2`.
 pub fn name(call: Call) -> String {

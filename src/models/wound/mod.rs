@@ -304,6 +304,13 @@ impl FmuModel for WoundModel {
         let r_inf = self.params.r_inf;
         let was_valid = self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
         let (dt, p, rate) = (h / self.scales.time, self.p(), self.edge_stress_rate);
+        if !dt.is_finite() {
+            let t = self.scales.time;
+            return Err(format!(
+                "a step of {h:e} s is beyond the range of the time scale T = {t:e} s: accepted: steps up to {:.3e} s",
+                f64::MAX * t
+            ));
+        }
         let p1 = rate * self.scales.time / self.scales.stress;
         let solver = self.solver.as_mut().expect("prepare() builds the solver before a step");
         solver.advance_linear(dt, p, p1).map_err(|e| e.to_string())?;
@@ -311,7 +318,7 @@ impl FmuModel for WoundModel {
         if let Some(why) = self.solver().validity_violation(r_inf).filter(|_| was_valid) {
             let text = format!("at t = {} s the run leaves the model's validity: {why}", time + h);
             if self.validity_warning {
-                self.warn(format!("{text} (a master that stops on fmi2Warning runs on, with this message logged and status OK, when the parameter validity_warning is set to 0)"));
+                self.warn(format!("{text} (a master that stops on a warning status runs on, with this message logged and status OK, when the parameter validity_warning is set to 0)"));
             } else {
                 self.note(format!("{text} (reported with status OK: validity_warning = 0)"));
             }

@@ -29,7 +29,7 @@ crate::variable_table! {
     StressScale => parameter("G", 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
     // Added after the interface was published: after every other value reference (13 rows,
     // 217 states and derivatives at 13 ..= 446, FMI 3.0's time, n_probes and arrays at 447 ..= 451).
-    ValidityWarning = 452 => integer("validity_warning", 1, (0, 1), "How a step that leaves the model's validity (wound radius <= 0, a folded ring, an edge strain beyond 1) is reported: 1, fmi2Warning (fmi3Warning) with the reason in the log (category logStatusWarning); 0, the same log message with status OK, for masters that stop on a warning"),
+    ValidityWarning = 452 => integer("validity_warning", 1, (0, 1), "How a step that leaves the model's validity (wound radius <= 0, a folded ring, an edge strain beyond 1) is reported: 1, status Warning with the reason in the log (category logStatusWarning); 0, the same log message with status OK, for masters that stop on a warning"),
 }
 
 /// Continuous states of Model Exchange: the modal coordinates of the spectral-element
