@@ -307,3 +307,36 @@ fn huge_counts_are_invalid_arguments_and_the_process_lives() {
     assert_eq!(wound_opening::boundary::caught_panics(), panics, "refused, not caught");
     unsafe { fmi2FreeInstance(c) };
 }
+
+/// wo_series reports leaving the model's validity as the step API does: the same
+/// `WO_OUTSIDE_VALIDITY` (a warning), here with every output written and the first time
+/// named; a run that stays valid is OK.
+#[test]
+fn leaving_the_validity_is_reported_with_the_outputs() {
+    let times = [0.5, 1.0, 3.0, 10.0];
+    let (mut r, mut v) = ([f64::NAN; 4], [f64::NAN; 4]);
+    let status = unsafe { wo_series(pb(1.0, 2.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), v.as_mut_ptr()) };
+    assert_eq!(status, WoStatus::WoOutsideValidity, "{}", last_error());
+    assert!(last_error().starts_with("wo_series: times[") && last_error().contains("leaves the model's validity"), "{}", last_error());
+    let mut s = null_mut();
+    unsafe {
+        assert_eq!(wo_solver_new(1.0, 2.0, 10.0, TOL, &mut s), WoStatus::WoOk);
+        let mut first = None;
+        for (k, &t) in times.iter().enumerate() {
+            let status = wo_solver_advance(s, t, 0.0);
+            if status == WoStatus::WoOutsideValidity && first.is_none() {
+                first = Some(k);
+                assert!(last_error().contains(&format!("t = {t}")), "{}", last_error());
+            }
+            let (mut a, mut b) = (f64::NAN, f64::NAN);
+            assert_eq!(wo_solver_wound_radius(s, &mut a), WoStatus::WoOk);
+            assert_eq!(wo_solver_edge_velocity(s, &mut b), WoStatus::WoOk);
+            assert_eq!((r[k], v[k]), (a, b), "every output written, as the step API's");
+        }
+        let first = first.expect("the step API warns");
+        assert!(wo_series(pb(1.0, 2.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), null_mut()) == WoStatus::WoOutsideValidity);
+        assert!(last_error().contains(&format!("times[{first}] = {}", times[first])), "{}", last_error());
+        assert_eq!(wo_solver_free(s), WoStatus::WoOk);
+        assert_eq!(wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), null_mut()), WoStatus::WoOk);
+    }
+}

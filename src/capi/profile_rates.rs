@@ -51,7 +51,7 @@ pub fn profile_rates(
     let (n, r_inf) = (radii.len(), problem.params.r_inf);
     let mut p = zeros(times.len() * n * width, "rates")?;
     let mut e = zeros(times.len() * 2 * width, "edge")?;
-    walk(&mut solver, 0.0, times, |i, s| {
+    let left = walk(&mut solver, (0.0, r_inf), times, |i, s| {
         let x = tissue_points(s, radii, r_inf, (i, times[i]))?;
         let (rates, at_edge) = velocity_rates(&problem.params, &settings, times[i], &x, width > RATES)?;
         for (j, r) in rates.iter().enumerate() {
@@ -65,7 +65,7 @@ pub fn profile_rates(
     if let Some(o) = edge {
         o.copy_from_slice(&e);
     }
-    Ok(())
+    left.status()
 }
 
 #[cfg(test)]

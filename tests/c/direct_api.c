@@ -304,6 +304,14 @@ static void series(void) {
     REFUSED(wo_profile_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &one, 1, &inside, 1, u, NULL), WO_INVALID_ARGUMENT,
             "radii[0] = 1.01 is inside the wound at times[0] = 1");
     CHECK(strcmp(wo_status_name(WO_UNDEFINED), "WO_UNDEFINED") == 0, "status name of WO_UNDEFINED");
+
+    /* Leaving the validity (sigma = 2 by t = 10): WO_OUTSIDE_VALIDITY, as the step API, with
+     * every output written and the first time named. */
+    double late[2] = {1.0, 10.0}, r_late[2] = {NAN, NAN};
+    REFUSED(wo_series((wo_problem){1.0, 2.0, 10.0, 1e-10, 0.0}, late, 2, r_late, NULL), WO_OUTSIDE_VALIDITY,
+            "times[1] = 10: the run leaves the model's validity there");
+    CHECK(isfinite(r_late[0]) && isfinite(r_late[1]) && r_late[1] > r_late[0], "outputs written with the warning: %g %g", r_late[0],
+          r_late[1]);
 }
 
 /* Counts checked before anything is copied: a count whose bytes exceed the address space,
