@@ -349,7 +349,9 @@ const char *wo_status_name(int status);
 // `times[i]` (in T; finite, >= 0, ascending), `i < count`, of one `problem`. `velocity` may be NULL (radius only); at
 // lambda = 0 a velocity asked for at t = 0 is infinite in the model: `WO_UNDEFINED`, and
 // nothing is written. One solver is built (O(modes) when the basis of this R_inf is
-// cached) and advanced from time to time, exactly.
+// cached) and advanced from time to time, exactly. A run that leaves the model's validity
+// is `WO_OUTSIDE_VALIDITY` (a warning, as `wo_solver_advance`): every output is written and
+// the message names the first time outside; the other series functions likewise.
 wo_status wo_series(wo_problem problem,
                     const double *times,
                     size_t count,
