@@ -263,9 +263,9 @@ fn check_reference_radii(s: &wound_opening::solver::Solver) {
     let ends = s.displacement(&[1.0, 12.0]);
     let (lo, hi) = (1.0 + ends[0], 12.0 + ends[1]);
     let radii: Vec<f64> = (0..=300).map(|j| lo + (hi - lo) * (j as f64 / 300.0).powi(3)).chain([hi, lo, 3.0, 3.0]).collect();
-    let together = reference_radii(&s, &radii, 12.0, (lo, hi));
+    let together = reference_radii(s, &radii, 12.0, (lo, hi));
     for (&r, &x) in radii.iter().zip(&together) {
-        assert_eq!(x.to_bits(), reference_radii(&s, &[r], 12.0, (lo, hi))[0].to_bits(), "{r}");
+        assert_eq!(x.to_bits(), reference_radii(s, &[r], 12.0, (lo, hi))[0].to_bits(), "{r}");
         assert!((x + s.displacement(&[x])[0] - r).abs() <= 8.0 * f64::EPSILON * r, "{r}: {x}");
     }
 }

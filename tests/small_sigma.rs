@@ -104,8 +104,8 @@ fn sigma_zero_is_exact() {
 /// `|sigma - p|`, so the tolerance is relative to the larger of the free opening (edge
 /// stress 0, `~ |sigma|`) and the actual one (`~ |sigma - p|`): both are
 /// `R_final - R1 = (sigma - p) S` with `S = 2 R_inf^2 / (3 (R_inf^2 - 1)) - 1/6` the same
-/// factor. Exact values: linear in sigma and p, `R(t) = 1 + sigma / 6 + (sigma - p) (R_ref(t)
-/// - 7/6)`. Edge stresses from -1e3 to 1e3 times sigma and within 1e-9 of sigma, every sigma
+/// factor. Exact values: linear in sigma and p,
+/// `R(t) = 1 + sigma / 6 + (sigma - p) (R_ref(t) - 7/6)`. Edge stresses from -1e3 to 1e3 times sigma and within 1e-9 of sigma, every sigma
 /// from 1e-6 to 1 (either sign) and tolerances 1e-10 to 1e-3: each is refused with the range
 /// or meets the tolerance on that scale.
 #[test]

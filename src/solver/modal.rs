@@ -96,7 +96,8 @@ const QR_UP_TO: f64 = 1e4;
 /// Jacobi method ([`super::jacobi`]). Either choice is a deterministic function of `C`.
 fn eigen(c: DMatrix<f64>) -> Result<(DVector<f64>, DMatrix<f64>), ModalError> {
     let bound = c.row_iter().map(|row| row.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
-    if !(bound <= QR_UP_TO) {
+    // Beyond the bound, NaN included.
+    if bound.partial_cmp(&QR_UP_TO).is_none_or(|o| o == std::cmp::Ordering::Greater) {
         return jacobi::symmetric_eigen(&c).ok_or(ModalError::NoConvergence);
     }
     let c = 0.5 * (&c + c.transpose());

@@ -545,7 +545,8 @@ pub unsafe extern "C" fn fmi3DoStep(
         OK
     });
     let Some((requester, p0)) = asked else { return first };
-    if guard(|| requester.request_inputs(t + h)).is_err() {}
+    // A panic in the importer's callback is caught; the step goes on with the inputs it had.
+    let _ = guard(|| requester.request_inputs(t + h));
     with_instance(instance, Call::FinishStep, describe, |i| {
         let stepped = i.finish_step(t, h, &p0);
         outs(i)?;
