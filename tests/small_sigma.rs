@@ -120,7 +120,9 @@ fn an_edge_stress_meets_the_tolerance_on_the_larger_opening() {
                 let times: Vec<f64> = REFERENCE.iter().map(|r| r.0).collect();
                 let mut radius = vec![f64::NAN; times.len()];
                 let status = unsafe { wo_series(problem, times.as_ptr(), 2, radius.as_mut_ptr(), std::ptr::null_mut()) };
-                if status != WoStatus::WoOk {
+                // Leaving the model's validity (large |sigma - p|) is a warning with the
+                // outputs written: the tolerance holds all the same.
+                if !matches!(status, WoStatus::WoOk | WoStatus::WoOutsideValidity) {
                     assert!(last_error().contains("accepted: sigma = 0 or |sigma| >="), "sigma {sigma:e}, p {p:e}: {}", last_error());
                     continue;
                 }
