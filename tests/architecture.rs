@@ -178,3 +178,19 @@ fn the_solver_modules_make_no_circle() {
     }
     assert!(edges.iter().any(|(a, b)| a == "sensitivity" && b == "modal") || edges.len() > 5, "edges found: {edges:?}");
 }
+
+/// Each FMI version writes its own words: no model description names the other version's
+/// functions or statuses, and no source rewrites one version's words into the other's.
+#[test]
+fn each_fmi_version_writes_its_own_words() {
+    for (d, _) in MODELS.iter() {
+        let (two, three) = (wound_opening::fmi::fmi2::xml::fmi2(d), wound_opening::fmi::fmi3::xml::fmi3(d));
+        assert!(!three.contains("fmi2"), "{}: the FMI 3.0 description names FMI 2.0", d.model_identifier);
+        assert!(!two.contains("fmi3"), "{}: the FMI 2.0 description names FMI 3.0", d.model_identifier);
+    }
+    for path in rust_files(&src("")) {
+        let text = std::fs::read_to_string(&path).expect("readable");
+        let rewrite = ["replace(\"fmi2\"", "replacen(\"fmi2\""];
+        assert!(!rewrite.iter().any(|r| text.contains(r)), "{}: rewrites FMI 2.0 words", path.display());
+    }
+}

@@ -13,9 +13,6 @@ use crate::fmi::common::machine::{Interface, Machine};
 pub struct Dialect {
     /// A call's name, for messages.
     pub name: fn(Call) -> String,
-    /// Free text (log messages, which the models write with the first version's function
-    /// names) as this version's importer should read it.
-    pub text: fn(&str) -> String,
     /// The Get calls also read start values in Instantiated and Configuration Mode
     /// (the arrays refuse outputs and states there).
     pub get_before_initialization: bool,

@@ -102,12 +102,6 @@ impl Instance {
     }
 
     /// The name of `call` in this instance's FMI version.
-    /// A message in the words of the instance's FMI version (FMI 3.0: its own function
-    /// names, [`super::call::fmi3_text`]).
-    fn in_own_words(&self, message: &str) -> String {
-        (self.dialect.text)(message)
-    }
-
     pub fn name_of(&self, call: Call) -> String {
         (self.dialect.name)(call)
     }
@@ -125,13 +119,13 @@ impl Instance {
 
     /// Log under an error category (always on).
     pub fn log_error(&self, message: &str) {
-        self.log.error(&self.in_own_words(message));
+        self.log.error(message);
     }
 
     /// A call this FMU cannot answer but that leaves it usable: log why (category
     /// `logStatusDiscard`) and return [`Status::Discard`] for the call to return.
     pub fn discard(&self, message: &str) -> Status {
-        self.log.discard(&self.in_own_words(message));
+        self.log.discard(message);
         Status::Discard
     }
 
@@ -162,11 +156,11 @@ impl Instance {
             Status::Error
         })?;
         if let Some(note) = self.model.take_note() {
-            self.log.note(&self.in_own_words(&format!("{name}: {note}")));
+            self.log.note(&format!("{name}: {note}"));
         }
         match self.model.take_warning() {
             Some(warning) => {
-                self.log.warning(&self.in_own_words(&format!("{name}: {warning}")));
+                self.log.warning(&format!("{name}: {warning}"));
                 Ok((value, Status::Warning))
             }
             None => Ok((value, Status::Ok)),

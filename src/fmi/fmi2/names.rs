@@ -17,7 +17,6 @@ impl Instance {
 
 pub const FMI2: Dialect = Dialect {
     name: |c| name(c).to_string(),
-    text: str::to_string,
     get_before_initialization: false,
     configuration_mode: false,
     derivative_arguments: ["vUnknown_ref", "vKnown_ref", "dvKnown"],

@@ -7,7 +7,7 @@
 //! functions.rs     the common and co-simulation functions
 //! derivatives.rs   the directional and adjoint derivatives
 //! intermediate.rs  Intermediate Update Mode inside a step (safe Rust)
-//! names.rs         its Dialect: the functions' names, text in its words (safe Rust)
+//! names.rs         its Dialect: the functions' names, each written out (safe Rust)
 //! states.rs        the FMU-state functions
 //! arrays.rs        time, arrays and Configuration Mode on an instance (safe Rust)
 //! exchange.rs      the Model Exchange functions
