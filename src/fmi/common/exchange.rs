@@ -67,6 +67,23 @@ impl Instance {
         Ok(())
     }
 
+    /// Model Exchange: continuous states set one by one with `fmi2SetReal` /
+    /// `fmi3SetFloat64` in Continuous-Time Mode, where `fmi2SetContinuousStates` is allowed
+    /// (FMI 3.0 allows it there for continuous-time states, FMI 2.0's mathematical
+    /// description too; integrators use it for finite-difference Jacobians): the others
+    /// keep their values, and the model checks the new vector as with
+    /// `fmi2SetContinuousStates`.
+    pub(super) fn set_some_states(&mut self, states: &[(usize, f64)]) -> Result<(), Rejected> {
+        if states.is_empty() {
+            return Ok(());
+        }
+        let mut x = self.get_continuous_states(self.description().state_count())?;
+        for &(k, v) in states {
+            x[k] = v;
+        }
+        self.set_continuous_states(&x)
+    }
+
     pub fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), Rejected> {
         self.check_count(x.len(), "nx")?;
         if let Some(i) = x.iter().position(|v| !v.is_finite()) {

@@ -336,23 +336,6 @@ impl Instance {
         self.set_some_states(&states).inspect_err(|_| self.model = before)
     }
 
-    /// Model Exchange: continuous states set one by one with `fmi2SetReal` /
-    /// `fmi3SetFloat64` in Continuous-Time Mode, where `fmi2SetContinuousStates` is allowed
-    /// (FMI 3.0 allows it there for continuous-time states, FMI 2.0's mathematical
-    /// description too; integrators use it for finite-difference Jacobians): the others
-    /// keep their values, and the model checks the new vector as with
-    /// `fmi2SetContinuousStates`.
-    fn set_some_states(&mut self, states: &[(usize, f64)]) -> Result<(), Rejected> {
-        if states.is_empty() {
-            return Ok(());
-        }
-        let mut x = self.get_continuous_states(self.description().state_count())?;
-        for &(k, v) in states {
-            x[k] = v;
-        }
-        self.set_continuous_states(&x)
-    }
-
     /// `fmi2SetReal`.
     pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
         self.set_values(Kind::Real, vrs, values)
