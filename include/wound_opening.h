@@ -267,8 +267,9 @@ fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real *x_nomina
 
 // Create a solver at t = 0 (just after the cut, in uniform tension) for lambda = 0 or in
 // [1e-150, 1e6], sigma in (-6, 1e6] and R_inf in [1.001, 1e6], on the cheapest grid whose wound radius stays within
-// `tolerance` (> 0) of the exact solution, relative to the opening amplitude, for
-// t >= 0.01. On success `*solver` is the new solver; on failure it is set to NULL.
+// `tolerance` (> 0) of the exact solution for t >= 0.01, relative to the larger of the free
+// opening and the one under the edge stress p applied: max(|sigma|, |sigma - p|) S with
+// S = 2 R_inf^2 / (3 (R_inf^2 - 1)) - 1/6. On success `*solver` is the new solver; on failure it is set to NULL.
 wo_status wo_solver_new(double lambda,
                         double sigma,
                         double r_inf,
@@ -348,7 +349,9 @@ const char *wo_status_name(int status);
 // `times[i]` (in T; finite, >= 0, ascending), `i < count`, of one `problem`. `velocity` may be NULL (radius only); at
 // lambda = 0 a velocity asked for at t = 0 is infinite in the model: `WO_UNDEFINED`, and
 // nothing is written. One solver is built (O(modes) when the basis of this R_inf is
-// cached) and advanced from time to time, exactly.
+// cached) and advanced from time to time, exactly. A run that leaves the model's validity
+// is `WO_OUTSIDE_VALIDITY` (a warning, as `wo_solver_advance`): every output is written and
+// the message names the first time outside; the other series functions likewise.
 wo_status wo_series(wo_problem problem,
                     const double *times,
                     size_t count,

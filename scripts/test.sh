@@ -25,6 +25,9 @@ debian=$!
 trap 'kill "$venv" "$debian" 2>/dev/null || true' EXIT  # a failed step ends the set-up too
 cargo fmt --check  # the crate's format (rustfmt.toml)
 cargo test --release
+# Lints with warnings as errors, on the test build's dependencies (checked, not rebuilt).
+cargo clippy --version >/dev/null 2>&1 || rustup component add clippy
+cargo clippy --release --all-targets --quiet -- -D warnings
 cargo build --release  # the library the Python package loads
 for job in "venv $venv" "debian $debian"; do
     read -r name pid <<<"$job"

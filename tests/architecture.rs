@@ -139,3 +139,58 @@ fn the_fmi_core_names_no_version() {
     }
     assert_eq!(code_of("let a = \"fmi2\"; // fmi3 here\n// fmi3\n"), "let a = \"fmi2\"; \n\n");
 }
+
+/// No circle among the solver's modules: a module's `use super::name` of another module
+/// (outside its tests) is an edge, and the graph has no cycle. (Items the facade
+/// `src/solver/mod.rs` re-exports are not counted here.)
+#[test]
+fn the_solver_modules_make_no_circle() {
+    let dir = src("solver");
+    let modules: Vec<String> =
+        rust_files(&dir).iter().filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned())).filter(|m| m != "mod").collect();
+    let edges: Vec<(String, String)> = modules
+        .iter()
+        .flat_map(|m| {
+            let text = std::fs::read_to_string(dir.join(format!("{m}.rs"))).expect("readable");
+            let code = text.split("#[cfg(test)]").next().unwrap_or("").to_owned();
+            let uses: Vec<String> = code.lines().filter(|l| l.trim_start().starts_with("use super::")).map(str::to_owned).collect();
+            modules.iter().filter(|n| *n != m && uses.iter().any(|u| has_word(u, n))).map(|n| (m.clone(), n.clone())).collect::<Vec<_>>()
+        })
+        .collect();
+    // Depth-first search for a back edge.
+    fn visit(m: &str, edges: &[(String, String)], path: &mut Vec<String>, done: &mut Vec<String>) {
+        if done.iter().any(|d| d == m) {
+            return;
+        }
+        if let Some(i) = path.iter().position(|p| p == m) {
+            panic!("a circle among src/solver's modules: {} -> {m}", path[i..].join(" -> "));
+        }
+        path.push(m.to_owned());
+        for (_, to) in edges.iter().filter(|(from, _)| from == m) {
+            visit(to, edges, path, done);
+        }
+        path.pop();
+        done.push(m.to_owned());
+    }
+    let mut done = Vec::new();
+    for m in &modules {
+        visit(m, &edges, &mut Vec::new(), &mut done);
+    }
+    assert!(edges.iter().any(|(a, b)| a == "sensitivity" && b == "modal") || edges.len() > 5, "edges found: {edges:?}");
+}
+
+/// Each FMI version writes its own words: no model description names the other version's
+/// functions or statuses, and no source rewrites one version's words into the other's.
+#[test]
+fn each_fmi_version_writes_its_own_words() {
+    for (d, _) in MODELS.iter() {
+        let (two, three) = (wound_opening::fmi::fmi2::xml::fmi2(d), wound_opening::fmi::fmi3::xml::fmi3(d));
+        assert!(!three.contains("fmi2"), "{}: the FMI 3.0 description names FMI 2.0", d.model_identifier);
+        assert!(!two.contains("fmi3"), "{}: the FMI 2.0 description names FMI 3.0", d.model_identifier);
+    }
+    for path in rust_files(&src("")) {
+        let text = std::fs::read_to_string(&path).expect("readable");
+        let rewrite = ["replace(\"fmi2\"", "replacen(\"fmi2\""];
+        assert!(!rewrite.iter().any(|r| text.contains(r)), "{}: rewrites FMI 2.0 words", path.display());
+    }
+}

@@ -263,9 +263,80 @@ fn check_reference_radii(s: &wound_opening::solver::Solver) {
     let ends = s.displacement(&[1.0, 12.0]);
     let (lo, hi) = (1.0 + ends[0], 12.0 + ends[1]);
     let radii: Vec<f64> = (0..=300).map(|j| lo + (hi - lo) * (j as f64 / 300.0).powi(3)).chain([hi, lo, 3.0, 3.0]).collect();
-    let together = reference_radii(&s, &radii, 12.0, (lo, hi));
+    let together = reference_radii(s, &radii, 12.0, (lo, hi));
     for (&r, &x) in radii.iter().zip(&together) {
-        assert_eq!(x.to_bits(), reference_radii(&s, &[r], 12.0, (lo, hi))[0].to_bits(), "{r}");
+        assert_eq!(x.to_bits(), reference_radii(s, &[r], 12.0, (lo, hi))[0].to_bits(), "{r}");
         assert!((x + s.displacement(&[x])[0] - r).abs() <= 8.0 * f64::EPSILON * r, "{r}: {x}");
+    }
+}
+
+/// Counts checked before anything is copied: bytes beyond the address space, or beyond
+/// what any allocation holds, are `WO_INVALID_ARGUMENT` with the reason (no source path),
+/// the arrays passed never read past, the process alive; FMI arrays likewise.
+#[test]
+fn huge_counts_are_invalid_arguments_and_the_process_lives() {
+    let p = pb(1.0, 1.0, 10.0, TOL, 0.0);
+    let (times, mut radius, radii) = ([0.5, 1.0], [0.0; 2], [2.0, 3.0]);
+    let big = 1usize << 57;
+    unsafe {
+        for (count, reason) in [
+            (
+                usize::MAX,
+                "times: count = 18446744073709551615 is invalid: 18446744073709551615 elements of 8 bytes exceed the largest array the address space can hold (9223372036854775807 bytes)",
+            ),
+            (big, "times: count = 144115188075855872 is invalid: 144115188075855872 values (1.153e18 bytes) cannot be allocated"),
+        ] {
+            assert_eq!(wo_series(p, times.as_ptr(), count, radius.as_mut_ptr(), null_mut()), WoStatus::WoInvalidArgument);
+            assert!(last_error().contains(reason), "{}", last_error());
+            assert!(!last_error().contains(".rs"), "{}", last_error());
+        }
+        let status = wo_profile_series(p, times.as_ptr(), 1, radii.as_ptr(), big, radius.as_mut_ptr(), null_mut());
+        assert_eq!(status, WoStatus::WoInvalidArgument, "{}", last_error());
+        assert!(last_error().starts_with("wo_profile_series: radii: count = 144115188075855872"), "{}", last_error());
+        assert_eq!(wo_series(p, times.as_ptr(), 2, radius.as_mut_ptr(), null_mut()), WoStatus::WoOk);
+    }
+    // FMI: a count beyond the address space is refused by name, not a panic.
+    use wound_opening::fmi::fmi2::functions::*;
+    use wound_opening::fmi::fmi2::types::*;
+    let (name, guid) = (c"huge", std::ffi::CString::new(wound_opening::models::wound::variables::GUID).unwrap());
+    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_CO_SIMULATION, guid.as_ptr(), c"".as_ptr(), &fmi2CallbackFunctions::NONE, 0, 0) };
+    let (vr, mut x) = ([0u32], [0.0f64]);
+    let panics = wound_opening::boundary::caught_panics();
+    assert_eq!(unsafe { fmi2GetReal(c, vr.as_ptr(), usize::MAX, x.as_mut_ptr()) }, 3);
+    assert_eq!(unsafe { fmi2SetReal(c, vr.as_ptr(), usize::MAX, x.as_ptr()) }, 3);
+    assert_eq!(wound_opening::boundary::caught_panics(), panics, "refused, not caught");
+    unsafe { fmi2FreeInstance(c) };
+}
+
+/// wo_series reports leaving the model's validity as the step API does: the same
+/// `WO_OUTSIDE_VALIDITY` (a warning), here with every output written and the first time
+/// named; a run that stays valid is OK.
+#[test]
+fn leaving_the_validity_is_reported_with_the_outputs() {
+    let times = [0.5, 1.0, 3.0, 10.0];
+    let (mut r, mut v) = ([f64::NAN; 4], [f64::NAN; 4]);
+    let status = unsafe { wo_series(pb(1.0, 2.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), v.as_mut_ptr()) };
+    assert_eq!(status, WoStatus::WoOutsideValidity, "{}", last_error());
+    assert!(last_error().starts_with("wo_series: times[") && last_error().contains("leaves the model's validity"), "{}", last_error());
+    let mut s = null_mut();
+    unsafe {
+        assert_eq!(wo_solver_new(1.0, 2.0, 10.0, TOL, &mut s), WoStatus::WoOk);
+        let mut first = None;
+        for (k, &t) in times.iter().enumerate() {
+            let status = wo_solver_advance(s, t, 0.0);
+            if status == WoStatus::WoOutsideValidity && first.is_none() {
+                first = Some(k);
+                assert!(last_error().contains(&format!("t = {t}")), "{}", last_error());
+            }
+            let (mut a, mut b) = (f64::NAN, f64::NAN);
+            assert_eq!(wo_solver_wound_radius(s, &mut a), WoStatus::WoOk);
+            assert_eq!(wo_solver_edge_velocity(s, &mut b), WoStatus::WoOk);
+            assert_eq!((r[k], v[k]), (a, b), "every output written, as the step API's");
+        }
+        let first = first.expect("the step API warns");
+        assert!(wo_series(pb(1.0, 2.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), null_mut()) == WoStatus::WoOutsideValidity);
+        assert!(last_error().contains(&format!("times[{first}] = {}", times[first])), "{}", last_error());
+        assert_eq!(wo_solver_free(s), WoStatus::WoOk);
+        assert_eq!(wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), null_mut()), WoStatus::WoOk);
     }
 }

@@ -288,3 +288,27 @@ fn a_point_off_by_more_than_the_tolerance_is_refused_with_both_values() {
     assert!(msg.starts_with(&format!("fmi2DoStep: Expected currentCommunicationPoint = 0.1 but was {off}")), "{msg}");
     assert_eq!(i.last_successful_time(), 0.1);
 }
+
+/// An FMI 3.0 instance's messages are in FMI 3.0's words: the directional derivative's
+/// arguments as fmi3GetDirectionalDerivative names them, no FMI 2.0 name.
+#[test]
+fn fmi3_messages_use_fmi3_words() {
+    use wound_opening::fmi::common::machine::Interface;
+    use wound_opening::fmi::fmi3::names::FMI3;
+    let log = Collect::default();
+    let mut i = Instance::of_interface(Interface::CoSimulation, FMI3, WoundModel::fresh, "fmi3", Arc::new(log.clone()), false);
+    run(&mut i, Call::EnterInitializationMode, |i| i.enter_initialization_mode()).unwrap();
+    run(&mut i, Call::ExitInitializationMode, |i| i.exit_initialization_mode()).unwrap();
+    let (edge, lambda, velocity) = (Vr::EdgeStress as u32, Vr::Lambda as u32, Vr::EdgeVelocity as u32);
+    let calls: [(&[u32], &[u32], f64, &str); 3] = [
+        (&[velocity], &[lambda], 1.0, "lambda (value reference 0) is a parameter but a knowns entry must be a Real input"),
+        (&[edge], &[edge], 1.0, "edge_stress (value reference 3) is an input but an unknowns entry must be a Real output"),
+        (&[velocity], &[edge], f64::NAN, "seed = NaN is invalid: it must be finite"),
+    ];
+    for (unknowns, knowns, seed, want) in calls {
+        assert!(run(&mut i, Call::GetDirectionalDerivative, |i| i.directional_derivative(unknowns, knowns, &[seed])).is_err());
+        let message = log.last_error();
+        assert!(message.contains(want), "{message}");
+        assert!(!message.contains("fmi2") && !message.contains("vKnown") && !message.contains("dvKnown"), "{message}");
+    }
+}

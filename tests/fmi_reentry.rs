@@ -17,6 +17,7 @@ use wound_opening::models::wound::WoundModel;
 /// A logger that records every message and, on a `logCalls` message, runs `reenter` on
 /// the component (once, or always) from inside the callback.
 #[derive(Default)]
+#[allow(clippy::type_complexity)]
 struct Reentrant {
     log: Mutex<Vec<(Status, String, String)>>,
     component: AtomicUsize,

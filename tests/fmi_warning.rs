@@ -61,7 +61,7 @@ impl FmuModel for Warner {
     }
     fn step(&mut self, _time: f64, _h: f64) -> Result<(), Rejected> {
         self.steps += 1;
-        if self.steps % 2 == 0 {
+        if self.steps.is_multiple_of(2) {
             self.warning = Some(format!("step {} is even", self.steps));
         }
         Ok(())

@@ -119,6 +119,7 @@ fn approaches_the_no_friction_solution_as_lambda_grows() {
 /// (`lambda^2 D2 w = w`, `lambda^2 D w(1) = 1`, `D w(R_inf) = 0`), from the unscaled Bessel
 /// form evaluated by mpmath at 40 digits: an implementation independent of the scaled one
 /// in src/solver/exact.rs (which must survive lambda = 1e-3, where I1(1000) overflows).
+#[allow(clippy::excessive_precision)] // the digits as mpmath printed them
 const RESPONSE_REFERENCE: [(f64, f64, f64, f64); 11] = [
     (0.001, 10.0, 1.0, -249.99990634366224),
     (0.001, 10.0, 1.002, -33.799999718118042),

@@ -30,7 +30,7 @@ LIB_NAME = {"win32": "wound_opening.dll", "darwin": "libwound_opening.dylib"}.ge
 #: Grid accuracy asked of the solver (relative to the opening amplitude R_final - R1).
 TOLERANCE = 1e-10
 
-WO_OK, WO_UNDEFINED = 0, 7
+WO_OK, WO_UNDEFINED, WO_OUTSIDE_VALIDITY = 0, 7, 8
 
 
 class NativeLibraryMissing(RuntimeError):
@@ -112,7 +112,9 @@ def _ptr(a: np.ndarray | None):
 
 
 def _check(lib, status: int) -> None:
-    if status != WO_OK:
+    """Raise on a refusal; WO_OUTSIDE_VALIDITY is a warning with every output written (the
+    package checks the validity where it reports it)."""
+    if status not in (WO_OK, WO_OUTSIDE_VALIDITY):
         raise SolverError(status, lib.wo_last_error().decode("utf-8", "replace"))
 
 

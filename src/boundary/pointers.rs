@@ -4,10 +4,32 @@
 
 use std::ffi::{CStr, c_char};
 
-/// An array announced with `count` elements but passed as NULL.
+/// Why a C array (a pointer and a count) is not one: NULL with a count, or a count whose
+/// bytes exceed the largest object the address space can hold (`isize::MAX` bytes, the
+/// bound of every Rust slice), checked before anything is read or copied.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct NullArray {
-    pub count: usize,
+pub enum BadArray {
+    Null { count: usize },
+    TooLong { count: usize, size: usize },
+}
+
+impl BadArray {
+    /// The reason, for an array called `what`.
+    pub fn reason(&self, what: &str) -> String {
+        match *self {
+            Self::Null { count } => format!("{what} is NULL but {count} elements were announced"),
+            Self::TooLong { count, size } => format!(
+                "{what}: count = {count} is invalid: {count} elements of {size} bytes exceed the largest array the address space can hold ({} bytes)",
+                isize::MAX
+            ),
+        }
+    }
+}
+
+/// `count` elements of `T` fit in one object (`count * size_of::<T>() <= isize::MAX`).
+fn fits<T>(count: usize) -> Result<(), BadArray> {
+    let size = size_of::<T>().max(1);
+    if count <= isize::MAX as usize / size { Ok(()) } else { Err(BadArray::TooLong { count, size }) }
 }
 
 /// A C string as text (`None` for NULL); invalid UTF-8 is replaced, not refused.
@@ -22,23 +44,32 @@ pub unsafe fn text(s: *const c_char) -> Option<String> {
 ///
 /// # Safety
 /// `p` is NULL or points to `count` valid elements.
-pub unsafe fn slice<'a, T>(p: *const T, count: usize) -> Result<&'a [T], NullArray> {
+pub unsafe fn slice<'a, T>(p: *const T, count: usize) -> Result<&'a [T], BadArray> {
     match (p.is_null(), count) {
         (_, 0) => Ok(&[]),
-        (true, _) => Err(NullArray { count }),
-        (false, _) => Ok(unsafe { std::slice::from_raw_parts(p, count) }),
+        (true, _) => Err(BadArray::Null { count }),
+        (false, _) => fits::<T>(count).map(|()| unsafe { std::slice::from_raw_parts(p, count) }),
     }
+}
+
+/// A copy of `values` in memory allocated fallibly: `None` where the allocator refuses
+/// (a count the address space could hold but the memory cannot), never an abort.
+pub fn try_copy<T: Copy>(values: &[T]) -> Option<Vec<T>> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(values.len()).ok()?;
+    out.extend_from_slice(values);
+    Some(out)
 }
 
 /// A writable C array as a slice.
 ///
 /// # Safety
 /// `p` is NULL or points to `count` valid elements not aliased elsewhere.
-pub unsafe fn slice_mut<'a, T>(p: *mut T, count: usize) -> Result<&'a mut [T], NullArray> {
+pub unsafe fn slice_mut<'a, T>(p: *mut T, count: usize) -> Result<&'a mut [T], BadArray> {
     match (p.is_null(), count) {
         (_, 0) => Ok(&mut []),
-        (true, _) => Err(NullArray { count }),
-        (false, _) => Ok(unsafe { std::slice::from_raw_parts_mut(p, count) }),
+        (true, _) => Err(BadArray::Null { count }),
+        (false, _) => fits::<T>(count).map(|()| unsafe { std::slice::from_raw_parts_mut(p, count) }),
     }
 }
 

@@ -6,6 +6,7 @@
 
 use super::error::Failure;
 use super::series::{Problem, check_radii, check_times, start, tissue_points, walk};
+use super::solver_c::zeros;
 use crate::solver::{Settings, VelocityRates, velocity_rates};
 
 /// Values per point of `wo_profile_sensitivities`: velocity, d/dsigma, d/dlambda, d/dt.
@@ -48,9 +49,9 @@ pub fn profile_rates(
     let mut solver = start(problem)?;
     let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
     let (n, r_inf) = (radii.len(), problem.params.r_inf);
-    let mut p = vec![0.0; times.len() * n * width];
-    let mut e = vec![0.0; times.len() * 2 * width];
-    walk(&mut solver, 0.0, times, |i, s| {
+    let mut p = zeros(times.len() * n * width, "rates")?;
+    let mut e = zeros(times.len() * 2 * width, "edge")?;
+    let left = walk(&mut solver, (0.0, r_inf), times, |i, s| {
         let x = tissue_points(s, radii, r_inf, (i, times[i]))?;
         let (rates, at_edge) = velocity_rates(&problem.params, &settings, times[i], &x, width > RATES)?;
         for (j, r) in rates.iter().enumerate() {
@@ -64,7 +65,7 @@ pub fn profile_rates(
     if let Some(o) = edge {
         o.copy_from_slice(&e);
     }
-    Ok(())
+    left.status()
 }
 
 #[cfg(test)]

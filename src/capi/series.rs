@@ -20,6 +20,7 @@
 //! ([`reference_radii`]).
 
 use super::error::{Failure, WoStatus};
+use super::solver_c::zeros;
 use crate::solver::{Params, Settings, Solver, check_edge_stress, radius_sensitivities};
 
 /// One problem of a series call: parameters, accuracy target and the constant edge stress.
@@ -52,20 +53,42 @@ pub fn check_times(times: &[f64]) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Advance `solver` to each time in turn and call `visit(i, solver)` there.
+/// Where a run left the model's validity: the first time at which the state is outside it
+/// ([`crate::solver::validity`]), as the step API reports it.
+#[must_use = "a run that left the validity is reported with the outputs"]
+pub(crate) struct Left(Option<String>);
+
+impl Left {
+    /// `WO_OUTSIDE_VALIDITY` (a warning: the outputs are written) with the reason, or OK.
+    pub(crate) fn status(self) -> Result<(), Failure> {
+        match self.0 {
+            Some(why) => Err(Failure::new(WoStatus::WoOutsideValidity, why)),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Advance `solver` to each time in turn and call `visit(i, solver)` there; the first time
+/// at which the state has left the model's validity (checked at each time, O(modes)).
 pub(crate) fn walk(
     solver: &mut Solver,
-    p: f64,
+    (p, r_inf): (f64, f64),
     times: &[f64],
     mut visit: impl FnMut(usize, &Solver) -> Result<(), Failure>,
-) -> Result<(), Failure> {
+) -> Result<Left, Failure> {
+    let mut left = None;
     for (i, &t) in times.iter().enumerate() {
         if t > solver.time() {
             solver.advance(t - solver.time(), p)?;
         }
+        if left.is_none() && solver.time() > 0.0 {
+            left = solver.validity_violation(r_inf).map(|why| {
+                format!("times[{i}] = {t}: the run leaves the model's validity there: {why} (every output is written; later times are outside too or past it)")
+            });
+        }
         visit(i, solver)?;
     }
-    Ok(())
+    Ok(Left(left))
 }
 
 fn undefined(i: usize, t: f64) -> Failure {
@@ -83,10 +106,10 @@ pub fn series(problem: &Problem, times: &[f64], radius: &mut [f64], velocity: Op
     check_times(times)?;
     let mut solver = start(problem)?;
     let p = problem.edge_stress;
-    let mut r = vec![0.0; times.len()];
-    let mut v = vec![0.0; times.len()];
+    let mut r = zeros(times.len(), "radius")?;
+    let mut v = if velocity.is_some() { zeros(times.len(), "velocity")? } else { Vec::new() };
     let want_velocity = velocity.is_some();
-    walk(&mut solver, p, times, |i, s| {
+    let left = walk(&mut solver, (p, problem.params.r_inf), times, |i, s| {
         r[i] = s.wound_radius();
         if want_velocity {
             if !s.edge_velocity_defined(p) {
@@ -100,7 +123,7 @@ pub fn series(problem: &Problem, times: &[f64], radius: &mut [f64], velocity: Op
     if let Some(out) = velocity {
         out.copy_from_slice(&v);
     }
-    Ok(())
+    left.status()
 }
 
 /// Optional outputs of [`series_sensitivities`] (one value per time each).
@@ -113,11 +136,18 @@ pub struct SeriesOut<'a> {
 /// [`series`] and the derivatives of the wound radius with respect to lambda and `R_inf`
 /// (in R0 per unit), exact for the mesh the tolerance picks (its degree, element count and
 /// grading length held fixed: no decomposition beyond the one of `series`). Every output is
-/// written only on success.
+/// written only on success (or with the warning of a run that leaves the validity).
 pub fn series_sensitivities(problem: &Problem, times: &[f64], radius: &mut [f64], out: SeriesOut<'_>) -> Result<(), Failure> {
-    let mut r = vec![0.0; times.len()];
-    let mut v = out.velocity.as_ref().map(|_| vec![0.0; times.len()]);
-    series(problem, times, &mut r, v.as_deref_mut())?;
+    let mut r = zeros(times.len(), "radius")?;
+    let mut v = match out.velocity {
+        Some(_) => Some(zeros(times.len(), "velocity")?),
+        None => None,
+    };
+    let left = match series(problem, times, &mut r, v.as_deref_mut()) {
+        Err(f) if f.status == WoStatus::WoOutsideValidity => Err(f),
+        Err(f) => return Err(f),
+        Ok(()) => Ok(()),
+    };
     let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
     let d = radius_sensitivities(&problem.params, &settings, problem.edge_stress, times)?;
     radius.copy_from_slice(&r);
@@ -126,7 +156,7 @@ pub fn series_sensitivities(problem: &Problem, times: &[f64], radius: &mut [f64]
             o.copy_from_slice(values);
         }
     }
-    Ok(())
+    left
 }
 
 /// The Illinois search of one reference radius: the bracket `[a, b]` of `X` with the gaps
@@ -288,10 +318,10 @@ pub fn profile_series(problem: &Problem, times: &[f64], radii: &[f64], out: Prof
     let mut solver = start(problem)?;
     let (p, r_inf) = (problem.edge_stress, problem.params.r_inf);
     let n = radii.len();
-    let mut u = vec![0.0; times.len() * n];
-    let mut v = vec![0.0; times.len() * n];
+    let mut u = zeros(times.len() * n, "u")?;
+    let mut v = if out.velocity.is_some() { zeros(times.len() * n, "v")? } else { Vec::new() };
     let want_velocity = out.velocity.is_some();
-    walk(&mut solver, p, times, |i, s| {
+    let left = walk(&mut solver, (p, r_inf), times, |i, s| {
         let x = tissue_points(s, radii, r_inf, (i, times[i]))?;
         if want_velocity && !s.edge_velocity_defined(p) {
             return Err(undefined(i, times[i]));
@@ -308,5 +338,5 @@ pub fn profile_series(problem: &Problem, times: &[f64], radii: &[f64], out: Prof
     if let Some(o) = out.velocity {
         o.copy_from_slice(&v);
     }
-    Ok(())
+    left.status()
 }

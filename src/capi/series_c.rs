@@ -38,7 +38,9 @@ fn optional<'a>(p: *mut f64, count: usize, what: &str) -> Result<Option<&'a mut 
 /// `times[i]` (in T; finite, >= 0, ascending), `i < count`, of one `problem`. `velocity` may be NULL (radius only); at
 /// lambda = 0 a velocity asked for at t = 0 is infinite in the model: `WO_UNDEFINED`, and
 /// nothing is written. One solver is built (O(modes) when the basis of this R_inf is
-/// cached) and advanced from time to time, exactly.
+/// cached) and advanced from time to time, exactly. A run that leaves the model's validity
+/// is `WO_OUTSIDE_VALIDITY` (a warning, as `wo_solver_advance`): every output is written and
+/// the message names the first time outside; the other series functions likewise.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wo_series(problem: WoProblem, times: *const f64, count: usize, radius: *mut f64, velocity: *mut f64) -> WoStatus {
     run("wo_series", || {

@@ -9,7 +9,7 @@
 
 use super::error::{Failure, WoStatus, last_error_ptr, run};
 use super::solver;
-use crate::boundary::pointers::{self, NullArray};
+use crate::boundary::pointers::{self, BadArray};
 use crate::solver::{MeshSpec, Params};
 use std::ffi::{c_char, c_int};
 
@@ -39,14 +39,32 @@ fn slot<'a, T>(p: *mut T, what: &str) -> Result<&'a mut T, Failure> {
     unsafe { pointers::slot(p) }.ok_or_else(|| Failure::null(what))
 }
 
-fn null_array(what: &str, e: NullArray) -> Failure {
-    Failure::null(&format!("{what} (with count = {})", e.count))
+fn null_array(what: &str, e: BadArray) -> Failure {
+    match e {
+        BadArray::Null { count } => Failure::null(&format!("{what} (with count = {count})")),
+        BadArray::TooLong { .. } => Failure::invalid(e.reason(what)),
+    }
 }
 
-/// An input array as an owned copy (so that it may alias an output array).
+/// An input array as an owned copy (so that it may alias an output array), its count
+/// checked before anything is read and the copy allocated fallibly.
 pub(super) fn input(p: *const f64, count: usize, what: &str) -> Result<Vec<f64>, Failure> {
     // SAFETY: the C caller passes NULL or `count` readable values.
-    unsafe { pointers::slice(p, count) }.map(<[f64]>::to_vec).map_err(|e| null_array(what, e))
+    let values = unsafe { pointers::slice(p, count) }.map_err(|e| null_array(what, e))?;
+    pointers::try_copy(values).ok_or_else(|| too_large(what, count))
+}
+
+/// `count` values that the address space could hold but the memory cannot.
+pub(super) fn too_large(what: &str, count: usize) -> Failure {
+    Failure::invalid(format!("{what}: count = {count} is invalid: {count} values ({:.3e} bytes) cannot be allocated", count as f64 * 8.0))
+}
+
+/// `count` zeros, allocated fallibly (a working array as large as a caller's output).
+pub(super) fn zeros(count: usize, what: &str) -> Result<Vec<f64>, Failure> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(count).map_err(|_| too_large(what, count))?;
+    out.resize(count, 0.0);
+    Ok(out)
 }
 
 pub(super) fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mut [f64], Failure> {
@@ -56,8 +74,9 @@ pub(super) fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mu
 
 /// Create a solver at t = 0 (just after the cut, in uniform tension) for lambda = 0 or in
 /// [1e-150, 1e6], sigma in (-6, 1e6] and R_inf in [1.001, 1e6], on the cheapest grid whose wound radius stays within
-/// `tolerance` (> 0) of the exact solution, relative to the opening amplitude, for
-/// t >= 0.01. On success `*solver` is the new solver; on failure it is set to NULL.
+/// `tolerance` (> 0) of the exact solution for t >= 0.01, relative to the larger of the free
+/// opening and the one under the edge stress p applied: max(|sigma|, |sigma - p|) S with
+/// S = 2 R_inf^2 / (3 (R_inf^2 - 1)) - 1/6. On success `*solver` is the new solver; on failure it is set to NULL.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wo_solver_new(lambda: f64, sigma: f64, r_inf: f64, tolerance: f64, solver: *mut *mut WoSolver) -> WoStatus {
     run("wo_solver_new", || {

@@ -20,7 +20,7 @@
 //! ignored.
 
 use crate::boundary::guard;
-use crate::boundary::pointers::{self, NullArray};
+use crate::boundary::pointers::{self, BadArray};
 use crate::boundary::registry::Table;
 use crate::fmi::common::instance::{Call, Dialect, Instance, Logger, Rejected, Status};
 use crate::fmi::fmi2::types::*;
@@ -169,6 +169,6 @@ pub unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Result<&'a mu
     unsafe { pointers::slice_mut(p, n) }.map_err(|e| null_array(what, e))
 }
 
-fn null_array(what: &str, e: NullArray) -> Rejected {
-    format!("{what} is NULL but {} elements were announced", e.count)
+fn null_array(what: &str, e: BadArray) -> Rejected {
+    e.reason(what)
 }

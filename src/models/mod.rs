@@ -16,6 +16,9 @@ pub mod wound;
 
 use crate::fmi::common::model::{Description, FmuModel};
 
+/// A constructor of a fresh model.
+pub type Fresh = fn() -> Box<dyn FmuModel>;
+
 /// The models of this library: description and a constructor of a fresh model.
-pub static MODELS: [(&Description, fn() -> Box<dyn FmuModel>); 2] =
+pub static MODELS: [(&Description, Fresh); 2] =
     [(&wound::variables::DESCRIPTION, wound::WoundModel::fresh), (&purse_string::variables::DESCRIPTION, purse_string::PurseModel::fresh)];

@@ -72,9 +72,10 @@ pub(crate) trait Engine: std::fmt::Debug + Send + Sync {
     fn ode(&self, _p: f64) -> Option<Ode> {
         None
     }
-    /// Set the ODE coordinates of [`Engine::ode`], the state having evolved under `p`
-    /// (so that `p` is the reference of the velocity split); `false` where there is no ODE.
-    fn set_ode_state(&mut self, _x: &[f64], _p: f64) -> bool {
+    /// Set the ODE coordinates of [`Engine::ode`], `p_ref` the reference of the velocity
+    /// split (the edge stress its unresolved modes are at rest under); `false` where there
+    /// is no ODE.
+    fn set_ode_state(&mut self, _x: &[f64], _p_ref: f64) -> bool {
         false
     }
     /// Typical magnitudes of the coordinates of [`Engine::ode`] under the edge stresses

@@ -40,7 +40,7 @@ impl Operator {
     }
 
     pub(crate) fn check_mesh(spec: MeshSpec) -> Result<(), SolverError> {
-        let size = spec.degree.checked_mul(spec.elements).unwrap_or(usize::MAX);
+        let size = spec.degree.saturating_mul(spec.elements);
         if spec.degree == 0 || spec.elements == 0 || size > 4000 {
             return Err(SolverError::Mesh("need degree >= 1, elements >= 1, degree*elements <= 4000"));
         }
@@ -271,13 +271,10 @@ impl Engine for ModalEngine {
         })
     }
 
-    /// The velocity split follows from the state alone: `x = 0` is the uniform tension,
-    /// at rest under `sigma` (the cut), so `p_ref = sigma` and a different `p` meets the
-    /// closed-form instantaneous response; any other state has evolved, its unresolved
-    /// fast modes relaxed to the edge stress applied, so `p_ref = p` (as after a step).
-    fn set_ode_state(&mut self, x: &[f64], p: f64) -> bool {
+    /// The coordinates, with `p_ref` the reference of the velocity split ([`super::Solver::set_ode_state`]).
+    fn set_ode_state(&mut self, x: &[f64], p_ref: f64) -> bool {
         self.coeffs.copy_from_slice(x);
-        self.p_ref = if x.iter().all(|c| *c == 0.0) { self.sigma } else { p };
+        self.p_ref = p_ref;
         true
     }
 

@@ -48,7 +48,8 @@ pub(crate) fn symmetric_eigen(h: &DMatrix<f64>) -> Option<(DVector<f64>, DMatrix
             for q in p + 1..n {
                 let apq = a[p * n + q];
                 let (app, aqq) = (a[p * n + p], a[q * n + q]);
-                if !(apq.abs() > THRESHOLD * (app * aqq).abs().sqrt()) {
+                // Not above the threshold, NaN included.
+                if apq.abs().partial_cmp(&(THRESHOLD * (app * aqq).abs().sqrt())) != Some(std::cmp::Ordering::Greater) {
                     continue;
                 }
                 rotations += 1;

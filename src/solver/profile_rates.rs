@@ -32,8 +32,8 @@
 //! dV/dtau    = sigma (U_tt + U_tX dX/dtau)
 //! ```
 //!
-//! The outer radius `R_inf` moves `mu_k` and `e_k` ([`super::sensitivity::ModeRates`]), the
-//! whole mode shapes at the nodes (`dX/dR_inf = X C`, [`super::sensitivity::ShapeRates`])
+//! The outer radius `R_inf` moves `mu_k` and `e_k` ([`super::modal::ModeRates`]), the
+//! whole mode shapes at the nodes (`dX/dR_inf = X C`, [`super::modal::ShapeRates`])
 //! and the nodes themselves: the element breaks move with `R_inf`
 //! ([`super::mesh::Mesh::break_rates`]), so at a fixed reference radius `X` the interpolated
 //! sum `S(X) = sum_i s_i l_i(xi(X))` of nodal values `s_i` changes by

@@ -24,7 +24,7 @@
 //! x_k'  = sum_{j != k} x_j [x_j^T (4 M' - mu_k A') x_k] / (mu_k - mu_j) - (1/2) (x_k^T A' x_k) x_k
 //! ```
 //!
-//! of which only the edge row `e_k'` is kept ([`ModeRates`], computed once per basis and
+//! of which only the edge row `e_k'` is kept ([`ModeRates`](super::modal::ModeRates), computed once per basis and
 //! kept with it). The load `(sigma - p)` at the wound edge does not depend on `R_inf`, and
 //! `nu_k' = mu_k'`, so
 //!
@@ -39,114 +39,12 @@
 //! basis spans the same space; [`super::galerkin::Functions`]).
 //!
 //! The eigenvalues of this Sturm-Liouville problem are simple; the smallest relative gap
-//! `(mu_{k+1} - mu_k) / mu_{k+1}` is recorded ([`ModeRates::smallest_gap`]): on the meshes
+//! `(mu_{k+1} - mu_k) / mu_{k+1}` is recorded ([`ModeRates::smallest_gap`](super::modal::ModeRates::smallest_gap)): on the meshes
 //! of the tolerance rule it is 0.024 at the least (tolerance 1e-11, `R_inf = 1e3`; 0.13 at
 //! 1e-6, 0.18 at 1e-2; test below), so `1 / (mu_k - mu_j)` amplifies rounding by 40 at most
 //! and no special treatment of close pairs is needed (nor done).
 
-use super::galerkin;
-use super::modal::Basis;
 use super::{Params, Settings, SolverError, basis, check_lambda, check_r_inf};
-use nalgebra::{DMatrix, DVector};
-use std::sync::OnceLock;
-
-/// `d mu_k / dR_inf` and `d e_k / dR_inf` of one basis.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct ModeRates {
-    pub(crate) mu: DVector<f64>,
-    pub(crate) edge: DVector<f64>,
-    /// The smallest `(mu_{k+1} - mu_k) / mu_{k+1}` (1 with a single mode).
-    pub(crate) smallest_gap: f64,
-}
-
-impl ModeRates {
-    /// With `Y = 4 M' X`, `Z = A' X` (banded: each node couples to the `p` nodes either
-    /// side, `O(n^2 p)`) and `W_jk = e_j / (mu_k - mu_j)` (`W_kk = 0`), the sum over `j` of
-    /// the formula above is `(X W)_k . (Y_k - mu_k Z_k)`: one dense product in all.
-    fn new(basis: &Basis) -> Self {
-        let rate = galerkin::assemble_r_inf_rate(&basis.mesh);
-        let (x, mu, e) = (&basis.shapes, &basis.mu, &basis.edge_row);
-        let (n, band) = (mu.len(), basis.mesh.degree());
-        // Y_ic = sum_j m_ij X_jc over the band; m is symmetric, so m_ij = column i of m, and
-        // both factors are contiguous (column-major).
-        let banded = |m: &DMatrix<f64>, scale: f64| {
-            let (ms, xs) = (m.as_slice(), x.as_slice());
-            DMatrix::from_fn(n, n, |i, c| {
-                let (lo, hi) = (i.saturating_sub(band), (i + band + 1).min(n));
-                scale * ms[i * n + lo..i * n + hi].iter().zip(&xs[c * n + lo..c * n + hi]).map(|(a, b)| a * b).sum::<f64>()
-            })
-        };
-        let (y, z) = (banded(&rate.mass, 4.0), banded(&rate.stiffness, 1.0));
-        let w = DMatrix::from_fn(n, n, |j, k| if j == k { 0.0 } else { e[j] / (mu[k] - mu[j]) });
-        let xw = x * w;
-        let (mut mu_rate, mut edge) = (DVector::zeros(n), DVector::zeros(n));
-        for k in 0..n {
-            let g = y.column(k) - mu[k] * z.column(k);
-            mu_rate[k] = x.column(k).dot(&g);
-            edge[k] = xw.column(k).dot(&g) - 0.5 * x.column(k).dot(&z.column(k)) * e[k];
-        }
-        let smallest_gap = mu.as_slice().windows(2).map(|w| (w[1] - w[0]) / w[1]).fold(1.0, f64::min);
-        Self { mu: mu_rate, edge, smallest_gap }
-    }
-}
-
-/// `dX / dR_inf = X C` of the whole mode shapes (nodal values, the nodes held): with
-/// `G = Y - Z diag(mu)` (the `g_k` of [`ModeRates`]), `C_jk = (X^T G)_jk / (mu_k - mu_j)` for
-/// `j != k` and `C_kk = -(1/2) (X^T Z)_kk`. Only its products with modal weights are needed
-/// (`X (C w)`: `O(n^2)` per weight vector); `C` itself costs two dense products, `O(n^3)`,
-/// once per basis, and only where velocities inside the tissue are differentiated
-/// ([`super::profile_rates`]).
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct ShapeRates {
-    pub(crate) coupling: DMatrix<f64>,
-}
-
-impl ShapeRates {
-    fn new(basis: &Basis) -> Self {
-        let rate = galerkin::assemble_r_inf_rate(&basis.mesh);
-        let (x, mu) = (&basis.shapes, &basis.mu);
-        let (y, z) = (4.0 * &rate.mass * x, &rate.stiffness * x);
-        let (xy, xz) = (x.transpose() * y, x.transpose() * z);
-        let coupling = DMatrix::from_fn(mu.len(), mu.len(), |j, k| {
-            if j == k { -0.5 * xz[(k, k)] } else { (xy[(j, k)] - mu[k] * xz[(j, k)]) / (mu[k] - mu[j]) }
-        });
-        Self { coupling }
-    }
-}
-
-/// [`ShapeRates`] on first use, kept with the basis (as [`LazyRates`]).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct LazyShapeRates(OnceLock<ShapeRates>);
-
-impl PartialEq for LazyShapeRates {
-    fn eq(&self, _: &Self) -> bool {
-        true
-    }
-}
-
-/// The [`ModeRates`] of a basis, computed on first use and kept with it (measured
-/// 2026-12-03 on a loaded machine, 65 modes: about 0.2 ms, a quarter of the 0.5 to 0.9 ms of
-/// the decomposition; a basis that only ever serves plain series never pays it). Derived from the
-/// basis alone, so it takes no part in comparing bases (a cached basis whose rates were
-/// asked for equals a fresh one).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct LazyRates(OnceLock<ModeRates>);
-
-impl PartialEq for LazyRates {
-    fn eq(&self, _: &Self) -> bool {
-        true
-    }
-}
-
-impl Basis {
-    pub(crate) fn rates(&self) -> &ModeRates {
-        self.rates.0.get_or_init(|| ModeRates::new(self))
-    }
-
-    pub(crate) fn shape_rates(&self) -> &ShapeRates {
-        self.shape_rates.0.get_or_init(|| ShapeRates::new(self))
-    }
-}
 
 /// `dR/dlambda` and `dR/dR_inf` (in R0 per unit) at each time (in T, >= 0, any order).
 #[derive(Debug, Clone, PartialEq)]

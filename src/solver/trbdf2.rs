@@ -21,6 +21,9 @@ use std::sync::Arc;
 
 const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
 
+/// A Cholesky factor of one step's system.
+type Factor = Cholesky<f64, Dyn>;
+
 #[derive(Debug)]
 pub(crate) struct TrBdf2Operator {
     mesh: Mesh,
@@ -45,7 +48,7 @@ pub(crate) struct TrBdf2Engine {
     max_step: f64,
     v: DVector<f64>,
     /// `(dt, chol(B + gamma dt/2 A), chol(B + w dt A))`.
-    systems: Option<(f64, Cholesky<f64, Dyn>, Cholesky<f64, Dyn>)>,
+    systems: Option<(f64, Factor, Factor)>,
 }
 
 impl TrBdf2Engine {

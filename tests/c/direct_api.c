@@ -11,7 +11,8 @@
  *      wo_series_sensitivities: the same R(t), and dR/dlambda, dR/dR_inf against central
  *      differences of wo_series (step 1e-4; their own checks are in the Rust and Python tests);
  *      wo_profile_rates: the velocity of wo_profile_series, its derivatives in R_inf and in
- *      the current radius against central differences of wo_profile_series.
+ *      the current radius against central differences of wo_profile_series;
+ *   6. huge counts (2^57, SIZE_MAX): WO_INVALID_ARGUMENT with the reason, the process alive.
  * Run under valgrind by scripts/c_tests.sh: no error, no leak.
  */
 #include "wound_opening.h"
@@ -303,6 +304,41 @@ static void series(void) {
     REFUSED(wo_profile_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &one, 1, &inside, 1, u, NULL), WO_INVALID_ARGUMENT,
             "radii[0] = 1.01 is inside the wound at times[0] = 1");
     CHECK(strcmp(wo_status_name(WO_UNDEFINED), "WO_UNDEFINED") == 0, "status name of WO_UNDEFINED");
+
+    /* Leaving the validity (sigma = 2 by t = 10): WO_OUTSIDE_VALIDITY, as the step API, with
+     * every output written and the first time named. */
+    double late[2] = {1.0, 10.0}, r_late[2] = {NAN, NAN};
+    REFUSED(wo_series((wo_problem){1.0, 2.0, 10.0, 1e-10, 0.0}, late, 2, r_late, NULL), WO_OUTSIDE_VALIDITY,
+            "times[1] = 10: the run leaves the model's validity there");
+    CHECK(isfinite(r_late[0]) && isfinite(r_late[1]) && r_late[1] > r_late[0], "outputs written with the warning: %g %g", r_late[0],
+          r_late[1]);
+}
+
+/* Counts checked before anything is copied: a count whose bytes exceed the address space,
+ * or that no allocation can hold, is WO_INVALID_ARGUMENT with the reason (no source path in
+ * it), and the process lives on; the arrays passed are small and never read past. */
+static void huge_counts(void) {
+    const wo_problem problem = {1.0, 1.0, 10.0, 1e-10, 0.0};
+    double times[2] = {0.5, 1.0}, radius[2], r[2] = {2.0, 3.0}, out[2];
+    const size_t big = (size_t)1 << 57; /* 2^60 bytes: within isize, beyond any memory */
+    REFUSED(wo_series(problem, times, SIZE_MAX, radius, NULL), WO_INVALID_ARGUMENT,
+            "times: count = 18446744073709551615 is invalid: 18446744073709551615 elements of 8 bytes exceed the largest array the address space can hold");
+    REFUSED(wo_series(problem, times, big, radius, NULL), WO_INVALID_ARGUMENT, "times: count = 144115188075855872 is invalid: 144115188075855872 values (1.153e18 bytes) cannot be allocated");
+    REFUSED(wo_series_sensitivities(problem, times, big, radius, NULL, NULL, NULL), WO_INVALID_ARGUMENT, "cannot be allocated");
+    REFUSED(wo_profile_series(problem, times, 1, r, big, out, NULL), WO_INVALID_ARGUMENT, "radii: count = 144115188075855872 is invalid");
+    REFUSED(wo_profile_series(problem, times, 1, r, SIZE_MAX / 2, out, NULL), WO_INVALID_ARGUMENT, "exceed the largest array");
+    REFUSED(wo_profile_rates(problem, times, 1, r, big, out, NULL), WO_INVALID_ARGUMENT, "cannot be allocated");
+    wo_solver *s = NULL;
+    OK(wo_solver_new(1.0, 1.0, 10.0, 1e-10, &s));
+    REFUSED(wo_solver_displacement(s, r, out, SIZE_MAX), WO_INVALID_ARGUMENT, "exceed the largest array the address space can hold");
+    REFUSED(wo_solver_displacement(s, r, out, big), WO_INVALID_ARGUMENT, "cannot be allocated");
+    REFUSED(wo_solver_velocity(s, r, out, big), WO_INVALID_ARGUMENT, "cannot be allocated");
+    REFUSED(wo_solver_nodes(s, out, SIZE_MAX), WO_INVALID_ARGUMENT, "radii: count = 18446744073709551615 is invalid");
+    CHECK(strstr(wo_last_error(), ".rs") == NULL, "no source path in the message: %s", wo_last_error());
+    /* Still alive, and the solver untouched. */
+    OK(wo_solver_advance(s, 1.0, 0.0));
+    OK(wo_solver_free(s));
+    OK(wo_series(problem, times, 2, radius, NULL));
 }
 
 int main(void) {
@@ -312,5 +348,6 @@ int main(void) {
     bad_creation();
     bad_calls();
     series();
+    huge_counts();
     return check_report("direct_api");
 }

@@ -40,6 +40,28 @@ pub fn initialized(guid: &str, start: f64, params: &[(u32, f64)]) -> fmi2Compone
     c
 }
 
+/// A Model Exchange instance of WoundOpening in Continuous-Time Mode at t = 0, its Real
+/// parameters `params` set.
+pub fn continuous_time(params: &[(u32, f64)]) -> fmi2Component {
+    let (name, guid) = (CString::new("me").unwrap(), CString::new(WOUND).unwrap());
+    let callbacks = fmi2CallbackFunctions::NONE;
+    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_MODEL_EXCHANGE, guid.as_ptr(), c"".as_ptr(), &callbacks, 0, 0) };
+    assert!(!c.is_null());
+    unsafe {
+        assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), OK);
+        for &(vr, x) in params {
+            assert_eq!(fmi2SetReal(c, &vr, 1, &x), OK, "fmi2SetReal({vr}, {x})");
+        }
+        assert_eq!(fmi2EnterInitializationMode(c), OK);
+        assert_eq!(fmi2ExitInitializationMode(c), OK);
+        let mut info: fmi2EventInfo = std::mem::zeroed();
+        assert_eq!(fmi2NewDiscreteStates(c, &mut info), OK);
+        assert_eq!((info.valuesOfContinuousStatesChanged, info.nominalsOfContinuousStatesChanged), (0, 0), "no event at the start");
+        assert_eq!(fmi2EnterContinuousTimeMode(c), OK);
+    }
+    c
+}
+
 /// `fmi2GetReal` of one variable: (status, value).
 pub fn get_real(c: fmi2Component, vr: u32) -> (fmi2Status, f64) {
     let mut x = f64::NAN;

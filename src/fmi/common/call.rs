@@ -13,14 +13,14 @@ use crate::fmi::common::machine::{Interface, Machine};
 pub struct Dialect {
     /// A call's name, for messages.
     pub name: fn(Call) -> String,
-    /// Free text (log messages, which the models write with the first version's function
-    /// names) as this version's importer should read it.
-    pub text: fn(&str) -> String,
     /// The Get calls also read start values in Instantiated and Configuration Mode
     /// (the arrays refuse outputs and states there).
     pub get_before_initialization: bool,
     /// Configuration Mode exists: an FMU state saved there can be restored.
     pub configuration_mode: bool,
+    /// The arguments of the directional derivative as this version names them: the
+    /// unknowns, the knowns and the seed.
+    pub derivative_arguments: [&'static str; 3],
 }
 
 /// The FMI calls, for the state-machine check and the call log.

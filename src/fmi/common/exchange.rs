@@ -1,11 +1,14 @@
 //! Model Exchange (FMI 2.0, chapter 3) on the shared [`Instance`]: the master integrates
 //! the model's continuous states ([`crate::fmi::common::model::ContinuousStates`]) with its own solver.
-//! The glue supports models without events: no event indicators, no discrete states, no time
-//! events, and `fmi2CompletedIntegratorStep` never asks for event mode.
+//! The glue supports models without state or time events: no event indicators, no time
+//! events, and `fmi2CompletedIntegratorStep` never asks for event mode. A model may keep
+//! discrete states that move when the master enters Event Mode (an input that jumps):
+//! `fmi2NewDiscreteStates` updates them and says whether the continuous states' values or
+//! nominals changed.
 //!
 //! ```text
 //! fmi2ExitInitializationMode      -> EventMode (after the model accepts the parameters)
-//! fmi2NewDiscreteStates           nothing to update
+//! fmi2NewDiscreteStates           the model's discrete states, after the inputs set
 //! fmi2EnterContinuousTimeMode     -> ContinuousTimeMode
 //! fmi2SetTime t                   finite, not before startTime
 //! fmi2SetContinuousStates x       exactly nx finite values, checked by the model
@@ -15,7 +18,7 @@
 use crate::fmi::common::instance::{Instance, Rejected};
 use crate::fmi::common::machine::Machine;
 
-/// The flags `fmi2NewDiscreteStates` returns in `fmi2EventInfo`, all false.
+/// The flags `fmi2NewDiscreteStates` returns in `fmi2EventInfo`.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct EventInfo {
     pub new_discrete_states_needed: bool,
@@ -36,9 +39,12 @@ impl Instance {
         Ok(())
     }
 
-    /// No discrete states and no time events.
+    /// The model's discrete states updated (after the inputs set in Event Mode); no time
+    /// events, nothing more to iterate.
     pub fn new_discrete_states(&mut self) -> Result<EventInfo, Rejected> {
-        Ok(EventInfo::default())
+        self.prepare()?;
+        let (values_changed, nominals_changed) = self.model.update_discrete_states();
+        Ok(EventInfo { values_changed, nominals_changed, ..EventInfo::default() })
     }
 
     pub fn enter_continuous_time_mode(&mut self) -> Result<(), Rejected> {
@@ -56,9 +62,26 @@ impl Instance {
         if !(t.is_finite() && t >= self.clock.start) {
             return Err(format!("time = {t} is invalid: it must be finite and >= startTime = {}", self.clock.start));
         }
+        self.model.set_time(t - self.clock.start)?;
         self.clock.time = t;
-        let since = self.clock.since_start();
-        self.model.set_time(since)
+        Ok(())
+    }
+
+    /// Model Exchange: continuous states set one by one with `fmi2SetReal` /
+    /// `fmi3SetFloat64` in Continuous-Time Mode, where `fmi2SetContinuousStates` is allowed
+    /// (FMI 3.0 allows it there for continuous-time states, FMI 2.0's mathematical
+    /// description too; integrators use it for finite-difference Jacobians): the others
+    /// keep their values, and the model checks the new vector as with
+    /// `fmi2SetContinuousStates`.
+    pub(super) fn set_some_states(&mut self, states: &[(usize, f64)]) -> Result<(), Rejected> {
+        if states.is_empty() {
+            return Ok(());
+        }
+        let mut x = self.get_continuous_states(self.description().state_count())?;
+        for &(k, v) in states {
+            x[k] = v;
+        }
+        self.set_continuous_states(&x)
     }
 
     pub fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), Rejected> {

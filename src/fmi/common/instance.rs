@@ -102,12 +102,6 @@ impl Instance {
     }
 
     /// The name of `call` in this instance's FMI version.
-    /// A message in the words of the instance's FMI version (FMI 3.0: its own function
-    /// names, [`super::call::fmi3_text`]).
-    fn in_own_words(&self, message: &str) -> String {
-        (self.dialect.text)(message)
-    }
-
     pub fn name_of(&self, call: Call) -> String {
         (self.dialect.name)(call)
     }
@@ -125,13 +119,13 @@ impl Instance {
 
     /// Log under an error category (always on).
     pub fn log_error(&self, message: &str) {
-        self.log.error(&self.in_own_words(message));
+        self.log.error(message);
     }
 
     /// A call this FMU cannot answer but that leaves it usable: log why (category
     /// `logStatusDiscard`) and return [`Status::Discard`] for the call to return.
     pub fn discard(&self, message: &str) -> Status {
-        self.log.discard(&self.in_own_words(message));
+        self.log.discard(message);
         Status::Discard
     }
 
@@ -162,11 +156,11 @@ impl Instance {
             Status::Error
         })?;
         if let Some(note) = self.model.take_note() {
-            self.log.note(&self.in_own_words(&format!("{name}: {note}")));
+            self.log.note(&format!("{name}: {note}"));
         }
         match self.model.take_warning() {
             Some(warning) => {
-                self.log.warning(&self.in_own_words(&format!("{name}: {warning}")));
+                self.log.warning(&format!("{name}: {warning}"));
                 Ok((value, Status::Warning))
             }
             None => Ok((value, Status::Ok)),
@@ -243,7 +237,7 @@ impl Instance {
     /// Values of the listed variables, all of type `kind` (Integers are exact in f64).
     fn get_values(&mut self, kind: Kind, vrs: &[u32]) -> Result<Vec<f64>, Rejected> {
         let d = self.description();
-        let mut named = Vec::with_capacity(vrs.len());
+        let mut named = Vec::new();
         for &v in vrs {
             named.push(d.named(kind, v)?);
         }
@@ -294,7 +288,7 @@ impl Instance {
     /// rejection sets none of them.
     fn set_values(&mut self, kind: Kind, vrs: &[u32], values: &[f64]) -> Result<(), Rejected> {
         let d = self.description();
-        let mut checked = Vec::with_capacity(vrs.len());
+        let mut checked = Vec::new();
         let mut states = Vec::new();
         for (&v, &x) in vrs.iter().zip(values) {
             self.settable_now(v)?;
@@ -327,25 +321,19 @@ impl Instance {
             }
             checked.push((v, self.model.check(v, x)?));
         }
-        checked.into_iter().for_each(|(v, x)| self.model.set(v, x));
-        self.set_some_states(&states)
-    }
-
-    /// Model Exchange: continuous states set one by one with `fmi2SetReal` /
-    /// `fmi3SetFloat64` in Continuous-Time Mode, where `fmi2SetContinuousStates` is allowed
-    /// (FMI 3.0 allows it there for continuous-time states, FMI 2.0's mathematical
-    /// description too; integrators use it for finite-difference Jacobians): the others
-    /// keep their values, and the model checks the new vector as with
-    /// `fmi2SetContinuousStates`.
-    fn set_some_states(&mut self, states: &[(usize, f64)]) -> Result<(), Rejected> {
         if states.is_empty() {
+            checked.into_iter().for_each(|(v, x)| self.model.set(v, x));
             return Ok(());
         }
-        let mut x = self.get_continuous_states(self.description().state_count())?;
-        for &(k, v) in states {
-            x[k] = v;
+        // States with other variables: the states are the model's to check (after the
+        // inputs they are read under), so the whole call is undone if it refuses them.
+        if let Some((k, x)) = states.iter().find(|(_, x)| !x.is_finite()) {
+            let name = d.state_name(Named::State(*k));
+            return Err(format!("{name} = {x} is invalid: states must be finite"));
         }
-        self.set_continuous_states(&x)
+        let before = self.model.boxed_clone();
+        checked.into_iter().for_each(|(v, x)| self.model.set(v, x));
+        self.set_some_states(&states).inspect_err(|_| self.model = before)
     }
 
     /// `fmi2SetReal`.
@@ -406,17 +394,19 @@ impl Instance {
                         (true, false) => " or a state derivative",
                     };
                     Err(format!(
-                        "{} (value reference {v}) is {article} {role} but a {what} must be a Real {}{also}",
+                        "{} (value reference {v}) is {article} {role} but {} {what} must be a Real {}{also}",
                         d.state_name(named),
+                        if what.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" },
                         want.as_str()
                     ))
                 }
             }
         };
-        unknowns.iter().try_for_each(|&v| role(v, Causality::Output, false, "vUnknown_ref entry"))?;
-        knowns.iter().try_for_each(|&v| role(v, Causality::Input, true, "vKnown_ref entry"))?;
+        let [unknown, known, seed_name] = self.dialect.derivative_arguments;
+        unknowns.iter().try_for_each(|&v| role(v, Causality::Output, false, &format!("{unknown} entry")))?;
+        knowns.iter().try_for_each(|&v| role(v, Causality::Input, true, &format!("{known} entry")))?;
         if let Some(x) = seed.iter().find(|x| !x.is_finite()) {
-            return Err(format!("dvKnown = {x} is invalid: it must be finite"));
+            return Err(format!("{seed_name} = {x} is invalid: it must be finite"));
         }
         self.prepare()?;
         self.model.jacobian(unknowns, knowns, self.clock.since_start())
@@ -442,7 +432,7 @@ impl Instance {
         match got.iter().position(|x| !x.is_finite()) {
             Some(i) => {
                 let name = d.named(Kind::Real, names[i]).map_or_else(|_| names[i].to_string(), |n| d.state_name(n));
-                Err(format!("the derivative of {name} overflows for this dvKnown"))
+                Err(format!("the derivative of {name} overflows for this {}", self.dialect.derivative_arguments[2]))
             }
             None => Ok(got.to_vec()),
         }

@@ -397,6 +397,12 @@ pub trait FmuModel: Send {
     fn derivatives(&self, _time: f64) -> Vec<f64> {
         Vec::new()
     }
+    /// Model Exchange, Event Mode (`fmi2NewDiscreteStates`): update the discrete states
+    /// after the inputs set; `(values of the continuous states changed, their nominals
+    /// changed)`. The default has none.
+    fn update_discrete_states(&mut self) -> (bool, bool) {
+        (false, false)
+    }
     /// Nominal values of the states (> 0).
     fn nominals(&self) -> Vec<f64> {
         vec![1.0; self.description().state_count()]

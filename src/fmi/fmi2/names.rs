@@ -15,8 +15,12 @@ impl Instance {
     }
 }
 
-pub const FMI2: Dialect =
-    Dialect { name: |c| name(c).to_string(), text: str::to_string, get_before_initialization: false, configuration_mode: false };
+pub const FMI2: Dialect = Dialect {
+    name: |c| name(c).to_string(),
+    get_before_initialization: false,
+    configuration_mode: false,
+    derivative_arguments: ["vUnknown_ref", "vKnown_ref", "dvKnown"],
+};
 
 /// The call's FMI 2.0 name (calls that exist in FMI 3.0 only under their only names).
 pub fn name(call: Call) -> &'static str {

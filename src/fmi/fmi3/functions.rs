@@ -10,9 +10,10 @@
 
 use crate::boundary::guard;
 use crate::fmi::common::instance::{Call, Instance, Interface, Logger, Status};
+pub use crate::fmi::fmi3::derivatives::*;
+pub use crate::fmi::fmi3::states::*;
 use crate::fmi::fmi3::types::*;
 use crate::fmi::frame::{register, slice, slice_mut, text, unregister, with_instance};
-use crate::fmi::shims::{self, Names};
 use std::ffi::{CString, c_char};
 use std::sync::Arc;
 
@@ -389,121 +390,6 @@ pub unsafe extern "C" fn fmi3SetInt32(
     }
 }
 
-// FMU states: the same bodies as FMI 2.0 (same handles, same checks), under FMI 3.0's
-// names; fmi3FreeFMUState also accepts a NULL pointer.
-
-fn names(function: &'static str) -> Names {
-    Names { function, state: "FMUState" }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetFMUState(instance: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
-    unsafe { shims::get_fmu_state(instance, FMUState, names("fmi3GetFMUState")) }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetFMUState(instance: fmi3Instance, FMUState: fmi3FMUState) -> fmi3Status {
-    unsafe { shims::set_fmu_state(instance, FMUState, names("fmi3SetFMUState")) }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3FreeFMUState(instance: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
-    unsafe { shims::free_fmu_state(instance, FMUState, true, names("fmi3FreeFMUState")) }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SerializedFMUStateSize(instance: fmi3Instance, FMUState: fmi3FMUState, size: *mut usize) -> fmi3Status {
-    unsafe { shims::serialized_fmu_state_size(instance, FMUState, size, names("fmi3SerializedFMUStateSize")) }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SerializeFMUState(
-    instance: fmi3Instance,
-    FMUState: fmi3FMUState,
-    serializedState: *mut fmi3Byte,
-    size: usize,
-) -> fmi3Status {
-    unsafe { shims::serialize_fmu_state(instance, FMUState, serializedState, size, names("fmi3SerializeFMUState")) }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3DeserializeFMUState(
-    instance: fmi3Instance,
-    serializedState: *const fmi3Byte,
-    size: usize,
-    FMUState: *mut fmi3FMUState,
-) -> fmi3Status {
-    unsafe { shims::deserialize_fmu_state(instance, serializedState, size, FMUState, names("fmi3DeserializeFMUState")) }
-}
-
-/// `fmi3GetDirectionalDerivative` (`adjoint = false`: sensitivity = J seed) and
-/// `fmi3GetAdjointDerivative` (`true`: sensitivity = seed^T J).
-unsafe fn derivative_of(
-    instance: fmi3Instance,
-    name: &'static str,
-    adjoint: bool,
-    (unknowns, n_unknowns): (*const fmi3ValueReference, usize),
-    (knowns, n_knowns): (*const fmi3ValueReference, usize),
-    (seed, n_seed): (*const fmi3Float64, usize),
-    (sensitivity, n_sensitivity): (*mut fmi3Float64, usize),
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::GetDirectionalDerivative,
-            || format!("{name}(nUnknowns={n_unknowns}, nKnowns={n_knowns})"),
-            |i| {
-                let (seeds, sensitivities) = if adjoint { (n_unknowns, n_knowns) } else { (n_knowns, n_unknowns) };
-                if n_seed != seeds || n_sensitivity != sensitivities {
-                    let (a, b) = if adjoint { ("nUnknowns", "nKnowns") } else { ("nKnowns", "nUnknowns") };
-                    return Err(format!(
-                        "nSeed = {n_seed} and nSensitivity = {n_sensitivity} must equal {a} = {seeds} and {b} = {sensitivities} (scalar variables)"
-                    ));
-                }
-                let u = slice(unknowns, n_unknowns, "unknowns")?;
-                let k = slice(knowns, n_knowns, "knowns")?;
-                let s = slice(seed, n_seed, "seed")?;
-                let out = slice_mut(sensitivity, n_sensitivity, "sensitivity")?;
-                let got = if adjoint { i.adjoint_derivative(u, k, s)? } else { i.directional_derivative(u, k, s)? };
-                out.copy_from_slice(&got);
-                OK
-            },
-        )
-    }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
-    instance: fmi3Instance,
-    unknowns: *const fmi3ValueReference,
-    nUnknowns: usize,
-    knowns: *const fmi3ValueReference,
-    nKnowns: usize,
-    seed: *const fmi3Float64,
-    nSeed: usize,
-    sensitivity: *mut fmi3Float64,
-    nSensitivity: usize,
-) -> fmi3Status {
-    let args = ((unknowns, nUnknowns), (knowns, nKnowns), (seed, nSeed), (sensitivity, nSensitivity));
-    unsafe { derivative_of(instance, "fmi3GetDirectionalDerivative", false, args.0, args.1, args.2, args.3) }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetAdjointDerivative(
-    instance: fmi3Instance,
-    unknowns: *const fmi3ValueReference,
-    nUnknowns: usize,
-    knowns: *const fmi3ValueReference,
-    nKnowns: usize,
-    seed: *const fmi3Float64,
-    nSeed: usize,
-    sensitivity: *mut fmi3Float64,
-    nSensitivity: usize,
-) -> fmi3Status {
-    let args = ((unknowns, nUnknowns), (knowns, nKnowns), (seed, nSeed), (sensitivity, nSensitivity));
-    unsafe { derivative_of(instance, "fmi3GetAdjointDerivative", true, args.0, args.1, args.2, args.3) }
-}
-
 /// One step; never early, no event handling (no event mode), `lastSuccessfulTime` the end
 /// of an accepted step (else the time before it), `terminateSimulation` at the stop time.
 /// With required intermediate variables, the importer is asked for them at the end of the
@@ -545,7 +431,8 @@ pub unsafe extern "C" fn fmi3DoStep(
         OK
     });
     let Some((requester, p0)) = asked else { return first };
-    if guard(|| requester.request_inputs(t + h)).is_err() {}
+    // A panic in the importer's callback is caught; the step goes on with the inputs it had.
+    let _ = guard(|| requester.request_inputs(t + h));
     with_instance(instance, Call::FinishStep, describe, |i| {
         let stepped = i.finish_step(t, h, &p0);
         outs(i)?;

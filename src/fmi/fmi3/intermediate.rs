@@ -20,6 +20,9 @@ use crate::fmi::common::instance::{Instance, Rejected, Requester};
 use crate::fmi::common::machine::Machine;
 use crate::fmi::common::model::{Causality, Kind, Variability};
 
+/// A step that asks the importer: its callback and the inputs at the step's start.
+pub type Asking = (std::sync::Arc<dyn Requester>, Vec<f64>);
+
 impl Instance {
     /// Use `requester` for the inputs `vrs` (each a continuous Real input) in every step.
     pub fn set_intermediate_update(&mut self, requester: std::sync::Arc<dyn Requester>, vrs: &[u32]) -> Result<(), Rejected> {
@@ -36,7 +39,7 @@ impl Instance {
 
     /// Phase 1: `Some((requester, inputs at t))` when this step asks the importer, after the
     /// checks of the step; the instance is then in Intermediate Update Mode.
-    pub fn begin_step(&mut self, t: f64, h: f64) -> Result<Option<(std::sync::Arc<dyn Requester>, Vec<f64>)>, Rejected> {
+    pub fn begin_step(&mut self, t: f64, h: f64) -> Result<Option<Asking>, Rejected> {
         self.check_step(t, h)?;
         let Some((requester, vrs)) = self.intermediate.clone() else { return Ok(None) };
         self.prepare()?;

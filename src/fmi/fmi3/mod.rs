@@ -5,8 +5,10 @@
 //! ```text
 //! types.rs         fmi3PlatformTypes.h, fmi3FunctionTypes.h as Rust declarations
 //! functions.rs     the common and co-simulation functions
+//! derivatives.rs   the directional and adjoint derivatives
 //! intermediate.rs  Intermediate Update Mode inside a step (safe Rust)
-//! names.rs         its Dialect: the functions' names, text in its words (safe Rust)
+//! names.rs         its Dialect: the functions' names, each written out (safe Rust)
+//! states.rs        the FMU-state functions
 //! arrays.rs        time, arrays and Configuration Mode on an instance (safe Rust)
 //! exchange.rs      the Model Exchange functions
 //! unsupported.rs   clocks, scheduled execution, output derivatives, other variable types: refused
@@ -14,10 +16,12 @@
 //! ```
 
 pub mod arrays;
+pub mod derivatives;
 pub mod exchange;
 pub mod functions;
 pub mod intermediate;
 pub mod names;
+pub mod states;
 pub mod types;
 pub mod unsupported;
 pub mod xml;

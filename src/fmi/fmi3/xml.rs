@@ -149,8 +149,7 @@ pub fn fmi3(d: &Description) -> String {
         let _ = writeln!(x, "    <InitialUnknown valueReference=\"{vr}\"/>");
     }
     x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
-    // The tables are shared with FMI 2.0: their descriptions name its functions.
-    crate::fmi::fmi3::names::text(&x)
+    x
 }
 
 /// The structural parameter, then each array with a `<Dimension>` naming it.

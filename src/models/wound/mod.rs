@@ -13,15 +13,14 @@
 mod codec;
 mod exchange;
 mod probes;
+mod setup;
 pub mod variables;
 
 pub use codec::SchemeChoice;
 
 use crate::fmi::common::model::{Description, FmuModel, Rejected};
 use crate::fmi::common::serialized::same_parameters;
-use crate::solver::{
-    EDGE_STRESS_MAX, Params, Settings, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma, delivered_accuracy,
-};
+use crate::solver::{EDGE_STRESS_MAX, Params, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
 use crate::units::{Scales, check_scale};
 use probes::Probes;
 use std::cell::RefCell;
@@ -86,68 +85,6 @@ impl WoundModel {
             probe_radii: Probes::default(),
             validity_warning: start(Vr::ValidityWarning) != 0.0,
         })
-    }
-
-    /// Report `text` with the current call (fmi2Warning, category logStatusWarning).
-    fn warn(&self, text: String) {
-        self.warning.replace(Some(text));
-    }
-
-    /// Report `text` with the current call, whose status stays OK (category
-    /// logStatusWarning).
-    fn note(&self, text: String) {
-        self.note.replace(Some(text));
-    }
-
-    /// A tolerance below the floor: the run delivers the floor's accuracy, which the
-    /// master is told in the log (a note: masters that hand their integrator's tolerance
-    /// to the FMU must still be able to run).
-    fn setup_note(&self) -> Option<String> {
-        let tol = self.effective_tolerance();
-        let delivered = delivered_accuracy(tol);
-        (self.scheme.method == 0 && delivered > tol).then(|| {
-            format!("tolerance {tol:e} is below what this FMU can deliver: results are accurate to {delivered:e} of the opening (rounding in the modal transform dominates below)")
-        })
-    }
-
-    /// A method whose accuracy the tolerance does not control.
-    fn setup_warning(&self) -> Option<String> {
-        let tol = self.effective_tolerance();
-        if self.scheme.method != 0 {
-            let what = ["", "TR-BDF2 (method 1)", "the paper's scheme (method 2)", "the explicit scheme (method 3)"];
-            let name = what.get(self.scheme.method as usize).copied().unwrap_or("this method");
-            return Some(format!(
-                "{name} is for comparison: its error depends on grid_points and internal_step, not on the tolerance {tol:e} (the paper's scheme is off by 10-20 % of the opening at 101 points); method = 0 meets the tolerance"
-            ));
-        }
-        None
-    }
-
-    /// The tolerance in force: the experiment's if defined, else the parameter.
-    fn effective_tolerance(&self) -> f64 {
-        self.experiment_tolerance.unwrap_or(self.tolerance)
-    }
-
-    /// The mesh the parameters and the tolerance in force give.
-    fn settings(&self) -> Result<Settings, Rejected> {
-        Settings::for_tolerance(&self.params, self.effective_tolerance()).map_err(|e| e.to_string())
-    }
-
-    /// A solver at the cut for these parameters, tolerance and scheme choice (the
-    /// internal step is in master time, the solver's in units of `T`).
-    fn build_solver(&self) -> Result<Solver, Rejected> {
-        let choice = SchemeChoice { internal_step: self.scheme.internal_step / self.scales.time, ..self.scheme };
-        let scheme = choice.scheme(self.settings()?);
-        Solver::with_scheme(&self.params, &scheme).map_err(|e| e.to_string())
-    }
-
-    fn solver(&self) -> &Solver {
-        self.solver.as_ref().expect("prepare() builds the solver before outputs, steps and derivatives")
-    }
-
-    /// Dimensionless edge stress.
-    fn p(&self) -> f64 {
-        self.edge_stress / self.scales.stress
     }
 }
 
@@ -264,6 +201,9 @@ impl FmuModel for WoundModel {
             Vr::ValidityWarning => f64::from(u8::from(self.validity_warning)),
             Vr::WoundRadius => self.scales.length * self.solver().wound_radius(),
             Vr::EdgeVelocity => {
+                if let Some(v) = self.evolved_edge_velocity() {
+                    return v;
+                }
                 let (solver, p) = (self.solver(), self.p());
                 if !solver.edge_velocity_defined(p) {
                     let Ok(mean) = solver.mean_edge_velocity(p, MEAN_WINDOW).map(|v| self.scales.velocity() * v) else {
@@ -293,6 +233,13 @@ impl FmuModel for WoundModel {
         let r_inf = self.params.r_inf;
         let was_valid = self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
         let (dt, p, rate) = (h / self.scales.time, self.p(), self.edge_stress_rate);
+        if !dt.is_finite() {
+            let t = self.scales.time;
+            return Err(format!(
+                "a step of {h:e} s is beyond the range of the time scale T = {t:e} s: accepted: steps up to {:.3e} s",
+                f64::MAX * t
+            ));
+        }
         let p1 = rate * self.scales.time / self.scales.stress;
         let solver = self.solver.as_mut().expect("prepare() builds the solver before a step");
         solver.advance_linear(dt, p, p1).map_err(|e| e.to_string())?;
@@ -300,7 +247,7 @@ impl FmuModel for WoundModel {
         if let Some(why) = self.solver().validity_violation(r_inf).filter(|_| was_valid) {
             let text = format!("at t = {} s the run leaves the model's validity: {why}", time + h);
             if self.validity_warning {
-                self.warn(format!("{text} (a master that stops on fmi2Warning runs on, with this message logged and status OK, when the parameter validity_warning is set to 0)"));
+                self.warn(format!("{text} (a master that stops on a warning status runs on, with this message logged and status OK, when the parameter validity_warning is set to 0)"));
             } else {
                 self.note(format!("{text} (reported with status OK: validity_warning = 0)"));
             }
@@ -451,11 +398,13 @@ impl FmuModel for WoundModel {
     /// Nominals of the modal coordinates ([`Solver::ode_nominals`]: the edge-stress scale
     /// times each mode's edge value), read by integrators for their absolute tolerance;
     /// the inert spare states take the largest.
+    /// Those of the reference's edge stress (they move at events only).
     fn nominals(&self) -> Vec<f64> {
-        let mut n = self.solver.as_ref().and_then(|s| s.ode_nominals(self.p())).unwrap_or_default();
-        let spare = n.iter().copied().fold(0.0, f64::max);
-        n.resize(MODEL_EXCHANGE_STATES, if spare > 0.0 { spare } else { 1.0 });
-        n
+        self.nominals_at(self.exchange.reference.as_ref().map_or(self.p(), |r| r.p))
+    }
+
+    fn update_discrete_states(&mut self) -> (bool, bool) {
+        self.exchange_event()
     }
 
     fn derivatives(&self, _time: f64) -> Vec<f64> {

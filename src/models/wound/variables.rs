@@ -17,10 +17,10 @@ crate::variable_table! {
     Lambda => parameter("lambda", 1.0, "1", "Viscous length over the cut radius, 2 sqrt(eta/zeta)/R0: 0 or in [1e-150, 1e6]"),
     Sigma => parameter("sigma", 1.0, "1", "Homeostatic tension over shear modulus, in (-6, 1e6] (R1 = R0 (1 + sigma/6) > 0)"),
     RInf => parameter("R_inf", 10.0, "1", "Outer radius of the tissue over the cut radius, in [1.001, 1e6]"),
-    EdgeStress => input("edge_stress", 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step or, with fmi2SetRealInputDerivatives, linear in time (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
+    EdgeStress => input("edge_stress", 0.0, "Pa", "Radial stress at the wound edge [Pa], held over each step or, when the master gives its time derivative, linear in time (0 = free edge), |edge_stress| <= 1e6 G; the model sees edge_stress / G"),
     WoundRadius => output("wound_radius", "um", "Wound radius R0 (1 + u(1, t)) [um]; R1 = R0 (1 + sigma/6) just after the cut"),
     EdgeVelocity => output("edge_velocity", "um/s", "Edge velocity dR/dt [um/s] under the current edge_stress; where it is infinite (lambda = 0, at the cut and just after a change of edge_stress) the mean over the next 0.01 T, as the log says"),
-    Tolerance => parameter("tolerance", 1e-10, "1", "Accuracy target when fmi2SetupExperiment defines none: max |R - R_exact| / (R_final - R1) for t >= 0.01; sets the mesh; below 1e-11 the log (status OK) names the 1e-11 delivered"),
+    Tolerance => parameter("tolerance", 1e-10, "1", "Accuracy target when the master's experiment defines none: max |R - R_exact| for t >= 0.01 relative to the larger of the free and the actual opening, max(|sigma|, |sigma - p|) S R0 (S = R_final - R1 at sigma 1); sets the mesh; below 1e-11 the log (status OK) names the 1e-11 delivered"),
     Method => integer("method", 0, (0, 3), "0: spectral elements, exact in time (mesh from the tolerance); 1: TR-BDF2 on that mesh; 2: the paper's scheme; 3: explicit scheme"),
     GridPoints => integer("grid_points", 101, (3, 100000), "Uniform grid points of methods 2 and 3"),
     InternalStep => parameter("internal_step", 1e-3, "s", "Largest internal time step [s] of methods 1 to 3"),
@@ -29,7 +29,7 @@ crate::variable_table! {
     StressScale => parameter("G", 1.0, "Pa", "Stress scale: the shear modulus (1e-12 ..= 1e12; 1 keeps stresses dimensionless)"),
     // Added after the interface was published: after every other value reference (13 rows,
     // 217 states and derivatives at 13 ..= 446, FMI 3.0's time, n_probes and arrays at 447 ..= 451).
-    ValidityWarning = 452 => integer("validity_warning", 1, (0, 1), "How a step that leaves the model's validity (wound radius <= 0, a folded ring, an edge strain beyond 1) is reported: 1, fmi2Warning (fmi3Warning) with the reason in the log (category logStatusWarning); 0, the same log message with status OK, for masters that stop on a warning"),
+    ValidityWarning = 452 => integer("validity_warning", 1, (0, 1), "How a step that leaves the model's validity (wound radius <= 0, a folded ring, an edge strain beyond 1) is reported: 1, status Warning with the reason in the log (category logStatusWarning); 0, the same log message with status OK, for masters that stop on a warning"),
 }
 
 /// Continuous states of Model Exchange: the modal coordinates of the spectral-element
