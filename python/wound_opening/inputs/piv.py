@@ -52,11 +52,12 @@ _HEADING = re.compile(r"\s*([^\[\],\t]+?)\s*\[([^\]]*)\]")
 
 @dataclass(frozen=True)
 class Frames:
-    """The movie's clock: frame n is at (n - cut_after_frame) frame_interval_s since the cut;
-    PIV pair k starts at frame first_frame + (k - 1) pair_step."""
+    """The movie's clock: frame n is at (n - cut_after_frame) frame_interval_s since frame
+    cut_after_frame (the cut, or frame N when the fit places the cut after it: the radius
+    table's clock); PIV pair k starts at frame first_frame + (k - 1) pair_step."""
 
     frame_interval_s: float
-    cut_after_frame: int
+    cut_after_frame: float
     first_frame: int = 1
     pair_step: int = 1
 
@@ -65,8 +66,9 @@ class Frames:
             raise InputError(
                 f"--frame-interval-s {self.frame_interval_s}: the time between frames (s, > 0)"
             )
+        if not (math.isfinite(self.cut_after_frame) and self.cut_after_frame >= 0):
+            raise InputError(f"--cut-after-frame {self.cut_after_frame}: must be >= 0")
         for name, v, low in (
-            ("--cut-after-frame", self.cut_after_frame, 0),
             ("--piv-first-frame", self.first_frame, 1),
             ("--piv-pair-step", self.pair_step, 1),
         ):
