@@ -128,10 +128,11 @@ def errorbar_points(ax, x, y, sd, flagged, label):
 def fit_figure(
     result, radius=None, profile=None, path=None, *, profile_points: int = PROFILE_POINTS
 ):
-    """The figure of a converged fit to `path` (a file name or a binary file object), returned
-    (closed). The data come from the result (radius, profile: accepted for the callers that
-    pass them). A figure written once is kept with the result (its PNG bytes): the report's
-    and the command line's `--plot` are one drawing."""
+    """The figure of a fit to `path` (a file name or a binary file object), returned
+    (closed); a failed fit's shows the model where it stopped, the title its reasons. The
+    data come from the result (radius, profile: accepted for the callers that pass them).
+    A figure written once is kept with the result (its PNG bytes): the report's and the
+    command line's `--plot` are one drawing."""
     return drawn_once(result, profile_points, lambda: _draw(result, profile_points), path, 120)
 
 
@@ -169,7 +170,7 @@ def drawn_once(result, key, draw, path, dpi: int):
 
 
 def _draw(result, profile_points: int):
-    tabs = result.tables()
+    tabs = result.tables(stopped=True)  # a failed fit: its curve where it stopped
     pts, curve = tabs["radius"], tabs["curve"]
     has_piv = "profile" in tabs
     profiles = [n for n in NAMES if result.reports[n].profile is not None]
@@ -189,7 +190,8 @@ def _draw(result, profile_points: int):
     errorbar_points(
         ax, t, pts.radius_um.to_numpy(), pts.sd_um.to_numpy(), flagged, f"data ± noise ({noise})"
     )
-    ax.plot(curve.time_s, curve.radius_um, "-", c="C1", label="fit", zorder=1)
+    fitted = "fit" if result.converged else "model where the fit stopped (failed)"
+    ax.plot(curve.time_s, curve.radius_um, "-", c="C1", label=fitted, zorder=1)
     R0, sigma = result.theta[:2]
     ax.axhline(R0 * (1 + sigma / 6), ls=":", c="gray", lw=0.8, label="R₁ = R₀(1 + σ/6)")
     time_axis(ax, t)
@@ -199,7 +201,7 @@ def _draw(result, profile_points: int):
     res = fig.add_subplot(grid[1, width], sharex=ax)
     errorbar_points(res, t, pts.residual_um.to_numpy(), pts.sd_um.to_numpy(), flagged, None)
     res.axhline(0, c="gray", lw=0.8)
-    res.set(xlabel="time since the cut (s)", ylabel="data − fit (µm)")
+    res.set(xlabel=time_label(result), ylabel="data − fit (µm)")
     if has_piv:
         pv, pc = tabs["profile"], tabs["profile_curve"]
         pax = fig.add_subplot(grid[0:2, 2:])
@@ -226,10 +228,18 @@ def _draw(result, profile_points: int):
     from .status import status
 
     st = status(result)
-    fig.suptitle(st.text, color=st.colour, fontsize="medium")
+    failed = "" if result.converged else "FAILED fit (the model where it stopped): "
+    fig.suptitle(failed + st.text, color=st.colour, fontsize="medium")
     for a in fig.axes[2:]:  # the PIV and profile panels: each minor tick is a line and a
         a.minorticks_off()  # label to lay out, a third of the drawing, saying little there
     return fig
+
+
+def time_label(result) -> str:
+    """The time axis: since the cut, or on the data's clock when the fit has the cut."""
+    if "cut_s" not in result.reports:
+        return "time since the cut (s)"
+    return f"time (s; the cut at {result.reports['cut_s'].estimate:.3g} s)"
 
 
 def margins(width: float, height: float, rows: int, columns: int) -> dict:
