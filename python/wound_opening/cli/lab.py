@@ -302,5 +302,13 @@ def _piv(args, where, radius, outer, centre, origin):
         ring_width_um=args.ring_width_um,
         likelihood=args.piv_likelihood,
         noise_um_s=args.velocity_noise_um_s,
+        units=units if field_is_openpiv(field) else None,
+        frame_interval_s=args.frame_interval_s,
+        pixel_size_um=args.pixel_size_um,
     )
     return profile
+
+
+def field_is_openpiv(field) -> bool:
+    """Whether the field's files are OpenPIV's (their units as --piv-units says)."""
+    return any("OpenPIV" in f.kind for f in field.files)

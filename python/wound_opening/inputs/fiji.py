@@ -69,7 +69,9 @@ def _um_per_length(path, length_unit: str, pixel_size_um) -> float:
     if length_unit == "um":
         if pixel_size_um is not None:
             raise InputError(
-                f"{path}: a pixel size is given but the length unit is um: give --length-unit px"
+                f"{path}: a pixel size is given but the length unit is um: give --length-unit "
+                "px if the areas are in px^2; if the pixel size was given for OpenPIV files, "
+                "files in um need none: give --piv-units um,um/s instead"
             )
         return 1.0
     if length_unit != "px":

@@ -143,7 +143,9 @@ def _length_factor(path, unit: str, pixel_size_um) -> float:
     if unit == "px":
         if pixel_size_um is None or not (math.isfinite(pixel_size_um) and pixel_size_um > 0):
             raise InputError(
-                f"{path}: positions in px need the pixel size (--pixel-size-um, finite, > 0)"
+                f"{path}: positions in px need the pixel size (--pixel-size-um, finite, > 0); "
+                "OpenPIV files do not state their units (--piv-units, default px,px/s): files "
+                "in um (a scaled run) need --piv-units um,um/s and no pixel size"
             )
         return float(pixel_size_um)
     return LENGTHS[unit]
