@@ -150,11 +150,11 @@ def raw_files_section(*series) -> str:
     )
 
 
-def figure_png(result) -> bytes:
+def figure_png(result, profile=None) -> bytes:
     from .plots import fit_figure
 
     buf = io.BytesIO()
-    fit_figure(result, path=buf)
+    fit_figure(result, profile=profile, path=buf)
     return buf.getvalue()
 
 
@@ -172,8 +172,10 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
         settings_html(result.settings),
     ]
     parts.append(raw_files_section(radius, profile))
-    estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
-    how = ["estimated from the residuals" if e else "given" for e in estimated]
+    from .plots import noise_words
+
+    said = {"estimated": "estimated from the residuals", "ring scatter": "the rings' scatter"}
+    how = [said.get(w, w) for w in noise_words(result, profile)]
     noise = [f"radius {sig(result.noise[0], 4)} µm ({how[0]})"]
     if result.has_profile:
         noise.append(f"velocity {sig(result.noise[1], 4)} µm/s ({how[1]})")
@@ -196,9 +198,9 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     parts.append("<h2>Estimates</h2>" + _estimates(result))
     parts.append(_flagged(result))
     parts.append(
-        figure_html(figure_png(result), "data, fit, residuals and profile likelihoods")
+        figure_html(figure_png(result, profile), "data, fit, residuals and profile likelihoods")
         if result.converged
-        else figure_html(figure_png(result), "data and the model where the fit stopped")
+        else figure_html(figure_png(result, profile), "data and the model where the fit stopped")
     )
     return document("Wound-opening fit", parts, command)
 
