@@ -107,7 +107,7 @@ def _draw(result):
                 pax.plot(c.r_um, c.velocity_um_s, "-", c=colour, lw=1)
     time_axis(ax, np.concatenate(times))
     ax.set(ylabel="wound radius (µm)")
-    ax.legend(loc="lower right", fontsize="small", title="wound (data ± noise, fit)")
+    ax.legend(loc="center right", fontsize="small", title="wound (data ± noise, fit)")
     text_box(ax, _text(result))
     res.axhline(0, c="gray", lw=0.8)
     res.set(xlabel="time since the cut (s)", ylabel="(data − fit) / noise")
