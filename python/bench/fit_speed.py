@@ -8,6 +8,7 @@ cut, Fiji-like noise 0.3 px of 0.2 um (0.06 um, estimated by the fit, as the com
 does for a Fiji table).
 
     lab_R0_4, lab_R0_8, lab_R0_16  the tissue, cuts of R0 = 4, 8, 16 um (lambda 5, 2.5, 1.25)
+    lab_cut_R0_4, _8, _16          as lab_R0_*, the cut 0.3 frames after frame N fitted
     lab_friction                   lambda = 0.1, R0 = 10 um, T = 10 s
     lab_viscous                    lambda = 10, R0 = 10 um, T = 0.1 s (eta/G = 10 s)
     flat_plateau                   R0 = 8 um, 120 frames from 60 s on: only the plateau
@@ -66,7 +67,11 @@ CASES = {  # name -> (R0, lambda, sigma, T, times, PIV vectors)
     "flat_early": (16.0, *tissue(16.0), "early", 0),
     "piv_4000": (8.0, *tissue(8.0), "frames", 4000),
     "tissue_3": None,
+    **{f"lab_cut_R0_{int(r)}": (r, *tissue(r), "frames", 0) for r in (4.0, 8.0, 16.0)},
 }
+#: The lab_cut cases: times counted from frame N, the laser fired 0.3 frame intervals after
+#: it; the fit's cut_s in [0, 0.25] s, as `--cut-after-frame N` on a Fiji table fits it.
+CUT_S, FRAME_S = 0.075, 0.25
 QUICK = ["lab_R0_8", "lab_friction", "flat_early", "tissue_3"]
 TIMES = {
     "frames": 0.25 * np.arange(1, 121),
@@ -84,7 +89,8 @@ def make_data(name: str, piv_vectors: int | None = None) -> dict:
     rng = np.random.default_rng(SEED)
     t = TIMES[design]
     r_inf = OUTER / R0
-    radius = R0 * we.edge(lam, sigma, r_inf, t / T)[0] + NOISE_UM * rng.standard_normal(t.size)
+    since = t - (CUT_S if name.startswith("lab_cut") else 0.0)
+    radius = R0 * we.edge(lam, sigma, r_inf, since / T)[0] + NOISE_UM * rng.standard_normal(t.size)
     out = {"times": t, "radius": radius}
     if n_piv:
         pairs = 0.25 * (np.arange(6) * 20 + 1.5)  # frame pairs 4-5, 24-25, ..: mid-pair times
@@ -161,8 +167,12 @@ def run_case(name: str, data_file: str, out_dir: str) -> dict:
         if "p_times" in d
         else None
     )
+    params = None
+    if name.startswith("lab_cut"):
+        params = wo.Parameters()
+        params.add("cut_s", min=0.0, max=FRAME_S)
     start = time.process_time()
-    result = wo.fit(radius, profile, outer_radius_um=OUTER)
+    result = wo.fit(radius, profile, outer_radius_um=OUTER, params=params)
     fit_s = time.process_time() - start
     if profile is None:
         write_report(out / f"{name}.html", result, radius, profile, command="bench")

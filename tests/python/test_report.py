@@ -8,6 +8,7 @@ from __future__ import annotations
 import hashlib
 import json
 import re
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -18,11 +19,13 @@ from test_fmu_pages import render
 
 import wound_opening as wo
 from wound_opening.model import half_opening_time
-from wound_opening.results.numbers import end
+from wound_opening.results.numbers import ends
 from wound_opening.results.report import render as report_html
 
 NOISE = 0.05
 OUTLIER_ROW = 12  # 1-based data row made an outlier (+1 um = 20 noise)
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def write_experiment(path):
@@ -142,9 +145,9 @@ def test_the_report_records_inputs_noise_estimates_flags_and_versions(robust):
     for name in ("R0_um", "sigma", "lambda", "T_s"):
         rep = result.reports[name]
         assert f'<td class="n">{rep.estimate:.5g}</td>' in text
-        for side, e in zip((-1, 1), rep.ci95):
+        for e, printed in zip(rep.ci95, ends(*rep.ci95, rep.estimate)):
             if e is not None:  # to the digits that decide whether a value is inside
-                assert f'<td class="n">{end(e, side, rep.estimate)}</td>' in text
+                assert f'<td class="n">{printed}</td>' in text
     assert text.count("interval not computed") == 3  # tau, zeta/G, viscous length (derived=False)
     assert re.search(rf"<td>radius</td><td>{OUTLIER_ROW}</td><td>{OUTLIER_ROW + 2}</td>", text)
     assert wo.__version__ in text and "SHA-256" in text and "wound-opening fit radius.csv" in text
@@ -166,9 +169,67 @@ def test_a_failed_fit_is_reported_as_such(robust):
     assert (
         "NOT converged" in text and "does not describe the data" in text and "No estimates" in text
     )
-    assert "data:image/png" not in text and "given in Python (no file)" in text
+    assert "given in Python (no file)" in text
+    assert "data:image/png" in text and "data and the model where the fit stopped" in text
     with pytest.raises(ValueError, match="did not converge"):
         result.tables()
+    curve = result.tables(stopped=True)["curve"]  # the figure's: the model where it stopped
+    R0, sigma, lam, T = result.theta
+    assert curve.radius_um.iloc[-1] == pytest.approx(
+        float(
+            wo.simulate(
+                [curve.time_s.iloc[-1]],
+                lam=lam,
+                sigma=sigma,
+                R0_um=R0,
+                T_s=T,
+                outer_radius_um=OUTER,
+            ).radius_um[0]
+        ),
+        rel=1e-9,
+    )
+
+
+def test_a_failed_fit_writes_its_figure_and_report_from_the_command_line(robust, tmp_path, capsys):
+    """The radius file with a noise 500 times too small given: exit 1, and the figure and the
+    report are written, the report saying why (chi^2) and holding the figure; no export."""
+    from wound_opening.cli import main
+
+    _, _, path = robust
+    png, page = tmp_path / "fit.png", tmp_path / "fit.html"
+    argv = ["fit", str(path), "--outer-radius-um", str(OUTER), "--radius-noise-um", "1e-4"]
+    argv += ["--plot", str(png), "--report", str(page), "--export", str(tmp_path / "x")]
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert "the figure shows the model where it stopped; no export" in err, err
+    assert png.read_bytes().startswith(b"\x89PNG") and not list(tmp_path.glob("x_*.csv"))
+    text = page.read_text()
+    assert "NOT converged" in text and "does not describe the data" in text
+    assert "data:image/png" in text and "where the fit stopped" in text
+
+
+def test_a_failed_fit_of_several_wounds_draws_where_it_stopped():
+    """A several-wound result marked failed (the drawing and the report read only its
+    verdict, reasons and each wound's point): its figure and report are written, the report
+    saying why; its tables stand only as `stopped`. Exact radii of two wounds of one tissue."""
+    from wound_opening.fitting.wounds import Wound, fit_wounds
+    from wound_opening.results.tissue_plots import tissue_figure
+    from wound_opening.results.tissue_report import render as tissue_html
+
+    t = np.linspace(0.5, 60, 30)
+    wounds = []
+    for r0 in (6.0, 12.0):
+        r = r0 * we.edge(20 / r0, SIGMA, OUTER / r0, t / (0.025 * r0 * r0))[0]
+        wounds.append(Wound(wo.RadiusSeries(t, r, noise_um=1e-3), OUTER, name=f"R0 {r0:g}"))
+    result = fit_wounds(wounds, intervals=False)
+    result.converged, result.reasons = False, ["a reason the verdict gives"]
+    with pytest.raises(ValueError, match="did not converge"):
+        result.tables()
+    assert set(result.tables(stopped=True)) == {"R0 6", "R0 12"}
+    assert tissue_figure(result) is not None
+    text = tissue_html(result, wounds, command="test")
+    assert "a reason the verdict gives" in text and "where the fit stopped" in text
+    assert "data:image/png" in text
 
 
 def test_the_report_renders_in_headless_chromium(robust, tmp_path):
@@ -426,3 +487,21 @@ def test_a_fixed_parameter_is_said_fixed_in_the_summary_figure_and_report(
         '<td>R0_um</td><td class="n">10</td><td>—</td><td>—</td><td>—</td><td>fixed (given)</td>'
         in page
     ), page
+
+
+def test_intervals_are_printed_to_their_own_precision():
+    """An interval's ends to a tenth of its width, rounded outward: [12.155, 12.203] as
+    such (not [12.1, 12.3]); over random intervals the printed one holds the computed one
+    and is at most a fifth wider."""
+    from wound_opening.results.numbers import interval
+
+    assert interval(12.155, 12.203, 12.18) == "[12.155, 12.203]"
+    rng = np.random.default_rng(5)
+    for _ in range(2000):
+        centre = 10 ** rng.uniform(-3, 4) * rng.choice([-1, 1])
+        width = abs(centre) * 10 ** rng.uniform(-5, 0.5)
+        lo = centre - width * rng.uniform(0.2, 0.8)
+        hi = lo + width
+        text = interval(lo, hi, centre)
+        a, b = (float(x) for x in text.strip("[]").split(", "))
+        assert a <= lo and hi <= b and b - a <= 1.2 * width, (lo, hi, text)

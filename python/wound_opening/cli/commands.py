@@ -11,6 +11,7 @@ read (inputs/lab_files.py, check_cut)."""
 
 from __future__ import annotations
 
+import math
 import shlex
 import sys
 
@@ -64,10 +65,12 @@ def fit_command(args) -> None:
     )
     radius, profile = prepare(args, radius, profiles[0] if profiles else None)
     names = wound_coordinates(outer[0], NUISANCES)  # a nuisance named joins the fit
-    params = from_options(names, args.fix, args.bound, args.prior)
+    fix, bound = cut_options(args, lab)
+    params = from_options(names, fix, bound, args.prior)
     result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
-    result.settings = settings_of(args, series=(radius, profile))
+    result.settings = settings_of(args, series=(radius, profile), lab=lab)
     print(result.summary())
+    _print_cut(result.settings)
 
     def report(path):
         from ..results.report import write_report
@@ -82,22 +85,52 @@ def fit_command(args) -> None:
     return _outputs(args, result, report, figure)
 
 
+def cut_options(args, lab) -> tuple[list, list]:
+    """--fix and --bound with the cut of a movie's clock (lab.Cut) added as the nuisance
+    cut_s: fixed where given, bounded by the frame interval where only "after frame N" is
+    known; the user's own --fix/--bound/--prior cut_s=... wins."""
+    fix, bound = list(args.fix), list(args.bound)
+    cut = lab.cut if lab else None
+    if cut is None or _names_cut(args):
+        return fix, bound
+    if cut.fixed_s is not None:
+        fix.append(f"cut_s={cut.fixed_s!r}")
+    elif cut.bound_s is not None:
+        bound.append(f"cut_s=0:{cut.bound_s!r}")
+    return fix, bound
+
+
+def _names_cut(args) -> bool:
+    options = [*args.fix, *args.bound, *args.prior]
+    return any(o.split("=")[0].strip() == "cut_s" for o in options)
+
+
+def _print_cut(settings: dict) -> None:
+    if settings.get("cut"):
+        print(f"cut: {settings['cut']}")
+
+
 def _outputs(args, result, report, figure) -> int:
-    """The fit's files: --json, --report (`report(path)`) and, if it converged, --plot
-    (`figure(path)`) and --export; the exit code (1: not converged). The report and the
-    figure import matplotlib only when asked for."""
+    """The fit's files: --json, --report (`report(path)`), --plot (`figure(path)`; a failed
+    fit's report and figure show the model where it stopped and why) and, if it converged,
+    --export; the exit code (1: not converged). The report and the figure import matplotlib
+    only when asked for."""
     if args.json:
         with open(args.json, "w") as f:
             f.write(result.to_json() + "\n")
     if args.report:
         report(args.report)
         print(f"report -> {args.report}")
-    if not result.converged:
-        if args.plot or args.export:
-            print("no figure and no export: the fit did not converge", file=sys.stderr)
-        return 1
     if args.plot:
         figure(args.plot)
+    if not result.converged:
+        print(
+            "the fit did not converge"
+            + (": the figure shows the model where it stopped" if args.plot else "")
+            + ("; no export" if args.export else ""),
+            file=sys.stderr,
+        )
+        return 1
     if args.export:
         print("exported: " + ", ".join(map(str, result.export(args.export))))
     return 0
@@ -155,8 +188,9 @@ def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
     coordinates = tissue_coordinates(names, [w.outer_radius_um for w in wounds])
     params = from_options(coordinates, args.fix, args.bound, args.prior)
     result = fit_wounds(wounds, loss=args.loss, params=params)
-    result.settings = settings_of(args, names, [*series.values(), *(profiles or [])])
+    result.settings = settings_of(args, names, [*series.values(), *(profiles or [])], lab)
     print(result.summary())
+    _print_cut(result.settings)
 
     def report(path):
         from ..results.tissue_report import write_report
@@ -235,7 +269,7 @@ def simulate_command(args) -> None:
         print(f"{len(times)} times -> {args.csv}")
 
 
-def settings_of(args, wounds=None, series=()) -> dict:
+def settings_of(args, wounds=None, series=(), lab=None) -> dict:
     """The settings a fit's report prints (results/settings.py says the keys) that the
     command line's `args` (options.parser's fit) give; `wounds`: the names
     of the wounds in order (several radius files or a long table), None for one wound;
@@ -268,6 +302,13 @@ def settings_of(args, wounds=None, series=()) -> dict:
         "outer_radius_um": args.outer_radius_um,
         "files": files,
     }
+    if lab is not None and lab.cut is not None:
+        out["cut"] = lab.cut.text
+        if wounds is None and _names_cut(args) and lab.cut.fixed_s is None:
+            n = math.floor(lab.cut.origin)
+            out["cut"] = f"after frame {n}: cut_s as the options give it (s after frame {n})"
+        if args.area_col:  # a Fiji table: the frames give the times
+            out.pop("cut_time")
     for key in ("frame_interval_s", "centre_um", "centre_px"):
         value = getattr(args, key, None)
         if value is not None:

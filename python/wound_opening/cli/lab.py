@@ -6,8 +6,22 @@ else every wound's (name, RadiusSeries, VelocityProfile or None) in order."""
 
 from __future__ import annotations
 
+import math
 import sys
 from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Cut:
+    """How the cut is placed on a movie's clock. The times read are counted from frame
+    `origin` (n at (n - origin) x the frame interval); after it the cut is `fixed_s` (given)
+    or fitted in [0, `bound_s`] (the nuisance cut_s of a one-wound fit), or, both None, at the
+    origin itself; `text` says which, as the summary, the JSON and the report print it."""
+
+    origin: float
+    fixed_s: float | None
+    bound_s: float | None
+    text: str
 
 
 @dataclass(frozen=True)
@@ -15,6 +29,7 @@ class LabInputs:
     names: list
     radii: list
     profiles: list  # one per wound, or empty
+    cut: Cut | None = None  # the movie's clock (frames), None for times read from a file
 
     @property
     def series(self) -> dict:
@@ -24,9 +39,10 @@ class LabInputs:
 def add_lab_file_arguments(parser) -> None:
     g = parser.add_argument_group(
         "a lab's own files (Fiji, PIVlab, OpenPIV; docs/fitting.md, 'Lab files')",
-        "Frames number the movie from 1: frame n is at (n - CUT_AFTER_FRAME) x FRAME_INTERVAL_S "
-        "after the cut. --length-unit px with --pixel-size-um converts areas in px^2 and PIV "
-        "positions in px.",
+        "Frames number the movie from 1: frame n is at (n - N) x FRAME_INTERVAL_S after frame "
+        "N, the last before the cut; one wound's cut is then fitted between frames N and N + 1 "
+        "(cut_s, docs/fitting.md). --length-unit px with --pixel-size-um converts areas in px^2 "
+        "and PIV positions in px.",
     )
     g.add_argument(
         "--area-col",
@@ -44,9 +60,11 @@ def add_lab_file_arguments(parser) -> None:
     )
     g.add_argument(
         "--cut-after-frame",
-        type=int,
+        type=float,
         metavar="N",
-        help="the number of the last frame recorded before the cut: frames 1..N are skipped",
+        help="the number of the last frame recorded before the cut: frames 1..N are skipped; an "
+        "integer: the cut is fitted between frames N and N + 1 (one wound; several wounds: taken "
+        "at frame N); a fraction (3.2: 0.2 frame intervals after frame 3): the cut given",
     )
     g.add_argument(
         "--piv",
@@ -120,6 +138,51 @@ def _lab_mode(args) -> bool:
     return bool(args.area_col or args.piv)
 
 
+def cut_of(args, several: bool) -> Cut | None:
+    """The cut on the movie's clock from --cut-after-frame N (or, for a Fiji table,
+    --cut-time on ImageJ's clock, frame 1 at 0 s: N = 1 + cut time / frame interval). A Fiji
+    table of one wound: times from frame floor(N), the cut fitted in [0, frame interval] for
+    an integer N, else fixed at the fraction of N. Several wounds (their fit has no cut_s)
+    and a radius file with its own times: times from the cut at frame N. None without the
+    options (the readers refuse)."""
+    from ..inputs.columns import InputError
+
+    dt, fiji = args.frame_interval_s, bool(args.area_col)
+    if fiji and args.cut_time:
+        if args.cut_after_frame is not None:
+            raise InputError(
+                "give the cut as --cut-after-frame or as --cut-time (s, frame 1 at 0 s), not both"
+            )
+        if dt is None or not (math.isfinite(args.cut_time) and dt > 0):
+            return None
+        n_cut, given = 1.0 + args.cut_time / dt, f"--cut-time {args.cut_time:g} s"
+    else:
+        n_cut, given = args.cut_after_frame, f"--cut-after-frame {args.cut_after_frame:g}"
+    if n_cut is None or dt is None:
+        return None
+    if not (math.isfinite(n_cut) and n_cut >= 0):
+        raise InputError(
+            f"{given}: the cut must be at or after frame 0 (the last frame before the cut, "
+            "a fraction for a cut between frames)"
+        )
+    n = math.floor(n_cut)
+    after = (n_cut - n) * dt
+    if fiji and not several:
+        if n_cut == n:
+            return Cut(
+                n,
+                None,
+                dt,
+                f"after frame {n} ({given}): fitted between frames {n} and {n + 1} (cut_s in "
+                f"[0, {dt:g}] s after frame {n})",
+            )
+        return Cut(n, after, None, f"{given}: {after:.6g} s after frame {n} (cut_s fixed)")
+    why = "several wounds: their fit takes the cut as given" if several else "the PIV pairs"
+    if n_cut == n:
+        return Cut(n_cut, None, None, f"at frame {n} ({given}; {why}, not fitted)")
+    return Cut(n_cut, None, None, f"{given}: {after:.6g} s after frame {n} ({why})")
+
+
 def read_lab_inputs(args):
     """LabInputs of the lab-file options, or None without them (module docstring)."""
     if not _lab_mode(args):
@@ -132,8 +195,10 @@ def read_lab_inputs(args):
     if args.wound_col:
         raise InputError("--wound-col reads a long CSV table, not Fiji tables or PIV fields")
     outer = float_list(args.outer_radius_um, "--outer-radius-um")
+    cut = cut_of(args, bool(args.wound_col) or len(args.radius_csv) > 1)
+    origin = None if cut is None else cut.origin
     if args.area_col:
-        radii = [_fiji(args, path) for path in args.radius_csv]
+        radii = [_fiji(args, path, origin) for path in args.radius_csv]
     else:
         radii = [
             read_radius(
@@ -159,30 +224,30 @@ def read_lab_inputs(args):
             )
         centres = _centres(args, len(radii))
         for k, (where, radius) in enumerate(zip(args.piv, radii)):
-            profiles.append(_piv(args, where, radius, outer[k % len(outer)], centres[k]))
+            profiles.append(_piv(args, where, radius, outer[k % len(outer)], centres[k], origin))
     for s in radii + profiles:
         for f in s.files:
             for note in f.notes:
                 print(f"note: {note}", file=sys.stderr)
-    return LabInputs(names, radii, profiles)
+    return LabInputs(names, radii, profiles, cut)
 
 
-def _fiji(args, path):
+def _fiji(args, path, origin):
     from ..inputs.fiji import read_fiji
 
-    if args.time_unit != "s" or args.cut_time:
+    if args.time_unit != "s":
         from ..inputs.columns import InputError
 
         raise InputError(
             "a Fiji table's times come from its frames: give --frame-interval-s and "
-            "--cut-after-frame, not --time-unit or --cut-time"
+            "--cut-after-frame (or --cut-time in s, frame 1 at 0 s), not --time-unit"
         )
     return read_fiji(
         path,
         area_col=args.area_col,
         frame_col=args.frame_col,
         frame_interval_s=args.frame_interval_s,
-        cut_after_frame=args.cut_after_frame,
+        cut_after_frame=args.cut_after_frame if origin is None else origin,
         length_unit=args.length_unit,
         pixel_size_um=args.pixel_size_um,
         noise_um=args.radius_noise_um,
@@ -210,19 +275,17 @@ def _centres(args, n: int) -> list:
     return [Centre(scale * p[0], scale * p[1]) for p in (points * n)[:n]]
 
 
-def _piv(args, where, radius, outer, centre):
+def _piv(args, where, radius, outer, centre, origin):
     from ..inputs.columns import InputError
     from ..inputs.piv import Frames, read_field
     from ..inputs.rings import field_profile
 
-    if args.frame_interval_s is None or args.cut_after_frame is None:
+    if args.frame_interval_s is None or origin is None:
         raise InputError("--piv needs --frame-interval-s and --cut-after-frame (the pairs' times)")
     units = tuple(s.strip() for s in args.piv_units.split(","))
     if len(units) != 2:
         raise InputError(f"--piv-units {args.piv_units!r}: expected LENGTH,VELOCITY")
-    frames = Frames(
-        args.frame_interval_s, args.cut_after_frame, args.piv_first_frame, args.piv_pair_step
-    )
+    frames = Frames(args.frame_interval_s, origin, args.piv_first_frame, args.piv_pair_step)
     field = read_field(
         where,
         frames,
@@ -239,5 +302,13 @@ def _piv(args, where, radius, outer, centre):
         ring_width_um=args.ring_width_um,
         likelihood=args.piv_likelihood,
         noise_um_s=args.velocity_noise_um_s,
+        units=units if field_is_openpiv(field) else None,
+        frame_interval_s=args.frame_interval_s,
+        pixel_size_um=args.pixel_size_um,
     )
     return profile
+
+
+def field_is_openpiv(field) -> bool:
+    """Whether the field's files are OpenPIV's (their units as --piv-units says)."""
+    return any("OpenPIV" in f.kind for f in field.files)

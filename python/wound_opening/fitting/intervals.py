@@ -50,6 +50,12 @@ BRACKET = 0.05
 CONFIRM = 0.01
 #: Refining steps of a bracketed end at most (regula falsi, bisection where it creeps).
 REFINE = 16
+#: A walk's point whose fit is unsure (it ran out of evaluations, or put R0 or T on a search
+#: bound) ends the side open; before that, the step is cut to a tenth this many times: a
+#: first step aimed by a standard error that a coordinate at its bound inflates (the cut
+#: of a fit whose cut sits at frame N) can land far beyond the crossing, where the fits
+#: are unsure though the data are not.
+UNSURE_RETRIES = 3
 
 
 def _on_search_bound(obj, z: np.ndarray, fixed: int) -> bool:
@@ -156,12 +162,16 @@ def walk_side(walk: Walk, z_hat, direction: int, limit: float, delta0: float = 0
     move = (
         walk.step * root
     )  # aimed at the crossing of a quadratic profile with the Jacobian's error
-    points = []
-    for _ in range(16):
+    points, retries = [], 0
+    for _ in range(16 + UNSURE_RETRIES):
         v = prev_v + direction * move
         v = min(v, limit) if direction > 0 else max(v, limit)
         z, delta, unsure = refused_open(v)
         points.append((v, delta))
+        if unsure and retries < UNSURE_RETRIES:  # too far to be sure: a tenth of the step
+            retries += 1
+            move *= 0.1
+            continue
         if unsure:
             return None, True, points
         if delta >= threshold:  # a crossing stands if no valley lies beyond it (valleys.py)

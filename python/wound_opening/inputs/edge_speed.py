@@ -69,9 +69,13 @@ def edge_ratio(time_s, r, vr, radius) -> tuple[float, int] | None:
     return (num / den, used) if used else None
 
 
-def check_edge_speed(time_s, r, vr, radius) -> str | None:
-    """Refuse a field whose edge velocity is not the edge speed (module docstring); the
-    sentence for the report otherwise (None when unchecked)."""
+def check_edge_speed(
+    time_s, r, vr, radius, units=None, frame_interval_s=None, pixel_size_um=None
+) -> str | None:
+    """Refuse a field whose edge velocity is not the edge speed (module docstring), naming
+    the option at fault where q is a unit mistake's factor (unit_mistake: `units` the
+    --piv-units read, None for files that name theirs); the sentence for the report
+    otherwise (None when unchecked)."""
     got = edge_ratio(np.asarray(time_s), np.asarray(r), np.asarray(vr), radius)
     if got is None:
         return None
@@ -81,10 +85,64 @@ def check_edge_speed(time_s, r, vr, radius) -> str | None:
         f"({n} frame pairs; 1 expected, 0.65 to 0.94 on the examples' noisy and exact fields)"
     )
     if not 1 / EDGE_FACTOR <= q <= EDGE_FACTOR:
+        named = unit_mistake(q, units, frame_interval_s, pixel_size_um)
         raise InputError(
-            f"{said}: the tissue at the edge must move with the edge. The velocities are "
-            "likely in another unit than read (OpenPIV files: --piv-units, px,px/s against "
-            "px,px/frame differs by the frame interval), or the pairs' times are wrong "
-            "(--frame-interval-s, --piv-first-frame, --piv-pair-step)"
+            f"{said}: the tissue at the edge must move with the edge. "
+            + (
+                named
+                or "The velocities are likely in another unit than read (OpenPIV files: "
+                "--piv-units, px,px/s against px,px/frame differs by the frame interval), or "
+                "the pairs' times are wrong (--frame-interval-s, --piv-first-frame, "
+                "--piv-pair-step)"
+            )
         )
     return said
+
+
+#: The ratio q of a correct field (the module docstring's 0.65 to 0.94), and how far from a
+#: unit mistake's factor times it a measured q may be to be named as that mistake.
+EDGE_TYPICAL, EDGE_NAMED = 0.8, 1.6
+
+
+def unit_mistake(q, units=None, frame_interval_s=None, pixel_size_um=None) -> str | None:
+    """The sentence naming the option at fault when q is a unit mistake's factor times a
+    correct field's (within EDGE_NAMED), else None. `units`: the --piv-units read (LENGTH,
+    VELOCITY); None for files that name their units (PIVlab). A velocity per frame read per
+    s scales q by the frame interval, per s read per frame by its inverse; lengths in um
+    read as px scale positions and velocities by the pixel size, q (v r / R at the edge,
+    the flow ~ 1 / r) by its square."""
+    if units is None:
+        return None
+    length, velocity = units
+    per = velocity.split("/", 1)[-1]
+    other = "s" if per == "frame" else "frame"
+    fixes = []
+    if frame_interval_s:
+        factor = frame_interval_s if per == "s" else 1 / frame_interval_s
+        fixes.append(
+            (
+                factor,
+                f"velocities in {length}/{other} read as {velocity}: give "
+                f"--piv-units {length},{length}/{other}",
+            )
+        )
+    if pixel_size_um and length == "px":
+        fixes.append(
+            (
+                pixel_size_um**2,
+                f"files in um read as px (the pixel size {pixel_size_um:g} "
+                "on positions and velocities): give --piv-units um,um/s (or um,um/frame)",
+            )
+        )
+    if length == "um" and pixel_size_um:
+        fixes.append(
+            (
+                1 / pixel_size_um**2,
+                "files in px read as um: give --piv-units px,px/s "
+                "(or px,px/frame) with --pixel-size-um",
+            )
+        )
+    for factor, text in fixes:
+        if abs(math.log(q / (EDGE_TYPICAL * factor))) <= math.log(EDGE_NAMED):
+            return f"A factor {factor:.3g} from a correct field's: {text}."
+    return None

@@ -7,9 +7,11 @@ columns ("Area", "Perim.", ..., "Slice" or "Frame"), separated by "," in .csv fi
 otherwise; a failed measurement is written "NaN".
 
     radius [um] = sqrt(Area / pi) x (1 for um^2, pixel_size_um for px^2)
-    time [s since the cut] = (frame - cut_after_frame) x frame_interval_s
+    time [s] = (frame - cut_after_frame) x frame_interval_s
 
-Frames up to and including `cut_after_frame` were recorded before the cut: their rows are
+counted from the cut, or from frame N when `cut_after_frame` = N and the fit places the cut
+after it (the nuisance cut_s, cli/lab.py). Frames up to and including `cut_after_frame` were
+recorded before the cut: their rows are
 skipped (whatever they hold: Area 0, empty, a pre-cut measurement). After the cut a row with
 no area (empty, NaN, 0) is a frame where the tracking failed: skipped. Both are counted in
 the file's record (provenance.RawFile) and its notes, which the report and the command line
@@ -53,20 +55,23 @@ def _frame_interval(value) -> float:
     return float(value)
 
 
-def _cut_frame(value) -> int:
-    if value is None or int(value) != value or value < 0:
+def _cut_frame(value) -> float:
+    if value is None or not (math.isfinite(value) and value >= 0):
         raise InputError(
-            f"--cut-after-frame {value}: give the last frame recorded before the cut (an integer "
-            ">= 0; 0 when the first frame is after the cut)"
+            f"--cut-after-frame {value}: give the last frame recorded before the cut (>= 0; 0 "
+            "when the first frame is after the cut; 3.2 for a cut 0.2 frame intervals after "
+            "frame 3)"
         )
-    return int(value)
+    return int(value) if value == int(value) else float(value)
 
 
 def _um_per_length(path, length_unit: str, pixel_size_um) -> float:
     if length_unit == "um":
         if pixel_size_um is not None:
             raise InputError(
-                f"{path}: a pixel size is given but the length unit is um: give --length-unit px"
+                f"{path}: a pixel size is given but the length unit is um: give --length-unit "
+                "px if the areas are in px^2; if the pixel size was given for OpenPIV files, "
+                "files in um need none: give --piv-units um,um/s instead"
             )
         return 1.0
     if length_unit != "px":
@@ -102,7 +107,7 @@ def read_fiji(
     area_col: str = "Area",
     frame_col: str | None = None,
     frame_interval_s: float | None = None,
-    cut_after_frame: int | None = None,
+    cut_after_frame: float | None = None,
     length_unit: str = "um",
     pixel_size_um: float | None = None,
     noise_um: float | None = None,
@@ -194,7 +199,7 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
         raise InputError(f"{path}: line {bad[0][0]}: {area_col} = {bad[0][2]:g} < 0")
     if len(used) < MIN_POINTS:
         raise InputError(
-            f"{path}: {len(used)} frames after the cut (frame {cut}) with an area: too few, need "
+            f"{path}: {len(used)} frames after the cut (frame {cut:g}) with an area: too few, need "
             f"at least {MIN_POINTS} ({len(before)} rows before the cut, {len(failed)} without an "
             "area)"
             + (
@@ -213,7 +218,7 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
     notes = [f"{path}: rows not in {frame_col} order: sorted by {frame_col}"] if unsorted else []
     if before:
         notes.append(
-            f"{path}: {len(before)} rows at or before frame {cut} (before the cut) skipped"
+            f"{path}: {len(before)} rows at or before frame {cut:g} (before the cut) skipped"
         )
     if failed:
         listed = ", ".join(str(r[1]) for r in failed[:10]) + (", ..." if len(failed) > 10 else "")

@@ -52,11 +52,12 @@ _HEADING = re.compile(r"\s*([^\[\],\t]+?)\s*\[([^\]]*)\]")
 
 @dataclass(frozen=True)
 class Frames:
-    """The movie's clock: frame n is at (n - cut_after_frame) frame_interval_s since the cut;
-    PIV pair k starts at frame first_frame + (k - 1) pair_step."""
+    """The movie's clock: frame n is at (n - cut_after_frame) frame_interval_s since frame
+    cut_after_frame (the cut, or frame N when the fit places the cut after it: the radius
+    table's clock); PIV pair k starts at frame first_frame + (k - 1) pair_step."""
 
     frame_interval_s: float
-    cut_after_frame: int
+    cut_after_frame: float
     first_frame: int = 1
     pair_step: int = 1
 
@@ -65,8 +66,9 @@ class Frames:
             raise InputError(
                 f"--frame-interval-s {self.frame_interval_s}: the time between frames (s, > 0)"
             )
+        if not (math.isfinite(self.cut_after_frame) and self.cut_after_frame >= 0):
+            raise InputError(f"--cut-after-frame {self.cut_after_frame}: must be >= 0")
         for name, v, low in (
-            ("--cut-after-frame", self.cut_after_frame, 0),
             ("--piv-first-frame", self.first_frame, 1),
             ("--piv-pair-step", self.pair_step, 1),
         ):
@@ -141,7 +143,9 @@ def _length_factor(path, unit: str, pixel_size_um) -> float:
     if unit == "px":
         if pixel_size_um is None or not (math.isfinite(pixel_size_um) and pixel_size_um > 0):
             raise InputError(
-                f"{path}: positions in px need the pixel size (--pixel-size-um, finite, > 0)"
+                f"{path}: positions in px need the pixel size (--pixel-size-um, finite, > 0); "
+                "OpenPIV files do not state their units (--piv-units, default px,px/s): files "
+                "in um (a scaled run) need --piv-units um,um/s and no pixel size"
             )
         return float(pixel_size_um)
     return LENGTHS[unit]

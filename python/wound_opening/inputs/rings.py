@@ -156,10 +156,15 @@ def field_profile(
     ring_width_um: float | None = None,
     likelihood: str = "rings",
     noise_um_s: float | None = None,
+    units=None,
+    frame_interval_s: float | None = None,
+    pixel_size_um: float | None = None,
 ):
     """(VelocityProfile, Centre) of a piv.Field: the centre given (centre.Centre) or
     estimated, the radial projection, then rings (default width: the PIV grid spacing) or
-    every vector."""
+    every vector. `units`, `frame_interval_s`, `pixel_size_um`: as read (OpenPIV's
+    --piv-units; None for files naming theirs), to name a unit mistake the edge speed
+    shows (edge_speed.unit_mistake)."""
     from .centre import estimate_centre, radial
 
     flow = estimate_centre(field.x_um, field.y_um, field.u_um_s, field.v_um_s, field.pair)
@@ -170,7 +175,7 @@ def field_profile(
     r, vr = radial(centre, field.x_um, field.y_um, field.u_um_s, field.v_um_s)
     files = field.files + (RawFile("(centre)", "", "wound centre", {}, (centre.describe(),)),)
     keep(radius, outer_um, field.time_s, r)  # a field mostly inside the wound: refused first
-    edge = check_edge_speed(field.time_s, r, vr, radius)
+    edge = check_edge_speed(field.time_s, r, vr, radius, units, frame_interval_s, pixel_size_um)
     if edge:
         files += (RawFile("(edge)", "", "edge speed", {}, (edge,)),)
     if likelihood == "vectors":

@@ -116,25 +116,35 @@ def curve_times(times_s, points: int = CURVE_POINTS) -> np.ndarray:
     )
 
 
-def tables(result) -> dict:
+def nuisance(result, name: str) -> float:
+    """The estimate of a nuisance of the fit (the cut on the data's clock, the outline's
+    offset), 0 where the fit has none."""
+    rep = getattr(result, "reports", {}).get(name)
+    return 0.0 if rep is None else float(rep.estimate)
+
+
+def tables(result, stopped: bool = False) -> dict:
     """pandas DataFrames of the fit (module docstring); profile tables only with PIV data.
-    A fit that did not converge has no fitted curve: ValueError with its reasons."""
+    The curve is on the data's clock (the cut at cut_s) with the outline's offset. A fit that
+    did not converge has no fitted curve: ValueError with its reasons; `stopped`: the curve
+    where it stopped (the figure of a failed fit)."""
     import pandas as pd
 
-    if not result.converged:
+    if not (result.converged or stopped):
         raise ValueError(
             "the fit did not converge (" + "; ".join(result.reasons) + "): nothing to export"
         )
-    R0, sigma, lam, T = result.theta
+    R0, sigma, lam, T = result.theta[:4]
+    cut, offset = nuisance(result, "cut_s"), nuisance(result, "outline_offset_um")
     params = dict(lam=lam, sigma=sigma, R0_um=R0, T_s=T, outer_radius_um=result.outer_radius_um)
     radius = result.points["radius"]
-    sim = simulate(curve_times(radius["time_s"]), **params)
+    sim = simulate(curve_times(np.asarray(radius["time_s"], float) - cut), **params)
     out = {
         "radius": pd.DataFrame(radius),
         "curve": pd.DataFrame(
             {
-                "time_s": sim.times_s,
-                "radius_um": sim.radius_um,
+                "time_s": sim.times_s + cut,
+                "radius_um": sim.radius_um + offset,
                 "edge_velocity_um_s": sim.edge_velocity_um_s,
             }
         ),
@@ -144,12 +154,12 @@ def tables(result) -> dict:
         out["profile"] = pd.DataFrame(profile)
         rows = []
         for time in np.unique(profile["time_s"]):
-            edge = float(simulate([time], **params).radius_um[0])
+            edge = float(simulate([time - cut], **params).radius_um[0])
             far = max(float(np.max(profile["r_um"][profile["time_s"] == time])), 1.01 * edge)
             r = np.linspace(
                 edge * (1 + 1e-9), min(far, result.outer_radius_um * (1 - 1e-9)), CURVE_POINTS
             )
-            v = simulate([time], radii_um=r, **params).velocity_um_s[0]
+            v = simulate([time - cut], radii_um=r, **params).velocity_um_s[0]
             rows.append(pd.DataFrame({"time_s": time, "r_um": r, "velocity_um_s": v}))
         out["profile_curve"] = pd.concat(rows, ignore_index=True)
     return out

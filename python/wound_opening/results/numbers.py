@@ -11,6 +11,9 @@ until
 - it differs from the estimate printed to the same digits (an interval [2.31, 2.31] around
   2.31 says nothing).
 
+An interval with both ends closed prints each to its own precision too (`own_digits`):
+down to a tenth of its width, so that the outward rounding never widens it by more.
+
 At most MAX_DIGITS significant digits: beyond, the end is printed as computed (repr).
 """
 
@@ -83,9 +86,30 @@ def end(x, side: int, estimate=None, digits: int = 3) -> str:
     return repr(x)
 
 
+def own_digits(x, width, digits: int = 3) -> int:
+    """The significant digits of an end `x` of an interval `width` wide: at least `digits`,
+    and down to a tenth of the width (two digits of the width), so that rounding outward
+    widens the interval by at most a tenth: [12.155, 12.203] prints [12.155, 12.203], not
+    [12.1, 12.3]."""
+    if x is None or width is None or not (math.isfinite(x) and math.isfinite(width)):
+        return digits
+    if x == 0 or width <= 0:
+        return digits
+    quantum = math.floor(math.log10(width / 10))
+    return min(max(digits, Decimal(repr(float(x))).adjusted() - quantum + 1), MAX_DIGITS)
+
+
 def interval(lower, upper, estimate=None, digits: int = 3) -> str:
-    """ "[lower, upper]" with each end as `end` prints it."""
-    return f"[{end(lower, -1, estimate, digits)}, {end(upper, 1, estimate, digits)}]"
+    """ "[lower, upper]" with each end as `end` prints it, to the interval's own precision
+    (own_digits) where both ends are closed."""
+    return "[{}, {}]".format(*ends(lower, upper, estimate, digits))
+
+
+def ends(lower, upper, estimate=None, digits: int = 3) -> tuple[str, str]:
+    """The ends as `interval` prints them."""
+    width = None if lower is None or upper is None else float(upper) - float(lower)
+    lo = end(lower, -1, estimate, own_digits(lower, width, digits))
+    return lo, end(upper, 1, estimate, own_digits(upper, width, digits))
 
 
 #: The material values' symbols and units as figures print them.

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import io
 import math
+import textwrap
 
 import matplotlib
 
@@ -106,9 +107,11 @@ def estimates_text(result) -> str:
     )
 
 
-def errorbar_points(ax, x, y, sd, flagged, label):
+def errorbar_points(ax, x, y, sd, flagged, label, colour=None):
     """Points with error bars, the flagged ones circled; returns the points' colour."""
-    bars = ax.errorbar(x, y, yerr=sd, fmt="o", ms=3, lw=0.8, capsize=0, label=label, zorder=2)
+    bars = ax.errorbar(
+        x, y, yerr=sd, fmt="o", ms=3, lw=0.8, capsize=0, label=label, zorder=2, c=colour
+    )
     if np.any(flagged):
         named = "flagged (down-weighted)" in ax.get_legend_handles_labels()[1]
         ax.plot(
@@ -128,11 +131,30 @@ def errorbar_points(ax, x, y, sd, flagged, label):
 def fit_figure(
     result, radius=None, profile=None, path=None, *, profile_points: int = PROFILE_POINTS
 ):
-    """The figure of a converged fit to `path` (a file name or a binary file object), returned
-    (closed). The data come from the result (radius, profile: accepted for the callers that
-    pass them). A figure written once is kept with the result (its PNG bytes): the report's
-    and the command line's `--plot` are one drawing."""
-    return drawn_once(result, profile_points, lambda: _draw(result, profile_points), path, 120)
+    """The figure of a fit to `path` (a file name or a binary file object), returned
+    (closed); a failed fit's shows the model where it stopped, the title its reasons. The
+    data come from the result (radius, profile: accepted for the callers that pass them).
+    A figure written once is kept with the result (its PNG bytes): the report's and the
+    command line's `--plot` are one drawing."""
+    draw = lambda: _draw(result, profile_points, noise_words(result, profile))  # noqa: E731
+    return drawn_once(result, profile_points, draw, path, 120)
+
+
+def noise_words(result, profile=None) -> tuple[str, str]:
+    """How each data set's noise was had, as the figure and report say it: "estimated" (from
+    the residuals), "ring scatter" (a PIV field's rings: the scatter of their vectors, not a
+    noise given) or "given"."""
+    estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
+    rings = any(f.kind == "ring averages" for f in getattr(profile, "files", ()))
+    words = ["estimated" if e else "given" for e in estimated]
+    if rings and not estimated[1]:
+        words[1] = "ring scatter"
+    return words[0], words[1]
+
+
+#: A PIV panel's legend names each frame pair up to this many; beyond, the first and the
+#: last and how many, the pairs coloured by time.
+LEGEND_PAIRS = 6
 
 
 #: Titles at the top of their axes, where the automatic placement (which measures every
@@ -168,8 +190,8 @@ def drawn_once(result, key, draw, path, dpi: int):
     return fig
 
 
-def _draw(result, profile_points: int):
-    tabs = result.tables()
+def _draw(result, profile_points: int, noise=("given", "given")):
+    tabs = result.tables(stopped=True)  # a failed fit: its curve where it stopped
     pts, curve = tabs["radius"], tabs["curve"]
     has_piv = "profile" in tabs
     profiles = [n for n in NAMES if result.reports[n].profile is not None]
@@ -179,17 +201,16 @@ def _draw(result, profile_points: int):
         3 if profiles else 2,
         4,
         height_ratios=[3, 1.2, 2.4][: 3 if profiles else 2],
-        **margins(12, height, 3 if profiles else 2, 4),
+        **margins(12, height, 3 if profiles else 2, 4, top=0.75 if has_piv else 0.45),
     )
     width = slice(0, 2) if has_piv else slice(0, 4)
     ax = fig.add_subplot(grid[0, width])
     t, flagged = pts.time_s.to_numpy(), pts.flagged.to_numpy(bool)
-    estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
-    noise = "estimated" if estimated[0] else "given"
     errorbar_points(
-        ax, t, pts.radius_um.to_numpy(), pts.sd_um.to_numpy(), flagged, f"data ± noise ({noise})"
+        ax, t, pts.radius_um.to_numpy(), pts.sd_um.to_numpy(), flagged, f"data ± noise ({noise[0]})"
     )
-    ax.plot(curve.time_s, curve.radius_um, "-", c="C1", label="fit", zorder=1)
+    fitted = "fit" if result.converged else "model where the fit stopped (failed)"
+    ax.plot(curve.time_s, curve.radius_um, "-", c="C1", label=fitted, zorder=1)
     R0, sigma = result.theta[:2]
     ax.axhline(R0 * (1 + sigma / 6), ls=":", c="gray", lw=0.8, label="R₁ = R₀(1 + σ/6)")
     time_axis(ax, t)
@@ -199,22 +220,28 @@ def _draw(result, profile_points: int):
     res = fig.add_subplot(grid[1, width], sharex=ax)
     errorbar_points(res, t, pts.residual_um.to_numpy(), pts.sd_um.to_numpy(), flagged, None)
     res.axhline(0, c="gray", lw=0.8)
-    res.set(xlabel="time since the cut (s)", ylabel="data − fit (µm)")
+    res.set(xlabel=time_label(result), ylabel="data − fit (µm)")
     if has_piv:
         pv, pc = tabs["profile"], tabs["profile_curve"]
         pax = fig.add_subplot(grid[0:2, 2:])
-        for time in np.unique(pv.time_s):
+        times = np.unique(pv.time_s)
+        many = times.size > LEGEND_PAIRS
+        for k, time in enumerate(times):
             sel = (pv.time_s == time).to_numpy()
+            named = not many or k in (0, times.size - 1)
             colour = errorbar_points(
                 pax,
                 pv.r_um.to_numpy()[sel],
                 pv.velocity_um_s.to_numpy()[sel],
                 pv.sd_um_s.to_numpy()[sel],
                 pv.flagged.to_numpy(bool)[sel],
-                f"t = {time:g} s ± noise ({'estimated' if estimated[1] else 'given'})",
+                f"t = {time:g} s" if named else None,
+                plt.cm.viridis(k / (times.size - 1)) if many else None,
             )
             c = pc[pc.time_s == time]
             pax.plot(c.r_um, c.velocity_um_s, "-", c=colour)
+        pax.plot([], [], " ", label=f"{times.size} frame pairs" + (", by time" if many else ""))
+        pax.plot([], [], " ", label=f"± noise ({noise[1]})")
         pax.set(
             xlabel="distance from the wound centre (µm)",
             ylabel="tissue velocity (µm/s)",
@@ -226,19 +253,29 @@ def _draw(result, profile_points: int):
     from .status import status
 
     st = status(result)
-    fig.suptitle(st.text, color=st.colour, fontsize="medium")
+    failed = "" if result.converged else "FAILED fit (the model where it stopped): "
+    title = textwrap.shorten(failed + st.text, 240, placeholder=" ...")
+    fig.suptitle(textwrap.fill(title, 125), color=st.colour, fontsize="medium")
     for a in fig.axes[2:]:  # the PIV and profile panels: each minor tick is a line and a
         a.minorticks_off()  # label to lay out, a third of the drawing, saying little there
     return fig
 
 
-def margins(width: float, height: float, rows: int, columns: int) -> dict:
+def time_label(result) -> str:
+    """The time axis: since the cut, or on the data's clock when the fit has the cut."""
+    if "cut_s" not in result.reports:
+        return "time since the cut (s)"
+    return f"time (s; the cut at {round(result.reports['cut_s'].estimate, 6):g} s)"
+
+
+def margins(width: float, height: float, rows: int, columns: int, top: float = 0.45) -> dict:
     """Gridspec margins of a figure width x height inches: 0.75 in left and 0.55 in below
-    (tick labels and an axis label), 0.45 in on top (a suptitle), 0.9 in between rows (an
+    (tick labels and an axis label), `top` in on top (a suptitle; 0.75 above a panel's
+    title, two lines of it clear of the title), 0.9 in between rows (an
     axis label and the next row's title) and 0.8 in between columns (tick labels and an axis
     label), as fractions. Fixed margins draw in one pass: a layout engine measures every text
     first (about half of this figure's drawing time)."""
-    left, right, bottom, top, row_gap, column_gap = 0.75, 0.15, 0.55, 0.45, 0.9, 0.8
+    left, right, bottom, row_gap, column_gap = 0.75, 0.15, 0.55, 0.9, 0.8
     tall = height - bottom - top
     wide = width - left - right
     return {

@@ -7,7 +7,7 @@ what came out, so that it can be archived with the data and read in any browser:
 - the verdict (converged or not, the reasons, the optimiser's message) and the warnings;
 - every estimate with its standard error and 95 % profile-likelihood interval, whether it is
   identified (or that its interval was not computed) and the advice; the derived values;
-- the points flagged by a robust loss; the figure (plots.fit_figure) of a converged fit;
+- the points flagged by a robust loss; the figure (plots.fit_figure), a failed fit's too;
 - the software: wound_opening's version, the native library's path and SHA-256 (the C API
   has no version call: the hash identifies the build), Python, numpy and scipy; the command
   line and the date (UTC).
@@ -29,7 +29,7 @@ import scipy
 
 from .._native import library_path
 from .names import NAMES
-from .numbers import end
+from .numbers import end, own_digits
 from .settings import file_rows
 from .settings import rows as setting_rows
 from .status import status
@@ -68,9 +68,12 @@ def number_cell(x, digits: int = 5) -> str:
     return f'<td class="n">{html.escape(sig(x, digits))}</td>'
 
 
-def end_cell(x, side: int, estimate) -> str:
-    """An interval end to the digits that decide whether a value is inside (numbers.py)."""
-    return f'<td class="n">{html.escape("—" if x is None else end(x, side, estimate))}</td>'
+def end_cell(x, side: int, estimate, other=None) -> str:
+    """An interval end to the digits that decide whether a value is inside, and to the
+    interval's own precision with its `other` end (numbers.py)."""
+    width = None if x is None or other is None else abs(float(other) - float(x))
+    text = "—" if x is None else end(x, side, estimate, own_digits(x, width))
+    return f'<td class="n">{html.escape(text)}</td>'
 
 
 def status_html(result) -> str:
@@ -147,11 +150,11 @@ def raw_files_section(*series) -> str:
     )
 
 
-def figure_png(result) -> bytes:
+def figure_png(result, profile=None) -> bytes:
     from .plots import fit_figure
 
     buf = io.BytesIO()
-    fit_figure(result, path=buf)
+    fit_figure(result, profile=profile, path=buf)
     return buf.getvalue()
 
 
@@ -169,8 +172,10 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
         settings_html(result.settings),
     ]
     parts.append(raw_files_section(radius, profile))
-    estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
-    how = ["estimated from the residuals" if e else "given" for e in estimated]
+    from .plots import noise_words
+
+    said = {"estimated": "estimated from the residuals", "ring scatter": "the rings' scatter"}
+    how = [said.get(w, w) for w in noise_words(result, profile)]
     noise = [f"radius {sig(result.noise[0], 4)} µm ({how[0]})"]
     if result.has_profile:
         noise.append(f"velocity {sig(result.noise[1], 4)} µm/s ({how[1]})")
@@ -192,10 +197,11 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     parts.append(warnings_html(result))
     parts.append("<h2>Estimates</h2>" + _estimates(result))
     parts.append(_flagged(result))
-    if result.converged:
-        parts.append(
-            figure_html(figure_png(result), "data, fit, residuals and profile likelihoods")
-        )
+    parts.append(
+        figure_html(figure_png(result, profile), "data, fit, residuals and profile likelihoods")
+        if result.converged
+        else figure_html(figure_png(result, profile), "data and the model where the fit stopped")
+    )
     return document("Wound-opening fit", parts, command)
 
 
@@ -251,8 +257,8 @@ def _estimates(result) -> str:
                 name,
                 number_cell(rep.estimate),
                 number_cell(rep.stderr, 3),
-                end_cell(lo, -1, rep.estimate) if computed else "—",
-                end_cell(hi, 1, rep.estimate) if computed else "—",
+                end_cell(lo, -1, rep.estimate, hi) if computed else "—",
+                end_cell(hi, 1, rep.estimate, lo) if computed else "—",
                 state,
                 result.advice(name),
             )
@@ -305,8 +311,8 @@ def material_html(material: dict) -> str:
             (
                 k,
                 number_cell(m["estimate"]),
-                end_cell(lo, -1, m["estimate"]) if computed else "—",
-                end_cell(hi, 1, m["estimate"]) if computed else "—",
+                end_cell(lo, -1, m["estimate"], hi) if computed else "—",
+                end_cell(hi, 1, m["estimate"], lo) if computed else "—",
                 m["unit"],
                 state,
             )

@@ -181,10 +181,11 @@ class FitResult(Outcome):
         """Every profile computed, parameters' and derived values', by name."""
         return {n: r.profile for n, r in self.reports.items()} | dict(self.derived_profiles)
 
-    def tables(self) -> dict:
+    def tables(self, stopped: bool = False) -> dict:
         """The data with the model, residuals and flags, and the fitted curve, as pandas
-        DataFrames with units in the column names (export.py)."""
-        return data_tables(self)
+        DataFrames with units in the column names (export.py; `stopped`: a failed fit's
+        curve where it stopped)."""
+        return data_tables(self, stopped)
 
     def export(self, stem) -> list:
         """Write tables() as stem_radius.csv, stem_curve.csv (and the PIV ones); export.py."""

@@ -5,6 +5,8 @@ line's options, cli/commands.py, and the series read), not from the command line
 missing or None: not given):
 
     cut_time          float   the time of the cut in the files' time unit (subtracted)
+    cut               str     how the cut was placed on a movie's clock (frames): fitted
+                      between two frames, given, or at a frame (cli/lab.py, Cut)
     time_unit         str     "s", "ms" or "min": the files' time unit
     length_unit       str     "um" or "px": the files' length unit
     pixel_size_um     float   um per pixel (with length_unit "px")
@@ -29,6 +31,7 @@ from __future__ import annotations
 #: The keys in the order a report prints them, with their labels.
 LABELS = {
     "cut_time": "cut time (files' time unit)",
+    "cut": "cut",
     "time_unit": "time unit",
     "length_unit": "length unit",
     "pixel_size_um": "pixel size (µm)",

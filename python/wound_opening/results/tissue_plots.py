@@ -63,13 +63,14 @@ def _profile_panel(ax, result, name) -> None:
 
 
 def tissue_figure(result, path=None):
-    """The figure of a converged TissueFitResult to `path` (a file name or a binary file
-    object), returned (closed); drawn once for the report and `--plot` (plots.drawn_once)."""
+    """The figure of a TissueFitResult (a failed one's: the model where it stopped) to
+    `path` (a file name or a binary file object), returned (closed); drawn once for the
+    report and `--plot` (plots.drawn_once)."""
     return drawn_once(result, "tissue", lambda: _draw(result), path, 110)
 
 
 def _draw(result):
-    tabs = result.tables()
+    tabs = result.tables(stopped=True)  # a failed fit: the curves where it stopped
     has_piv = any("profile" in t for t in tabs.values())
     fig = plt.figure(figsize=(13, 9), layout="constrained")
     grid = fig.add_gridspec(3, 4, height_ratios=[3, 1.2, 2.2])
@@ -106,7 +107,7 @@ def _draw(result):
                 pax.plot(c.r_um, c.velocity_um_s, "-", c=colour, lw=1)
     time_axis(ax, np.concatenate(times))
     ax.set(ylabel="wound radius (µm)")
-    ax.legend(loc="lower right", fontsize="small", title="wound (data ± noise, fit)")
+    ax.legend(loc="center right", fontsize="small", title="wound (data ± noise, fit)")
     text_box(ax, _text(result))
     res.axhline(0, c="gray", lw=0.8)
     res.set(xlabel="time since the cut (s)", ylabel="(data − fit) / noise")
@@ -120,5 +121,8 @@ def _draw(result):
     for k, name in enumerate(SHARED + (ETA,)):
         _profile_panel(fig.add_subplot(grid[2, k]), result, name)
     st = status(result)
-    fig.suptitle(f"{len(tabs)} wounds of one tissue: {st.text}", color=st.colour, fontsize="medium")
+    failed = "" if result.converged else "FAILED fit (the model where it stopped): "
+    fig.suptitle(
+        f"{failed}{len(tabs)} wounds of one tissue: {st.text}", color=st.colour, fontsize="medium"
+    )
     return fig

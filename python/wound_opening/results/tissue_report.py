@@ -29,6 +29,7 @@ from .report import (
     inputs,
     material_html,
     number_cell,
+    raw_files_section,
     settings_html,
     sig,
     status_html,
@@ -66,8 +67,8 @@ def _shared(result) -> str:
                 name,
                 number_cell(rep.estimate),
                 number_cell(rep.stderr, 3),
-                end_cell(lo, -1, rep.estimate) if rep.profile is not None else "—",
-                end_cell(hi, 1, rep.estimate) if rep.profile is not None else "—",
+                end_cell(lo, -1, rep.estimate, hi) if rep.profile is not None else "—",
+                end_cell(hi, 1, rep.estimate, lo) if rep.profile is not None else "—",
                 _state(rep),
                 _constraint(rep.constraint),
                 result.advice(name),
@@ -94,8 +95,8 @@ def _wound(result, k: int, wound) -> str:
             "R0_um",
             number_cell(R0),
             number_cell(rep.stderr, 3),
-            end_cell(lo, -1, R0) if rep.profile is not None else "—",
-            end_cell(hi, 1, R0) if rep.profile is not None else "—",
+            end_cell(lo, -1, R0, hi) if rep.profile is not None else "—",
+            end_cell(hi, 1, R0, lo) if rep.profile is not None else "—",
             "µm",
             _state(rep) or "fixed (given)",
             _constraint(rep.constraint) if not rep.constraint.get("fixed") else "",
@@ -158,9 +159,11 @@ def render(result, wounds, *, command: str | None = None, now=None) -> str:
         parts.append("<p>No estimates: the fit did not converge.</p>")
     parts.append("<h2>Wounds</h2>")
     parts += [_wound(result, k, w) for k, w in enumerate(wounds)]
-    if result.converged:
-        alt = "each wound's data and fit, residuals, profile likelihoods of the shared material"
-        parts.append(figure_html(figure_png(result), alt))
+    parts.append(raw_files_section(*(s for w in wounds for s in (w.radius, w.profile))))
+    alt = "each wound's data and fit, residuals, profile likelihoods of the shared material"
+    if not result.converged:
+        alt = "each wound's data and the model where the fit stopped"
+    parts.append(figure_html(figure_png(result), alt))
     return document("Wound-opening fit of several wounds", parts, command)
 
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..material import RATIOS, absolute_values
 from .names import ETA, SHARED
-from .numbers import end, material_lines
+from .numbers import ends, material_lines
 from .outcome import Outcome, chi2_warning, outlier_warning, verdict_fields
 from .result import ParameterReport, fmt
 from .status import judge, radii
@@ -99,11 +99,12 @@ class TissueFitResult(Outcome):
             outer_radius_um=w["outer_radius_um"],
         )
 
-    def tables(self) -> dict:
-        """wound name -> its tables (export.tables: radius, curve, profile, profile_curve)."""
+    def tables(self, stopped: bool = False) -> dict:
+        """wound name -> its tables (export.tables: radius, curve, profile, profile_curve;
+        `stopped`: a failed fit's curves where it stopped)."""
         from .export import tables
 
-        return {w["name"]: tables(self.wound_view(k)) for k, w in enumerate(self.wounds)}
+        return {w["name"]: tables(self.wound_view(k), stopped) for k, w in enumerate(self.wounds)}
 
     def export(self, stem) -> list:
         """Each wound's tables as stem_<wound>_radius.csv, stem_<wound>_curve.csv (and the
@@ -170,7 +171,7 @@ class TissueFitResult(Outcome):
         if rep.profile is None:
             return f"{'(not computed)':<{2 * width + 5}}  {'-':<3}"
         lo, hi = rep.ci95
-        lo, hi = end(lo, -1, rep.estimate), end(hi, 1, rep.estimate)
+        lo, hi = ends(lo, hi, rep.estimate)
         return f"[{lo:>{width}}, {hi:>{width}}]  {'yes' if rep.identifiable else 'no':<3}"
 
     def to_dict(self) -> dict:
