@@ -84,28 +84,95 @@ pub struct Variable {
 
 impl Variable {
     /// A fixed Real parameter.
-    pub const fn parameter(name: &'static str, vr: u32, start: f64, unit: &'static str, description: &'static str) -> Self {
-        let (kind, causality, variability, range) = (Kind::Real, Causality::Parameter, Variability::Fixed, None);
-        Self { name, value_reference: vr, kind, causality, variability, start: Some(start), unit, range, description }
+    pub const fn parameter(
+        name: &'static str,
+        vr: u32,
+        start: f64,
+        unit: &'static str,
+        description: &'static str,
+    ) -> Self {
+        let (kind, causality, variability, range) =
+            (Kind::Real, Causality::Parameter, Variability::Fixed, None);
+        Self {
+            name,
+            value_reference: vr,
+            kind,
+            causality,
+            variability,
+            start: Some(start),
+            unit,
+            range,
+            description,
+        }
     }
 
     /// A fixed Integer parameter in `min ..= max`.
-    pub const fn integer(name: &'static str, vr: u32, start: i32, range: (i32, i32), description: &'static str) -> Self {
-        let (kind, causality, variability, unit) = (Kind::Integer, Causality::Parameter, Variability::Fixed, "");
+    pub const fn integer(
+        name: &'static str,
+        vr: u32,
+        start: i32,
+        range: (i32, i32),
+        description: &'static str,
+    ) -> Self {
+        let (kind, causality, variability, unit) =
+            (Kind::Integer, Causality::Parameter, Variability::Fixed, "");
         let start = Some(start as f64);
-        Self { name, value_reference: vr, kind, causality, variability, start, unit, range: Some(range), description }
+        Self {
+            name,
+            value_reference: vr,
+            kind,
+            causality,
+            variability,
+            start,
+            unit,
+            range: Some(range),
+            description,
+        }
     }
 
     /// A continuous Real output.
-    pub const fn output(name: &'static str, vr: u32, unit: &'static str, description: &'static str) -> Self {
-        let (kind, causality, variability, range) = (Kind::Real, Causality::Output, Variability::Continuous, None);
-        Self { name, value_reference: vr, kind, causality, variability, start: None, unit, range, description }
+    pub const fn output(
+        name: &'static str,
+        vr: u32,
+        unit: &'static str,
+        description: &'static str,
+    ) -> Self {
+        let (kind, causality, variability, range) =
+            (Kind::Real, Causality::Output, Variability::Continuous, None);
+        Self {
+            name,
+            value_reference: vr,
+            kind,
+            causality,
+            variability,
+            start: None,
+            unit,
+            range,
+            description,
+        }
     }
 
     /// A continuous Real input.
-    pub const fn input(name: &'static str, vr: u32, start: f64, unit: &'static str, description: &'static str) -> Self {
-        let (kind, causality, variability, range) = (Kind::Real, Causality::Input, Variability::Continuous, None);
-        Self { name, value_reference: vr, kind, causality, variability, start: Some(start), unit, range, description }
+    pub const fn input(
+        name: &'static str,
+        vr: u32,
+        start: f64,
+        unit: &'static str,
+        description: &'static str,
+    ) -> Self {
+        let (kind, causality, variability, range) =
+            (Kind::Real, Causality::Input, Variability::Continuous, None);
+        Self {
+            name,
+            value_reference: vr,
+            kind,
+            causality,
+            variability,
+            start: Some(start),
+            unit,
+            range,
+            description,
+        }
     }
 }
 
@@ -264,7 +331,12 @@ impl Description {
     pub fn typed(&self, kind: Kind, vr: u32) -> Result<&'static Variable, Rejected> {
         match self.variables.iter().find(|v| v.value_reference == vr) {
             Some(v) if v.kind == kind => Ok(v),
-            Some(v) => Err(format!("{} (value reference {vr}) is {}, not {}", v.name, v.kind.as_str(), kind.as_str())),
+            Some(v) => Err(format!(
+                "{} (value reference {vr}) is {}, not {}",
+                v.name,
+                v.kind.as_str(),
+                kind.as_str()
+            )),
             None => Err(format!("no {} variable has value reference {vr}", kind.as_str())),
         }
     }
@@ -290,7 +362,9 @@ impl Description {
         let (first, n) = (self.first_state() as usize, self.state_count());
         let k = (vr as usize).wrapping_sub(first);
         match self.typed(kind, vr) {
-            Err(_) if k < 2 * n && kind == Kind::Real => Ok(if k < n { Named::State(k) } else { Named::Derivative(k - n) }),
+            Err(_) if k < 2 * n && kind == Kind::Real => {
+                Ok(if k < n { Named::State(k) } else { Named::Derivative(k - n) })
+            }
             row => row.map(Named::Table),
         }
     }
@@ -391,7 +465,11 @@ pub trait FmuModel: Send {
     /// Set the continuous states at time `time` since the cut (validated: finite, the
     /// declared count).
     fn set_continuous_states(&mut self, _time: f64, x: &[f64]) -> Result<(), Rejected> {
-        if x.is_empty() { Ok(()) } else { Err(format!("this model has no continuous states, {} given", x.len())) }
+        if x.is_empty() {
+            Ok(())
+        } else {
+            Err(format!("this model has no continuous states, {} given", x.len()))
+        }
     }
     /// `dx/dt` per unit of the master's time at `time` since the cut, under the inputs set.
     fn derivatives(&self, _time: f64) -> Vec<f64> {

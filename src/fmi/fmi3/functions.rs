@@ -35,7 +35,8 @@ impl Logger for LogMessage {
     fn log(&self, status: Status, category: &str, message: &str) {
         if let Some(f) = self.callback {
             let cat = CString::new(category.replace('\0', "\\0")).unwrap_or_default();
-            let msg = CString::new(message.replace('\0', "\\0").replace('#', "##")).unwrap_or_default();
+            let msg =
+                CString::new(message.replace('\0', "\\0").replace('#', "##")).unwrap_or_default();
             // SAFETY: the importer promised a valid callback.
             unsafe { f(self.env, status as fmi3Status, cat.as_ptr(), msg.as_ptr()) };
         }
@@ -63,7 +64,9 @@ fn instantiate(
             sink.log(Status::Error, "logStatusError", &format!("fmi3Instantiate: {msg}"));
             None
         };
-        let Some(name) = (unsafe { text(instanceName) }) else { return fail("instanceName is NULL".into()) };
+        let Some(name) = (unsafe { text(instanceName) }) else {
+            return fail("instanceName is NULL".into());
+        };
         if let Some(why) = refuse {
             return fail(why);
         }
@@ -72,8 +75,14 @@ fn instantiate(
             Ok(fresh) => fresh,
             Err(msg) => return fail(msg),
         };
-        let instance =
-            Instance::of_interface(interface, crate::fmi::fmi3::names::FMI3, fresh, &name, Arc::new(sink), loggingOn != FMI3_FALSE);
+        let instance = Instance::of_interface(
+            interface,
+            crate::fmi::fmi3::names::FMI3,
+            fresh,
+            &name,
+            Arc::new(sink),
+            loggingOn != FMI3_FALSE,
+        );
         Some(register(instance))
     });
     made.ok().flatten().unwrap_or(std::ptr::null_mut())
@@ -89,14 +98,30 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
     instanceEnvironment: fmi3InstanceEnvironment,
     logMessage: fmi3LogMessageCallback,
 ) -> fmi3Instance {
-    instantiate(Interface::ModelExchange, instanceName, instantiationToken, loggingOn, instanceEnvironment, logMessage, None)
+    instantiate(
+        Interface::ModelExchange,
+        instanceName,
+        instantiationToken,
+        loggingOn,
+        instanceEnvironment,
+        logMessage,
+        None,
+    )
 }
 
 /// The importer's `intermediateUpdate` callback, asked for the inputs at the end of each
 /// step (see [`crate::fmi::fmi3::intermediate`]).
 struct IntermediateUpdate {
-    callback:
-        unsafe extern "C" fn(fmi3InstanceEnvironment, f64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut f64),
+    callback: unsafe extern "C" fn(
+        fmi3InstanceEnvironment,
+        f64,
+        fmi3Boolean,
+        fmi3Boolean,
+        fmi3Boolean,
+        fmi3Boolean,
+        *mut fmi3Boolean,
+        *mut f64,
+    ),
     env: fmi3InstanceEnvironment,
 }
 
@@ -109,7 +134,18 @@ impl crate::fmi::common::instance::Requester for IntermediateUpdate {
     fn request_inputs(&self, time: f64) {
         let (mut early, mut early_time) = (FMI3_FALSE, time);
         // SAFETY: the importer promised a valid callback; the out-arguments are ours.
-        unsafe { (self.callback)(self.env, time, FMI3_TRUE, FMI3_FALSE, FMI3_FALSE, FMI3_FALSE, &mut early, &mut early_time) };
+        unsafe {
+            (self.callback)(
+                self.env,
+                time,
+                FMI3_TRUE,
+                FMI3_FALSE,
+                FMI3_FALSE,
+                FMI3_FALSE,
+                &mut early,
+                &mut early_time,
+            )
+        };
     }
 }
 
@@ -133,13 +169,26 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     intermediateUpdate: fmi3IntermediateUpdateCallback,
 ) -> fmi3Instance {
     let refuse = if eventModeUsed != FMI3_FALSE {
-        Some("eventModeUsed = true but this FMU has no event mode (hasEventMode = false)".to_string())
+        Some(
+            "eventModeUsed = true but this FMU has no event mode (hasEventMode = false)"
+                .to_string(),
+        )
     } else if nRequiredIntermediateVariables > 0 && intermediateUpdate.is_none() {
-        Some(format!("{nRequiredIntermediateVariables} requiredIntermediateVariables but intermediateUpdate is NULL"))
+        Some(format!(
+            "{nRequiredIntermediateVariables} requiredIntermediateVariables but intermediateUpdate is NULL"
+        ))
     } else {
         None
     };
-    let c = instantiate(Interface::CoSimulation, instanceName, instantiationToken, loggingOn, instanceEnvironment, logMessage, refuse);
+    let c = instantiate(
+        Interface::CoSimulation,
+        instanceName,
+        instantiationToken,
+        loggingOn,
+        instanceEnvironment,
+        logMessage,
+        refuse,
+    );
     let (Some(callback), false) = (intermediateUpdate, c.is_null()) else { return c };
     if nRequiredIntermediateVariables == 0 {
         return c;
@@ -149,10 +198,18 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
         Call::Unsupported,
         || "fmi3InstantiateCoSimulation(requiredIntermediateVariables)".into(),
         |i| {
-            let vrs = unsafe { slice(requiredIntermediateVariables, nRequiredIntermediateVariables, "requiredIntermediateVariables")? };
+            let vrs = unsafe {
+                slice(
+                    requiredIntermediateVariables,
+                    nRequiredIntermediateVariables,
+                    "requiredIntermediateVariables",
+                )?
+            };
             let requester = Arc::new(IntermediateUpdate { callback, env: instanceEnvironment });
             let set = i.set_intermediate_update(requester, vrs);
-            set.map(|_| Status::Ok).map_err(|why| format!("fmi3InstantiateCoSimulation: requiredIntermediateVariables: {why}"))
+            set.map(|_| Status::Ok).map_err(|why| {
+                format!("fmi3InstantiateCoSimulation: requiredIntermediateVariables: {why}")
+            })
         },
     );
     if required == Status::Ok as fmi3Status {
@@ -183,7 +240,8 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
             || format!("fmi3SetDebugLogging(loggingOn={loggingOn}, nCategories={nCategories})"),
             |i| {
                 let names = slice(categories, nCategories, "categories")?;
-                let names: Vec<String> = names.iter().map(|&p| text(p).unwrap_or_default()).collect();
+                let names: Vec<String> =
+                    names.iter().map(|&p| text(p).unwrap_or_default()).collect();
                 i.set_debug_logging(loggingOn != FMI3_FALSE, &names).map(|_| Status::Ok)
             },
         )
@@ -205,7 +263,11 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
     with_instance(
         instance,
         Call::EnterInitializationMode,
-        || format!("fmi3EnterInitializationMode(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"),
+        || {
+            format!(
+                "fmi3EnterInitializationMode(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"
+            )
+        },
         |i| {
             i.setup_experiment(tol, startTime, stop)?;
             i.enter_initialization_mode().map(|_| Status::Ok)
@@ -213,8 +275,17 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
     )
 }
 
-fn transition(instance: fmi3Instance, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi3Status {
-    with_instance(instance, call, || crate::fmi::fmi3::names::name(call), |i| method(i).map(|_| Status::Ok))
+fn transition(
+    instance: fmi3Instance,
+    call: Call,
+    method: fn(&mut Instance) -> Result<(), String>,
+) -> fmi3Status {
+    with_instance(
+        instance,
+        call,
+        || crate::fmi::fmi3::names::name(call),
+        |i| method(i).map(|_| Status::Ok),
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -240,7 +311,11 @@ pub unsafe extern "C" fn fmi3Reset(instance: fmi3Instance) -> fmi3Status {
 
 /// FMI 3.0 passes `nValues` beside the value references; for scalar variables they agree.
 fn scalars(nvr: usize, n_values: usize) -> Result<(), String> {
-    if nvr == n_values { Ok(()) } else { Err(format!("nValues = {n_values} but {nvr} scalar variables were named")) }
+    if nvr == n_values {
+        Ok(())
+    } else {
+        Err(format!("nValues = {n_values} but {nvr} scalar variables were named"))
+    }
 }
 
 /// Scalars, `time` and whole arrays (one value reference each, values concatenated).
@@ -304,7 +379,8 @@ pub unsafe extern "C" fn fmi3GetUInt64(
             || format!("fmi3GetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"),
             |i| {
                 scalars(nValueReferences, nValues)?;
-                let got = i.get_uint64(slice(valueReferences, nValueReferences, "valueReferences")?)?;
+                let got =
+                    i.get_uint64(slice(valueReferences, nValueReferences, "valueReferences")?)?;
                 slice_mut(values, nValues, "values")?.copy_from_slice(&got);
                 OK
             },
@@ -406,10 +482,12 @@ pub unsafe extern "C" fn fmi3DoStep(
     lastSuccessfulTime: *mut fmi3Float64,
 ) -> fmi3Status {
     let (t, h) = (currentCommunicationPoint, communicationStepSize);
-    let describe = || format!("fmi3DoStep(currentCommunicationPoint={t}, communicationStepSize={h})");
+    let describe =
+        || format!("fmi3DoStep(currentCommunicationPoint={t}, communicationStepSize={h})");
     let outs = |i: &Instance| -> Result<(), String> {
         let event = unsafe { eventHandlingNeeded.as_mut() }.ok_or("eventHandlingNeeded is NULL")?;
-        let terminate = unsafe { terminateSimulation.as_mut() }.ok_or("terminateSimulation is NULL")?;
+        let terminate =
+            unsafe { terminateSimulation.as_mut() }.ok_or("terminateSimulation is NULL")?;
         let early = unsafe { earlyReturn.as_mut() }.ok_or("earlyReturn is NULL")?;
         let last = unsafe { lastSuccessfulTime.as_mut() }.ok_or("lastSuccessfulTime is NULL")?;
         (*event, *early) = (FMI3_FALSE, FMI3_FALSE);

@@ -20,7 +20,9 @@ pub use codec::SchemeChoice;
 
 use crate::fmi::common::model::{Description, FmuModel, Rejected};
 use crate::fmi::common::serialized::same_parameters;
-use crate::solver::{EDGE_STRESS_MAX, Params, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
+use crate::solver::{
+    EDGE_STRESS_MAX, Params, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma,
+};
 use crate::units::{Scales, check_scale};
 use probes::Probes;
 use std::cell::RefCell;
@@ -67,8 +69,16 @@ impl WoundModel {
     pub fn fresh() -> Box<dyn FmuModel> {
         let start = |vr: Vr| vr.var().start.unwrap_or(0.0);
         Box::new(Self {
-            params: Params { lambda: start(Vr::Lambda), sigma: start(Vr::Sigma), r_inf: start(Vr::RInf) },
-            scales: Scales { length: start(Vr::LengthScale), time: start(Vr::TimeScale), stress: start(Vr::StressScale) },
+            params: Params {
+                lambda: start(Vr::Lambda),
+                sigma: start(Vr::Sigma),
+                r_inf: start(Vr::RInf),
+            },
+            scales: Scales {
+                length: start(Vr::LengthScale),
+                time: start(Vr::TimeScale),
+                stress: start(Vr::StressScale),
+            },
             tolerance: start(Vr::Tolerance),
             experiment_tolerance: None,
             scheme: SchemeChoice {
@@ -98,9 +108,15 @@ impl FmuModel for WoundModel {
     }
 
     fn check(&self, vr: u32, x: f64) -> Result<f64, Rejected> {
-        let Some(vr) = Vr::from_u32(vr) else { return Err(format!("no variable has value reference {vr}")) };
+        let Some(vr) = Vr::from_u32(vr) else {
+            return Err(format!("no variable has value reference {vr}"));
+        };
         let positive = |name: &str| {
-            if x.is_finite() && x > 0.0 { Ok(x) } else { Err(format!("{name} = {x} is invalid: it must be finite and > 0")) }
+            if x.is_finite() && x > 0.0 {
+                Ok(x)
+            } else {
+                Err(format!("{name} = {x} is invalid: it must be finite and > 0"))
+            }
         };
         let in_range = || {
             let (lo, hi) = vr.var().range.expect("Integer variables declare a range");
@@ -206,7 +222,10 @@ impl FmuModel for WoundModel {
                 }
                 let (solver, p) = (self.solver(), self.p());
                 if !solver.edge_velocity_defined(p) {
-                    let Ok(mean) = solver.mean_edge_velocity(p, MEAN_WINDOW).map(|v| self.scales.velocity() * v) else {
+                    let Ok(mean) = solver
+                        .mean_edge_velocity(p, MEAN_WINDOW)
+                        .map(|v| self.scales.velocity() * v)
+                    else {
                         self.warn("edge_velocity is infinite in the model here and its mean over the next 0.01 T could not be computed: the value returned is the mesh's".into());
                         return self.scales.velocity() * solver.edge_velocity(p);
                     };
@@ -231,7 +250,8 @@ impl FmuModel for WoundModel {
     /// `validity_warning = 0`; O(modes) per step.
     fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected> {
         let r_inf = self.params.r_inf;
-        let was_valid = self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
+        let was_valid =
+            self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
         let (dt, p, rate) = (h / self.scales.time, self.p(), self.edge_stress_rate);
         if !dt.is_finite() {
             let t = self.scales.time;
@@ -313,7 +333,10 @@ impl FmuModel for WoundModel {
     fn check_model_exchange(&self) -> Result<(), Rejected> {
         match self.solver().ode(self.p()) {
             Some(ode) if ode.x.len() <= MODEL_EXCHANGE_STATES => Ok(()),
-            Some(ode) => Err(format!("the mesh has {} modes, more than the {MODEL_EXCHANGE_STATES} states declared", ode.x.len())),
+            Some(ode) => Err(format!(
+                "the mesh has {} modes, more than the {MODEL_EXCHANGE_STATES} states declared",
+                ode.x.len()
+            )),
             None => Err(format!(
                 "Model Exchange needs method = 0 (the modal scheme, an ODE in its modal coordinates); method = {} is a stepping scheme",
                 self.scheme.method
@@ -356,7 +379,9 @@ impl FmuModel for WoundModel {
             return Err(format!("{} is an output", variables::PROBE_ARRAYS[j.min(2)].name));
         }
         match values.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
-            Some(r) => Err(format!("probe radius {r} um is invalid: it must be finite and > 0 (and in [R0, R0 R_inf])")),
+            Some(r) => Err(format!(
+                "probe radius {r} um is invalid: it must be finite and > 0 (and in [R0, R0 R_inf])"
+            )),
             None => Ok(()),
         }
     }
@@ -378,7 +403,9 @@ impl FmuModel for WoundModel {
         }
         let (lo, hi) = (r0, r0 * self.params.r_inf);
         if let Some(r) = probes.iter().find(|&&r| !(lo..=hi).contains(&r)) {
-            return Err(format!("probe radius {r} um is outside the tissue [R0, R0 R_inf] = [{lo}, {hi}] um"));
+            return Err(format!(
+                "probe radius {r} um is outside the tissue [R0, R0 R_inf] = [{lo}, {hi}] um"
+            ));
         }
         let radii: Vec<f64> = probes.iter().map(|r| r / r0).collect();
         Ok(match j {
@@ -387,7 +414,8 @@ impl FmuModel for WoundModel {
                 let solver = self.solver();
                 if !solver.edge_velocity_defined(p) {
                     self.note(format!("velocity is infinite in the model at the edge at lambda = 0 at the cut and just after a change of edge_stress; the values returned are the mean velocities over the next {MEAN_WINDOW} T with edge_stress held"));
-                    let mean = solver.mean_velocity(p, &radii, MEAN_WINDOW).map_err(|e| e.to_string())?;
+                    let mean =
+                        solver.mean_velocity(p, &radii, MEAN_WINDOW).map_err(|e| e.to_string())?;
                     return Ok(mean.iter().map(|v| v * self.scales.velocity()).collect());
                 }
                 solver.velocity(p, &radii).iter().map(|v| v * self.scales.velocity()).collect()
@@ -424,10 +452,17 @@ impl FmuModel for WoundModel {
             ("R0", a.length, b.length),
             ("T", a.time, b.time),
             ("G", a.stress, b.stress),
-            ("tolerance", self.effective_tolerance(), saved.experiment_tolerance.unwrap_or(saved.tolerance)),
+            (
+                "tolerance",
+                self.effective_tolerance(),
+                saved.experiment_tolerance.unwrap_or(saved.tolerance),
+            ),
         ])?;
         if saved.scheme != self.scheme {
-            return Err(format!("serialized FMU state has {:?} but this instance has {:?}", saved.scheme, self.scheme));
+            return Err(format!(
+                "serialized FMU state has {:?} but this instance has {:?}",
+                saved.scheme, self.scheme
+            ));
         }
         // The mesh follows from parameters and tolerance (checked equal to ours above):
         // bytes that claim another are forged.
@@ -438,7 +473,8 @@ impl FmuModel for WoundModel {
                 saved.settings.mesh, expected.mesh
             ));
         }
-        check_edge_stress(saved.edge_stress / saved.scales.stress).map_err(|e| format!("serialized FMU state: {e}"))?;
+        check_edge_stress(saved.edge_stress / saved.scales.stress)
+            .map_err(|e| format!("serialized FMU state: {e}"))?;
         let mut model = Self {
             params: saved.params,
             scales: saved.scales,
