@@ -8,8 +8,9 @@
 use std::path::Path;
 
 const HEADER: &str = "include/wound_opening.h";
-const SOURCES: [&str; 5] = [
+const SOURCES: [&str; 6] = [
     "src/fmi/fmi2/functions.rs",
+    "src/fmi/fmi2/status.rs",
     "src/fmi/fmi2/exchange.rs",
     "src/capi/error.rs",
     "src/capi/solver_c.rs",
