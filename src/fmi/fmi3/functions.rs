@@ -5,7 +5,8 @@
 //! `fmi3EnterInitializationMode` carrying the experiment, `nValues` beside every array,
 //! `fmi3DoStep`'s out-arguments, a logger without format string. The functions this FMU
 //! does not provide (clocks, configuration mode, scheduled execution, adjoint derivatives,
-//! the other variable types) are in [`crate::fmi::fmi3::unsupported`].
+//! the other variable types) are in [`crate::fmi::fmi3::unsupported`]; the get and set
+//! functions of its variable types in [`crate::fmi::fmi3::values`] (re-exported here).
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
 use crate::boundary::guard;
@@ -13,7 +14,8 @@ use crate::fmi::common::instance::{Call, Instance, Interface, Logger, Status};
 pub use crate::fmi::fmi3::derivatives::*;
 pub use crate::fmi::fmi3::states::*;
 use crate::fmi::fmi3::types::*;
-use crate::fmi::frame::{register, slice, slice_mut, text, unregister, with_instance};
+pub use crate::fmi::fmi3::values::*;
+use crate::fmi::frame::{register, slice, text, unregister, with_instance};
 use std::ffi::{CString, c_char};
 use std::sync::Arc;
 
@@ -309,108 +311,6 @@ pub unsafe extern "C" fn fmi3Reset(instance: fmi3Instance) -> fmi3Status {
     transition(instance, Call::Reset, Instance::reset)
 }
 
-/// FMI 3.0 passes `nValues` beside the value references; for scalar variables they agree.
-fn scalars(nvr: usize, n_values: usize) -> Result<(), String> {
-    if nvr == n_values {
-        Ok(())
-    } else {
-        Err(format!("nValues = {n_values} but {nvr} scalar variables were named"))
-    }
-}
-
-/// Scalars, `time` and whole arrays (one value reference each, values concatenated).
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetFloat64(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Float64,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Get,
-            || format!("fmi3GetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                let got = i.get_float64(vr, nValues)?;
-                slice_mut(values, nValues, "values")?.copy_from_slice(&got);
-                OK
-            },
-        )
-    }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetFloat64(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Float64,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Set,
-            || format!("fmi3SetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                i.set_float64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-            },
-        )
-    }
-}
-
-/// The structural parameter (the number of probes).
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetUInt64(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3UInt64,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Get,
-            || format!("fmi3GetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                scalars(nValueReferences, nValues)?;
-                let got =
-                    i.get_uint64(slice(valueReferences, nValueReferences, "valueReferences")?)?;
-                slice_mut(values, nValues, "values")?.copy_from_slice(&got);
-                OK
-            },
-        )
-    }
-}
-
-/// In Configuration Mode only.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetUInt64(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3UInt64,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Set,
-            || format!("fmi3SetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                scalars(nValueReferences, nValues)?;
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                i.set_uint64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-            },
-        )
-    }
-}
-
 /// Configuration Mode, for the structural parameter (from Instantiated, back to it).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3EnterConfigurationMode(instance: fmi3Instance) -> fmi3Status {
@@ -420,50 +320,6 @@ pub unsafe extern "C" fn fmi3EnterConfigurationMode(instance: fmi3Instance) -> f
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3ExitConfigurationMode(instance: fmi3Instance) -> fmi3Status {
     transition(instance, Call::ExitConfigurationMode, Instance::exit_configuration_mode)
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetInt32(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Int32,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Get,
-            || format!("fmi3GetInt32(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                scalars(nValueReferences, nValues)?;
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                i.get_integer(vr, slice_mut(values, nValues, "values")?).map(|_| Status::Ok)
-            },
-        )
-    }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetInt32(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Int32,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Set,
-            || format!("fmi3SetInt32(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                scalars(nValueReferences, nValues)?;
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                i.set_integer(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-            },
-        )
-    }
 }
 
 /// One step; never early, no event handling (no event mode), `lastSuccessfulTime` the end
