@@ -138,7 +138,7 @@ fn corrupted_serialized_states_are_refused_and_resealed_ones_are_refused_or_usab
     }
 }
 
-/// Found by this harness and fixed in src/fmi (now src/models/wound/mod.rs): the mesh stored in a serialized
+/// Found by this harness and fixed in src/fmi (now src/models/wound/fmu_state.rs): the mesh stored in a serialized
 /// state was not checked, so bytes re-sealed with another mesh were accepted (and, by an
 /// instance without a solver, first built: 1 x 2000 took 12 s).
 #[test]

@@ -12,6 +12,7 @@
 
 mod codec;
 mod exchange;
+mod fmu_state;
 mod probes;
 mod setup;
 pub mod variables;
@@ -19,7 +20,6 @@ pub mod variables;
 pub use codec::SchemeChoice;
 
 use crate::fmi::common::model::{Description, FmuModel, Rejected};
-use crate::fmi::common::serialized::same_parameters;
 use crate::solver::{
     EDGE_STRESS_MAX, Params, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma,
 };
@@ -307,17 +307,7 @@ impl FmuModel for WoundModel {
     }
 
     fn encode(&self) -> Result<Vec<u8>, Rejected> {
-        Ok(codec::encode(&codec::Saved {
-            params: self.params,
-            scales: self.scales,
-            settings: self.settings()?,
-            tolerance: self.tolerance,
-            experiment_tolerance: self.experiment_tolerance,
-            scheme: self.scheme,
-            edge_stress: self.edge_stress,
-            edge_stress_rate: self.edge_stress_rate,
-            solver: self.solver.as_ref().map(Solver::state),
-        }))
+        self.saved()
     }
 
     fn take_warning(&mut self) -> Option<String> {
@@ -440,65 +430,8 @@ impl FmuModel for WoundModel {
     }
 
     /// The bytes must come from an instance with the same parameters, scales, tolerance
-    /// and scheme (a state is a point of one trajectory, not a parameter set).
+    /// and scheme ([`WoundModel::restored`]).
     fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected> {
-        let saved = codec::decode(bytes)?;
-        let (mine, theirs) = (self.params, saved.params);
-        let (a, b) = (self.scales, saved.scales);
-        same_parameters(&[
-            ("lambda", mine.lambda, theirs.lambda),
-            ("sigma", mine.sigma, theirs.sigma),
-            ("R_inf", mine.r_inf, theirs.r_inf),
-            ("R0", a.length, b.length),
-            ("T", a.time, b.time),
-            ("G", a.stress, b.stress),
-            (
-                "tolerance",
-                self.effective_tolerance(),
-                saved.experiment_tolerance.unwrap_or(saved.tolerance),
-            ),
-        ])?;
-        if saved.scheme != self.scheme {
-            return Err(format!(
-                "serialized FMU state has {:?} but this instance has {:?}",
-                saved.scheme, self.scheme
-            ));
-        }
-        // The mesh follows from parameters and tolerance (checked equal to ours above):
-        // bytes that claim another are forged.
-        let expected = self.settings()?;
-        if saved.settings != expected {
-            return Err(format!(
-                "serialized FMU state has mesh {:?} but its parameters and tolerance give {:?}",
-                saved.settings.mesh, expected.mesh
-            ));
-        }
-        check_edge_stress(saved.edge_stress / saved.scales.stress)
-            .map_err(|e| format!("serialized FMU state: {e}"))?;
-        let mut model = Self {
-            params: saved.params,
-            scales: saved.scales,
-            tolerance: saved.tolerance,
-            experiment_tolerance: saved.experiment_tolerance,
-            scheme: saved.scheme,
-            edge_stress: saved.edge_stress,
-            edge_stress_rate: saved.edge_stress_rate,
-            solver: None,
-            warning: RefCell::new(None),
-            note: RefCell::new(None),
-            exchange: self.exchange.clone(),
-            probe_radii: self.probe_radii.clone(),
-            validity_warning: self.validity_warning,
-        };
-        if let Some(st) = &saved.solver {
-            // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.
-            let mut s = match &self.solver {
-                Some(own) => own.clone(),
-                None => model.build_solver()?,
-            };
-            s.restore(st).map_err(|e| format!("serialized FMU state: {e}"))?;
-            model.solver = Some(s);
-        }
-        Ok(Box::new(model))
+        Ok(Box::new(self.restored(bytes)?))
     }
 }
