@@ -1,4 +1,4 @@
-//! What the fuzz harnesses (tests/fuzz_fmi.rs, tests/fuzz_deserialize.rs,
+//! What the fuzz harnesses (tests/fuzz_fmi/, tests/fuzz_deserialize.rs,
 //! tests/fuzz_capi.rs) share: a seeded xorshift64*
 //! generator, the interesting values it draws, the time budget, and the mutations of
 //! serialized FMU states.

@@ -8,8 +8,15 @@
 //! What must hold: no crash or hang; every status is one of fmi2OK..fmi2Fatal; no call
 //! ever reaches the panic boundary (`caught_panics()` stays 0). Only valid memory is ever
 //! passed: the standard makes the caller responsible for that, not the FMU.
+//!
+//! main.rs holds the world and the FMI 2.0 calls; fmi3.rs the FMI 3.0 calls, exchange.rs
+//! the Model Exchange calls, status.rs the status queries and the refused calls.
 
+#[path = "../common/mod.rs"]
 mod common;
+mod exchange;
+mod fmi3;
+mod status;
 
 use common::fuzz::{Budget, NULL_CALLBACKS, Rng, mutated};
 use std::collections::BTreeMap;
@@ -178,183 +185,6 @@ impl World {
             26..=28 => self.fmi3(),
             _ => self.unsupported(),
         }
-    }
-
-    /// FMI 3.0 functions on the same instances (one handle table for both versions): the
-    /// calls whose arguments differ from FMI 2.0's, with random counts and values, and an
-    /// FMI 3.0 instantiation now and then.
-    fn fmi3(&mut self) {
-        use wound_opening::fmi::fmi3::exchange::*;
-        use wound_opening::fmi::fmi3::functions::*;
-        use wound_opening::fmi::fmi3::unsupported::*;
-        if self.rng.chance(0.1) && self.live.len() < 6 {
-            let guid = CString::new(MODELS[self.rng.below(MODELS.len())].0.guid).unwrap();
-            let c = if self.rng.chance(0.5) {
-                unsafe {
-                    fmi3InstantiateModelExchange(
-                        c"f3".as_ptr(),
-                        guid.as_ptr(),
-                        std::ptr::null(),
-                        0,
-                        0,
-                        std::ptr::null_mut(),
-                        None,
-                    )
-                }
-            } else {
-                let event = self.rng.below(2) as u8;
-                unsafe {
-                    fmi3InstantiateCoSimulation(
-                        c"f3".as_ptr(),
-                        guid.as_ptr(),
-                        std::ptr::null(),
-                        0,
-                        0,
-                        event,
-                        0,
-                        std::ptr::null(),
-                        0,
-                        std::ptr::null_mut(),
-                        None,
-                        None,
-                    )
-                }
-            };
-            self.record("fmi3Instantiate*", if c.is_null() { 3 } else { 0 });
-            if !c.is_null() {
-                self.live.push(Live { c, states: Vec::new(), freed: Vec::new() });
-            }
-            return;
-        }
-        let i = self.target();
-        let c = self.component(i);
-        let nvr = self.rng.below(4);
-        // The FMI 3.0-only references too: time (447), n_probes (448), probe_radii,
-        // displacement, velocity (449..451), and the states and derivatives (13..446).
-        let vrs: Vec<u32> = (0..nvr)
-            .map(|_| {
-                if self.rng.chance(0.5) {
-                    440 + self.rng.below(14) as u32
-                } else {
-                    self.value_reference()
-                }
-            })
-            .collect();
-        let n_values = if self.rng.chance(0.8) { nvr } else { self.rng.below(6) };
-        let x: Vec<f64> = (0..n_values.max(nvr)).map(|_| self.rng.real()).collect();
-        let mut k: Vec<i32> = (0..n_values.max(nvr)).map(|_| self.rng.next_u64() as i32).collect();
-        let (mut b, mut t) = ([0u8; 5], 0.0);
-        let mut big: Vec<u64> =
-            (0..n_values.max(nvr))
-                .map(|_| {
-                    if self.rng.chance(0.8) {
-                        self.rng.below(12) as u64
-                    } else {
-                        self.rng.next_u64()
-                    }
-                })
-                .collect();
-        let (name, s) = match self.rng.below(12) {
-            8 => ("fmi3EnterConfigurationMode", unsafe { fmi3EnterConfigurationMode(c) }),
-            9 => ("fmi3ExitConfigurationMode", unsafe { fmi3ExitConfigurationMode(c) }),
-            10 => ("fmi3SetUInt64", unsafe {
-                fmi3SetUInt64(c, vrs.as_ptr(), nvr, big.as_ptr(), n_values)
-            }),
-            11 => ("fmi3GetUInt64", unsafe {
-                fmi3GetUInt64(c, vrs.as_ptr(), nvr, big.as_mut_ptr(), n_values)
-            }),
-            0 => {
-                // Arrays take up to 1000 values each: a buffer that large, nValues as chosen.
-                let mut out = vec![0.0; 4000];
-                let n = if self.rng.chance(0.5) { n_values } else { self.rng.below(30) };
-                ("fmi3GetFloat64", unsafe {
-                    fmi3GetFloat64(c, vrs.as_ptr(), nvr, out.as_mut_ptr(), n)
-                })
-            }
-            1 => ("fmi3SetFloat64", unsafe {
-                fmi3SetFloat64(c, vrs.as_ptr(), nvr, x.as_ptr(), n_values)
-            }),
-            2 => ("fmi3GetInt32", unsafe {
-                fmi3GetInt32(c, vrs.as_ptr(), nvr, k.as_mut_ptr(), n_values)
-            }),
-            3 => ("fmi3SetInt32", unsafe {
-                fmi3SetInt32(c, vrs.as_ptr(), nvr, k.as_ptr(), n_values)
-            }),
-            4 => {
-                let (tol, stop) = (self.rng.real(), self.rng.real());
-                let tol_defined = self.rng.below(2) as u8;
-                ("fmi3EnterInitializationMode", unsafe {
-                    fmi3EnterInitializationMode(
-                        c,
-                        tol_defined,
-                        tol,
-                        0.0,
-                        self.rng.below(2) as u8,
-                        stop,
-                    )
-                })
-            }
-            5 => {
-                let (mut now, h) = (0.0, self.rng.unit() * 10.0);
-                let _ = unsafe { fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now) };
-                let [e, f, g, ..] = &mut b;
-                ("fmi3DoStep", unsafe { fmi3DoStep(c, now, h, 0, e, f, g, &mut t) })
-            }
-            6 => {
-                let [p, q, r, u, v] = &mut b;
-                ("fmi3UpdateDiscreteStates", unsafe {
-                    fmi3UpdateDiscreteStates(c, p, q, r, u, v, &mut t)
-                })
-            }
-            _ => ("fmi3GetClock", unsafe { fmi3GetClock(c, vrs.as_ptr(), nvr, b.as_mut_ptr()) }),
-        };
-        self.record(name, s);
-    }
-
-    /// The Model Exchange functions with random counts, states and times, on instances of
-    /// either interface (a CS instance refuses them all).
-    fn exchange(&mut self) {
-        let i = self.target();
-        let c = self.component(i);
-        let nx = if self.rng.chance(0.7) { 217 } else { self.rng.below(300) };
-        let mut x: Vec<f64> = (0..nx)
-            .map(|_| if self.rng.chance(0.8) { self.rng.unit() - 0.5 } else { self.rng.real() })
-            .collect();
-        let (mut a, mut b) = (0, 0);
-        let (name, s) = match self.rng.below(9) {
-            0 => ("fmi2EnterEventMode", unsafe { fmi2EnterEventMode(c) }),
-            1 => ("fmi2NewDiscreteStates", unsafe {
-                fmi2NewDiscreteStates(c, &mut std::mem::zeroed())
-            }),
-            2 => ("fmi2EnterContinuousTimeMode", unsafe { fmi2EnterContinuousTimeMode(c) }),
-            3 => ("fmi2CompletedIntegratorStep", unsafe {
-                fmi2CompletedIntegratorStep(c, 1, &mut a, &mut b)
-            }),
-            4 => ("fmi2SetTime", unsafe {
-                fmi2SetTime(
-                    c,
-                    if self.rng.chance(0.7) { self.rng.unit() * 10.0 } else { self.rng.real() },
-                )
-            }),
-            5 => ("fmi2SetContinuousStates", unsafe { fmi2SetContinuousStates(c, x.as_ptr(), nx) }),
-            6 => {
-                let s = unsafe { fmi2GetDerivatives(c, x.as_mut_ptr(), nx) };
-                if s == 0 {
-                    assert!(
-                        x.iter().all(|v| v.is_finite()),
-                        "derivatives accepted with OK are finite"
-                    );
-                }
-                ("fmi2GetDerivatives", s)
-            }
-            7 => ("fmi2GetContinuousStates", unsafe {
-                fmi2GetContinuousStates(c, x.as_mut_ptr(), nx)
-            }),
-            _ => ("fmi2GetNominalsOfContinuousStates", unsafe {
-                fmi2GetNominalsOfContinuousStates(c, x.as_mut_ptr(), nx)
-            }),
-        };
-        self.record(name, s);
     }
 
     fn instantiate(&mut self) {
@@ -598,78 +428,6 @@ impl World {
         let mut out = [0.0; 2];
         let s = unsafe { fmi2GetReal(c, vrs.as_ptr(), 2, out.as_mut_ptr()) };
         self.record("fmi2GetReal", s);
-    }
-
-    fn status(&mut self) {
-        let i = self.target();
-        let c = self.component(i);
-        let kind = if self.rng.chance(0.8) {
-            self.rng.below(4) as i32
-        } else {
-            self.rng.next_u64() as i32
-        };
-        let (mut st, mut r, mut n, mut s) = (0, 0.0, 0, std::ptr::null());
-        let null = self.rng.chance(0.1);
-        let (name, status) = match self.rng.below(5) {
-            0 => ("fmi2GetStatus", unsafe {
-                fmi2GetStatus(c, kind, if null { std::ptr::null_mut() } else { &mut st })
-            }),
-            1 => ("fmi2GetRealStatus", unsafe {
-                fmi2GetRealStatus(c, kind, if null { std::ptr::null_mut() } else { &mut r })
-            }),
-            2 => ("fmi2GetIntegerStatus", unsafe {
-                fmi2GetIntegerStatus(c, kind, if null { std::ptr::null_mut() } else { &mut n })
-            }),
-            3 => ("fmi2GetBooleanStatus", unsafe {
-                fmi2GetBooleanStatus(c, kind, if null { std::ptr::null_mut() } else { &mut n })
-            }),
-            _ => ("fmi2GetStringStatus", unsafe {
-                fmi2GetStringStatus(c, kind, if null { std::ptr::null_mut() } else { &mut s })
-            }),
-        };
-        self.record(name, status);
-    }
-
-    fn unsupported(&mut self) {
-        let i = self.target();
-        let c = self.component(i);
-        let (vr, order, mut x) = ([3u32], [1i32], [0.5f64]);
-        let (name, s) = match self.rng.below(4) {
-            0 => {
-                // Random unknowns and knowns (any role, or out of range), random seeds.
-                let (nu, nk) = (self.rng.below(4), self.rng.below(4));
-                let unknowns: Vec<u32> = (0..nu).map(|_| self.value_reference()).collect();
-                let knowns: Vec<u32> = (0..nk).map(|_| self.value_reference()).collect();
-                let seed: Vec<f64> = (0..nk).map(|_| self.rng.real()).collect();
-                let mut out = vec![0.0; nu];
-                let s = unsafe {
-                    fmi2GetDirectionalDerivative(
-                        c,
-                        unknowns.as_ptr(),
-                        nu,
-                        knowns.as_ptr(),
-                        nk,
-                        seed.as_ptr(),
-                        out.as_mut_ptr(),
-                    )
-                };
-                if s == 0 {
-                    assert!(
-                        out.iter().all(|v| v.is_finite()),
-                        "a derivative accepted with OK is finite: {out:?}"
-                    );
-                }
-                ("fmi2GetDirectionalDerivative", s)
-            }
-            1 => ("fmi2SetRealInputDerivatives", unsafe {
-                fmi2SetRealInputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_ptr())
-            }),
-            2 => ("fmi2GetRealOutputDerivatives", unsafe {
-                fmi2GetRealOutputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_mut_ptr())
-            }),
-            _ => ("fmi2CancelStep", unsafe { fmi2CancelStep(c) }),
-        };
-        self.record(name, s);
     }
 }
 
