@@ -7,7 +7,8 @@ use std::time::Instant;
 use wound_opening::solver::{Params, Settings, Solver};
 
 const LAMBDAS: [f64; 9] = [0.0, 1e-3, 1e-2, 0.1, 1.0, 10.0, 1e3, 1e4, 1e6];
-const RADII: [f64; 14] = [50.0, 100.0, 150.0, 200.0, 1.001, 1.01, 1.1, 2.0, 10.0, 1e3, 1e4, 1e5, 1e6, 3.0];
+const RADII: [f64; 14] =
+    [50.0, 100.0, 150.0, 200.0, 1.001, 1.01, 1.1, 2.0, 10.0, 1e3, 1e4, 1e5, 1e6, 3.0];
 
 fn main() {
     let tol: f64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(1e-10);
@@ -23,7 +24,12 @@ fn main() {
             for k in 0..=72 {
                 let t = 0.01 * 10f64.powf(k as f64 / 4.0);
                 s.advance(t - s.time(), 0.0).expect("step");
-                println!("{lambda},{r_inf},{tol},{},{build},{t},{:.17e},{:.17e}", s.unknowns(), s.wound_radius(), s.edge_velocity(0.0));
+                println!(
+                    "{lambda},{r_inf},{tol},{},{build},{t},{:.17e},{:.17e}",
+                    s.unknowns(),
+                    s.wound_radius(),
+                    s.edge_velocity(0.0)
+                );
             }
         }
     }

@@ -39,7 +39,17 @@ fn instantiate() -> *mut c_void {
     let (name, guid) = (CString::new("bench").unwrap(), CString::new(GUID).unwrap());
     let callbacks = fmi2CallbackFunctions::NONE;
     // SAFETY: valid strings and callbacks.
-    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_CO_SIMULATION, guid.as_ptr(), std::ptr::null(), &callbacks, 0, 0) };
+    let c = unsafe {
+        fmi2Instantiate(
+            name.as_ptr(),
+            FMI2_CO_SIMULATION,
+            guid.as_ptr(),
+            std::ptr::null(),
+            &callbacks,
+            0,
+            0,
+        )
+    };
     assert!(!c.is_null());
     c
 }

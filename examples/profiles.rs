@@ -16,9 +16,11 @@ fn main() {
     let radii: Vec<f64> = (0..=90).map(|k| 1.0 + 0.1 * k as f64).collect();
     for lambda in [0.1, 1.0, 10.0] {
         let params = Params { lambda, sigma: 1.0, r_inf: 10.0 };
-        let mut s = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).expect("valid")).expect("valid");
+        let mut s = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).expect("valid"))
+            .expect("valid");
         let scale = if lambda > 1.0 { lambda * lambda } else { 1.0 };
-        let times = std::iter::once(0.0).chain((0..60).map(|k| scale * 10f64.powf(-3.0 + 6.0 * k as f64 / 59.0)));
+        let times = std::iter::once(0.0)
+            .chain((0..60).map(|k| scale * 10f64.powf(-3.0 + 6.0 * k as f64 / 59.0)));
         for t in times {
             if t > s.time() {
                 s.advance(t - s.time(), 0.0).expect("valid step");
@@ -29,7 +31,8 @@ fn main() {
             }
         }
         for r in &radii {
-            writeln!(csv, "{lambda},inf,{r},{:e},0", exact::final_displacement(1.0, 10.0, *r)).unwrap();
+            writeln!(csv, "{lambda},inf,{r},{:e},0", exact::final_displacement(1.0, 10.0, *r))
+                .unwrap();
         }
     }
 }

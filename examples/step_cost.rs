@@ -57,7 +57,15 @@ fn main() {
     let callbacks = fmi2CallbackFunctions::NONE;
     // SAFETY: valid strings and callbacks; the instance is freed at the end.
     unsafe {
-        let c = fmi2Instantiate(name.as_ptr(), FMI2_CO_SIMULATION, guid.as_ptr(), std::ptr::null(), &callbacks, 0, 0);
+        let c = fmi2Instantiate(
+            name.as_ptr(),
+            FMI2_CO_SIMULATION,
+            guid.as_ptr(),
+            std::ptr::null(),
+            &callbacks,
+            0,
+            0,
+        );
         assert!(!c.is_null());
         let tol = 1e-9;
         assert_eq!(fmi2SetupExperiment(c, 1, tol, 0.0, 0, 0.0), 0);

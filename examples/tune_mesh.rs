@@ -6,12 +6,14 @@
 //!        `tune_mesh DIR tol` (the rule, for tolerances 1e-2 .. 1e-12).
 use wound_opening::solver::*;
 
-const LAMBDAS: [&str; 11] = ["0", "0.001", "0.01", "0.03", "0.1", "0.3", "1", "3", "10", "100", "1000"];
+const LAMBDAS: [&str; 11] =
+    ["0", "0.001", "0.01", "0.03", "0.1", "0.3", "1", "3", "10", "100", "1000"];
 const RADII: [&str; 5] = ["1.5", "2", "10", "100", "1000"];
 
 /// Largest error relative to the opening amplitude over the table's times (t >= 0.01).
 fn error(dir: &str, lam: &str, r: &str, settings: impl Fn(&Params) -> Settings) -> (f64, usize) {
-    let text = std::fs::read_to_string(format!("{dir}/ref_{lam}_{r}.csv")).expect("reference table");
+    let text =
+        std::fs::read_to_string(format!("{dir}/ref_{lam}_{r}.csv")).expect("reference table");
     let params = Params { lambda: lam.parse().unwrap(), sigma: 1.0, r_inf: r.parse().unwrap() };
     let mut s = Solver::new(&params, &settings(&params)).unwrap();
     let amp = exact::final_radius(1.0, params.r_inf) - exact::initial_radius(1.0);
@@ -41,13 +43,22 @@ fn main() {
                 }
             }
             let ok = if worst <= tol.max(FINEST_TOLERANCE) { "ok" } else { "FAIL" };
-            println!("tol {tol:.0e}: worst {worst:.1e} {ok}; unknowns for R_inf {RADII:?}: {sizes:?}");
+            println!(
+                "tol {tol:.0e}: worst {worst:.1e} {ok}; unknowns for R_inf {RADII:?}: {sizes:?}"
+            );
         }
         return;
     }
-    let spec = MeshSpec { degree: a[2].parse().unwrap(), elements: a[3].parse().unwrap(), edge_scale: a[4].parse().unwrap() };
+    let spec = MeshSpec {
+        degree: a[2].parse().unwrap(),
+        elements: a[3].parse().unwrap(),
+        edge_scale: a[4].parse().unwrap(),
+    };
     for lam in LAMBDAS {
-        let row: Vec<String> = RADII.iter().map(|r| format!("{:8.1e}", error(dir, lam, r, |_| Settings { mesh: spec }).0)).collect();
+        let row: Vec<String> = RADII
+            .iter()
+            .map(|r| format!("{:8.1e}", error(dir, lam, r, |_| Settings { mesh: spec }).0))
+            .collect();
         println!("lam {lam:>6}: {}", row.join(" "));
     }
 }

@@ -27,14 +27,19 @@ fn schemes(lambda: f64) -> Vec<(String, Scheme)> {
     for dt in [0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001] {
         out.push((format!("trbdf2,dt={dt}"), Scheme::TrBdf2 { mesh: fine, max_step: dt }));
     }
-    for (points, dt) in [(51, 0.05), (101, 0.02), (201, 0.01), (401, 0.005), (1001, 0.002), (2001, 0.001)] {
+    for (points, dt) in
+        [(51, 0.05), (101, 0.02), (201, 0.01), (401, 0.005), (1001, 0.002), (2001, 0.001)]
+    {
         out.push((format!("paper,N={points};dt={dt}"), Scheme::Paper { points, max_step: dt }));
     }
     for points in [11, 21, 41, 81, 161] {
         let (lambda_max, dt_max) = explicit_stability_limits(points, R_INF, lambda);
         if lambda < lambda_max && dt_max > 0.0 {
             let dt = 0.9 * dt_max;
-            out.push((format!("explicit,N={points};dt={dt:.3e}"), Scheme::Explicit { points, max_step: dt }));
+            out.push((
+                format!("explicit,N={points};dt={dt:.3e}"),
+                Scheme::Explicit { points, max_step: dt },
+            ));
         }
     }
     out
@@ -51,11 +56,15 @@ fn main() {
         for (label, scheme) in schemes(lambda) {
             let (name, resolution) = label.split_once(',').expect("label");
             let params = Params { lambda, sigma: SIGMA, r_inf: R_INF };
-            let unknowns = wound_opening::solver::Solver::with_scheme(&params, &scheme).map_or(0, |s| s.unknowns());
+            let unknowns = wound_opening::solver::Solver::with_scheme(&params, &scheme)
+                .map_or(0, |s| s.unknowns());
             let (cpu, radius) = best_cpu(|| scenario(lambda, &scheme));
             let err = radius.map_or(f64::INFINITY, |r| error(&r, &reference));
             writeln!(csv, "{name},{lambda},{resolution},{unknowns},{err:.6e},{cpu:.6e}").unwrap();
-            println!("lambda {lambda:>4} {name:>12} {resolution:<24} N={unknowns:<5} error {err:9.2e}  cpu {:9.3} ms", cpu * 1e3);
+            println!(
+                "lambda {lambda:>4} {name:>12} {resolution:<24} N={unknowns:<5} error {err:9.2e}  cpu {:9.3} ms",
+                cpu * 1e3
+            );
         }
     }
 }

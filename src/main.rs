@@ -12,7 +12,9 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("fmu") => package::build_fmus(),
         _ => {
-            eprintln!("usage: wound_opening fmu    # writes <target>/fmu/WoundOpening.fmu and PurseString.fmu");
+            eprintln!(
+                "usage: wound_opening fmu    # writes <target>/fmu/WoundOpening.fmu and PurseString.fmu"
+            );
             return ExitCode::from(2);
         }
     };

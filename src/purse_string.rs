@@ -80,15 +80,23 @@ impl Bounds {
 /// Check a time parameter (`t_assembly`, `t_delay`): finite and `>= 0`. Any such value
 /// keeps `T_c` within `[0, T_max]`.
 pub fn check_time(name: &str, value: f64) -> Result<f64, String> {
-    if value.is_finite() && value >= 0.0 { Ok(value) } else { Err(format!("{name} = {value} is invalid: it must be finite and >= 0")) }
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(format!("{name} = {value} is invalid: it must be finite and >= 0"))
+    }
 }
 
 /// Check a wound radius input against [`RADIUS`]. A radius at or below zero means the
 /// wound has closed, which this linear model does not describe.
 pub fn check_radius(radius: f64) -> Result<f64, String> {
-    RADIUS
-        .check("wound_radius", radius)
-        .map_err(|e| if radius <= 0.0 { format!("{e} (the purse-string stress T_c/(h R) needs an open wound)") } else { e })
+    RADIUS.check("wound_radius", radius).map_err(|e| {
+        if radius <= 0.0 {
+            format!("{e} (the purse-string stress T_c/(h R) needs an open wound)")
+        } else {
+            e
+        }
+    })
 }
 
 impl PurseString {
@@ -127,7 +135,8 @@ impl PurseString {
 mod tests {
     use super::*;
 
-    const P: PurseString = PurseString { max_tension: 6500.0, assembly_time: 30.0, delay: 20.0, thickness: 5.0 };
+    const P: PurseString =
+        PurseString { max_tension: 6500.0, assembly_time: 30.0, delay: 20.0, thickness: 5.0 };
 
     #[test]
     fn tension_rises_after_the_delay_to_its_maximum() {
@@ -152,12 +161,21 @@ mod tests {
 
     #[test]
     fn rejects_invalid_values_with_their_name() {
-        assert!(PurseString { thickness: 0.0, ..P }.validate().unwrap_err().contains("thickness = 0"));
-        assert!(PurseString { max_tension: f64::NAN, ..P }.validate().unwrap_err().contains("T_max = NaN"));
+        assert!(
+            PurseString { thickness: 0.0, ..P }.validate().unwrap_err().contains("thickness = 0")
+        );
+        assert!(
+            PurseString { max_tension: f64::NAN, ..P }
+                .validate()
+                .unwrap_err()
+                .contains("T_max = NaN")
+        );
         assert!(check_radius(-0.5).unwrap_err().contains("wound_radius = -0.5"));
         let tiny = PurseString { thickness: 1e-7, ..P }.validate().unwrap_err();
         assert_eq!(tiny, "thickness = 0.0000001 is invalid: it must be in [1e-6, 1e6] um");
         assert!(check_radius(2e9).unwrap_err().ends_with("it must be in [1e-6, 1e9] um"));
-        assert!(MAX_TENSION.check("T_max", 1.5e9).unwrap_err().ends_with("it must be in [0, 1e9] pN"));
+        assert!(
+            MAX_TENSION.check("T_max", 1.5e9).unwrap_err().ends_with("it must be in [0, 1e9] pN")
+        );
     }
 }

@@ -54,7 +54,11 @@ pub struct ScaleError {
 
 impl fmt::Display for ScaleError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} = {} is invalid: it must be finite and in [{SCALE_MIN:e}, {SCALE_MAX:e}]", self.name, self.value)
+        write!(
+            f,
+            "{} = {} is invalid: it must be finite and in [{SCALE_MIN:e}, {SCALE_MAX:e}]",
+            self.name, self.value
+        )
     }
 }
 
@@ -62,7 +66,11 @@ impl std::error::Error for ScaleError {}
 
 /// Check one scale; `name` is used in the message.
 pub fn check_scale(name: &'static str, value: f64) -> Result<f64, ScaleError> {
-    if value.is_finite() && (SCALE_MIN..=SCALE_MAX).contains(&value) { Ok(value) } else { Err(ScaleError { name, value }) }
+    if value.is_finite() && (SCALE_MIN..=SCALE_MAX).contains(&value) {
+        Ok(value)
+    } else {
+        Err(ScaleError { name, value })
+    }
 }
 
 impl Scales {
@@ -129,7 +137,13 @@ mod tests {
     /// The README's worked example: R0 = 10 um and tau = eta / G = 10 s at lambda = 1.
     #[test]
     fn worked_example() {
-        let m = Material { shear_modulus: 100.0, viscosity: 1000.0, friction: 40.0, wound_radius: 10.0, tension: 100.0 };
+        let m = Material {
+            shear_modulus: 100.0,
+            viscosity: 1000.0,
+            friction: 40.0,
+            wound_radius: 10.0,
+            tension: 100.0,
+        };
         let d = m.to_dimensionless().unwrap();
         assert!((d.lambda - 1.0).abs() < 1e-15);
         assert!((d.scales.time - 10.0).abs() < 1e-12);
@@ -140,11 +154,26 @@ mod tests {
 
     #[test]
     fn rejects_bad_constants_and_scales() {
-        let ok = Material { shear_modulus: 1.0, viscosity: 0.0, friction: 1.0, wound_radius: 1.0, tension: 1.0 };
+        let ok = Material {
+            shear_modulus: 1.0,
+            viscosity: 0.0,
+            friction: 1.0,
+            wound_radius: 1.0,
+            tension: 1.0,
+        };
         assert_eq!(ok.to_dimensionless().unwrap().lambda, 0.0);
-        assert!(Material { friction: 0.0, ..ok }.to_dimensionless().unwrap_err().contains("zeta = 0"));
-        assert!(Material { viscosity: -1.0, ..ok }.to_dimensionless().unwrap_err().contains("eta = -1"));
-        assert!(Material { wound_radius: 1e13, ..ok }.to_dimensionless().unwrap_err().contains("R0 = 1"));
+        assert!(
+            Material { friction: 0.0, ..ok }.to_dimensionless().unwrap_err().contains("zeta = 0")
+        );
+        assert!(
+            Material { viscosity: -1.0, ..ok }.to_dimensionless().unwrap_err().contains("eta = -1")
+        );
+        assert!(
+            Material { wound_radius: 1e13, ..ok }
+                .to_dimensionless()
+                .unwrap_err()
+                .contains("R0 = 1")
+        );
         assert!(check_scale("T", f64::NAN).is_err());
         assert!(check_scale("T", 0.0).is_err());
     }

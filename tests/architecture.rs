@@ -47,7 +47,12 @@ fn the_glue_names_no_model_no_variable_and_no_unit() {
         words.push(d.model_identifier.to_string());
         // Variable names, except the words FMI itself uses (the tolerance of an experiment,
         // a generic parameter `T`).
-        words.extend(d.variables.iter().map(|v| v.name.to_string()).filter(|n| n.len() > 2 && !GENERIC.contains(&n.as_str())));
+        words.extend(
+            d.variables
+                .iter()
+                .map(|v| v.name.to_string())
+                .filter(|n| n.len() > 2 && !GENERIC.contains(&n.as_str())),
+        );
         words.extend(d.units.iter().map(|(u, _)| format!("\"{u}\"")).filter(|u| u != "\"1\""));
     }
     words.extend(["wound".into(), "purse".into(), "purse_string".into(), "models::".into()]);
@@ -55,7 +60,11 @@ fn the_glue_names_no_model_no_variable_and_no_unit() {
     for file in rust_files(&src("fmi")) {
         let text = std::fs::read_to_string(&file).expect("readable");
         for w in &words {
-            let hit = if w.starts_with('"') || w.ends_with("::") { text.contains(w.as_str()) } else { has_word(&text, w) };
+            let hit = if w.starts_with('"') || w.ends_with("::") {
+                text.contains(w.as_str())
+            } else {
+                has_word(&text, w)
+            };
             if hit {
                 found.push(format!("{}: {w}", file.display()));
             }
@@ -64,19 +73,26 @@ fn the_glue_names_no_model_no_variable_and_no_unit() {
     // The model list itself is the one name the glue needs (fmi2Instantiate picks from it).
     found.retain(|f| !(f.ends_with(": models::") && f.contains("src/fmi/mod.rs")));
     assert!(found.is_empty(), "the FMI glue names model specifics:\n{}", found.join("\n"));
-    assert!(!words.is_empty() && has_word("a lambda here", "lambda") && !has_word("lambdas", "lambda"));
+    assert!(
+        !words.is_empty() && has_word("a lambda here", "lambda") && !has_word("lambdas", "lambda")
+    );
 }
 
 #[test]
 fn unsafe_code_is_confined_to_the_c_boundary() {
-    const BOUNDARY: [&str; 5] = ["fmi/fmi2/", "fmi/fmi3/", "fmi/frame.rs", "fmi/shims.rs", "boundary/"];
+    const BOUNDARY: [&str; 5] =
+        ["fmi/fmi2/", "fmi/fmi3/", "fmi/frame.rs", "fmi/shims.rs", "boundary/"];
     const SHIMS: [&str; 2] = ["capi/solver_c.rs", "capi/series_c.rs"];
     let root = src("");
     let mut outside = Vec::new();
     for file in rust_files(&root) {
         let rel = file.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
         let text = std::fs::read_to_string(&file).expect("readable");
-        let code: String = text.lines().filter(|l| !l.trim_start().starts_with("//")).collect::<Vec<_>>().join("\n");
+        let code: String = text
+            .lines()
+            .filter(|l| !l.trim_start().starts_with("//"))
+            .collect::<Vec<_>>()
+            .join("\n");
         let allowed = BOUNDARY.iter().any(|b| rel.starts_with(b))
             || SHIMS.contains(&rel.as_str())
             || rel == "main.rs"
@@ -87,7 +103,9 @@ fn unsafe_code_is_confined_to_the_c_boundary() {
         }
     }
     assert!(outside.is_empty(), "unsafe code outside the C boundary: {outside:?}");
-    for module in ["fmi/common/mod.rs", "solver/mod.rs", "models/mod.rs", "units.rs", "purse_string.rs"] {
+    for module in
+        ["fmi/common/mod.rs", "solver/mod.rs", "models/mod.rs", "units.rs", "purse_string.rs"]
+    {
         let text = std::fs::read_to_string(src(module)).expect("readable");
         assert!(text.contains("#![forbid(unsafe_code)]"), "{module} does not forbid unsafe code");
     }
@@ -132,10 +150,23 @@ fn the_fmi_core_names_no_version() {
             }
         }
     }
-    assert!(found.is_empty(), "the version-independent core names a version:\n{}", found.join("\n"));
-    for (folder, file) in [("fmi2", "names.rs"), ("fmi3", "names.rs"), ("fmi3", "arrays.rs"), ("fmi3", "intermediate.rs")] {
-        let text = std::fs::read_to_string(src(&format!("fmi/{folder}/{file}"))).expect("the version's own file");
-        assert!(text.contains("#![forbid(unsafe_code)]"), "fmi/{folder}/{file} is safe Rust and says so");
+    assert!(
+        found.is_empty(),
+        "the version-independent core names a version:\n{}",
+        found.join("\n")
+    );
+    for (folder, file) in [
+        ("fmi2", "names.rs"),
+        ("fmi3", "names.rs"),
+        ("fmi3", "arrays.rs"),
+        ("fmi3", "intermediate.rs"),
+    ] {
+        let text = std::fs::read_to_string(src(&format!("fmi/{folder}/{file}")))
+            .expect("the version's own file");
+        assert!(
+            text.contains("#![forbid(unsafe_code)]"),
+            "fmi/{folder}/{file} is safe Rust and says so"
+        );
     }
     assert_eq!(code_of("let a = \"fmi2\"; // fmi3 here\n// fmi3\n"), "let a = \"fmi2\"; \n\n");
 }
@@ -146,15 +177,26 @@ fn the_fmi_core_names_no_version() {
 #[test]
 fn the_solver_modules_make_no_circle() {
     let dir = src("solver");
-    let modules: Vec<String> =
-        rust_files(&dir).iter().filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned())).filter(|m| m != "mod").collect();
+    let modules: Vec<String> = rust_files(&dir)
+        .iter()
+        .filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .filter(|m| m != "mod")
+        .collect();
     let edges: Vec<(String, String)> = modules
         .iter()
         .flat_map(|m| {
             let text = std::fs::read_to_string(dir.join(format!("{m}.rs"))).expect("readable");
             let code = text.split("#[cfg(test)]").next().unwrap_or("").to_owned();
-            let uses: Vec<String> = code.lines().filter(|l| l.trim_start().starts_with("use super::")).map(str::to_owned).collect();
-            modules.iter().filter(|n| *n != m && uses.iter().any(|u| has_word(u, n))).map(|n| (m.clone(), n.clone())).collect::<Vec<_>>()
+            let uses: Vec<String> = code
+                .lines()
+                .filter(|l| l.trim_start().starts_with("use super::"))
+                .map(str::to_owned)
+                .collect();
+            modules
+                .iter()
+                .filter(|n| *n != m && uses.iter().any(|u| has_word(u, n)))
+                .map(|n| (m.clone(), n.clone()))
+                .collect::<Vec<_>>()
         })
         .collect();
     // Depth-first search for a back edge.
@@ -176,7 +218,10 @@ fn the_solver_modules_make_no_circle() {
     for m in &modules {
         visit(m, &edges, &mut Vec::new(), &mut done);
     }
-    assert!(edges.iter().any(|(a, b)| a == "sensitivity" && b == "modal") || edges.len() > 5, "edges found: {edges:?}");
+    assert!(
+        edges.iter().any(|(a, b)| a == "sensitivity" && b == "modal") || edges.len() > 5,
+        "edges found: {edges:?}"
+    );
 }
 
 /// Each FMI version writes its own words: no model description names the other version's
@@ -184,13 +229,26 @@ fn the_solver_modules_make_no_circle() {
 #[test]
 fn each_fmi_version_writes_its_own_words() {
     for (d, _) in MODELS.iter() {
-        let (two, three) = (wound_opening::fmi::fmi2::xml::fmi2(d), wound_opening::fmi::fmi3::xml::fmi3(d));
-        assert!(!three.contains("fmi2"), "{}: the FMI 3.0 description names FMI 2.0", d.model_identifier);
-        assert!(!two.contains("fmi3"), "{}: the FMI 2.0 description names FMI 3.0", d.model_identifier);
+        let (two, three) =
+            (wound_opening::fmi::fmi2::xml::fmi2(d), wound_opening::fmi::fmi3::xml::fmi3(d));
+        assert!(
+            !three.contains("fmi2"),
+            "{}: the FMI 3.0 description names FMI 2.0",
+            d.model_identifier
+        );
+        assert!(
+            !two.contains("fmi3"),
+            "{}: the FMI 2.0 description names FMI 3.0",
+            d.model_identifier
+        );
     }
     for path in rust_files(&src("")) {
         let text = std::fs::read_to_string(&path).expect("readable");
         let rewrite = ["replace(\"fmi2\"", "replacen(\"fmi2\""];
-        assert!(!rewrite.iter().any(|r| text.contains(r)), "{}: rewrites FMI 2.0 words", path.display());
+        assert!(
+            !rewrite.iter().any(|r| text.contains(r)),
+            "{}: rewrites FMI 2.0 words",
+            path.display()
+        );
     }
 }

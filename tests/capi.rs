@@ -14,7 +14,12 @@ fn last_error() -> String {
 
 fn new_solver() -> *mut WoSolver {
     let mut s = std::ptr::null_mut();
-    assert_eq!(unsafe { wo_solver_new(1.0, 1.0, 10.0, 1e-8, &mut s) }, WoStatus::WoOk, "{}", last_error());
+    assert_eq!(
+        unsafe { wo_solver_new(1.0, 1.0, 10.0, 1e-8, &mut s) },
+        WoStatus::WoOk,
+        "{}",
+        last_error()
+    );
     s
 }
 
@@ -38,7 +43,14 @@ fn the_last_error_belongs_to_the_calling_thread_and_a_success_clears_it() {
     })
     .join()
     .unwrap();
-    assert_eq!(elsewhere, (String::new(), WoStatus::WoNullPointer, "wo_there: thing is NULL (expected a valid pointer)".into()));
+    assert_eq!(
+        elsewhere,
+        (
+            String::new(),
+            WoStatus::WoNullPointer,
+            "wo_there: thing is NULL (expected a valid pointer)".into()
+        )
+    );
     assert_eq!(last_error(), "wo_here: something specific", "another thread's error is not ours");
     assert_eq!(run("wo_fine", || Ok(())), WoStatus::WoOk);
     assert_eq!(last_error(), "");
@@ -77,7 +89,9 @@ fn status_names_match_the_enum() {
         let screaming: String = rust
             .chars()
             .enumerate()
-            .flat_map(|(j, c)| if c.is_uppercase() && j > 0 { vec!['_', c] } else { vec![c.to_ascii_uppercase()] })
+            .flat_map(|(j, c)| {
+                if c.is_uppercase() && j > 0 { vec!['_', c] } else { vec![c.to_ascii_uppercase()] }
+            })
             .collect();
         assert_eq!(name, screaming);
     }
@@ -95,7 +109,10 @@ fn an_infinite_velocity_is_refused_not_returned() {
     assert!(last_error().contains("infinite at lambda = 0"), "{}", last_error());
     assert_eq!(v, -7.0, "nothing written");
     let (radii, mut out) = ([1.0, 2.0], [0.0; 2]);
-    assert_eq!(unsafe { wo_solver_velocity(s, radii.as_ptr(), out.as_mut_ptr(), 2) }, WoStatus::WoUndefined);
+    assert_eq!(
+        unsafe { wo_solver_velocity(s, radii.as_ptr(), out.as_mut_ptr(), 2) },
+        WoStatus::WoUndefined
+    );
     assert_eq!(unsafe { wo_solver_advance(s, 0.01, 0.0) }, WoStatus::WoOk);
     assert_eq!(unsafe { wo_solver_edge_velocity(s, &mut v) }, WoStatus::WoOk);
     // The exact value at t = 0.01 (tests/solver_exact.rs LAPLACE_REFERENCE); at tolerance

@@ -94,7 +94,11 @@ fn direct_step(s: &Direct, k: usize, i: usize, t: &mut f64) -> [u64; 2] {
 }
 
 /// Run instance `k` alone, start to end, on this thread.
-fn alone<T>(k: usize, new: fn(usize) -> T, advance: fn(&T, usize, usize, &mut f64) -> [u64; 2]) -> (T, Vec<[u64; 2]>) {
+fn alone<T>(
+    k: usize,
+    new: fn(usize) -> T,
+    advance: fn(&T, usize, usize, &mut f64) -> [u64; 2],
+) -> (T, Vec<[u64; 2]>) {
     let x = new(k);
     let mut t = 0.0;
     let trace = (0..STEPS).map(|i| advance(&x, k, i, &mut t)).collect();
@@ -104,7 +108,10 @@ fn alone<T>(k: usize, new: fn(usize) -> T, advance: fn(&T, usize, usize, &mut f6
 /// All instances at once: thread `j` owns instances `j, j + 8, ...` and advances them in
 /// turns, one step each, so that every thread's instances are interleaved in time with
 /// every other thread's.
-fn together<T: Send + 'static>(new: fn(usize) -> T, advance: fn(&T, usize, usize, &mut f64) -> [u64; 2]) -> Vec<(usize, T, Vec<[u64; 2]>)> {
+fn together<T: Send + 'static>(
+    new: fn(usize) -> T,
+    advance: fn(&T, usize, usize, &mut f64) -> [u64; 2],
+) -> Vec<(usize, T, Vec<[u64; 2]>)> {
     let start = Arc::new(Barrier::new(THREADS));
     let handles: Vec<_> = (0..THREADS)
         .map(|j| {
@@ -120,7 +127,11 @@ fn together<T: Send + 'static>(new: fn(usize) -> T, advance: fn(&T, usize, usize
                         traces[n].push(advance(&xs[n], k, i, &mut times[n]));
                     }
                 }
-                mine.into_iter().zip(xs).zip(traces).map(|((k, x), tr)| (k, x, tr)).collect::<Vec<_>>()
+                mine.into_iter()
+                    .zip(xs)
+                    .zip(traces)
+                    .map(|((k, x), tr)| (k, x, tr))
+                    .collect::<Vec<_>>()
             })
         })
         .collect();
@@ -136,12 +147,22 @@ fn sixty_four_fmu_instances_on_eight_threads_match_their_single_threaded_runs_bi
             trace
         })
         .collect();
-    let finals: std::collections::BTreeSet<[u64; 2]> = reference.iter().map(|t| t[STEPS - 1]).collect();
-    assert!(finals.len() >= 32, "the instances should be different problems: {} distinct end states", finals.len());
+    let finals: std::collections::BTreeSet<[u64; 2]> =
+        reference.iter().map(|t| t[STEPS - 1]).collect();
+    assert!(
+        finals.len() >= 32,
+        "the instances should be different problems: {} distinct end states",
+        finals.len()
+    );
     let results = together(fmu_new, fmu_step);
     assert_eq!(results.len(), INSTANCES);
     for (k, fmu, trace) in results {
-        assert_eq!(trace, reference[k], "instance {k} {:?} differs from its single-threaded run", problem(k));
+        assert_eq!(
+            trace,
+            reference[k],
+            "instance {k} {:?} differs from its single-threaded run",
+            problem(k)
+        );
         unsafe { fmi2FreeInstance(fmu.0) };
     }
 }
@@ -158,7 +179,12 @@ fn sixty_four_direct_solvers_on_eight_threads_match_their_single_threaded_runs_b
     let results = together(direct_new, direct_step);
     assert_eq!(results.len(), INSTANCES);
     for (k, s, trace) in results {
-        assert_eq!(trace, reference[k], "solver {k} {:?} differs from its single-threaded run", problem(k));
+        assert_eq!(
+            trace,
+            reference[k],
+            "solver {k} {:?} differs from its single-threaded run",
+            problem(k)
+        );
         unsafe { wo_check(wo_solver_free(s.0), "wo_solver_free") };
     }
 }

@@ -23,14 +23,22 @@ fn every_corner_has_finite_outputs() {
                     assert_eq!(ok, WoStatus::WoOk, "{lambda} {sigma} {r_inf}: {}", last_error());
                     let radii = [1.0, 0.5 * (1.0 + r_inf), r_inf];
                     for t in [0.0, 1e-14, 1e-8, 1e-2, 1.0, 1e6] {
-                        let (mut r, mut v, mut u, mut w) = (f64::NAN, f64::NAN, [f64::NAN; 3], [f64::NAN; 3]);
+                        let (mut r, mut v, mut u, mut w) =
+                            (f64::NAN, f64::NAN, [f64::NAN; 3], [f64::NAN; 3]);
                         unsafe {
                             // Most corners leave the linear model's validity (a warning, the
                             // advance done); the outputs must be finite all the same.
                             let advanced = wo_solver_advance(s, t, p);
-                            assert!(matches!(advanced, WoStatus::WoOk | WoStatus::WoOutsideValidity), "{}", last_error());
+                            assert!(
+                                matches!(advanced, WoStatus::WoOk | WoStatus::WoOutsideValidity),
+                                "{}",
+                                last_error()
+                            );
                             assert_eq!(wo_solver_wound_radius(s, &mut r), WoStatus::WoOk);
-                            assert_eq!(wo_solver_displacement(s, radii.as_ptr(), u.as_mut_ptr(), 3), WoStatus::WoOk);
+                            assert_eq!(
+                                wo_solver_displacement(s, radii.as_ptr(), u.as_mut_ptr(), 3),
+                                WoStatus::WoOk
+                            );
                             let status = wo_solver_edge_velocity(s, &mut v);
                             // At lambda = 0 the velocity is infinite at the cut: refused, not a number.
                             if status == WoStatus::WoUndefined {
@@ -38,10 +46,16 @@ fn every_corner_has_finite_outputs() {
                                 continue;
                             }
                             assert_eq!(status, WoStatus::WoOk, "{}", last_error());
-                            assert_eq!(wo_solver_velocity(s, radii.as_ptr(), w.as_mut_ptr(), 3), WoStatus::WoOk);
+                            assert_eq!(
+                                wo_solver_velocity(s, radii.as_ptr(), w.as_mut_ptr(), 3),
+                                WoStatus::WoOk
+                            );
                         }
                         let all = [r, v, u[0], u[1], u[2], w[0], w[1], w[2]];
-                        assert!(all.iter().all(|x| x.is_finite()), "{lambda} {sigma} {r_inf} {p} t = {t}: {all:?}");
+                        assert!(
+                            all.iter().all(|x| x.is_finite()),
+                            "{lambda} {sigma} {r_inf} {p} t = {t}: {all:?}"
+                        );
                     }
                     assert_eq!(unsafe { wo_solver_free(s) }, WoStatus::WoOk);
                 }
@@ -62,7 +76,10 @@ fn just_outside_each_corner_is_refused_with_the_range() {
     ];
     for (lambda, sigma, r_inf, message) in cases {
         let mut s = std::ptr::null_mut();
-        assert_eq!(unsafe { wo_solver_new(lambda, sigma, r_inf, 1e-6, &mut s) }, WoStatus::WoInvalidArgument);
+        assert_eq!(
+            unsafe { wo_solver_new(lambda, sigma, r_inf, 1e-6, &mut s) },
+            WoStatus::WoInvalidArgument
+        );
         assert!(s.is_null());
         assert!(last_error().contains(message), "{}", last_error());
     }

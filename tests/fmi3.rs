@@ -39,7 +39,17 @@ fn cs(token: &str, event_mode: u8) -> fmi3Instance {
 
 fn me(token: &str) -> fmi3Instance {
     let (name, token) = (CString::new("me3").unwrap(), CString::new(token).unwrap());
-    unsafe { fmi3InstantiateModelExchange(name.as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, std::ptr::null_mut(), None) }
+    unsafe {
+        fmi3InstantiateModelExchange(
+            name.as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            0,
+            0,
+            std::ptr::null_mut(),
+            None,
+        )
+    }
 }
 
 fn get(i: fmi3Instance, vr: u32) -> (fmi3Status, f64) {
@@ -54,7 +64,20 @@ fn instantiation_checks_the_token_and_refuses_event_mode() {
     let token = CString::new(WOUND).unwrap();
     let vr = 0u32;
     let null = unsafe {
-        fmi3InstantiateCoSimulation(c"x".as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, 0, 0, &vr, 1, std::ptr::null_mut(), None, None)
+        fmi3InstantiateCoSimulation(
+            c"x".as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            0,
+            0,
+            0,
+            0,
+            &vr,
+            1,
+            std::ptr::null_mut(),
+            None,
+            None,
+        )
     };
     assert!(null.is_null(), "required intermediate variables");
     let se = unsafe {
@@ -99,14 +122,25 @@ fn co_simulation_is_the_fmi2_co_simulation() {
             assert_eq!((ev, early, last), (0, 0, t + 1.0));
             assert_eq!(term, (n == 9) as u8, "terminateSimulation at the stop time");
         }
-        assert_eq!(fmi3DoStep(i, 10.0, 1.0, 0, &mut ev, &mut term, &mut early, &mut last), ERROR, "past stopTime");
+        assert_eq!(
+            fmi3DoStep(i, 10.0, 1.0, 0, &mut ev, &mut term, &mut early, &mut last),
+            ERROR,
+            "past stopTime"
+        );
         assert_eq!(last, 10.0);
-        assert_eq!(get(i, Vr::WoundRadius as u32), (OK, common::fmi::get_real(c2, Vr::WoundRadius as u32).1));
+        assert_eq!(
+            get(i, Vr::WoundRadius as u32),
+            (OK, common::fmi::get_real(c2, Vr::WoundRadius as u32).1)
+        );
         let mut method = -1;
         assert_eq!(fmi3GetInt32(i, &(Vr::Method as u32), 1, &mut method, 1), OK);
         assert_eq!(method, 0);
         let b = 0u8;
-        assert_eq!(fmi3GetBoolean(i, std::ptr::null(), 0, std::ptr::null_mut(), 0), OK, "no variables named");
+        assert_eq!(
+            fmi3GetBoolean(i, std::ptr::null(), 0, std::ptr::null_mut(), 0),
+            OK,
+            "no variables named"
+        );
         assert_eq!(fmi3SetBoolean(i, &vr, 1, &b, 1), ERROR, "no Boolean variables");
         assert_eq!(fmi3EnterStepMode(i), ERROR);
         assert_eq!(fmi3EnterConfigurationMode(i), ERROR);
@@ -156,7 +190,11 @@ fn model_exchange_declares_and_serves_the_states() {
         assert_eq!((enter, term), (0, 0));
         let mut ev = 0u8;
         let mut last = 0.0;
-        assert_eq!(fmi3DoStep(i, 0.0, 1.0, 0, &mut ev, &mut ev.clone(), &mut ev.clone(), &mut last), ERROR, "DoStep on ME");
+        assert_eq!(
+            fmi3DoStep(i, 0.0, 1.0, 0, &mut ev, &mut ev.clone(), &mut ev.clone(), &mut last),
+            ERROR,
+            "DoStep on ME"
+        );
         fmi3FreeInstance(i);
     }
 }
@@ -168,7 +206,12 @@ fn every_function_refuses_what_is_no_live_instance() {
     let freed = cs(WOUND, 0);
     unsafe { fmi3FreeInstance(freed) };
     let mut own = 0u64;
-    let bogus: [fmi3Instance; 4] = [std::ptr::null_mut(), 0xdead_beef as fmi3Instance, freed, &mut own as *mut u64 as fmi3Instance];
+    let bogus: [fmi3Instance; 4] = [
+        std::ptr::null_mut(),
+        0xdead_beef as fmi3Instance,
+        freed,
+        &mut own as *mut u64 as fmi3Instance,
+    ];
     let before = caught_panics();
     for i in bogus {
         for (name, status) in every_call3(i) {
@@ -201,36 +244,79 @@ fn every_call3(i: fmi2Component) -> Vec<(&'static str, fmi3Status)> {
             ("fmi3GetFMUState", fmi3GetFMUState(i, &mut st)),
             ("fmi3SetFMUState", fmi3SetFMUState(i, 1 as fmi3FMUState)),
             ("fmi3FreeFMUState", fmi3FreeFMUState(i, &mut (1 as fmi3FMUState))),
-            ("fmi3SerializedFMUStateSize", fmi3SerializedFMUStateSize(i, 1 as fmi3FMUState, &mut u)),
+            (
+                "fmi3SerializedFMUStateSize",
+                fmi3SerializedFMUStateSize(i, 1 as fmi3FMUState, &mut u),
+            ),
             ("fmi3DeserializeFMUState", fmi3DeserializeFMUState(i, b.as_ptr(), 6, &mut st)),
             (
                 "fmi3GetDirectionalDerivative",
-                fmi3GetDirectionalDerivative(i, vr.as_ptr(), 1, vr.as_ptr(), 1, r.as_ptr(), 1, r.as_mut_ptr(), 1),
+                fmi3GetDirectionalDerivative(
+                    i,
+                    vr.as_ptr(),
+                    1,
+                    vr.as_ptr(),
+                    1,
+                    r.as_ptr(),
+                    1,
+                    r.as_mut_ptr(),
+                    1,
+                ),
             ),
             ("fmi3DoStep", fmi3DoStep(i, 0.0, 1.0, 0, &mut b[0], &mut b[1], &mut b[2], &mut t)),
             ("fmi3EnterContinuousTimeMode", fmi3EnterContinuousTimeMode(i)),
             ("fmi3SetTime", fmi3SetTime(i, 0.0)),
             ("fmi3SetContinuousStates", fmi3SetContinuousStates(i, r.as_ptr(), 1)),
-            ("fmi3GetContinuousStateDerivatives", fmi3GetContinuousStateDerivatives(i, r.as_mut_ptr(), 1)),
+            (
+                "fmi3GetContinuousStateDerivatives",
+                fmi3GetContinuousStateDerivatives(i, r.as_mut_ptr(), 1),
+            ),
             ("fmi3GetContinuousStates", fmi3GetContinuousStates(i, r.as_mut_ptr(), 1)),
-            ("fmi3GetNominalsOfContinuousStates", fmi3GetNominalsOfContinuousStates(i, r.as_mut_ptr(), 1)),
+            (
+                "fmi3GetNominalsOfContinuousStates",
+                fmi3GetNominalsOfContinuousStates(i, r.as_mut_ptr(), 1),
+            ),
             ("fmi3GetEventIndicators", fmi3GetEventIndicators(i, r.as_mut_ptr(), 1)),
             ("fmi3GetNumberOfContinuousStates", fmi3GetNumberOfContinuousStates(i, &mut u)),
             ("fmi3GetNumberOfEventIndicators", fmi3GetNumberOfEventIndicators(i, &mut u)),
-            ("fmi3CompletedIntegratorStep", fmi3CompletedIntegratorStep(i, 1, &mut b[0], &mut b[1])),
+            (
+                "fmi3CompletedIntegratorStep",
+                fmi3CompletedIntegratorStep(i, 1, &mut b[0], &mut b[1]),
+            ),
             ("fmi3UpdateDiscreteStates", {
                 let (x0, rest) = b.split_at_mut(1);
                 let (x1, rest) = rest.split_at_mut(1);
                 let (x2, rest) = rest.split_at_mut(1);
                 let (x3, x4) = rest.split_at_mut(1);
-                fmi3UpdateDiscreteStates(i, &mut x0[0], &mut x1[0], &mut x2[0], &mut x3[0], &mut x4[0], &mut t)
+                fmi3UpdateDiscreteStates(
+                    i, &mut x0[0], &mut x1[0], &mut x2[0], &mut x3[0], &mut x4[0], &mut t,
+                )
             }),
             ("fmi3EnterStepMode", fmi3EnterStepMode(i)),
             ("fmi3EnterConfigurationMode", fmi3EnterConfigurationMode(i)),
-            ("fmi3GetOutputDerivatives", fmi3GetOutputDerivatives(i, vr.as_ptr(), 1, n.as_ptr(), r.as_mut_ptr(), 1)),
-            ("fmi3GetAdjointDerivative", fmi3GetAdjointDerivative(i, vr.as_ptr(), 1, vr.as_ptr(), 1, r.as_ptr(), 1, r.as_mut_ptr(), 1)),
+            (
+                "fmi3GetOutputDerivatives",
+                fmi3GetOutputDerivatives(i, vr.as_ptr(), 1, n.as_ptr(), r.as_mut_ptr(), 1),
+            ),
+            (
+                "fmi3GetAdjointDerivative",
+                fmi3GetAdjointDerivative(
+                    i,
+                    vr.as_ptr(),
+                    1,
+                    vr.as_ptr(),
+                    1,
+                    r.as_ptr(),
+                    1,
+                    r.as_mut_ptr(),
+                    1,
+                ),
+            ),
             ("fmi3GetClock", fmi3GetClock(i, vr.as_ptr(), 1, b.as_mut_ptr())),
-            ("fmi3GetIntervalDecimal", fmi3GetIntervalDecimal(i, vr.as_ptr(), 1, r.as_mut_ptr(), n.as_mut_ptr())),
+            (
+                "fmi3GetIntervalDecimal",
+                fmi3GetIntervalDecimal(i, vr.as_ptr(), 1, r.as_mut_ptr(), n.as_mut_ptr()),
+            ),
             ("fmi3EvaluateDiscreteStates", fmi3EvaluateDiscreteStates(i)),
             ("fmi3ActivateModelPartition", fmi3ActivateModelPartition(i, 0, 0.0)),
         ]
@@ -247,7 +333,11 @@ fn start_values_are_readable_before_initialization() {
     assert_eq!(get(i, Vr::EdgeStress as u32), (OK, 0.0));
     assert_eq!(get(i, Vr::WoundRadius as u32).0, ERROR, "an output has no start value");
     assert_eq!(get(i, 13).0, ERROR, "nor a state");
-    assert_eq!(common::fmi::get_real(c2, Vr::Lambda as u32).0, ERROR, "FMI 2.0: not in Instantiated");
+    assert_eq!(
+        common::fmi::get_real(c2, Vr::Lambda as u32).0,
+        ERROR,
+        "FMI 2.0: not in Instantiated"
+    );
     unsafe {
         fmi3FreeInstance(i);
         fmi2FreeInstance(c2);
@@ -268,7 +358,16 @@ mod intermediate {
     const P0: f64 = 0.5;
     const RATE: f64 = 0.25;
 
-    unsafe extern "C" fn update(_: fmi3InstanceEnvironment, time: f64, set: u8, _: u8, _: u8, _: u8, _: *mut u8, _: *mut f64) {
+    unsafe extern "C" fn update(
+        _: fmi3InstanceEnvironment,
+        time: f64,
+        set: u8,
+        _: u8,
+        _: u8,
+        _: u8,
+        _: *mut u8,
+        _: *mut f64,
+    ) {
         let i = INSTANCE.load(Ordering::SeqCst) as fmi3Instance;
         let (es, lambda) = (Vr::EdgeStress as u32, Vr::Lambda as u32);
         let p = P0 + RATE * time;
@@ -328,10 +427,18 @@ mod intermediate {
         assert_eq!(seen.len(), 3);
         for (k, (time, set, other, get)) in seen.into_iter().enumerate() {
             assert_eq!(time, 0.5 * (k + 1) as f64, "asked at the end of the step");
-            assert_eq!((set, other, get), (OK, ERROR, ERROR), "only the required input may be set, nothing read");
+            assert_eq!(
+                (set, other, get),
+                (OK, ERROR, ERROR),
+                "only the required input may be set, nothing read"
+            );
         }
-        let (r3, r2) = (get(i, Vr::WoundRadius as u32).1, common::fmi::get_real(c2, Vr::WoundRadius as u32).1);
-        assert!((r3 - r2).abs() < 1e-14, "{r3} vs {r2}: the same ramp as fmi2SetRealInputDerivatives");
+        let (r3, r2) =
+            (get(i, Vr::WoundRadius as u32).1, common::fmi::get_real(c2, Vr::WoundRadius as u32).1);
+        assert!(
+            (r3 - r2).abs() < 1e-14,
+            "{r3} vs {r2}: the same ramp as fmi2SetRealInputDerivatives"
+        );
         assert_eq!(get(i, es), (OK, P0 + RATE * 1.5));
         unsafe {
             fmi3FreeInstance(i);

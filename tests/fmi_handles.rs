@@ -38,7 +38,8 @@ fn calls_on_a_freed_instance_are_errors_and_a_second_free_is_ignored() {
 fn null_and_forged_components_are_errors() {
     let mut own = [0u64; 512];
     let mut solver = std::ptr::null_mut();
-    let made = unsafe { wound_opening::capi::solver_c::wo_solver_new(1.0, 1.0, 10.0, 1e-6, &mut solver) };
+    let made =
+        unsafe { wound_opening::capi::solver_c::wo_solver_new(1.0, 1.0, 10.0, 1e-6, &mut solver) };
     assert_eq!(made, wound_opening::capi::error::WoStatus::WoOk);
     let forged: [fmi2Component; 5] = [
         std::ptr::null_mut(),
@@ -85,8 +86,16 @@ fn fmu_states_of_another_instance_are_refused() {
         unsafe {
             assert_eq!(fmi2SetFMUstate(b, foreign), ERROR, "set {foreign:p}");
             assert_eq!(fmi2GetFMUstate(b, &mut slot), ERROR, "get into {foreign:p}");
-            assert_eq!(fmi2SerializedFMUstateSize(b, foreign, &mut size), ERROR, "size of {foreign:p}");
-            assert_eq!(fmi2SerializeFMUstate(b, foreign, bytes.as_mut_ptr(), bytes.len()), ERROR, "serialize {foreign:p}");
+            assert_eq!(
+                fmi2SerializedFMUstateSize(b, foreign, &mut size),
+                ERROR,
+                "size of {foreign:p}"
+            );
+            assert_eq!(
+                fmi2SerializeFMUstate(b, foreign, bytes.as_mut_ptr(), bytes.len()),
+                ERROR,
+                "serialize {foreign:p}"
+            );
             assert_eq!(fmi2FreeFMUstate(b, &mut slot), ERROR, "free {foreign:p}");
         }
         assert_eq!(slot, foreign, "a refused call leaves the handle as it was");

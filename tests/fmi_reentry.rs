@@ -53,7 +53,10 @@ impl Logger for Reentrant {
 impl Reentrant {
     fn busy_refusals(&self) -> Vec<String> {
         let log = self.log.lock().unwrap();
-        log.iter().filter(|(s, c, m)| *s == Status::Error && c == "logStatusError" && m.contains(BUSY)).map(|(_, _, m)| m.clone()).collect()
+        log.iter()
+            .filter(|(s, c, m)| *s == Status::Error && c == "logStatusError" && m.contains(BUSY))
+            .map(|(_, _, m)| m.clone())
+            .collect()
     }
 }
 
@@ -124,11 +127,19 @@ fn a_concurrent_call_is_refused_with_the_reason_logged() {
         }
     });
     let log = logger.log.lock().unwrap();
-    let errors: Vec<&String> = log.iter().filter(|(s, _, _)| *s == Status::Error).map(|(_, _, m)| m).collect();
+    let errors: Vec<&String> =
+        log.iter().filter(|(s, _, _)| *s == Status::Error).map(|(_, _, m)| m).collect();
     let steps = errors.iter().filter(|m| m.starts_with("fmi2DoStep: ")).count();
     assert_eq!(steps, refused.load(Ordering::Relaxed), "one logged reason per refused fmi2DoStep");
-    assert!(errors.iter().all(|m| m.contains(BUSY) || m.contains("Expected currentCommunicationPoint")), "{errors:?}");
-    assert!(errors.iter().any(|m| m.contains(BUSY)), "some calls met a busy instance: {} errors", errors.len());
+    assert!(
+        errors.iter().all(|m| m.contains(BUSY) || m.contains("Expected currentCommunicationPoint")),
+        "{errors:?}"
+    );
+    assert!(
+        errors.iter().any(|m| m.contains(BUSY)),
+        "some calls met a busy instance: {} errors",
+        errors.len()
+    );
     drop(log);
     unsafe { fmi2FreeInstance(c as fmi2Component) };
 }

@@ -57,7 +57,11 @@ fn fmi2_set_real_of_an_input_and_a_bad_state_sets_neither_in_either_order() {
     let before = seen2(c);
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         for (vrs, xs) in [([EDGE, STATE], [0.3, bad]), ([STATE, EDGE], [bad, 0.3])] {
-            assert_eq!(unsafe { fmi2SetReal(c, vrs.as_ptr(), 2, xs.as_ptr()) }, ERROR, "{vrs:?} = {xs:?}");
+            assert_eq!(
+                unsafe { fmi2SetReal(c, vrs.as_ptr(), 2, xs.as_ptr()) },
+                ERROR,
+                "{vrs:?} = {xs:?}"
+            );
             same(&before, &seen2(c), &format!("after the refused fmi2SetReal({vrs:?}, {xs:?})"));
         }
     }
@@ -68,7 +72,11 @@ fn fmi2_set_real_of_an_input_and_a_bad_state_sets_neither_in_either_order() {
         ([STATE, EDGE], [0.5, 1e300]),
         ([EDGE, STATE], [f64::NAN, 0.5]),
     ] {
-        assert_eq!(unsafe { fmi2SetReal(c, vrs.as_ptr(), 2, xs.as_ptr()) }, ERROR, "{vrs:?} = {xs:?}");
+        assert_eq!(
+            unsafe { fmi2SetReal(c, vrs.as_ptr(), 2, xs.as_ptr()) },
+            ERROR,
+            "{vrs:?} = {xs:?}"
+        );
         same(&before, &seen2(c), &format!("after the refused fmi2SetReal({vrs:?}, {xs:?})"));
     }
     // The values refused above are accepted on their own: it is the call that was refused.
@@ -92,7 +100,11 @@ fn fmi2_refused_states_and_times_change_nothing() {
     }
     // Integers, Booleans and Strings: a refused call leaves the Reals as they were.
     let (vrs, is) = ([Vr::Method as u32, Vr::GridPoints as u32], [0, 7]);
-    assert_eq!(unsafe { fmi2SetInteger(c, vrs.as_ptr(), 2, is.as_ptr()) }, ERROR, "fixed after initialization");
+    assert_eq!(
+        unsafe { fmi2SetInteger(c, vrs.as_ptr(), 2, is.as_ptr()) },
+        ERROR,
+        "fixed after initialization"
+    );
     let b = [1];
     assert_eq!(unsafe { fmi2SetBoolean(c, &EDGE, 1, b.as_ptr()) }, ERROR);
     let s = [c"1".as_ptr()];
@@ -106,7 +118,17 @@ fn fmi2_refused_states_and_times_change_nothing() {
 fn fmi2_set_time_beyond_the_time_scale_is_refused_with_the_range() {
     let (name, guid) = (CString::new("me").unwrap(), CString::new(WOUND).unwrap());
     let callbacks = fmi2CallbackFunctions::NONE;
-    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_MODEL_EXCHANGE, guid.as_ptr(), c"".as_ptr(), &callbacks, 0, 0) };
+    let c = unsafe {
+        fmi2Instantiate(
+            name.as_ptr(),
+            FMI2_MODEL_EXCHANGE,
+            guid.as_ptr(),
+            c"".as_ptr(),
+            &callbacks,
+            0,
+            0,
+        )
+    };
     unsafe {
         assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), OK);
         assert_eq!(set_real(c, Vr::TimeScale as u32, 1e-12), OK);
@@ -126,9 +148,16 @@ fn fmi2_set_time_beyond_the_time_scale_is_refused_with_the_range() {
     model.prepare().unwrap();
     model.enter_model_exchange();
     let why = model.step(0.0, 1e300).unwrap_err();
-    assert!(why.contains("a step of 1e300 s is beyond the range of the time scale T = 1e-12 s"), "{why}");
+    assert!(
+        why.contains("a step of 1e300 s is beyond the range of the time scale T = 1e-12 s"),
+        "{why}"
+    );
     let why = model.set_time(1e300).unwrap_err();
-    assert!(why.contains("beyond the range of the time scale T = 1e-12 s") && why.contains("1.798e296 s"), "{why}");
+    assert!(
+        why.contains("beyond the range of the time scale T = 1e-12 s")
+            && why.contains("1.798e296 s"),
+        "{why}"
+    );
 }
 
 #[test]
@@ -142,8 +171,16 @@ fn co_simulation_refused_sets_change_nothing() {
         v
     };
     let before = read(c);
-    for (vrs, xs) in [([EDGE, Vr::Sigma as u32], [0.3, 2.0]), ([EDGE, EDGE], [0.3, f64::NAN]), ([EDGE, STATE], [0.3, 1.0])] {
-        assert_eq!(unsafe { fmi2SetReal(c, vrs.as_ptr(), 2, xs.as_ptr()) }, ERROR, "{vrs:?} = {xs:?}");
+    for (vrs, xs) in [
+        ([EDGE, Vr::Sigma as u32], [0.3, 2.0]),
+        ([EDGE, EDGE], [0.3, f64::NAN]),
+        ([EDGE, STATE], [0.3, 1.0]),
+    ] {
+        assert_eq!(
+            unsafe { fmi2SetReal(c, vrs.as_ptr(), 2, xs.as_ptr()) },
+            ERROR,
+            "{vrs:?} = {xs:?}"
+        );
         same(&before, &read(c), &format!("after the refused fmi2SetReal({vrs:?}, {xs:?})"));
     }
     unsafe { fmi2FreeInstance(c) };
@@ -152,7 +189,17 @@ fn co_simulation_refused_sets_change_nothing() {
 /// An FMI 3.0 Model Exchange instance as [`me2`].
 fn me3() -> fmi3Instance {
     let (name, token) = (CString::new("me3").unwrap(), CString::new(WOUND).unwrap());
-    let i = unsafe { fmi3InstantiateModelExchange(name.as_ptr(), token.as_ptr(), std::ptr::null(), 0, 0, std::ptr::null_mut(), None) };
+    let i = unsafe {
+        fmi3InstantiateModelExchange(
+            name.as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            0,
+            0,
+            std::ptr::null_mut(),
+            None,
+        )
+    };
     assert!(!i.is_null());
     unsafe {
         assert_eq!(fmi3SetFloat64(i, &(Vr::Lambda as u32), 1, &0.5, 1), OK);
@@ -185,12 +232,20 @@ fn fmi3_set_float64_of_an_input_and_a_bad_state_sets_neither_in_either_order() {
     let before = seen3(i);
     for bad in [f64::NAN, f64::INFINITY] {
         for (vrs, xs) in [([EDGE, STATE], [0.3, bad]), ([STATE, EDGE], [bad, 0.3])] {
-            assert_eq!(unsafe { fmi3SetFloat64(i, vrs.as_ptr(), 2, xs.as_ptr(), 2) }, ERROR, "{vrs:?} = {xs:?}");
+            assert_eq!(
+                unsafe { fmi3SetFloat64(i, vrs.as_ptr(), 2, xs.as_ptr(), 2) },
+                ERROR,
+                "{vrs:?} = {xs:?}"
+            );
             same(&before, &seen3(i), &format!("after the refused fmi3SetFloat64({vrs:?}, {xs:?})"));
         }
     }
     for (vrs, xs) in [([EDGE, Vr::Lambda as u32], [0.3, 2.0]), ([STATE, EDGE], [0.5, 1e300])] {
-        assert_eq!(unsafe { fmi3SetFloat64(i, vrs.as_ptr(), 2, xs.as_ptr(), 2) }, ERROR, "{vrs:?} = {xs:?}");
+        assert_eq!(
+            unsafe { fmi3SetFloat64(i, vrs.as_ptr(), 2, xs.as_ptr(), 2) },
+            ERROR,
+            "{vrs:?} = {xs:?}"
+        );
         same(&before, &seen3(i), &format!("after the refused fmi3SetFloat64({vrs:?}, {xs:?})"));
     }
     let mut x = before[3..3 + NX].to_vec();
@@ -198,7 +253,12 @@ fn fmi3_set_float64_of_an_input_and_a_bad_state_sets_neither_in_either_order() {
     assert_eq!(unsafe { fmi3SetContinuousStates(i, x.as_ptr(), NX) }, ERROR);
     assert_eq!(unsafe { fmi3SetTime(i, f64::NAN) }, ERROR);
     let is = [0i32, 7];
-    assert_eq!(unsafe { fmi3SetInt32(i, [Vr::Method as u32, Vr::GridPoints as u32].as_ptr(), 2, is.as_ptr(), 2) }, ERROR);
+    assert_eq!(
+        unsafe {
+            fmi3SetInt32(i, [Vr::Method as u32, Vr::GridPoints as u32].as_ptr(), 2, is.as_ptr(), 2)
+        },
+        ERROR
+    );
     assert_eq!(unsafe { fmi3SetBoolean(i, &EDGE, 1, [true as u8].as_ptr() as _, 1) }, ERROR);
     assert_eq!(unsafe { fmi3SetString(i, &EDGE, 1, [c"1".as_ptr()].as_ptr(), 1) }, ERROR);
     same(&before, &seen3(i), "after refused states, time, Int32, Boolean and String sets");

@@ -21,18 +21,39 @@ fn status_kinds_not_provided_are_discarded_not_errors() {
         assert_eq!(unsafe { fmi2DoStep(c, 0.0, 0.5, 1) }, OK);
         let (mut st, mut r, mut i, mut b, mut s) = (-1, f64::NAN, -1, -1, std::ptr::null());
         unsafe {
-            for kind in [DO_STEP_STATUS, PENDING_STATUS, FMI2_LAST_SUCCESSFUL_TIME, FMI2_TERMINATED] {
+            for kind in [DO_STEP_STATUS, PENDING_STATUS, FMI2_LAST_SUCCESSFUL_TIME, FMI2_TERMINATED]
+            {
                 assert_eq!(fmi2GetStatus(c, kind, &mut st), DISCARD, "fmi2GetStatus({kind})");
-                assert_eq!(fmi2GetIntegerStatus(c, kind, &mut i), DISCARD, "fmi2GetIntegerStatus({kind})");
-                assert_eq!(fmi2GetStringStatus(c, kind, &mut s), DISCARD, "fmi2GetStringStatus({kind})");
+                assert_eq!(
+                    fmi2GetIntegerStatus(c, kind, &mut i),
+                    DISCARD,
+                    "fmi2GetIntegerStatus({kind})"
+                );
+                assert_eq!(
+                    fmi2GetStringStatus(c, kind, &mut s),
+                    DISCARD,
+                    "fmi2GetStringStatus({kind})"
+                );
             }
             for kind in [DO_STEP_STATUS, PENDING_STATUS, FMI2_TERMINATED] {
-                assert_eq!(fmi2GetRealStatus(c, kind, &mut r), DISCARD, "fmi2GetRealStatus({kind})");
+                assert_eq!(
+                    fmi2GetRealStatus(c, kind, &mut r),
+                    DISCARD,
+                    "fmi2GetRealStatus({kind})"
+                );
             }
             for kind in [DO_STEP_STATUS, PENDING_STATUS, FMI2_LAST_SUCCESSFUL_TIME] {
-                assert_eq!(fmi2GetBooleanStatus(c, kind, &mut b), DISCARD, "fmi2GetBooleanStatus({kind})");
+                assert_eq!(
+                    fmi2GetBooleanStatus(c, kind, &mut b),
+                    DISCARD,
+                    "fmi2GetBooleanStatus({kind})"
+                );
             }
-            assert_eq!((st, i, b, s), (-1, -1, -1, std::ptr::null()), "a discarded call writes nothing");
+            assert_eq!(
+                (st, i, b, s),
+                (-1, -1, -1, std::ptr::null()),
+                "a discarded call writes nothing"
+            );
             // What is provided is still OK, and a value that is no status kind at all is an error.
             assert_eq!(fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut r), OK);
             assert_eq!(r, 0.5);

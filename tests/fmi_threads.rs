@@ -47,7 +47,10 @@ fn hammer(c: Shared, start: Arc<Barrier>) -> Seen {
             s => panic!("fmi2DoStep returned {s}"),
         }
         let (s, r) = get_real(c.0, Vr::WoundRadius as u32);
-        assert!(s == ERROR || (s == OK && r.is_finite() && r > 1.0), "fmi2GetReal returned {s}, {r}");
+        assert!(
+            s == ERROR || (s == OK && r.is_finite() && r > 1.0),
+            "fmi2GetReal returned {s}, {r}"
+        );
     }
     seen
 }
@@ -62,10 +65,10 @@ fn run_threads(c: fmi2Component, extra: impl FnOnce() + Send + 'static) -> Seen 
         .collect();
     start.wait();
     extra();
-    workers
-        .into_iter()
-        .map(|w| w.join().expect("a worker panicked"))
-        .fold(Seen::default(), |a, b| Seen { steps: a.steps + b.steps, refused: a.refused + b.refused })
+    workers.into_iter().map(|w| w.join().expect("a worker panicked")).fold(
+        Seen::default(),
+        |a, b| Seen { steps: a.steps + b.steps, refused: a.refused + b.refused },
+    )
 }
 
 /// Guards against a data race on one instance (two `fmi2DoStep` at once corrupted the heap
@@ -77,7 +80,13 @@ fn concurrent_calls_on_one_instance_run_alone_or_are_refused() {
     assert!(seen.steps > 0, "some steps were accepted");
     let (s, t) = last_successful_time(c);
     assert_eq!(s, OK);
-    assert_eq!(t, seen.steps as f64 * H, "{} accepted steps of {H}, {} refused calls", seen.steps, seen.refused);
+    assert_eq!(
+        t,
+        seen.steps as f64 * H,
+        "{} accepted steps of {H}, {} refused calls",
+        seen.steps,
+        seen.refused
+    );
     // Still a working instance: one more step from where it is.
     assert_eq!(unsafe { fmi2DoStep(c, t, H, 0) }, OK);
     unsafe { fmi2FreeInstance(c) };

@@ -86,7 +86,14 @@ fn the_stop_time_is_checked_with_the_same_tolerance() {
 }
 
 /// Outputs after stepping from `start` in steps `h`, at each point.
-fn run(guid: &str, start: f64, params: &[(u32, f64)], h: f64, n: u32, outputs: &[u32]) -> Vec<Vec<f64>> {
+fn run(
+    guid: &str,
+    start: f64,
+    params: &[(u32, f64)],
+    h: f64,
+    n: u32,
+    outputs: &[u32],
+) -> Vec<Vec<f64>> {
     let c = initialized(guid, start, params);
     let rows = (0..n)
         .map(|k| {
@@ -105,7 +112,11 @@ fn run(guid: &str, start: f64, params: &[(u32, f64)], h: f64, n: u32, outputs: &
 #[test]
 fn both_models_count_time_from_the_start_time() {
     let (t_max, t_delay, t_assembly) = (6500.0, 20.0, 30.0);
-    let params = [(P::MaxTension as u32, t_max), (P::Delay as u32, t_delay), (P::AssemblyTime as u32, t_assembly)];
+    let params = [
+        (P::MaxTension as u32, t_max),
+        (P::Delay as u32, t_delay),
+        (P::AssemblyTime as u32, t_assembly),
+    ];
     let h = 0.5;
     let tension = run(PURSE, 5.0, &params, h, 100, &[P::LineTension as u32]);
     let at = |t: f64| tension[((t - 5.0) / h) as usize - 1][0];
@@ -113,7 +124,10 @@ fn both_models_count_time_from_the_start_time() {
     assert!(at(5.0 + t_delay + h) > 0.0);
     let want = t_max * (1.0 - (-1.0f64).exp());
     let got = at(5.0 + t_delay + t_assembly);
-    assert!((got - want).abs() <= 1e-12 * want, "T_c(startTime + t_delay + t_assembly) = {got}, expected {want}");
+    assert!(
+        (got - want).abs() <= 1e-12 * want,
+        "T_c(startTime + t_delay + t_assembly) = {got}, expected {want}"
+    );
 
     let outputs = [W::WoundRadius as u32, W::EdgeVelocity as u32];
     let shifted = run(WOUND, 5.0, &[], 0.25, 40, &outputs);

@@ -110,7 +110,11 @@ fn a_model_warning_makes_the_call_a_logged_warning() {
         Some((Status::Warning, "logStatusWarning".into(), "fmi2DoStep: step 2 is even".into()))
     );
     let mut steps = [0.0];
-    assert_eq!(i.call(Call::Get, String::new, |i| i.get_real(&[0], &mut steps)), Ok(((), Status::Ok)), "taken once");
+    assert_eq!(
+        i.call(Call::Get, String::new, |i| i.get_real(&[0], &mut steps)),
+        Ok(((), Status::Ok)),
+        "taken once"
+    );
     assert_eq!(steps, [2.0]);
     assert_eq!(step(&mut i, 5.0), Err(Status::Error), "a refused call has no warning to give");
 }
@@ -173,7 +177,9 @@ mod wound {
             ok(i.call(Call::Set, String::new, |i| i.set_real(&[vr as u32], &[x])));
         }
         if let Some(v) = validity_warning {
-            ok(i.call(Call::Set, String::new, |i| i.set_integer(&[Vr::ValidityWarning as u32], &[v])));
+            ok(i.call(Call::Set, String::new, |i| {
+                i.set_integer(&[Vr::ValidityWarning as u32], &[v])
+            }));
         }
         ok(i.call(Call::EnterInitializationMode, String::new, |i| i.enter_initialization_mode()));
         ok(i.call(Call::ExitInitializationMode, String::new, |i| i.exit_initialization_mode()));
@@ -185,10 +191,15 @@ mod wound {
     fn run(i: &mut Instance) -> (Vec<Status>, f64) {
         let mut statuses = Vec::new();
         for (t, h) in (0..10).map(|k| (k as f64, 1.0)).chain([(10.0, 1e7)]) {
-            statuses.push(i.call(Call::DoStep, String::new, |i| i.do_step(t, h)).expect("the step is done").1);
+            statuses.push(
+                i.call(Call::DoStep, String::new, |i| i.do_step(t, h)).expect("the step is done").1,
+            );
         }
         let mut r = [f64::NAN];
-        assert_eq!(i.call(Call::Get, String::new, |i| i.get_real(&[Vr::WoundRadius as u32], &mut r)), Ok(((), Status::Ok)));
+        assert_eq!(
+            i.call(Call::Get, String::new, |i| i.get_real(&[Vr::WoundRadius as u32], &mut r)),
+            Ok(((), Status::Ok))
+        );
         let (want, r1) = (exact::final_radius(2.0, 20.0), exact::initial_radius(2.0));
         (statuses, (r[0] - want).abs() / (want - r1))
     }
@@ -208,11 +219,17 @@ mod wound {
         let mut want = vec![Status::Ok; 11];
         want[2] = Status::Warning;
         assert_eq!(statuses, want, "the step ending at t = 3 s");
-        let warned: Vec<_> = logged(&log).into_iter().filter(|(s, _, _)| *s == Status::Warning).collect();
+        let warned: Vec<_> =
+            logged(&log).into_iter().filter(|(s, _, _)| *s == Status::Warning).collect();
         assert_eq!(warned.len(), 1);
         let (_, category, text) = &warned[0];
         assert_eq!(category, "logStatusWarning");
-        assert!(text.contains("at t = 3 s the run leaves the model's validity: the strain at the wound edge"), "{text}");
+        assert!(
+            text.contains(
+                "at t = 3 s the run leaves the model's validity: the strain at the wound edge"
+            ),
+            "{text}"
+        );
         assert!(text.contains("validity_warning is set to 0"), "{text}");
 
         let log = Arc::new(Collect::default());
@@ -220,13 +237,23 @@ mod wound {
         let (statuses, error) = run(&mut i);
         assert_eq!(statuses, vec![Status::Ok; 11]);
         assert!(error < 1e-10, "final radius error {error:e} of the opening");
-        let notes: Vec<_> = logged(&log).into_iter().filter(|(_, c, _)| c == "logStatusWarning").collect();
+        let notes: Vec<_> =
+            logged(&log).into_iter().filter(|(_, c, _)| c == "logStatusWarning").collect();
         assert_eq!(notes.len(), 1, "{notes:?}");
         let (status, _, text) = &notes[0];
         assert_eq!(*status, Status::Ok);
-        assert!(text.contains("at t = 3 s the run leaves the model's validity: the strain at the wound edge"), "{text}");
+        assert!(
+            text.contains(
+                "at t = 3 s the run leaves the model's validity: the strain at the wound edge"
+            ),
+            "{text}"
+        );
         let mut v = [7];
-        assert_eq!(i.call(Call::Get, String::new, |i| i.get_integer(&[Vr::ValidityWarning as u32], &mut v)), Ok(((), Status::Ok)));
+        assert_eq!(
+            i.call(Call::Get, String::new, |i| i
+                .get_integer(&[Vr::ValidityWarning as u32], &mut v)),
+            Ok(((), Status::Ok))
+        );
         assert_eq!(v, [0]);
     }
 
@@ -236,10 +263,22 @@ mod wound {
     fn validity_warning_is_0_or_1_and_fixed() {
         let log = Arc::new(Collect::default());
         let mut i = Instance::new(WoundModel::fresh, "wound", log.clone(), false);
-        assert_eq!(i.call(Call::Set, String::new, |i| i.set_integer(&[Vr::ValidityWarning as u32], &[2])), Err(Status::Error));
-        assert!(logged(&log).last().unwrap().2.contains("validity_warning = 2 is invalid: it must be in 0 ..= 1"));
+        assert_eq!(
+            i.call(Call::Set, String::new, |i| i.set_integer(&[Vr::ValidityWarning as u32], &[2])),
+            Err(Status::Error)
+        );
+        assert!(
+            logged(&log)
+                .last()
+                .unwrap()
+                .2
+                .contains("validity_warning = 2 is invalid: it must be in 0 ..= 1")
+        );
         let mut i = strict_case(Some(1), &log);
-        assert_eq!(i.call(Call::Set, String::new, |i| i.set_integer(&[Vr::ValidityWarning as u32], &[0])), Err(Status::Error));
+        assert_eq!(
+            i.call(Call::Set, String::new, |i| i.set_integer(&[Vr::ValidityWarning as u32], &[0])),
+            Err(Status::Error)
+        );
         assert!(logged(&log).last().unwrap().2.contains("validity_warning is a fixed parameter"));
     }
 
@@ -250,7 +289,9 @@ mod wound {
     fn a_tolerance_of_0_is_none_given_and_other_invalid_ones_are_refused() {
         let log = Arc::new(Collect::default());
         let mut i = Instance::new(WoundModel::fresh, "wound", log.clone(), false);
-        let setup = |i: &mut Instance, tol: f64| i.call(Call::SetupExperiment, String::new, |i| i.setup_experiment(Some(tol), 0.0, None));
+        let setup = |i: &mut Instance, tol: f64| {
+            i.call(Call::SetupExperiment, String::new, |i| i.setup_experiment(Some(tol), 0.0, None))
+        };
         for tol in [f64::NAN, -1e-6, f64::INFINITY, f64::NEG_INFINITY] {
             assert_eq!(setup(&mut i, tol), Err(Status::Error), "{tol}");
             assert!(logged(&log).last().unwrap().2.contains("it must be finite and > 0"));
@@ -258,11 +299,23 @@ mod wound {
         assert_eq!(setup(&mut i, 0.0), Ok(((), Status::Ok)));
         let (status, category, text) = logged(&log).last().cloned().unwrap();
         assert_eq!((status, category.as_str()), (Status::Ok, "logStatusWarning"));
-        assert!(text.contains("tolerance = 0 with toleranceDefined is taken as no tolerance given"), "{text}");
+        assert!(
+            text.contains("tolerance = 0 with toleranceDefined is taken as no tolerance given"),
+            "{text}"
+        );
         // The tolerance parameter (1e-10) is in force: sigma = 2e-5 >= 6 eps / 1e-10 runs.
         let sigma = [2e-5];
-        assert_eq!(i.call(Call::Set, String::new, |i| i.set_real(&[Vr::Sigma as u32], &sigma)), Ok(((), Status::Ok)));
-        assert_eq!(i.call(Call::EnterInitializationMode, String::new, |i| i.enter_initialization_mode()), Ok(((), Status::Ok)));
-        assert_eq!(i.call(Call::ExitInitializationMode, String::new, |i| i.exit_initialization_mode()), Ok(((), Status::Ok)));
+        assert_eq!(
+            i.call(Call::Set, String::new, |i| i.set_real(&[Vr::Sigma as u32], &sigma)),
+            Ok(((), Status::Ok))
+        );
+        assert_eq!(
+            i.call(Call::EnterInitializationMode, String::new, |i| i.enter_initialization_mode()),
+            Ok(((), Status::Ok))
+        );
+        assert_eq!(
+            i.call(Call::ExitInitializationMode, String::new, |i| i.exit_initialization_mode()),
+            Ok(((), Status::Ok))
+        );
     }
 }

@@ -30,9 +30,16 @@ struct World {
 impl World {
     fn record(&mut self, call: &'static str, status: WoStatus) {
         let message = unsafe { CStr::from_ptr(wo_last_error()) }.to_string_lossy().into_owned();
-        assert_eq!(status == WoStatus::WoOk, message.is_empty(), "{call} returned {status:?} with message {message:?}");
+        assert_eq!(
+            status == WoStatus::WoOk,
+            message.is_empty(),
+            "{call} returned {status:?} with message {message:?}"
+        );
         if status != WoStatus::WoOk {
-            assert!(message.starts_with(call), "{call}: message {message:?} does not name the call");
+            assert!(
+                message.starts_with(call),
+                "{call}: message {message:?} does not name the call"
+            );
         }
         self.stats.entry(call).or_default()[status as usize] += 1;
     }
@@ -86,20 +93,40 @@ impl World {
             r => r,
         };
         // Half of the time one common problem, so that saved states fit other solvers.
-        let (lambda, sigma, r_inf) = if self.rng.chance(0.5) { (1.0, 1.0, 10.0) } else { (lambda, sigma, r_inf) };
+        let (lambda, sigma, r_inf) =
+            if self.rng.chance(0.5) { (1.0, 1.0, 10.0) } else { (lambda, sigma, r_inf) };
         let mut s = std::ptr::null_mut();
-        let out: *mut *mut WoSolver = if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut s };
+        let out: *mut *mut WoSolver =
+            if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut s };
         let (name, status) = if self.rng.chance(0.5) {
-            let tol = if (lambda, sigma, r_inf) == (1.0, 1.0, 10.0) { 1e-9 } else { self.param(&[1e-12, 1e-9, 1e-6, 1e-3, 0.5]) };
+            let tol = if (lambda, sigma, r_inf) == (1.0, 1.0, 10.0) {
+                1e-9
+            } else {
+                self.param(&[1e-12, 1e-9, 1e-6, 1e-3, 0.5])
+            };
             ("wo_solver_new", unsafe { wo_solver_new(lambda, sigma, r_inf, tol, out) })
         } else {
-            let degree = if self.rng.chance(0.9) { self.rng.below(40) } else { self.rng.next_u64() as usize };
-            let elements = if self.rng.chance(0.9) { self.rng.below(14) } else { self.rng.next_u64() as usize };
+            let degree = if self.rng.chance(0.9) {
+                self.rng.below(40)
+            } else {
+                self.rng.next_u64() as usize
+            };
+            let elements = if self.rng.chance(0.9) {
+                self.rng.below(14)
+            } else {
+                self.rng.next_u64() as usize
+            };
             let scale = self.param(&[0.05, 0.5, 5.0]);
-            ("wo_solver_new_grid", unsafe { wo_solver_new_grid(lambda, sigma, r_inf, degree, elements, scale, out) })
+            ("wo_solver_new_grid", unsafe {
+                wo_solver_new_grid(lambda, sigma, r_inf, degree, elements, scale, out)
+            })
         };
         self.record(name, status);
-        assert_eq!(status == WoStatus::WoOk, !s.is_null(), "{name}: the solver is set exactly on success");
+        assert_eq!(
+            status == WoStatus::WoOk,
+            !s.is_null(),
+            "{name}: the solver is set exactly on success"
+        );
         if !s.is_null() {
             self.solvers.push(s);
         }
@@ -108,7 +135,10 @@ impl World {
     /// Time and radius of a live solver, to check that a refused call changed nothing.
     fn observe(&self, s: *mut WoSolver) -> Option<(u64, u64)> {
         let (mut t, mut r) = (f64::NAN, f64::NAN);
-        let ok = unsafe { wo_solver_time(s, &mut t) == WoStatus::WoOk && wo_solver_wound_radius(s, &mut r) == WoStatus::WoOk };
+        let ok = unsafe {
+            wo_solver_time(s, &mut t) == WoStatus::WoOk
+                && wo_solver_wound_radius(s, &mut r) == WoStatus::WoOk
+        };
         ok.then(|| (t.to_bits(), r.to_bits()))
     }
 
@@ -129,13 +159,21 @@ impl World {
                 let before = self.observe(s);
                 let mut t = 0.0;
                 unsafe { wo_solver_time(s, &mut t) };
-                let t_end = if self.rng.chance(0.8) { t + self.rng.unit() * self.rng.pick(&[0.01, 1.0, 100.0]) } else { self.rng.real() };
+                let t_end = if self.rng.chance(0.8) {
+                    t + self.rng.unit() * self.rng.pick(&[0.01, 1.0, 100.0])
+                } else {
+                    self.rng.real()
+                };
                 let p = self.param(&[0.0, 0.2, -1.0]);
                 let status = unsafe { wo_solver_advance(s, t_end, p) };
                 self.record("wo_solver_advance", status);
                 // WO_OUTSIDE_VALIDITY is a warning: the advance was done.
                 if status != WoStatus::WoOk && status != WoStatus::WoOutsideValidity {
-                    assert_eq!(self.observe(s), before, "a refused wo_solver_advance changed the solver");
+                    assert_eq!(
+                        self.observe(s),
+                        before,
+                        "a refused wo_solver_advance changed the solver"
+                    );
                 }
             }
             7 | 8 => self.read_scalars(),
@@ -143,7 +181,8 @@ impl World {
             11 | 12 => {
                 let s = self.solver();
                 let mut st = std::ptr::null_mut();
-                let out: *mut *mut WoState = if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut st };
+                let out: *mut *mut WoState =
+                    if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut st };
                 let status = unsafe { wo_solver_save_state(s, out) };
                 self.record("wo_solver_save_state", status);
                 if !st.is_null() {
@@ -156,7 +195,11 @@ impl World {
                 let status = unsafe { wo_solver_restore_state(s, st) };
                 self.record("wo_solver_restore_state", status);
                 if status != WoStatus::WoOk {
-                    assert_eq!(self.observe(s), before, "a refused wo_solver_restore_state changed the solver");
+                    assert_eq!(
+                        self.observe(s),
+                        before,
+                        "a refused wo_solver_restore_state changed the solver"
+                    );
                 }
             }
             _ => {
@@ -181,7 +224,9 @@ impl World {
             0 => ("wo_solver_time", unsafe { wo_solver_time(s, px) }),
             1 => ("wo_solver_wound_radius", unsafe { wo_solver_wound_radius(s, px) }),
             2 => ("wo_solver_edge_velocity", unsafe { wo_solver_edge_velocity(s, px) }),
-            _ => ("wo_solver_node_count", unsafe { wo_solver_node_count(s, if null { std::ptr::null_mut() } else { &mut n }) }),
+            _ => ("wo_solver_node_count", unsafe {
+                wo_solver_node_count(s, if null { std::ptr::null_mut() } else { &mut n })
+            }),
         };
         self.record(name, status);
     }
@@ -192,7 +237,11 @@ impl World {
         let counted = unsafe { wo_solver_node_count(s, &mut n) } == WoStatus::WoOk;
         let count = if counted && self.rng.chance(0.7) { n } else { self.rng.below(12) };
         let mut radii: Vec<f64> =
-            (0..count).map(|_| if self.rng.chance(0.9) { 1.0 + 9.0 * self.rng.unit() } else { self.rng.real() }).collect();
+            (0..count)
+                .map(|_| {
+                    if self.rng.chance(0.9) { 1.0 + 9.0 * self.rng.unit() } else { self.rng.real() }
+                })
+                .collect();
         let mut out = vec![0.0; count];
         let null_in = self.rng.chance(0.05);
         let null_out = self.rng.chance(0.05);
@@ -203,7 +252,9 @@ impl World {
             1 => ("wo_solver_displacement", unsafe { wo_solver_displacement(s, r, o, count) }),
             2 => ("wo_solver_velocity", unsafe { wo_solver_velocity(s, r, o, count) }),
             // In place: the output array is the radii array.
-            _ => ("wo_solver_displacement", unsafe { wo_solver_displacement(s, radii.as_ptr(), radii.as_mut_ptr(), count) }),
+            _ => ("wo_solver_displacement", unsafe {
+                wo_solver_displacement(s, radii.as_ptr(), radii.as_mut_ptr(), count)
+            }),
         };
         self.record(name, status);
     }
@@ -212,13 +263,23 @@ impl World {
 #[test]
 fn random_direct_api_call_sequences_are_refused_cleanly_or_succeed() {
     let budget = Budget::from_env(0xCA_2024);
-    let mut world =
-        World { rng: Rng::new(budget.seed), solvers: Vec::new(), states: Vec::new(), freed: Vec::new(), stats: BTreeMap::new() };
+    let mut world = World {
+        rng: Rng::new(budget.seed),
+        solvers: Vec::new(),
+        states: Vec::new(),
+        freed: Vec::new(),
+        stats: BTreeMap::new(),
+    };
     let mut iterations = 0u64;
     while budget.left() {
         world.step();
         iterations += 1;
-        assert_eq!(caught_panics(), 0, "seed {}: iteration {iterations} reached the panic boundary", budget.seed);
+        assert_eq!(
+            caught_panics(),
+            0,
+            "seed {}: iteration {iterations} reached the panic boundary",
+            budget.seed
+        );
     }
     for s in world.solvers.drain(..) {
         assert_eq!(unsafe { wo_solver_free(s) }, WoStatus::WoOk);
@@ -228,14 +289,31 @@ fn random_direct_api_call_sequences_are_refused_cleanly_or_succeed() {
     }
     assert_eq!(live_handles(), (0, 0), "everything freed leaves the handle tables empty");
     println!("direct API call sequences: seed {}, {iterations} iterations", budget.seed);
-    let names = ["ok", "null", "invalid", "unknown handle", "incompatible", "solver failed", "internal", "undefined"];
+    let names = [
+        "ok",
+        "null",
+        "invalid",
+        "unknown handle",
+        "incompatible",
+        "solver failed",
+        "internal",
+        "undefined",
+    ];
     for (call, counts) in &world.stats {
-        let text: Vec<String> = names.iter().zip(counts).filter(|(_, c)| **c > 0).map(|(n, c)| format!("{n} {c}")).collect();
+        let text: Vec<String> = names
+            .iter()
+            .zip(counts)
+            .filter(|(_, c)| **c > 0)
+            .map(|(n, c)| format!("{n} {c}"))
+            .collect();
         println!("  {call:26} {}", text.join(", "));
     }
     let advanced = world.stats.get("wo_solver_advance").map_or(0, |c| c[0]);
     let restored = world.stats.get("wo_solver_restore_state").map_or(0, |c| c[0]);
-    assert!(iterations < 2000 || (advanced > 0 && restored > 0), "the fuzzer should reach advances and restores");
+    assert!(
+        iterations < 2000 || (advanced > 0 && restored > 0),
+        "the fuzzer should reach advances and restores"
+    );
 }
 
 #[test]

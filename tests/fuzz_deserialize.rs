@@ -18,7 +18,12 @@ use wound_opening::fmi::fmi2::types::*;
 use wound_opening::models::wound::variables::GUID;
 
 /// Restore `h` into `c`, step from its time, read the outputs; the statuses, by call.
-fn use_state(rng: &mut Rng, c: fmi2Component, h: fmi2FMUstate, stats: &mut BTreeMap<&'static str, [u64; 5]>) {
+fn use_state(
+    rng: &mut Rng,
+    c: fmi2Component,
+    h: fmi2FMUstate,
+    stats: &mut BTreeMap<&'static str, [u64; 5]>,
+) {
     let mut record = |call: &'static str, s: fmi2Status| {
         assert!((0..=4).contains(&s), "{call} returned {s}");
         stats.entry(call).or_default()[s as usize] += 1;
@@ -38,7 +43,9 @@ fn use_state(rng: &mut Rng, c: fmi2Component, h: fmi2FMUstate, stats: &mut BTree
 fn instance_with_states(lambda: f64) -> (fmi2Component, Vec<Vec<u8>>) {
     let name = c"deserialize";
     let guid = CString::new(GUID).unwrap();
-    let c = unsafe { fmi2Instantiate(name.as_ptr(), 1, guid.as_ptr(), c"".as_ptr(), &NULL_CALLBACKS, 0, 0) };
+    let c = unsafe {
+        fmi2Instantiate(name.as_ptr(), 1, guid.as_ptr(), c"".as_ptr(), &NULL_CALLBACKS, 0, 0)
+    };
     assert!(!c.is_null());
     let mut blobs = Vec::new();
     let mut save = |c: fmi2Component| {
@@ -94,18 +101,29 @@ fn corrupted_serialized_states_are_refused_and_resealed_ones_are_refused_or_usab
             (false, false) => "corrupted or random",
         };
         let mut h = std::ptr::null_mut();
-        let s = unsafe { fmi2DeSerializeFMUstate(c, bytes.as_ptr() as *const fmi2Byte, bytes.len(), &mut h) };
+        let s = unsafe {
+            fmi2DeSerializeFMUstate(c, bytes.as_ptr() as *const fmi2Byte, bytes.len(), &mut h)
+        };
         assert!(s == 0 || s == 3, "fmi2DeSerializeFMUstate returned {s}");
         let entry = outcome.entry(kind).or_default();
         entry.0 += 1;
         if s == 0 {
             entry.1 += 1;
-            assert!(genuine || resealed, "seed {}: iteration {iterations} accepted corrupted bytes {bytes:?}", budget.seed);
+            assert!(
+                genuine || resealed,
+                "seed {}: iteration {iterations} accepted corrupted bytes {bytes:?}",
+                budget.seed
+            );
             // An accepted state must be usable: restore it, step from it, read outputs.
             use_state(&mut rng, c, h, &mut stats);
             assert_eq!(unsafe { fmi2FreeFMUstate(c, &mut h) }, 0);
         }
-        assert_eq!(caught_panics(), 0, "seed {}: iteration {iterations} reached the panic boundary", budget.seed);
+        assert_eq!(
+            caught_panics(),
+            0,
+            "seed {}: iteration {iterations} reached the panic boundary",
+            budget.seed
+        );
     }
     unsafe {
         fmi2FreeInstance(c);
@@ -120,7 +138,7 @@ fn corrupted_serialized_states_are_refused_and_resealed_ones_are_refused_or_usab
     }
 }
 
-/// Found by this harness and fixed in src/fmi (now src/models/wound/mod.rs): the mesh stored in a serialized
+/// Found by this harness and fixed in src/fmi (now src/models/wound/fmu_state.rs): the mesh stored in a serialized
 /// state was not checked, so bytes re-sealed with another mesh were accepted (and, by an
 /// instance without a solver, first built: 1 x 2000 took 12 s).
 #[test]
@@ -128,7 +146,9 @@ fn a_serialized_state_with_a_forged_mesh_is_refused() {
     let (c, blobs) = instance_with_states(1.0);
     let deserialize = |bytes: &[u8]| {
         let mut h = std::ptr::null_mut();
-        unsafe { fmi2DeSerializeFMUstate(c, bytes.as_ptr() as *const fmi2Byte, bytes.len(), &mut h) }
+        unsafe {
+            fmi2DeSerializeFMUstate(c, bytes.as_ptr() as *const fmi2Byte, bytes.len(), &mut h)
+        }
     };
     assert_eq!(deserialize(&blobs[1]), 0, "control: the genuine state is accepted");
     let mut forged = blobs[1].clone();

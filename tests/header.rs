@@ -8,13 +8,22 @@
 use std::path::Path;
 
 const HEADER: &str = "include/wound_opening.h";
-const SOURCES: [&str; 5] =
-    ["src/fmi/fmi2/functions.rs", "src/fmi/fmi2/exchange.rs", "src/capi/error.rs", "src/capi/solver_c.rs", "src/capi/series_c.rs"];
+const SOURCES: [&str; 6] = [
+    "src/fmi/fmi2/functions.rs",
+    "src/fmi/fmi2/status.rs",
+    "src/fmi/fmi2/exchange.rs",
+    "src/capi/error.rs",
+    "src/capi/solver_c.rs",
+    "src/capi/series_c.rs",
+];
 
 fn generate() -> String {
     let root = env!("CARGO_MANIFEST_DIR");
-    let config = cbindgen::Config::from_file(Path::new(root).join("cbindgen.toml")).expect("cbindgen.toml parses");
-    let builder = SOURCES.iter().fold(cbindgen::Builder::new(), |b, src| b.with_src(Path::new(root).join(src)));
+    let config = cbindgen::Config::from_file(Path::new(root).join("cbindgen.toml"))
+        .expect("cbindgen.toml parses");
+    let builder = SOURCES
+        .iter()
+        .fold(cbindgen::Builder::new(), |b, src| b.with_src(Path::new(root).join(src)));
     let bindings = builder.with_config(config).generate().expect("cbindgen generates the header");
     let mut out = Vec::new();
     bindings.write(&mut out);

@@ -71,7 +71,8 @@ fn set_rate(c: fmi2Component, vr: u32, order: i32, rate: f64) -> fmi2Status {
 #[test]
 fn fmu_follows_the_ramp_and_resets_it_on_set() {
     let (t_scale, g) = (10.0, 100.0);
-    let params = [(Vr::TimeScale as u32, t_scale), (Vr::StressScale as u32, g), (Vr::Lambda as u32, 0.5)];
+    let params =
+        [(Vr::TimeScale as u32, t_scale), (Vr::StressScale as u32, g), (Vr::Lambda as u32, 0.5)];
     let c = initialized(WOUND, 0.0, &params);
     let es = Vr::EdgeStress as u32;
     assert_eq!(set_real(c, es, 10.0), OK);

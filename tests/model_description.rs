@@ -40,7 +40,12 @@ fn elements(xml: &str) -> Elements {
             .map(|a| {
                 let a = a.expect("attribute");
                 let key = a.key.into_inner().to_owned();
-                (key, a.normalized_value(quick_xml::XmlVersion::Implicit1_0).expect("value").into_owned())
+                (
+                    key,
+                    a.normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                        .expect("value")
+                        .into_owned(),
+                )
             })
             .collect();
         out.push((path.join("/"), attrs));
@@ -66,7 +71,12 @@ fn identity_and_capabilities_match_the_code() {
         let cs = find(&all, "fmiModelDescription/CoSimulation")[0];
         assert_eq!(cs["modelIdentifier"], d.model_identifier);
         for (flag, value) in xml::CO_SIMULATION_FLAGS {
-            assert_eq!(cs.get(flag).map(String::as_str), Some(value), "{}: CoSimulation/@{flag}", d.model_identifier);
+            assert_eq!(
+                cs.get(flag).map(String::as_str),
+                Some(value),
+                "{}: CoSimulation/@{flag}",
+                d.model_identifier
+            );
         }
         let me = find(&all, "fmiModelDescription/ModelExchange");
         assert_eq!(me.len(), 1, "both interfaces in one archive");
@@ -82,7 +92,8 @@ fn log_categories_match_the_code() {
     for (_, xml) in models() {
         let all = elements(&xml);
         let cats = find(&all, "fmiModelDescription/LogCategories/Category");
-        let xml: Vec<(&str, &str)> = cats.iter().map(|a| (a["name"].as_str(), a["description"].as_str())).collect();
+        let xml: Vec<(&str, &str)> =
+            cats.iter().map(|a| (a["name"].as_str(), a["description"].as_str())).collect();
         assert_eq!(xml, LOG_CATEGORIES.to_vec());
     }
 }
@@ -93,10 +104,18 @@ fn variables_match_the_table_one_for_one() {
         let all = elements(&xml);
         let all_svs = find(&all, "fmiModelDescription/ModelVariables/ScalarVariable");
         let nx = d.state_count();
-        assert_eq!(all_svs.len(), d.variables.len() + 2 * nx, "the table, the states and their derivatives");
+        assert_eq!(
+            all_svs.len(),
+            d.variables.len() + 2 * nx,
+            "the table, the states and their derivatives"
+        );
         // The type element of each ScalarVariable, in document order.
-        let all_typed: Vec<(&str, &BTreeMap<String, String>)> =
-            all.iter().filter_map(|(p, a)| p.strip_prefix("fmiModelDescription/ModelVariables/ScalarVariable/").map(|k| (k, a))).collect();
+        let all_typed: Vec<(&str, &BTreeMap<String, String>)> = all
+            .iter()
+            .filter_map(|(p, a)| {
+                p.strip_prefix("fmiModelDescription/ModelVariables/ScalarVariable/").map(|k| (k, a))
+            })
+            .collect();
         assert_eq!(all_typed.len(), all_svs.len(), "one type element per variable");
         // The rows numbered by position, the states and derivatives, then the rows added later.
         let (first, later) = (d.first_state() as usize, d.later_rows().len());
@@ -114,21 +133,36 @@ fn variables_match_the_table_one_for_one() {
                 assert_eq!(sv["name"], format!("der({})", all_svs[state - 1]["name"]));
             }
         }
-        let units: Vec<&str> = find(&all, "fmiModelDescription/UnitDefinitions/Unit").iter().map(|a| a["name"].as_str()).collect();
+        let units: Vec<&str> = find(&all, "fmiModelDescription/UnitDefinitions/Unit")
+            .iter()
+            .map(|a| a["name"].as_str())
+            .collect();
         for (i, ((sv, (kind, ty)), var)) in svs.iter().zip(typed).zip(d.variables).enumerate() {
-            assert!(var.value_reference as usize == i || i >= first, "{}: value references are table indices", var.name);
+            assert!(
+                var.value_reference as usize == i || i >= first,
+                "{}: value references are table indices",
+                var.name
+            );
             assert_eq!(sv["name"], var.name);
             assert_eq!(kind, var.kind.as_str(), "{}", var.name);
             assert_eq!(sv["valueReference"], var.value_reference.to_string(), "{}", var.name);
             assert_eq!(sv["causality"], var.causality.as_str(), "{}", var.name);
             assert_eq!(sv["variability"], var.variability.as_str(), "{}", var.name);
             assert_eq!(sv["description"], var.description, "{}", var.name);
-            assert_eq!(ty.get("start").map(|s| s.parse::<f64>().unwrap()), var.start, "{}", var.name);
+            assert_eq!(
+                ty.get("start").map(|s| s.parse::<f64>().unwrap()),
+                var.start,
+                "{}",
+                var.name
+            );
             assert_eq!(ty.get("unit").map(String::as_str).unwrap_or(""), var.unit, "{}", var.name);
             if !var.unit.is_empty() {
                 assert!(units.contains(&var.unit), "unit {} of {} is declared", var.unit, var.name);
             }
-            let range = ty.get("min").zip(ty.get("max")).map(|(a, b)| (a.parse().unwrap(), b.parse().unwrap()));
+            let range = ty
+                .get("min")
+                .zip(ty.get("max"))
+                .map(|(a, b)| (a.parse().unwrap(), b.parse().unwrap()));
             assert_eq!(range, var.range, "{}", var.name);
             assert!(!sv.contains_key("initial"), "{}: initial is left to its default", var.name);
         }
@@ -148,7 +182,8 @@ fn units_are_defined_in_si_base_units() {
     ];
     for (d, xml) in models() {
         let all = elements(&xml);
-        let units: Vec<&BTreeMap<String, String>> = find(&all, "fmiModelDescription/UnitDefinitions/Unit");
+        let units: Vec<&BTreeMap<String, String>> =
+            find(&all, "fmiModelDescription/UnitDefinitions/Unit");
         let bases = find(&all, "fmiModelDescription/UnitDefinitions/Unit/BaseUnit");
         // Base units follow their unit in document order; "1" has none.
         let mut b = bases.iter();
@@ -157,10 +192,13 @@ fn units_are_defined_in_si_base_units() {
             if name == "1" {
                 continue;
             }
-            let (_, attrs) =
-                want.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("{}: unexpected unit {name}", d.model_identifier));
+            let (_, attrs) = want
+                .iter()
+                .find(|(n, _)| *n == name)
+                .unwrap_or_else(|| panic!("{}: unexpected unit {name}", d.model_identifier));
             let got = b.next().expect("a BaseUnit per unit");
-            let got: Vec<(&str, &str)> = got.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
+            let got: Vec<(&str, &str)> =
+                got.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
             let mut want: Vec<(&str, &str)> = attrs.to_vec();
             want.sort();
             assert_eq!(got, want, "{}: unit {name}", d.model_identifier);
@@ -182,11 +220,15 @@ fn model_structure_matches_the_declared_dependencies() {
         let states: Vec<(u32, &str)> = (table..table + nx).map(|v| (v, "fixed")).collect();
         for (xml, (vr, deps)) in outputs.iter().zip(d.outputs) {
             assert_eq!(xml["index"], index(*vr));
-            let deps: Vec<(u32, &str)> = deps.iter().copied().chain(states.iter().copied()).collect();
+            let deps: Vec<(u32, &str)> =
+                deps.iter().copied().chain(states.iter().copied()).collect();
             let want: Vec<String> = deps.iter().map(|(v, _)| index(*v)).collect();
             assert_eq!(xml["dependencies"], want.join(" "), "{}", name(*vr));
             let kinds: Vec<&str> = deps.iter().map(|(_, k)| *k).collect();
-            assert_eq!(xml.get("dependenciesKind").map(String::as_str).unwrap_or(""), kinds.join(" "));
+            assert_eq!(
+                xml.get("dependenciesKind").map(String::as_str).unwrap_or(""),
+                kinds.join(" ")
+            );
         }
         // Each derivative on the inputs of the model's table and its own state.
         let derivatives = find(&all, "fmiModelDescription/ModelStructure/Derivatives/Unknown");
@@ -195,7 +237,8 @@ fn model_structure_matches_the_declared_dependencies() {
             for (k, xml) in derivatives.iter().enumerate() {
                 let k = k as u32;
                 assert_eq!(xml["index"], index(table + nx + k));
-                let mut want: Vec<String> = s.input_dependencies.iter().map(|(v, _)| index(*v)).collect();
+                let mut want: Vec<String> =
+                    s.input_dependencies.iter().map(|(v, _)| index(*v)).collect();
                 want.push(index(table + k));
                 assert_eq!(xml["dependencies"], want.join(" "));
             }
@@ -212,7 +255,8 @@ fn model_structure_matches_the_declared_dependencies() {
             assert_eq!(xml["dependencies"], want.join(" "), "{}", name(*vr));
         }
         // Every output is listed, and nothing else.
-        let outs: Vec<_> = d.variables.iter().filter(|v| v.causality == Causality::Output).collect();
+        let outs: Vec<_> =
+            d.variables.iter().filter(|v| v.causality == Causality::Output).collect();
         assert_eq!(outs.len(), outputs.len());
     }
 }
@@ -226,8 +270,13 @@ fn default_experiment_declares_the_default_tolerance() {
     for (d, xml) in models() {
         let all = elements(&xml);
         let exp = find(&all, "fmiModelDescription/DefaultExperiment")[0];
-        let tol: f64 = exp.get("tolerance").unwrap_or_else(|| panic!("{}: no tolerance", d.model_identifier)).parse().unwrap();
-        let want = d.variables.iter().find(|v| v.name == "tolerance").map_or(1e-10, |v| v.start.unwrap());
+        let tol: f64 = exp
+            .get("tolerance")
+            .unwrap_or_else(|| panic!("{}: no tolerance", d.model_identifier))
+            .parse()
+            .unwrap();
+        let want =
+            d.variables.iter().find(|v| v.name == "tolerance").map_or(1e-10, |v| v.start.unwrap());
         assert_eq!(tol, want, "{}: DefaultExperiment/@tolerance", d.model_identifier);
     }
 }
@@ -245,7 +294,12 @@ fn descriptions_state_the_declared_unit() {
     let wound = MODELS[0].0;
     for name in ["edge_stress", "edge_velocity", "internal_step"] {
         let v = wound.variables.iter().find(|v| v.name == name).unwrap();
-        assert!(v.description.contains(&format!("[{}]", v.unit)), "{name} ({}): {}", v.unit, v.description);
+        assert!(
+            v.description.contains(&format!("[{}]", v.unit)),
+            "{name} ({}): {}",
+            v.unit,
+            v.description
+        );
     }
 }
 
@@ -254,7 +308,8 @@ fn descriptions_state_the_declared_unit() {
 #[test]
 fn every_model_declares_the_units_it_uses() {
     for (d, _) in &MODELS {
-        let mut used: Vec<&str> = d.variables.iter().map(|v| v.unit).filter(|u| !u.is_empty()).collect();
+        let mut used: Vec<&str> =
+            d.variables.iter().map(|v| v.unit).filter(|u| !u.is_empty()).collect();
         if let Some(s) = d.states {
             used.extend([s.unit, s.derivative_unit]);
         }
@@ -263,7 +318,11 @@ fn every_model_declares_the_units_it_uses() {
         }
         let declared: Vec<&str> = d.units.iter().map(|(name, _)| *name).collect();
         for unit in used {
-            assert!(declared.contains(&unit), "{}: unit {unit} is used but not declared", d.model_identifier);
+            assert!(
+                declared.contains(&unit),
+                "{}: unit {unit} is used but not declared",
+                d.model_identifier
+            );
         }
         let mut unique = declared.clone();
         unique.dedup();
@@ -279,9 +338,11 @@ fn value_references_are_table_positions() {
     for (d, _) in &MODELS {
         let first = d.first_state() as usize;
         for (i, v) in d.variables.iter().enumerate() {
-            let after_all = 2 + first + 2 * d.state_count() + d.arrays.map_or(0, |a| a.arrays.len());
+            let after_all =
+                2 + first + 2 * d.state_count() + d.arrays.map_or(0, |a| a.arrays.len());
             assert!(
-                v.value_reference as usize == i || (i >= first && v.value_reference as usize >= after_all),
+                v.value_reference as usize == i
+                    || (i >= first && v.value_reference as usize >= after_all),
                 "{}: {}",
                 d.model_identifier,
                 v.name

@@ -17,7 +17,17 @@ use wound_opening::solver::{Params, Settings, Solver};
 fn instantiate_me(guid: &str) -> fmi2Component {
     let (name, guid) = (CString::new("me").unwrap(), CString::new(guid).unwrap());
     let callbacks = fmi2CallbackFunctions::NONE;
-    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_MODEL_EXCHANGE, guid.as_ptr(), c"".as_ptr(), &callbacks, 0, 0) };
+    let c = unsafe {
+        fmi2Instantiate(
+            name.as_ptr(),
+            FMI2_MODEL_EXCHANGE,
+            guid.as_ptr(),
+            c"".as_ptr(),
+            &callbacks,
+            0,
+            0,
+        )
+    };
     assert!(!c.is_null());
     c
 }
@@ -41,7 +51,10 @@ fn continuous_time(params: &[(u32, f64)]) -> fmi2Component {
             nextEventTime: 1.0,
         };
         assert_eq!(fmi2NewDiscreteStates(c, &mut info), OK);
-        assert_eq!((info.newDiscreteStatesNeeded, info.terminateSimulation, info.nextEventTimeDefined), (0, 0, 0));
+        assert_eq!(
+            (info.newDiscreteStatesNeeded, info.terminateSimulation, info.nextEventTimeDefined),
+            (0, 0, 0)
+        );
         assert_eq!(fmi2EnterContinuousTimeMode(c), OK);
     }
     c
@@ -67,10 +80,15 @@ fn co_simulation_reference(lambda: f64, h: f64) -> (f64, wound_opening::solver::
     assert_eq!(unsafe { fmi2DoStep(cs, 0.0, h, 1) }, OK);
     let (_, r_cs) = get_real(cs, Vr::WoundRadius as u32);
     let mut x_cs = vec![0.0; NX];
-    assert_eq!(unsafe { fmi2GetContinuousStates(cs, x_cs.as_mut_ptr(), NX) }, ERROR, "ME function on a CS instance");
+    assert_eq!(
+        unsafe { fmi2GetContinuousStates(cs, x_cs.as_mut_ptr(), NX) },
+        ERROR,
+        "ME function on a CS instance"
+    );
     unsafe { fmi2FreeInstance(cs) };
     let params = Params { lambda, sigma: 1.0, r_inf: 10.0 };
-    let mut solver = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
+    let mut solver =
+        Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
     solver.advance(h, 0.0).unwrap();
     (r_cs, solver.ode(0.0).unwrap())
 }
@@ -90,7 +108,10 @@ fn states_depart_from_the_held_response_and_derivatives_are_its_ode() {
     assert!(states(me).iter().all(|&v| v == 0.0), "0 at the cut");
     let (_, r0) = get_real(me, Vr::WoundRadius as u32);
     assert_eq!(r0, 1.0 + 1.0 / 6.0);
-    assert!(derivatives(me).iter().all(|&v| v == 0.0), "no departure while the edge stress is held");
+    assert!(
+        derivatives(me).iter().all(|&v| v == 0.0),
+        "no departure while the edge stress is held"
+    );
     assert_eq!(unsafe { fmi2SetTime(me, h) }, OK);
     let (_, r_h) = get_real(me, Vr::WoundRadius as u32);
     assert!((r_h - r_cs).abs() < 1e-15, "fmi2SetTime follows the exact solution: {r_h} vs {r_cs}");
@@ -101,14 +122,20 @@ fn states_depart_from_the_held_response_and_derivatives_are_its_ode() {
     let (_, r_x) = get_real(me, Vr::WoundRadius as u32);
     assert!((r_x - (r_cs + 1e-3 * ode.loads[0])).abs() < 1e-15, "R = R(c0) + X_0 y_0");
     let d1 = derivatives(me);
-    assert!(((d1[0] + 1e-3 / ode.relaxation_times[0]) / d1[0]).abs() < 1e-14, "{} vs {}", d1[0], -1e-3 / ode.relaxation_times[0]);
+    assert!(
+        ((d1[0] + 1e-3 / ode.relaxation_times[0]) / d1[0]).abs() < 1e-14,
+        "{} vs {}",
+        d1[0],
+        -1e-3 / ode.relaxation_times[0]
+    );
     assert!(d1.iter().skip(1).all(|&v| v == 0.0), "uncoupled");
     // A changed edge stress: y' = c' - c0', with c' the physical ODE's rate at c = c0 + y.
     let p = 0.2;
     assert_eq!(set_real(me, Vr::EdgeStress as u32, p), OK);
     let d2 = derivatives(me);
     let params = Params { lambda, sigma: 1.0, r_inf: 10.0 };
-    let mut solver = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
+    let mut solver =
+        Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
     let mut c = ode.x.clone();
     c[0] += 1e-3;
     solver.set_ode_state(h, &c, p).unwrap();
@@ -117,7 +144,10 @@ fn states_depart_from_the_held_response_and_derivatives_are_its_ode() {
         let (x0, nu) = (ode.loads[k], ode.relaxation_times[k]);
         let held_rate = x0 * (-h / nu).exp() / nu;
         let want = physical.rates[k] - held_rate;
-        assert!((got - want).abs() <= 1e-12 * physical.rates[k].abs().max(held_rate.abs()).max(1e-300), "mode {k}: {got} vs {want}");
+        assert!(
+            (got - want).abs() <= 1e-12 * physical.rates[k].abs().max(held_rate.abs()).max(1e-300),
+            "mode {k}: {got} vs {want}"
+        );
     }
     assert!(d2.iter().skip(ode.x.len()).all(|&v| v == 0.0), "the spare states are inert");
     unsafe { fmi2FreeInstance(me) };
@@ -137,10 +167,23 @@ fn derivative_vr(k: usize) -> u32 {
     (first_state() + NX + k) as u32
 }
 
-fn directional(c: fmi2Component, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
+fn directional(
+    c: fmi2Component,
+    unknowns: &[u32],
+    knowns: &[u32],
+    seed: &[f64],
+) -> (fmi2Status, Vec<f64>) {
     let mut out = vec![f64::NAN; unknowns.len()];
     let s = unsafe {
-        fmi2GetDirectionalDerivative(c, unknowns.as_ptr(), unknowns.len(), knowns.as_ptr(), knowns.len(), seed.as_ptr(), out.as_mut_ptr())
+        fmi2GetDirectionalDerivative(
+            c,
+            unknowns.as_ptr(),
+            unknowns.len(),
+            knowns.as_ptr(),
+            knowns.len(),
+            seed.as_ptr(),
+            out.as_mut_ptr(),
+        )
     };
     (s, out)
 }
@@ -162,7 +205,8 @@ fn directional_derivatives_are_the_exact_jacobian() {
         assert_eq!(fmi2SetTime(me, 0.1), OK);
         assert_eq!(fmi2SetContinuousStates(me, x.as_ptr(), NX), OK);
     }
-    let (ders, sts): (Vec<u32>, Vec<u32>) = ((0..NX).map(derivative_vr).collect(), (0..NX).map(state_vr).collect());
+    let (ders, sts): (Vec<u32>, Vec<u32>) =
+        ((0..NX).map(derivative_vr).collect(), (0..NX).map(state_vr).collect());
     let v: Vec<f64> = (0..NX).map(|k| ((k as f64) * 1.3).cos()).collect();
     let (s, jv) = directional(me, &ders, &sts, &v);
     assert_eq!(s, OK);
@@ -181,11 +225,20 @@ fn directional_derivatives_are_the_exact_jacobian() {
     let (_, r0) = get_real(me, Vr::WoundRadius as u32);
     for k in 0..NX {
         let fd = (f1[k] - f0[k]) / e;
-        assert!((fd - jv[k]).abs() <= 1e-6 * jv[k].abs().max(1.0), "state {k}: FD {fd} vs {}", jv[k]);
+        assert!(
+            (fd - jv[k]).abs() <= 1e-6 * jv[k].abs().max(1.0),
+            "state {k}: FD {fd} vs {}",
+            jv[k]
+        );
     }
     let (s, dr) = directional(me, &[Vr::WoundRadius as u32], &sts, &v);
     assert_eq!(s, OK);
-    assert!(((r1 - r0) / e - dr[0]).abs() <= 1e-6 * dr[0].abs(), "radius: FD {} vs {}", (r1 - r0) / e, dr[0]);
+    assert!(
+        ((r1 - r0) / e - dr[0]).abs() <= 1e-6 * dr[0].abs(),
+        "radius: FD {} vs {}",
+        (r1 - r0) / e,
+        dr[0]
+    );
     // The edge stress drives every mode.
     let edge = [Vr::EdgeStress as u32];
     let (s, jp) = directional(me, &ders, &edge, &[1.0]);
@@ -204,7 +257,11 @@ fn directional_derivatives_are_the_exact_jacobian() {
     assert_eq!(directional(me, &ders[..1], &sts[..1], &x[..1]).0, ERROR, "NaN seed");
     unsafe { fmi2FreeInstance(me) };
     let cs = initialized(WOUND, 0.0, &[]);
-    assert_eq!(directional(cs, &[Vr::WoundRadius as u32], &sts[..1], &[1.0]).0, ERROR, "no states in CS");
+    assert_eq!(
+        directional(cs, &[Vr::WoundRadius as u32], &sts[..1], &[1.0]).0,
+        ERROR,
+        "no states in CS"
+    );
     assert_eq!(directional(cs, &[Vr::EdgeVelocity as u32], &edge, &[1.0]).0, OK);
     unsafe { fmi2FreeInstance(cs) };
 }
@@ -229,7 +286,11 @@ fn refuses_what_model_exchange_does_not_allow() {
         assert_eq!((enter, term), (0, 0));
         assert_eq!(fmi2NewDiscreteStates(c, &mut std::mem::zeroed()), ERROR, "not in event mode");
         assert_eq!(fmi2EnterEventMode(c), OK);
-        assert_eq!(fmi2SetContinuousStates(c, vec![0.0; NX].as_ptr(), NX), ERROR, "states only in continuous-time mode");
+        assert_eq!(
+            fmi2SetContinuousStates(c, vec![0.0; NX].as_ptr(), NX),
+            ERROR,
+            "states only in continuous-time mode"
+        );
         let one = 1.0;
         let state_vr = 13u32;
         assert_eq!(fmi2SetReal(c, &state_vr, 1, &one), ERROR, "nor by fmi2SetReal in event mode");
@@ -287,7 +348,11 @@ fn fmu_states_round_trip_and_stay_with_their_interface() {
     let mut bytes = vec![0i8; size];
     assert_eq!(unsafe { fmi2SerializeFMUstate(cs, cs_state, bytes.as_mut_ptr(), size) }, OK);
     let mut into: fmi2FMUstate = std::ptr::null_mut();
-    assert_eq!(unsafe { fmi2DeSerializeFMUstate(c, bytes.as_ptr(), size, &mut into) }, ERROR, "CS state into ME");
+    assert_eq!(
+        unsafe { fmi2DeSerializeFMUstate(c, bytes.as_ptr(), size, &mut into) },
+        ERROR,
+        "CS state into ME"
+    );
     unsafe {
         fmi2FreeInstance(c);
         fmi2FreeInstance(cs);
@@ -332,9 +397,11 @@ fn purse_string_runs_as_model_exchange_without_states() {
 fn stiffness_of_the_default_mesh() {
     for lambda in [0.0, 0.1, 1.0, 10.0] {
         let params = Params { lambda, sigma: 1.0, r_inf: 10.0 };
-        let solver = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
+        let solver =
+            Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
         let nu = solver.ode(0.0).unwrap().relaxation_times;
-        let (fast, slow) = nu.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
+        let (fast, slow) =
+            nu.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
         println!(
             "lambda = {lambda}: {} modes, fastest relaxation time {fast:.3e} T, slowest {slow:.3e} T, ratio {:.1e}",
             nu.len(),
@@ -355,7 +422,9 @@ fn stiffness_of_the_default_mesh() {
 /// gives CVode, BDF and Radau: tests/python/test_masters.py, docs/fmi.md).
 #[test]
 fn nominals_scale_with_the_edge_stress() {
-    for (sigma, p, want) in [(1.0, 0.0, 1.0), (2e-5, 0.0, 2e-5), (-5.0, 0.0, 5.0), (1e-4, 2e-4, 2e-4), (0.0, 0.0, 1.0)] {
+    for (sigma, p, want) in
+        [(1.0, 0.0, 1.0), (2e-5, 0.0, 2e-5), (-5.0, 0.0, 5.0), (1e-4, 2e-4, 2e-4), (0.0, 0.0, 1.0)]
+    {
         let c = continuous_time(&[(Vr::Sigma as u32, sigma), (Vr::EdgeStress as u32, p)]);
         let mut n = vec![f64::NAN; NX];
         assert_eq!(unsafe { fmi2GetNominalsOfContinuousStates(c, n.as_mut_ptr(), NX) }, OK);

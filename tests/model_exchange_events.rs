@@ -26,7 +26,10 @@ fn state_vr(k: usize) -> u32 {
 fn event(c: fmi2Component) -> (bool, bool) {
     let mut info: fmi2EventInfo = unsafe { std::mem::zeroed() };
     assert_eq!(unsafe { fmi2NewDiscreteStates(c, &mut info) }, OK);
-    assert_eq!((info.newDiscreteStatesNeeded, info.terminateSimulation, info.nextEventTimeDefined), (0, 0, 0));
+    assert_eq!(
+        (info.newDiscreteStatesNeeded, info.terminateSimulation, info.nextEventTimeDefined),
+        (0, 0, 0)
+    );
     (info.valuesOfContinuousStatesChanged != 0, info.nominalsOfContinuousStatesChanged != 0)
 }
 
@@ -50,7 +53,10 @@ fn real(c: fmi2Component, vr: u32) -> f64 {
 
 fn directional(c: fmi2Component, unknown: u32, known: u32) -> f64 {
     let (mut out, seed) = (f64::NAN, 1.0);
-    assert_eq!(unsafe { fmi2GetDirectionalDerivative(c, &unknown, 1, &known, 1, &seed, &mut out) }, OK);
+    assert_eq!(
+        unsafe { fmi2GetDirectionalDerivative(c, &unknown, 1, &known, 1, &seed, &mut out) },
+        OK
+    );
     out
 }
 
@@ -83,9 +89,16 @@ fn outputs_do_not_depend_on_the_sequence_of_set_calls() {
         assert_eq!(set_real(c, EDGE, 0.3), OK);
         assert_eq!(set_real(c, EDGE, 0.6), OK);
         let one_by_one = [real(c, RADIUS), real(c, VELOCITY)];
-        for (what, got) in [("states set again", again), ("time set again", time_again), ("one state and the input", one_by_one)] {
+        for (what, got) in [
+            ("states set again", again),
+            ("time set again", time_again),
+            ("one state and the input", one_by_one),
+        ] {
             for (a, b) in first.iter().zip(got) {
-                assert!((a - b).abs() <= 1e-12 * a.abs().max(1e-300), "lambda {lambda}, {what}: {a} vs {b}");
+                assert!(
+                    (a - b).abs() <= 1e-12 * a.abs().max(1e-300),
+                    "lambda {lambda}, {what}: {a} vs {b}"
+                );
             }
         }
         unsafe { fmi2FreeInstance(c) };
@@ -112,7 +125,10 @@ fn directional_derivatives_match_differences_of_the_outputs() {
             let fd = (v(p + h) - v(p - h)) / (2.0 * h);
             v(p);
             let dd = directional(c, VELOCITY, EDGE);
-            assert!((dd - fd).abs() <= 1e-7 * fd.abs(), "lambda {lambda}, t {t}: d edge_velocity / d edge_stress {dd} vs {fd}");
+            assert!(
+                (dd - fd).abs() <= 1e-7 * fd.abs(),
+                "lambda {lambda}, t {t}: d edge_velocity / d edge_stress {dd} vs {fd}"
+            );
             let x = states(c);
             let (k, dy) = (0, 1e-6);
             let out = |y: f64| {
@@ -124,7 +140,10 @@ fn directional_derivatives_match_differences_of_the_outputs() {
             for (i, vr) in [RADIUS, VELOCITY].into_iter().enumerate() {
                 let fd = (up[i] - down[i]) / (2.0 * dy);
                 let dd = directional(c, vr, state_vr(k));
-                assert!((dd - fd).abs() <= 1e-6 * fd.abs().max(1e-3), "lambda {lambda}, t {t}, output {vr} / state {k}: {dd} vs {fd}");
+                assert!(
+                    (dd - fd).abs() <= 1e-6 * fd.abs().max(1e-3),
+                    "lambda {lambda}, t {t}, output {vr} / state {k}: {dd} vs {fd}"
+                );
             }
         }
         unsafe { fmi2FreeInstance(c) };
@@ -153,7 +172,11 @@ fn a_jump_in_event_mode_moves_the_reference_and_says_so() {
                 // change (and their derivatives stay 0: the integrator meets no jump).
                 let (values, nominal) = event(me);
                 assert!(!values, "lambda {lambda}: the states stay 0 at the jump to {p}");
-                assert_eq!(nominal, nominals(me) != n_before, "lambda {lambda}: the nominals flag says whether they moved");
+                assert_eq!(
+                    nominal,
+                    nominals(me) != n_before,
+                    "lambda {lambda}: the nominals flag says whether they moved"
+                );
                 assert_eq!(event(me), (false, false), "nothing more to update");
                 assert_eq!(unsafe { fmi2EnterContinuousTimeMode(me) }, OK);
                 assert!(states(me).iter().all(|&y| y == 0.0), "0 after the event");
@@ -168,7 +191,10 @@ fn a_jump_in_event_mode_moves_the_reference_and_says_so() {
             assert_eq!(unsafe { fmi2DoStep(cs, now, end - now, 1) }, OK);
             now = end;
             let (r_me, r_cs) = (real(me, RADIUS), real(cs, RADIUS));
-            assert!((r_me - r_cs).abs() <= 1e-13, "lambda {lambda}, t {end}: ME {r_me} vs co-simulation {r_cs}");
+            assert!(
+                (r_me - r_cs).abs() <= 1e-13,
+                "lambda {lambda}, t {end}: ME {r_me} vs co-simulation {r_cs}"
+            );
             let mut dx = vec![f64::NAN; NX];
             assert_eq!(unsafe { fmi2GetDerivatives(me, dx.as_mut_ptr(), NX) }, OK);
             assert!(dx.iter().all(|&d| d == 0.0), "nothing to integrate while the input is held");
@@ -185,7 +211,10 @@ fn a_jump_in_event_mode_moves_the_reference_and_says_so() {
         // The mesh's modes are 0 under the new reference; the inert spare states stay as set.
         let y = states(me);
         let used = y.iter().position(|&v| v != 0.0).unwrap_or(NX);
-        assert!(used >= 40 && y[used..] == x[used..], "lambda {lambda}: modes 0 up to {used}, then the spare states");
+        assert!(
+            used >= 40 && y[used..] == x[used..],
+            "lambda {lambda}: modes 0 up to {used}, then the spare states"
+        );
         assert_eq!(real(me, RADIUS), r_before, "the radius is continuous");
         unsafe {
             fmi2FreeInstance(me);

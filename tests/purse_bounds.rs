@@ -11,13 +11,20 @@ use wound_opening::models::purse_string::variables::Vr;
 /// `edge_stress`, `line_tension` and d edge_stress / d wound_radius after one step past
 /// the delay, for these values (set before initialization; the radius after it).
 fn outputs_at(t_max: f64, thickness: f64, radius: f64) -> [f64; 3] {
-    let params = [(Vr::MaxTension as u32, t_max), (Vr::Thickness as u32, thickness), (Vr::AssemblyTime as u32, 0.0)];
+    let params = [
+        (Vr::MaxTension as u32, t_max),
+        (Vr::Thickness as u32, thickness),
+        (Vr::AssemblyTime as u32, 0.0),
+    ];
     let c = initialized(PURSE, 0.0, &params);
     assert_eq!(set_real(c, Vr::WoundRadius as u32, radius), OK, "wound_radius = {radius}");
     assert_eq!(unsafe { fmi2DoStep(c, 0.0, 100.0, 1) }, OK);
     let (unknown, known, seed) = (Vr::EdgeStress as u32, Vr::WoundRadius as u32, 1.0);
     let mut d = f64::NAN;
-    assert_eq!(unsafe { fmi2GetDirectionalDerivative(c, &unknown, 1, &known, 1, &seed, &mut d) }, OK);
+    assert_eq!(
+        unsafe { fmi2GetDirectionalDerivative(c, &unknown, 1, &known, 1, &seed, &mut d) },
+        OK
+    );
     let out = [get_real(c, Vr::EdgeStress as u32).1, get_real(c, Vr::LineTension as u32).1, d];
     unsafe { fmi2FreeInstance(c) };
     out
@@ -27,9 +34,18 @@ fn outputs_at(t_max: f64, thickness: f64, radius: f64) -> [f64; 3] {
 /// inf): the extreme accepted values give finite outputs, exactly T_c / (h R).
 #[test]
 fn the_bounds_themselves_are_accepted_with_finite_outputs() {
-    for (t_max, h, r) in [(1e9, 1e-6, 1e-6), (0.0, 1e-6, 1e-6), (1e9, 1e6, 1e9), (1e9, 1e-6, 1e9), (6500.0, 5.0, 10.0)] {
+    for (t_max, h, r) in [
+        (1e9, 1e-6, 1e-6),
+        (0.0, 1e-6, 1e-6),
+        (1e9, 1e6, 1e9),
+        (1e9, 1e-6, 1e9),
+        (6500.0, 5.0, 10.0),
+    ] {
         let [p, tc, d] = outputs_at(t_max, h, r);
-        assert!(p.is_finite() && tc.is_finite() && d.is_finite(), "T_max {t_max}, h {h}, R {r}: {p} {tc} {d}");
+        assert!(
+            p.is_finite() && tc.is_finite() && d.is_finite(),
+            "T_max {t_max}, h {h}, R {r}: {p} {tc} {d}"
+        );
         assert_eq!(tc, t_max);
         assert_eq!(p, t_max / (h * r));
     }
@@ -55,7 +71,12 @@ fn values_outside_the_bounds_are_refused() {
     unsafe {
         assert_eq!(fmi2EnterInitializationMode(c), OK);
         for vr in Vr::ALL.iter().filter(|v| v.var().start.is_some()) {
-            assert_eq!(get_real(c, *vr as u32), (OK, vr.var().start.unwrap()), "{} unchanged", vr.var().name);
+            assert_eq!(
+                get_real(c, *vr as u32),
+                (OK, vr.var().start.unwrap()),
+                "{} unchanged",
+                vr.var().name
+            );
         }
         fmi2FreeInstance(c);
     }
@@ -65,7 +86,12 @@ fn values_outside_the_bounds_are_refused() {
 struct Collect(std::sync::Mutex<Vec<String>>);
 
 impl wound_opening::fmi::common::instance::Logger for Collect {
-    fn log(&self, _status: wound_opening::fmi::common::instance::Status, _category: &str, message: &str) {
+    fn log(
+        &self,
+        _status: wound_opening::fmi::common::instance::Status,
+        _category: &str,
+        message: &str,
+    ) {
         self.0.lock().unwrap().push(message.into());
     }
 }
@@ -76,12 +102,25 @@ impl wound_opening::fmi::common::instance::Logger for Collect {
 fn a_refusal_names_the_accepted_range() {
     use wound_opening::fmi::common::instance::{Call, Instance};
     let log = std::sync::Arc::new(Collect::default());
-    let mut i = Instance::new(wound_opening::models::purse_string::PurseModel::fresh, "purse", log.clone(), false);
+    let mut i = Instance::new(
+        wound_opening::models::purse_string::PurseModel::fresh,
+        "purse",
+        log.clone(),
+        false,
+    );
     let cases = [
         (Vr::Thickness, 1e-7, "thickness = 0.0000001 is invalid: it must be in [1e-6, 1e6] um"),
         (Vr::MaxTension, 2e9, "T_max = 2000000000 is invalid: it must be in [0, 1e9] pN"),
-        (Vr::WoundRadius, 1e10, "wound_radius = 10000000000 is invalid: it must be in [1e-6, 1e9] um"),
-        (Vr::WoundRadius, 0.0, "wound_radius = 0 is invalid: it must be in [1e-6, 1e9] um (the purse-string stress"),
+        (
+            Vr::WoundRadius,
+            1e10,
+            "wound_radius = 10000000000 is invalid: it must be in [1e-6, 1e9] um",
+        ),
+        (
+            Vr::WoundRadius,
+            0.0,
+            "wound_radius = 0 is invalid: it must be in [1e-6, 1e9] um (the purse-string stress",
+        ),
     ];
     for (vr, x, want) in cases {
         assert!(i.call(Call::Set, String::new, |i| i.set_real(&[vr as u32], &[x])).is_err());

@@ -18,7 +18,11 @@ fn table(readme: &str, header: &str) -> Vec<Vec<String>> {
         .map(|l| {
             let inner = l.trim().trim_start_matches('|').trim_end_matches('|');
             // Escaped pipes (\|) belong to a cell.
-            inner.replace("\\|", "\u{1}").split('|').map(|c| c.trim().replace('\u{1}', "|")).collect()
+            inner
+                .replace("\\|", "\u{1}")
+                .split('|')
+                .map(|c| c.trim().replace('\u{1}', "|"))
+                .collect()
         })
         .collect()
 }
@@ -30,15 +34,27 @@ fn check(description: &Description, rows: &[Vec<String>], start_col: usize, unit
     for row in rows {
         let name = row[0].trim_matches('`');
         let var = description.variables.iter().find(|v| v.name == name);
-        let var = var.unwrap_or_else(|| panic!("{model}: README lists {name}, which the model does not have"));
+        let var = var.unwrap_or_else(|| {
+            panic!("{model}: README lists {name}, which the model does not have")
+        });
         assert_eq!(row[1], var.value_reference.to_string(), "{model}.{name}: value reference");
-        assert!(row[2].starts_with(var.causality.as_str()), "{model}.{name}: causality {} vs {:?}", row[2], var.causality);
+        assert!(
+            row[2].starts_with(var.causality.as_str()),
+            "{model}.{name}: causality {} vs {:?}",
+            row[2],
+            var.causality
+        );
         match var.start {
             Some(start) => {
-                let shown: f64 = row[start_col].parse().unwrap_or_else(|_| panic!("{model}.{name}: start {:?}", row[start_col]));
+                let shown: f64 = row[start_col]
+                    .parse()
+                    .unwrap_or_else(|_| panic!("{model}.{name}: start {:?}", row[start_col]));
                 assert_eq!(shown, start, "{model}.{name}: start value");
             }
-            None => assert!(row[start_col].is_empty(), "{model}.{name}: README shows a start value for an output"),
+            None => assert!(
+                row[start_col].is_empty(),
+                "{model}.{name}: README shows a start value for an output"
+            ),
         }
         assert_eq!(row[unit_col], var.unit, "{model}.{name}: unit");
     }
@@ -50,8 +66,10 @@ fn check(description: &Description, rows: &[Vec<String>], start_col: usize, unit
 
 #[test]
 fn readme_variable_tables_match_the_models() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/fmi.md")).expect("docs/fmi.md");
-    let wound_rows = table(&readme, "| name | value ref. | causality | variability | start | unit | meaning |");
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/fmi.md"))
+        .expect("docs/fmi.md");
+    let wound_rows =
+        table(&readme, "| name | value ref. | causality | variability | start | unit | meaning |");
     check(&wound::variables::DESCRIPTION, &wound_rows, 4, 5);
     let purse_rows = table(&readme, "| name | value ref. | causality | start | unit |");
     check(&purse::variables::DESCRIPTION, &purse_rows, 3, 4);

@@ -71,7 +71,8 @@ fn paper_scheme_reproduces_its_known_first_order_error() {
     for (lambda, reference) in EXACT {
         let coarse = max_error(lambda, &Scheme::Paper { points: 101, max_step: 1e-3 }, &reference);
         let fine = max_error(lambda, &Scheme::Paper { points: 1001, max_step: 1e-3 }, &reference);
-        let coarser_step = max_error(lambda, &Scheme::Paper { points: 1001, max_step: 4e-3 }, &reference);
+        let coarser_step =
+            max_error(lambda, &Scheme::Paper { points: 1001, max_step: 4e-3 }, &reference);
         assert!((0.10..0.22).contains(&coarse), "lambda {lambda}: N=101 error {coarse}");
         assert!((0.010..0.020).contains(&fine), "lambda {lambda}: N=1001 error {fine}");
         // First order in space: ten times the points, about a tenth of the error.
@@ -79,7 +80,10 @@ fn paper_scheme_reproduces_its_known_first_order_error() {
         assert!((order - 1.0).abs() < 0.1, "lambda {lambda}: order {order}");
         // "whatever dt": the spatial error dominates (four times the step changes the error
         // by 0.01-0.1 %, measured; a step four times smaller took three quarters of the time).
-        assert!((coarser_step / fine - 1.0).abs() < 0.01, "lambda {lambda}: {fine} vs {coarser_step}");
+        assert!(
+            (coarser_step / fine - 1.0).abs() < 0.01,
+            "lambda {lambda}: {fine} vs {coarser_step}"
+        );
     }
 }
 
@@ -88,9 +92,12 @@ fn paper_scheme_reproduces_its_known_first_order_error() {
 #[test]
 fn trbdf2_is_second_order_in_time() {
     let (lambda, reference) = EXACT[1];
-    let mesh = Settings::for_tolerance(&Params { lambda, sigma: 1.0, r_inf: 10.0 }, 1e-10).unwrap().mesh;
-    let errors: Vec<f64> =
-        [0.02, 0.01, 0.005].iter().map(|&dt| max_error(lambda, &Scheme::TrBdf2 { mesh, max_step: dt }, &reference)).collect();
+    let mesh =
+        Settings::for_tolerance(&Params { lambda, sigma: 1.0, r_inf: 10.0 }, 1e-10).unwrap().mesh;
+    let errors: Vec<f64> = [0.02, 0.01, 0.005]
+        .iter()
+        .map(|&dt| max_error(lambda, &Scheme::TrBdf2 { mesh, max_step: dt }, &reference))
+        .collect();
     for w in errors.windows(2) {
         let order = (w[0] / w[1]).log2();
         assert!((order - 2.0).abs() < 0.2, "order {order} from {errors:?}");
@@ -124,7 +131,10 @@ fn invalid_resolutions_are_rejected() {
         Scheme::Paper { points: 2, max_step: 1e-3 },
         Scheme::Paper { points: 101, max_step: 0.0 },
         Scheme::Explicit { points: 101, max_step: f64::NAN },
-        Scheme::TrBdf2 { mesh: MeshSpec { degree: 0, elements: 4, edge_scale: 0.1 }, max_step: 0.01 },
+        Scheme::TrBdf2 {
+            mesh: MeshSpec { degree: 0, elements: 4, edge_scale: 0.1 },
+            max_step: 0.01,
+        },
         Scheme::Modal(Settings { mesh: MeshSpec { degree: 4, elements: 4, edge_scale: -1.0 } }),
     ];
     for scheme in bad {

@@ -35,7 +35,9 @@ fn by_series(sigma: f64, tol: f64) -> Result<Vec<f64>, String> {
     let problem = WoProblem { lambda: 1.0, sigma, r_inf: 10.0, tolerance: tol, edge_stress: 0.0 };
     let times: Vec<f64> = REFERENCE.iter().map(|r| r.0).collect();
     let mut radius = vec![f64::NAN; times.len()];
-    let status = unsafe { wo_series(problem, times.as_ptr(), times.len(), radius.as_mut_ptr(), std::ptr::null_mut()) };
+    let status = unsafe {
+        wo_series(problem, times.as_ptr(), times.len(), radius.as_mut_ptr(), std::ptr::null_mut())
+    };
     if status == WoStatus::WoOk { Ok(radius) } else { Err(format!("{status:?}: {}", last_error())) }
 }
 
@@ -68,20 +70,33 @@ fn a_small_sigma_is_refused_with_the_range_or_meets_the_tolerance() {
     let (mut refused, mut accepted) = (0, 0);
     for tol in [1e-10, 1e-6, 1e-3, 1e-2] {
         for sigma in SIGMAS.iter().flat_map(|&s| [s, -s]) {
-            for (name, path) in [("wo_series", by_series as fn(f64, f64) -> _), ("wo_solver_new", by_solver)] {
+            for (name, path) in
+                [("wo_series", by_series as fn(f64, f64) -> _), ("wo_solver_new", by_solver)]
+            {
                 match path(sigma, tol) {
                     Ok(radii) => {
                         accepted += 1;
-                        assert!(sigma.abs() >= sigma_floor(tol), "{name}: sigma {sigma:e} accepted at {tol:e}");
+                        assert!(
+                            sigma.abs() >= sigma_floor(tol),
+                            "{name}: sigma {sigma:e} accepted at {tol:e}"
+                        );
                         for (k, r) in radii.into_iter().enumerate() {
                             let err = opening_error(sigma, k, r);
-                            assert!(err <= tol, "{name}: sigma {sigma:e}, tolerance {tol:e}, t {}: error {err:e}", REFERENCE[k].0);
+                            assert!(
+                                err <= tol,
+                                "{name}: sigma {sigma:e}, tolerance {tol:e}, t {}: error {err:e}",
+                                REFERENCE[k].0
+                            );
                         }
                     }
                     Err(message) => {
                         refused += 1;
-                        let range = format!("accepted: sigma = 0 or |sigma| >= {:.2e}", sigma_floor(tol));
-                        assert!(message.starts_with("WoInvalidArgument") && message.contains(&range), "{name}: {message}");
+                        let range =
+                            format!("accepted: sigma = 0 or |sigma| >= {:.2e}", sigma_floor(tol));
+                        assert!(
+                            message.starts_with("WoInvalidArgument") && message.contains(&range),
+                            "{name}: {message}"
+                        );
                     }
                 }
             }
@@ -116,14 +131,21 @@ fn an_edge_stress_meets_the_tolerance_on_the_larger_opening() {
         for sigma in [1.0, 1e-2, 1e-4, 1e-6].iter().flat_map(|&s| [s, -s]) {
             let ratios = [-1e3, -10.0, -1.0, 0.5, 1.0 - 1e-9, 1.0 + 1e-9, 2.0, 10.0, 1e3];
             for p in ratios.iter().map(|k| k * sigma) {
-                let problem = WoProblem { lambda: 1.0, sigma, r_inf: 10.0, tolerance: tol, edge_stress: p };
+                let problem =
+                    WoProblem { lambda: 1.0, sigma, r_inf: 10.0, tolerance: tol, edge_stress: p };
                 let times: Vec<f64> = REFERENCE.iter().map(|r| r.0).collect();
                 let mut radius = vec![f64::NAN; times.len()];
-                let status = unsafe { wo_series(problem, times.as_ptr(), 2, radius.as_mut_ptr(), std::ptr::null_mut()) };
+                let status = unsafe {
+                    wo_series(problem, times.as_ptr(), 2, radius.as_mut_ptr(), std::ptr::null_mut())
+                };
                 // Leaving the model's validity (large |sigma - p|) is a warning with the
                 // outputs written: the tolerance holds all the same.
                 if !matches!(status, WoStatus::WoOk | WoStatus::WoOutsideValidity) {
-                    assert!(last_error().contains("accepted: sigma = 0 or |sigma| >="), "sigma {sigma:e}, p {p:e}: {}", last_error());
+                    assert!(
+                        last_error().contains("accepted: sigma = 0 or |sigma| >="),
+                        "sigma {sigma:e}, p {p:e}: {}",
+                        last_error()
+                    );
                     continue;
                 }
                 accepted += 1;

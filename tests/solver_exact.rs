@@ -50,7 +50,8 @@ const EDGE_REFERENCE: [(f64, f64, f64, f64, f64); 9] = [
 fn edges_of_the_domain_match_the_laplace_solution_at_the_default_tolerance() {
     for (lambda, r_inf, t, radius, velocity) in EDGE_REFERENCE {
         let params = Params { lambda, sigma: 1.0, r_inf };
-        let mut s = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
+        let mut s =
+            Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
         s.advance(t, 0.0).unwrap();
         let err = (s.wound_radius() - radius).abs() / amplitude(r_inf);
         assert!(err < 1e-10, "lambda {lambda}, R_inf {r_inf}, t {t}: R error {err:e}");
@@ -85,7 +86,10 @@ fn relaxes_to_the_exact_final_state() {
             let radii = [1.0, 1.05, 1.3, 1.9, 0.5 * (1.0 + r_inf), r_inf];
             for (r, u) in radii.iter().zip(s.displacement(&radii)) {
                 let want = exact::final_displacement(1.0, r_inf, *r);
-                assert!((u - want).abs() < 1e-9 * amplitude(r_inf), "lambda {lambda} R_inf {r_inf} r {r}");
+                assert!(
+                    (u - want).abs() < 1e-9 * amplitude(r_inf),
+                    "lambda {lambda} R_inf {r_inf} r {r}"
+                );
             }
             assert!(s.edge_velocity(0.0).abs() < 1e-12, "at rest: {}", s.edge_velocity(0.0));
         }
@@ -104,7 +108,8 @@ fn approaches_the_no_friction_solution_as_lambda_grows() {
                 .map(|k| {
                     let t_tau = 0.1 * k as f64;
                     s.advance(t_tau * lambda * lambda - s.time(), 0.0).unwrap();
-                    (s.wound_radius() - exact::no_friction_radius(1.0, r_inf, t_tau)).abs() / amplitude(r_inf)
+                    (s.wound_radius() - exact::no_friction_radius(1.0, r_inf, t_tau)).abs()
+                        / amplitude(r_inf)
                 })
                 .fold(0.0, f64::max)
         };
@@ -140,7 +145,10 @@ const RESPONSE_REFERENCE: [(f64, f64, f64, f64); 11] = [
 fn velocity_response_matches_the_bessel_solution() {
     for (lambda, r_inf, r, want) in RESPONSE_REFERENCE {
         let got = exact::velocity_response(lambda, r_inf, r);
-        assert!((got - want).abs() < 1e-12 * want.abs(), "lambda {lambda} R_inf {r_inf} r {r}: {got:e} vs {want:e}");
+        assert!(
+            (got - want).abs() < 1e-12 * want.abs(),
+            "lambda {lambda} R_inf {r_inf} r {r}: {got:e} vs {want:e}"
+        );
     }
 }
 
@@ -158,7 +166,10 @@ fn mesh_velocity_agrees_with_the_closed_form_response_where_it_resolves_the_laye
             assert_eq!(at_cut, (p - 1.0) * exact::edge_velocity_slope(lambda, 10.0));
             s.advance(1e-12, p).unwrap();
             let mesh = s.edge_velocity(p);
-            assert!((mesh - at_cut).abs() < 1e-9 * at_cut.abs(), "lambda {lambda} p {p}: mesh {mesh} vs closed form {at_cut}");
+            assert!(
+                (mesh - at_cut).abs() < 1e-9 * at_cut.abs(),
+                "lambda {lambda} p {p}: mesh {mesh} vs closed form {at_cut}"
+            );
         }
     }
 }
@@ -168,7 +179,8 @@ fn mesh_velocity_agrees_with_the_closed_form_response_where_it_resolves_the_laye
 #[test]
 fn constant_edge_stress_superposes() {
     for lambda in [0.0, 1.0] {
-        let (mut free, mut loaded, mut held) = (solver(lambda, 10.0, None), solver(lambda, 10.0, None), solver(lambda, 10.0, None));
+        let (mut free, mut loaded, mut held) =
+            (solver(lambda, 10.0, None), solver(lambda, 10.0, None), solver(lambda, 10.0, None));
         let r1 = exact::initial_radius(1.0);
         for t in [0.01, 0.1, 1.0, 10.0, 100.0] {
             let h = t - free.time();
@@ -191,7 +203,9 @@ fn constant_edge_stress_superposes() {
 fn converges_at_the_expected_order_under_grid_refinement() {
     let (t, exact_r) = (1.0, LAPLACE_REFERENCE[1].2);
     let (t_v, v_exact) = (LAPLACE_REFERENCE[4].1, LAPLACE_REFERENCE[4].3);
-    for (degree, order, sizes) in [(1, 2.0, [16, 32, 64]), (2, 4.0, [8, 16, 32]), (3, 6.0, [6, 12, 24])] {
+    for (degree, order, sizes) in
+        [(1, 2.0, [16, 32, 64]), (2, 4.0, [8, 16, 32]), (3, 6.0, [6, 12, 24])]
+    {
         let errors: Vec<(f64, f64)> = sizes
             .iter()
             .map(|&elements| {
@@ -208,7 +222,10 @@ fn converges_at_the_expected_order_under_grid_refinement() {
             let observed_v = (w[0].1 / w[1].1).log2();
             // Within 0.3 of the asymptotic order: the coarsest pairs are still pre-asymptotic.
             assert!((observed_r - order).abs() < 0.3, "degree {degree}: R order {observed_r}");
-            assert!((observed_v - order).abs() < 0.3, "degree {degree}: v(0.01) order {observed_v}");
+            assert!(
+                (observed_v - order).abs() < 0.3,
+                "degree {degree}: v(0.01) order {observed_v}"
+            );
         }
     }
 }
@@ -225,7 +242,10 @@ fn result_does_not_depend_on_the_step_size() {
             many.advance(1e-3, 0.2).unwrap();
         }
         assert!((one.wound_radius() - many.wound_radius()).abs() < 1e-13, "lambda {lambda}");
-        assert!((one.edge_velocity(0.2) - many.edge_velocity(0.2)).abs() < 1e-11, "lambda {lambda}");
+        assert!(
+            (one.edge_velocity(0.2) - many.edge_velocity(0.2)).abs() < 1e-11,
+            "lambda {lambda}"
+        );
     }
 }
 
@@ -275,12 +295,14 @@ fn rejects_invalid_steps_and_parameters_without_changing_state() {
 fn runaway_steps_are_refused_and_change_nothing() {
     use wound_opening::solver::{Scheme, SolverError};
     let params = Params { lambda: 1.0, sigma: 1.0, r_inf: 10.0 };
-    let mut paper = Solver::with_scheme(&params, &Scheme::Paper { points: 101, max_step: 1e-9 }).unwrap();
+    let mut paper =
+        Solver::with_scheme(&params, &Scheme::Paper { points: 101, max_step: 1e-9 }).unwrap();
     assert!(matches!(paper.advance(1.0, 0.0), Err(SolverError::TooManySteps(..))));
     assert_eq!(paper.time(), 0.0);
     // lambda = 1 is far above the explicit limit dr / 2 = 0.045 of a 101-point grid: refused
     // before any step, not after values have grown to 1e171.
-    let mut explicit = Solver::with_scheme(&params, &Scheme::Explicit { points: 101, max_step: 1e-3 }).unwrap();
+    let mut explicit =
+        Solver::with_scheme(&params, &Scheme::Explicit { points: 101, max_step: 1e-3 }).unwrap();
     let before = explicit.state();
     let err = explicit.advance(0.1, 0.0).unwrap_err();
     assert!(matches!(err, SolverError::Unstable { .. }), "{err}");
@@ -290,14 +312,17 @@ fn runaway_steps_are_refused_and_change_nothing() {
     let still = Params { lambda: 0.0, ..params };
     let (_, dt_max) = wound_opening::solver::explicit_stability_limits(101, 10.0, 0.0);
     for (max_step, refused) in [(1.01 * dt_max, true), (0.99 * dt_max, false)] {
-        let mut s = Solver::with_scheme(&still, &Scheme::Explicit { points: 101, max_step }).unwrap();
+        let mut s =
+            Solver::with_scheme(&still, &Scheme::Explicit { points: 101, max_step }).unwrap();
         let got = s.advance(1.0, 0.0);
         assert_eq!(got.is_err(), refused, "max_step {max_step:e}: {got:?}");
         if let Err(e) = got {
             assert!(e.to_string().contains(&format!("dt < {dt_max:.4e}")), "{e}");
             assert_eq!(s.time(), 0.0);
         } else {
-            assert!(s.wound_radius().is_finite() && s.wound_radius() < exact::final_radius(1.0, 10.0));
+            assert!(
+                s.wound_radius().is_finite() && s.wound_radius() < exact::final_radius(1.0, 10.0)
+            );
         }
     }
 }
@@ -306,11 +331,23 @@ fn runaway_steps_are_refused_and_change_nothing() {
 /// the exact final state; beyond, it is refused by name instead of failing slowly.
 #[test]
 fn very_large_domains_work_up_to_the_limit_and_are_refused_beyond() {
-    let mut s = solver(1.0, 1e6, Some(Settings::for_tolerance(&Params { lambda: 1.0, sigma: 1.0, r_inf: 1e6 }, 1e-10).unwrap().mesh));
+    let mut s = solver(
+        1.0,
+        1e6,
+        Some(
+            Settings::for_tolerance(&Params { lambda: 1.0, sigma: 1.0, r_inf: 1e6 }, 1e-10)
+                .unwrap()
+                .mesh,
+        ),
+    );
     s.advance(1e15, 0.0).unwrap();
     assert!((s.wound_radius() - exact::final_radius(1.0, 1e6)).abs() < 1e-10 * amplitude(1e6));
-    let err = Solver::new(&Params { lambda: 1.0, sigma: 1.0, r_inf: 1e7 }, &Settings::default()).unwrap_err();
-    assert!(err.to_string().starts_with("R_inf = 10000000 is outside the accepted range [1.001, 1e6]"), "{err}");
+    let err = Solver::new(&Params { lambda: 1.0, sigma: 1.0, r_inf: 1e7 }, &Settings::default())
+        .unwrap_err();
+    assert!(
+        err.to_string().starts_with("R_inf = 10000000 is outside the accepted range [1.001, 1e6]"),
+        "{err}"
+    );
 }
 
 /// The process-wide basis cache returns exactly what a fresh build gives, on both

@@ -26,8 +26,16 @@ fn explicit_scheme_fails_exactly_where_its_theory_says() {
             let (_, dt_max) = explicit_stability_limits(points, R_INF, lambda);
             let below = Scheme::Explicit { points, max_step: 0.95 * dt_max };
             let above = Scheme::Explicit { points, max_step: 1.10 * dt_max };
-            assert_ne!(classify(lambda, &below, 0.95 * dt_max, LONG), Status::Unbounded, "N {points} lambda {lambda}");
-            assert_eq!(classify(lambda, &above, 1.10 * dt_max, LONG), Status::Unbounded, "N {points} lambda {lambda}");
+            assert_ne!(
+                classify(lambda, &below, 0.95 * dt_max, LONG),
+                Status::Unbounded,
+                "N {points} lambda {lambda}"
+            );
+            assert_eq!(
+                classify(lambda, &above, 1.10 * dt_max, LONG),
+                Status::Unbounded,
+                "N {points} lambda {lambda}"
+            );
         }
         // The lagged viscous term alone: unstable beyond lambda_max whatever the step.
         let dt = 1e-3 * explicit_stability_limits(points, R_INF, 0.0).1;
@@ -44,7 +52,11 @@ fn explicit_limits_follow_the_grid_spacing() {
     for points in [21, 51, 101, 201] {
         let dr = (R_INF - 1.0) / (points - 1) as f64;
         let (lambda_max, dt_max) = explicit_stability_limits(points, R_INF, 0.0);
-        assert!((lambda_max / (dr / 2.0) - 1.0).abs() < 0.01, "N {points}: {lambda_max} vs {}", dr / 2.0);
+        assert!(
+            (lambda_max / (dr / 2.0) - 1.0).abs() < 0.01,
+            "N {points}: {lambda_max} vs {}",
+            dr / 2.0
+        );
         assert!((dt_max / (dr * dr / 2.0) - 1.0).abs() < 0.02, "N {points}: {dt_max}");
     }
 }
@@ -57,11 +69,20 @@ fn solver_refuses_explicit_steps_beyond_the_limits_before_taking_them() {
     use wound_opening::solver::{Solver, SolverError};
     for points in [21, 101] {
         let (lambda_max, dt0) = explicit_stability_limits(points, R_INF, 0.0);
-        for (lambda, dt, refused) in [(0.0, 1.02 * dt0, true), (0.0, 0.98 * dt0, false), (1.02 * lambda_max, 1e-3 * dt0, true)] {
+        for (lambda, dt, refused) in [
+            (0.0, 1.02 * dt0, true),
+            (0.0, 0.98 * dt0, false),
+            (1.02 * lambda_max, 1e-3 * dt0, true),
+        ] {
             let params = Params { lambda, sigma: 1.0, r_inf: R_INF };
-            let mut s = Solver::with_scheme(&params, &Scheme::Explicit { points, max_step: dt }).unwrap();
+            let mut s =
+                Solver::with_scheme(&params, &Scheme::Explicit { points, max_step: dt }).unwrap();
             let got = s.advance(10.0 * dt, 0.0);
-            assert_eq!(matches!(got, Err(SolverError::Unstable { .. })), refused, "N {points} lambda {lambda} dt {dt}: {got:?}");
+            assert_eq!(
+                matches!(got, Err(SolverError::Unstable { .. })),
+                refused,
+                "N {points} lambda {lambda} dt {dt}: {got:?}"
+            );
             assert_eq!(s.time() == 0.0, refused);
         }
     }
@@ -76,7 +97,11 @@ fn shipped_scheme_is_bounded_and_monotone_over_the_whole_map() {
         let scheme = Scheme::Modal(Settings::for_tolerance(&params, 1e-10).unwrap());
         for k in -12..=8 {
             let dt = 10f64.powf(k as f64 / 2.0);
-            assert_eq!(classify(lambda, &scheme, dt, 200), Status::Bounded, "lambda {lambda} dt {dt}");
+            assert_eq!(
+                classify(lambda, &scheme, dt, 200),
+                Status::Bounded,
+                "lambda {lambda} dt {dt}"
+            );
         }
     }
 }

@@ -17,9 +17,12 @@ fn final_edges(sigma: f64, r_inf: f64) -> [f64; 3] {
 
 #[test]
 fn edges_at_the_cut_and_in_the_final_state_match_the_exact_solution() {
-    for (lambda, sigma, r_inf) in [(0.3, 0.7, 6.2), (2.0, -1.1, 31.0), (0.0, 0.5, 1.7), (7.0, 0.2, 250.0)] {
+    for (lambda, sigma, r_inf) in
+        [(0.3, 0.7, 6.2), (2.0, -1.1, 31.0), (0.0, 0.5, 1.7), (7.0, 0.2, 250.0)]
+    {
         let params = Params { lambda, sigma, r_inf };
-        let mut s = Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
+        let mut s =
+            Solver::new(&params, &Settings::for_tolerance(&params, 1e-10).unwrap()).unwrap();
         let e = s.edges(r_inf);
         let cut = [sigma / 6.0, sigma / 6.0, sigma * r_inf / 6.0];
         for (got, want) in [e.edge, e.edge_slope, e.outer].iter().zip(cut) {
@@ -29,7 +32,10 @@ fn edges_at_the_cut_and_in_the_final_state_match_the_exact_solution() {
         let e = s.edges(r_inf);
         let want = final_edges(sigma, r_inf);
         for (got, want) in [e.edge, e.edge_slope, e.outer].iter().zip(want) {
-            assert!((got - want).abs() < 1e-8 * sigma.abs(), "final {got} {want} ({lambda}, {sigma}, {r_inf})");
+            assert!(
+                (got - want).abs() < 1e-8 * sigma.abs(),
+                "final {got} {want} ({lambda}, {sigma}, {r_inf})"
+            );
         }
         assert_eq!(s.validity_violation(r_inf), None);
     }
@@ -53,7 +59,8 @@ fn a_closing_wound_and_a_thin_ring_leave_the_validity() {
 #[test]
 fn the_comparison_schemes_check_by_difference() {
     let params = Params { lambda: 1.0, sigma: -2.0, r_inf: 10.0 };
-    let mut s = Solver::with_scheme(&params, &Scheme::Paper { points: 201, max_step: 1e-2 }).unwrap();
+    let mut s =
+        Solver::with_scheme(&params, &Scheme::Paper { points: 201, max_step: 1e-2 }).unwrap();
     s.advance(200.0, 0.0).unwrap();
     let e = s.edges(10.0);
     assert!(e.edge < -1.0, "{e:?}");
@@ -72,7 +79,10 @@ fn the_c_api_warns_once_with_its_own_status() {
         assert_eq!(wo_solver_advance(s, 1.0, 0.0), WoStatus::WoOk, "{}", last());
         assert_eq!(wo_solver_advance(s, 1000.0, 0.0), WoStatus::WoOutsideValidity);
         let message = last();
-        assert!(message.contains("t = 1000") && message.contains("wound radius is -0.34"), "{message}");
+        assert!(
+            message.contains("t = 1000") && message.contains("wound radius is -0.34"),
+            "{message}"
+        );
         let (mut t, mut r) = (0.0, 0.0);
         assert_eq!(wo_solver_time(s, &mut t), WoStatus::WoOk);
         assert_eq!(wo_solver_wound_radius(s, &mut r), WoStatus::WoOk);

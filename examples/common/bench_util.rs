@@ -20,7 +20,11 @@ pub fn cpu_seconds() -> f64 {
 ///
 /// # Safety
 /// `c` is a live, initialized WoundOpening instance at time `t`.
-pub unsafe fn exported_step_seconds(c: wound_opening::fmi::fmi2::types::fmi2Component, mut t: f64, steps: usize) -> f64 {
+pub unsafe fn exported_step_seconds(
+    c: wound_opening::fmi::fmi2::types::fmi2Component,
+    mut t: f64,
+    steps: usize,
+) -> f64 {
     use wound_opening::fmi::fmi2::functions::{fmi2DoStep, fmi2GetReal};
     let (outputs, mut out) = ([4u32, 5u32], [0.0f64; 2]);
     let (cpu, _) = best_cpu(|| {
@@ -57,7 +61,10 @@ pub fn best_cpu<T>(mut f: impl FnMut() -> T) -> (f64, T) {
 /// Rows of a headerless numeric CSV.
 pub fn read_csv(path: &Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    text.lines().filter(|l| !l.trim().is_empty()).map(|l| l.split(',').map(|x| x.trim().parse().expect("number")).collect()).collect()
+    text.lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split(',').map(|x| x.trim().parse().expect("number")).collect())
+        .collect()
 }
 
 pub const SCENARIO_STEPS: usize = 1000;

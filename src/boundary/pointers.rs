@@ -29,7 +29,11 @@ impl BadArray {
 /// `count` elements of `T` fit in one object (`count * size_of::<T>() <= isize::MAX`).
 fn fits<T>(count: usize) -> Result<(), BadArray> {
     let size = size_of::<T>().max(1);
-    if count <= isize::MAX as usize / size { Ok(()) } else { Err(BadArray::TooLong { count, size }) }
+    if count <= isize::MAX as usize / size {
+        Ok(())
+    } else {
+        Err(BadArray::TooLong { count, size })
+    }
 }
 
 /// A C string as text (`None` for NULL); invalid UTF-8 is replaced, not refused.
@@ -69,7 +73,9 @@ pub unsafe fn slice_mut<'a, T>(p: *mut T, count: usize) -> Result<&'a mut [T], B
     match (p.is_null(), count) {
         (_, 0) => Ok(&mut []),
         (true, _) => Err(BadArray::Null { count }),
-        (false, _) => fits::<T>(count).map(|()| unsafe { std::slice::from_raw_parts_mut(p, count) }),
+        (false, _) => {
+            fits::<T>(count).map(|()| unsafe { std::slice::from_raw_parts_mut(p, count) })
+        }
     }
 }
 

@@ -71,7 +71,11 @@ pub struct Unknown {
 
 impl fmt::Display for Unknown {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} {:#x} is unknown (never created by this library, or already freed)", self.kind, self.handle)
+        write!(
+            f,
+            "{} {:#x} is unknown (never created by this library, or already freed)",
+            self.kind, self.handle
+        )
     }
 }
 

@@ -71,7 +71,9 @@ impl From<SolverError> for Failure {
     fn from(e: SolverError) -> Self {
         let status = match e {
             SolverError::Modal(_) => WoStatus::WoSolverFailed,
-            SolverError::StateLength(..) | SolverError::StateNotFinite => WoStatus::WoIncompatibleState,
+            SolverError::StateLength(..) | SolverError::StateNotFinite => {
+                WoStatus::WoIncompatibleState
+            }
             _ => WoStatus::WoInvalidArgument,
         };
         Self::new(status, e.to_string())
@@ -112,8 +114,12 @@ pub fn last_error_ptr() -> *const c_char {
 /// refusal its status, and the thread's last error is set to `"name: reason"` (or
 /// cleared on success).
 pub fn run(name: &str, body: impl FnOnce() -> Result<(), Failure>) -> WoStatus {
-    let outcome =
-        guard(body).unwrap_or_else(|panic| Err(Failure::new(WoStatus::WoInternalError, format!("internal error (caught panic: {panic})"))));
+    let outcome = guard(body).unwrap_or_else(|panic| {
+        Err(Failure::new(
+            WoStatus::WoInternalError,
+            format!("internal error (caught panic: {panic})"),
+        ))
+    });
     match outcome {
         Ok(()) => {
             set_last_error("");

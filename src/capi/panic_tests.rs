@@ -15,7 +15,12 @@ fn last_error() -> String {
 
 fn new_solver() -> *mut WoSolver {
     let mut s = std::ptr::null_mut();
-    assert_eq!(unsafe { wo_solver_new(1.0, 1.0, 10.0, 1e-8, &mut s) }, WoStatus::WoOk, "{}", last_error());
+    assert_eq!(
+        unsafe { wo_solver_new(1.0, 1.0, 10.0, 1e-8, &mut s) },
+        WoStatus::WoOk,
+        "{}",
+        last_error()
+    );
     s
 }
 
@@ -39,7 +44,9 @@ fn a_panic_inside_a_call_is_an_internal_error_and_the_solver_waits_for_a_restore
     let panics = caught_panics();
 
     // A panic while the solver is locked: what a bug in the solver would do.
-    let status = run("wo_test", || solver::with_solver_for_tests(s as usize as u64, || panic!("deliberate test panic")));
+    let status = run("wo_test", || {
+        solver::with_solver_for_tests(s as usize as u64, || panic!("deliberate test panic"))
+    });
     assert_eq!(status, WoStatus::WoInternalError);
     let msg = last_error();
     assert!(msg.starts_with("wo_test: internal error (caught panic: "), "{msg}");
@@ -49,7 +56,12 @@ fn a_panic_inside_a_call_is_an_internal_error_and_the_solver_waits_for_a_restore
     // Its data may be half-updated: every use is refused, saying what to do.
     let (status, msg) = radius(s).unwrap_err();
     assert_eq!(status, WoStatus::WoInternalError);
-    assert!(msg.contains("is unusable after an internal error in an earlier call: restore a saved state"), "{msg}");
+    assert!(
+        msg.contains(
+            "is unusable after an internal error in an earlier call: restore a saved state"
+        ),
+        "{msg}"
+    );
     let mut again = std::ptr::null_mut();
     assert_eq!(unsafe { wo_solver_save_state(s, &mut again) }, WoStatus::WoInternalError);
     assert_eq!(unsafe { wo_solver_advance(s, 2.0, 0.0) }, WoStatus::WoInternalError);
@@ -67,7 +79,9 @@ fn a_panic_inside_a_call_is_an_internal_error_and_the_solver_waits_for_a_restore
 #[test]
 fn a_solver_that_panicked_can_still_be_freed() {
     let s = new_solver();
-    let status = run("wo_test", || solver::with_solver_for_tests(s as usize as u64, || panic!("deliberate test panic")));
+    let status = run("wo_test", || {
+        solver::with_solver_for_tests(s as usize as u64, || panic!("deliberate test panic"))
+    });
     assert_eq!(status, WoStatus::WoInternalError);
     assert_eq!(unsafe { wo_solver_free(s) }, WoStatus::WoOk);
     assert_eq!(radius(s).unwrap_err().0, WoStatus::WoUnknownHandle);

@@ -41,10 +41,16 @@ pub fn profile_rates(
     check_times(times)?;
     check_radii(radii)?;
     if problem.edge_stress != 0.0 {
-        return Err(Failure::invalid(format!("edge_stress = {}: the sensitivities are those of a free edge (0)", problem.edge_stress)));
+        return Err(Failure::invalid(format!(
+            "edge_stress = {}: the sensitivities are those of a free edge (0)",
+            problem.edge_stress
+        )));
     }
     if let Some(i) = times.iter().position(|t| *t <= 0.0) {
-        return Err(Failure::invalid(format!("times[{i}] = {}: the sensitivities need times > 0", times[i])));
+        return Err(Failure::invalid(format!(
+            "times[{i}] = {}: the sensitivities need times > 0",
+            times[i]
+        )));
     }
     let mut solver = start(problem)?;
     let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
@@ -53,7 +59,8 @@ pub fn profile_rates(
     let mut e = zeros(times.len() * 2 * width, "edge")?;
     let left = walk(&mut solver, (0.0, r_inf), times, |i, s| {
         let x = tissue_points(s, radii, r_inf, (i, times[i]))?;
-        let (rates, at_edge) = velocity_rates(&problem.params, &settings, times[i], &x, width > RATES)?;
+        let (rates, at_edge) =
+            velocity_rates(&problem.params, &settings, times[i], &x, width > RATES)?;
         for (j, r) in rates.iter().enumerate() {
             put(&mut p[(i * n + j) * width..][..width], r);
         }
@@ -82,7 +89,13 @@ mod tests {
     fn velocities(sigma: f64, lambda: f64, r_inf: f64, tau: f64, radii: &[f64]) -> Vec<f64> {
         let pr = problem(sigma, lambda, r_inf);
         let mut v = vec![0.0; radii.len()];
-        profile_series(&pr, &[tau], radii, ProfileOut { displacement: None, velocity: Some(&mut v) }).unwrap();
+        profile_series(
+            &pr,
+            &[tau],
+            radii,
+            ProfileOut { displacement: None, velocity: Some(&mut v) },
+        )
+        .unwrap();
         let (mut r, mut ve) = ([0.0], [0.0]);
         series(&pr, &[tau], &mut r, Some(&mut ve)).unwrap();
         v.push(ve[0]);
@@ -97,28 +110,54 @@ mod tests {
     #[test]
     fn rates_match_central_differences_of_profiles() {
         let mut worst: f64 = 0.0;
-        for (sigma, lambda, r_inf) in [(0.7, 0.3, 10.0), (1.5, 2.0, 6.0), (0.4, 0.05, 25.0), (-0.3, 1.0, 8.0), (0.6, 0.0, 6.0)] {
+        for (sigma, lambda, r_inf) in [
+            (0.7, 0.3, 10.0),
+            (1.5, 2.0, 6.0),
+            (0.4, 0.05, 25.0),
+            (-0.3, 1.0, 8.0),
+            (0.6, 0.0, 6.0),
+        ] {
             let sigma: f64 = sigma;
             for tau in [1e-3, 0.05, 1.0, 30.0] {
-                let radii: Vec<f64> = [1.3, 2.0, 3.5].iter().map(|f| f * (1.0 + 0.5 * sigma.max(0.0))).collect();
+                let radii: Vec<f64> =
+                    [1.3, 2.0, 3.5].iter().map(|f| f * (1.0 + 0.5 * sigma.max(0.0))).collect();
                 let mut pts = vec![0.0; radii.len() * RATES];
                 let mut edge = [0.0; EDGE_RATES];
-                profile_rates(RATES, &problem(sigma, lambda, r_inf), &[tau], &radii, &mut pts, Some(&mut edge)).unwrap();
+                profile_rates(
+                    RATES,
+                    &problem(sigma, lambda, r_inf),
+                    &[tau],
+                    &radii,
+                    &mut pts,
+                    Some(&mut edge),
+                )
+                .unwrap();
                 pts.extend(&edge[..RATES]);
                 let at = |sigma, lambda, tau| velocities(sigma, lambda, r_inf, tau, &radii);
                 let base = at(sigma, lambda, tau);
                 let scale = base.iter().map(|v| v.abs()).fold(1e-300, f64::max);
                 let (ds, dl, dt) = (1e-4 * sigma.abs(), 1e-4 * lambda, 1e-4 * tau);
-                let diff = |a: Vec<f64>, b: Vec<f64>, h: f64| a.iter().zip(b).map(|(a, b)| (a - b) / (2.0 * h)).collect::<Vec<_>>();
+                let diff = |a: Vec<f64>, b: Vec<f64>, h: f64| {
+                    a.iter().zip(b).map(|(a, b)| (a - b) / (2.0 * h)).collect::<Vec<_>>()
+                };
                 let fd_s = diff(at(sigma + ds, lambda, tau), at(sigma - ds, lambda, tau), ds);
-                let fd_l =
-                    if lambda > 0.0 { diff(at(sigma, lambda + dl, tau), at(sigma, lambda - dl, tau), dl) } else { vec![0.0; base.len()] };
+                let fd_l = if lambda > 0.0 {
+                    diff(at(sigma, lambda + dl, tau), at(sigma, lambda - dl, tau), dl)
+                } else {
+                    vec![0.0; base.len()]
+                };
                 let fd_t = diff(at(sigma, lambda, tau + dt), at(sigma, lambda, tau - dt), dt);
                 for j in 0..base.len() {
                     let g = &pts[j * RATES..][..RATES];
-                    let what = format!("sigma {sigma} lambda {lambda} R_inf {r_inf} tau {tau} point {j}: {g:?}");
+                    let what = format!(
+                        "sigma {sigma} lambda {lambda} R_inf {r_inf} tau {tau} point {j}: {g:?}"
+                    );
                     assert!((g[0] - base[j]).abs() <= 1e-13 * scale, "{what} vs {}", base[j]);
-                    let errs = [(g[1] - fd_s[j]) * sigma.abs(), (g[2] - fd_l[j]) * lambda.max(1.0), (g[3] - fd_t[j]) * tau];
+                    let errs = [
+                        (g[1] - fd_s[j]) * sigma.abs(),
+                        (g[2] - fd_l[j]) * lambda.max(1.0),
+                        (g[3] - fd_t[j]) * tau,
+                    ];
                     for (k, err) in errs.iter().enumerate() {
                         worst = worst.max(err.abs() / scale);
                         assert!(err.abs() < 1e-7 * scale, "{what}: column {k} off by {err}");
@@ -138,10 +177,14 @@ mod tests {
             let (mut r, mut v) = ([0.0], [0.0]);
             series(&pr, &[tau], &mut r, Some(&mut v)).unwrap();
             let (mut pts, mut edge) = ([0.0; RATES], [0.0; EDGE_RATES]);
-            profile_rates(RATES, &pr, &[tau], &[r[0] * (1.0 + 1e-9)], &mut pts, Some(&mut edge)).unwrap();
+            profile_rates(RATES, &pr, &[tau], &[r[0] * (1.0 + 1e-9)], &mut pts, Some(&mut edge))
+                .unwrap();
             let scale = pts.iter().map(|x| x.abs()).fold(0.0, f64::max);
             for q in 0..RATES {
-                assert!((edge[RATES + q] - pts[q]).abs() < 1e-7 * scale, "{sigma} {lambda} {tau}: {edge:?} vs {pts:?}");
+                assert!(
+                    (edge[RATES + q] - pts[q]).abs() < 1e-7 * scale,
+                    "{sigma} {lambda} {tau}: {edge:?} vs {pts:?}"
+                );
             }
             assert_eq!(edge[0], edge[RATES], "the same velocity");
             assert_ne!(edge[1], edge[RATES + 1], "different derivatives");
@@ -156,20 +199,39 @@ mod tests {
     #[test]
     fn outer_and_current_radius_rates_match_central_differences() {
         let mut worst: f64 = 0.0;
-        for (sigma, lambda, r_inf) in
-            [(0.7, 0.3, 10.0), (1.5, 2.0, 6.0), (0.4, 0.05, 25.0), (-0.3, 1.0, 8.0), (0.6, 0.0, 2.8), (0.5, 3.0, 125.0)]
-        {
+        for (sigma, lambda, r_inf) in [
+            (0.7, 0.3, 10.0),
+            (1.5, 2.0, 6.0),
+            (0.4, 0.05, 25.0),
+            (-0.3, 1.0, 8.0),
+            (0.6, 0.0, 2.8),
+            (0.5, 3.0, 125.0),
+        ] {
             let sigma: f64 = sigma;
             let h = 1e-4 * r_inf;
             let shrink = f64::min(1.0, r_inf / 3.6);
-            let mesh = |r: f64| Settings::for_tolerance(&Params { lambda, sigma, r_inf: r }, 1e-11).unwrap().mesh;
+            let mesh = |r: f64| {
+                Settings::for_tolerance(&Params { lambda, sigma, r_inf: r }, 1e-11).unwrap().mesh
+            };
             assert_eq!(mesh(r_inf - h), mesh(r_inf + h), "a case across an element-count change");
             for tau in [1e-3, 0.05, 1.0, 30.0] {
-                let radii: Vec<f64> =
-                    [1.3, 2.0, 2.4].iter().map(|f| f64::max(shrink * f, 1.0 + 0.8 * (f - 1.0)) * (1.0 + 0.5 * sigma.max(0.0))).collect();
+                let radii: Vec<f64> = [1.3, 2.0, 2.4]
+                    .iter()
+                    .map(|f| {
+                        f64::max(shrink * f, 1.0 + 0.8 * (f - 1.0)) * (1.0 + 0.5 * sigma.max(0.0))
+                    })
+                    .collect();
                 let mut pts = vec![0.0; radii.len() * ALL_RATES];
                 let mut edge = [0.0; 2 * ALL_RATES];
-                profile_rates(ALL_RATES, &problem(sigma, lambda, r_inf), &[tau], &radii, &mut pts, Some(&mut edge)).unwrap();
+                profile_rates(
+                    ALL_RATES,
+                    &problem(sigma, lambda, r_inf),
+                    &[tau],
+                    &radii,
+                    &mut pts,
+                    Some(&mut edge),
+                )
+                .unwrap();
                 let base = velocities(sigma, lambda, r_inf, tau, &radii);
                 let scale = base.iter().map(|v| v.abs()).fold(1e-300, f64::max);
                 let up = velocities(sigma, lambda, r_inf + h, tau, &radii);
@@ -177,7 +239,9 @@ mod tests {
                 let mut rows: Vec<&[f64]> = pts.chunks(ALL_RATES).collect();
                 rows.push(&edge[..ALL_RATES]);
                 for (j, g) in rows.iter().enumerate() {
-                    let what = format!("sigma {sigma} lambda {lambda} R_inf {r_inf} tau {tau} point {j}: {g:?}");
+                    let what = format!(
+                        "sigma {sigma} lambda {lambda} R_inf {r_inf} tau {tau} point {j}: {g:?}"
+                    );
                     let fd = (up[j] - down[j]) / (2.0 * h);
                     let err = (g[4] - fd) * r_inf;
                     worst = worst.max(err.abs() / scale);
@@ -191,13 +255,26 @@ mod tests {
                         let b = velocities(sigma, lambda, r_inf, tau, &near)[j];
                         let err = (g[5] - (a - b) / (2.0 * dr)) * radii[j];
                         worst = worst.max(err.abs() / scale);
-                        assert!(err.abs() < 1e-6 * scale, "{what}: d/dr {} vs {}", g[5], (a - b) / (2.0 * dr));
+                        assert!(
+                            err.abs() < 1e-6 * scale,
+                            "{what}: d/dr {} vs {}",
+                            g[5],
+                            (a - b) / (2.0 * dr)
+                        );
                     } else {
                         assert_eq!(g[5], 0.0, "the edge's own velocity does not depend on r");
                     }
                 }
                 let mut four = vec![0.0; radii.len() * RATES];
-                profile_rates(RATES, &problem(sigma, lambda, r_inf), &[tau], &radii, &mut four, None).unwrap();
+                profile_rates(
+                    RATES,
+                    &problem(sigma, lambda, r_inf),
+                    &[tau],
+                    &radii,
+                    &mut four,
+                    None,
+                )
+                .unwrap();
                 for (a, b) in four.chunks(RATES).zip(pts.chunks(ALL_RATES)) {
                     assert_eq!(a, &b[..RATES], "the first four values are those of RATES");
                 }
@@ -211,6 +288,8 @@ mod tests {
         let mut out = [0.0; RATES];
         let pr = Problem { edge_stress: 0.1, ..problem(0.5, 1.0, 5.0) };
         assert!(profile_rates(RATES, &pr, &[1.0], &[2.0], &mut out, None).is_err());
-        assert!(profile_rates(RATES, &problem(0.5, 1.0, 5.0), &[0.0], &[2.0], &mut out, None).is_err());
+        assert!(
+            profile_rates(RATES, &problem(0.5, 1.0, 5.0), &[0.0], &[2.0], &mut out, None).is_err()
+        );
     }
 }

@@ -40,7 +40,10 @@ pub(crate) fn start(problem: &Problem) -> Result<Solver, Failure> {
 /// Times must be finite, >= 0 and ascending (equal neighbours allowed).
 pub fn check_times(times: &[f64]) -> Result<(), Failure> {
     if let Some(i) = times.iter().position(|t| !(t.is_finite() && *t >= 0.0)) {
-        return Err(Failure::invalid(format!("times[{i}] = {} is invalid: expected a finite time >= 0", times[i])));
+        return Err(Failure::invalid(format!(
+            "times[{i}] = {} is invalid: expected a finite time >= 0",
+            times[i]
+        )));
     }
     if let Some(i) = times.windows(2).position(|w| w[1] < w[0]) {
         return Err(Failure::invalid(format!(
@@ -102,7 +105,12 @@ fn undefined(i: usize, t: f64) -> Failure {
 }
 
 /// Wound radius into `radius` and, when given, edge velocity into `velocity`, at each time.
-pub fn series(problem: &Problem, times: &[f64], radius: &mut [f64], velocity: Option<&mut [f64]>) -> Result<(), Failure> {
+pub fn series(
+    problem: &Problem,
+    times: &[f64],
+    radius: &mut [f64],
+    velocity: Option<&mut [f64]>,
+) -> Result<(), Failure> {
     check_times(times)?;
     let mut solver = start(problem)?;
     let p = problem.edge_stress;
@@ -137,7 +145,12 @@ pub struct SeriesOut<'a> {
 /// (in R0 per unit), exact for the mesh the tolerance picks (its degree, element count and
 /// grading length held fixed: no decomposition beyond the one of `series`). Every output is
 /// written only on success (or with the warning of a run that leaves the validity).
-pub fn series_sensitivities(problem: &Problem, times: &[f64], radius: &mut [f64], out: SeriesOut<'_>) -> Result<(), Failure> {
+pub fn series_sensitivities(
+    problem: &Problem,
+    times: &[f64],
+    radius: &mut [f64],
+    out: SeriesOut<'_>,
+) -> Result<(), Failure> {
     let mut r = zeros(times.len(), "radius")?;
     let mut v = match out.velocity {
         Some(_) => Some(zeros(times.len(), "velocity")?),
@@ -151,7 +164,11 @@ pub fn series_sensitivities(problem: &Problem, times: &[f64], radius: &mut [f64]
     let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
     let d = radius_sensitivities(&problem.params, &settings, problem.edge_stress, times)?;
     radius.copy_from_slice(&r);
-    for (o, values) in [(out.velocity, v.as_deref()), (out.d_lambda, Some(&d.d_lambda[..])), (out.d_r_inf, Some(&d.d_r_inf[..]))] {
+    for (o, values) in [
+        (out.velocity, v.as_deref()),
+        (out.d_lambda, Some(&d.d_lambda[..])),
+        (out.d_r_inf, Some(&d.d_r_inf[..])),
+    ] {
         if let (Some(o), Some(values)) = (o, values) {
             o.copy_from_slice(values);
         }
@@ -257,7 +274,8 @@ impl Search {
 pub fn reference_radii(s: &Solver, radii: &[f64], r_inf: f64, ends: (f64, f64)) -> Vec<f64> {
     let mut searches: Vec<Search> = radii.iter().map(|&r| Search::new(r, r_inf, ends)).collect();
     for _ in 0..200 {
-        let open: Vec<usize> = (0..searches.len()).filter(|&j| searches[j].root.is_none()).collect();
+        let open: Vec<usize> =
+            (0..searches.len()).filter(|&j| searches[j].root.is_none()).collect();
         if open.is_empty() {
             break;
         }
@@ -284,14 +302,22 @@ pub fn reference_radii(s: &Solver, radii: &[f64], r_inf: f64, ends: (f64, f64)) 
 
 pub(crate) fn check_radii(radii: &[f64]) -> Result<(), Failure> {
     match radii.iter().position(|r| !r.is_finite()) {
-        Some(j) => Err(Failure::invalid(format!("radii[{j}] = {} is invalid: expected a finite radius", radii[j]))),
+        Some(j) => Err(Failure::invalid(format!(
+            "radii[{j}] = {} is invalid: expected a finite radius",
+            radii[j]
+        ))),
         None => Ok(()),
     }
 }
 
 /// The reference radii of the current radii `radii` at the solver's time (`times[i] = t`),
 /// refusing a radius inside the wound or beyond the outer edge then.
-pub(crate) fn tissue_points(s: &Solver, radii: &[f64], r_inf: f64, (i, t): (usize, f64)) -> Result<Vec<f64>, Failure> {
+pub(crate) fn tissue_points(
+    s: &Solver,
+    radii: &[f64],
+    r_inf: f64,
+    (i, t): (usize, f64),
+) -> Result<Vec<f64>, Failure> {
     let ends = s.displacement(&[1.0, r_inf]);
     let (lo, hi) = (1.0 + ends[0], r_inf + ends[1]);
     if let Some(j) = radii.iter().position(|r| !(lo..=hi).contains(r)) {
@@ -312,7 +338,12 @@ pub struct ProfileOut<'a> {
 
 /// Displacement and velocity, at each time, of the material points at the current radii
 /// `radii` (each strictly inside neither the wound nor beyond the outer edge at that time).
-pub fn profile_series(problem: &Problem, times: &[f64], radii: &[f64], out: ProfileOut<'_>) -> Result<(), Failure> {
+pub fn profile_series(
+    problem: &Problem,
+    times: &[f64],
+    radii: &[f64],
+    out: ProfileOut<'_>,
+) -> Result<(), Failure> {
     check_times(times)?;
     check_radii(radii)?;
     let mut solver = start(problem)?;

@@ -42,7 +42,13 @@ fn optional<'a>(p: *mut f64, count: usize, what: &str) -> Result<Option<&'a mut 
 /// is `WO_OUTSIDE_VALIDITY` (a warning, as `wo_solver_advance`): every output is written and
 /// the message names the first time outside; the other series functions likewise.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_series(problem: WoProblem, times: *const f64, count: usize, radius: *mut f64, velocity: *mut f64) -> WoStatus {
+pub unsafe extern "C" fn wo_series(
+    problem: WoProblem,
+    times: *const f64,
+    count: usize,
+    radius: *mut f64,
+    velocity: *mut f64,
+) -> WoStatus {
     run("wo_series", || {
         let t = input(times, count, "times")?;
         let r = output(radius, count, "radius")?;
@@ -94,12 +100,18 @@ pub unsafe extern "C" fn wo_profile_series(
     v: *mut f64,
 ) -> WoStatus {
     run("wo_profile_series", || {
-        let count = n_times
-            .checked_mul(n_radii)
-            .ok_or_else(|| Failure::new(WoStatus::WoInvalidArgument, format!("n_times * n_radii = {n_times} * {n_radii} overflows")))?;
+        let count = n_times.checked_mul(n_radii).ok_or_else(|| {
+            Failure::new(
+                WoStatus::WoInvalidArgument,
+                format!("n_times * n_radii = {n_times} * {n_radii} overflows"),
+            )
+        })?;
         let t = input(times, n_times, "times")?;
         let r = input(radii, n_radii, "radii")?;
-        let out = ProfileOut { displacement: optional(u, count, "u")?, velocity: optional(v, count, "v")? };
+        let out = ProfileOut {
+            displacement: optional(u, count, "u")?,
+            velocity: optional(v, count, "v")?,
+        };
         series::profile_series(&problem.problem(), &t, &r, out)
     })
 }
@@ -164,10 +176,13 @@ struct Pointers {
 fn rates_shim(name: &str, width: usize, problem: WoProblem, p: Pointers) -> WoStatus {
     let Pointers { times, n_times, radii, n_radii, rates, edge } = p;
     run(name, || {
-        let count = n_times
-            .checked_mul(n_radii)
-            .and_then(|c| c.checked_mul(width))
-            .ok_or_else(|| Failure::new(WoStatus::WoInvalidArgument, format!("n_times * n_radii = {n_times} * {n_radii} overflows")))?;
+        let count =
+            n_times.checked_mul(n_radii).and_then(|c| c.checked_mul(width)).ok_or_else(|| {
+                Failure::new(
+                    WoStatus::WoInvalidArgument,
+                    format!("n_times * n_radii = {n_times} * {n_radii} overflows"),
+                )
+            })?;
         let t = input(times, n_times, "times")?;
         let r = input(radii, n_radii, "radii")?;
         let out = output(rates, count, "rates")?;

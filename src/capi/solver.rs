@@ -65,7 +65,9 @@ pub fn live_handles() -> (usize, usize) {
 pub fn check_grid(spec: MeshSpec, r_inf: f64) -> Result<Vec<f64>, Failure> {
     let MeshSpec { degree, elements, edge_scale } = spec;
     if !(1..=MAX_DEGREE).contains(&degree) {
-        return Err(Failure::invalid(format!("degree = {degree} is invalid: expected 1 <= degree <= {MAX_DEGREE}")));
+        return Err(Failure::invalid(format!(
+            "degree = {degree} is invalid: expected 1 <= degree <= {MAX_DEGREE}"
+        )));
     }
     let unknowns = elements.checked_mul(degree).and_then(|n| n.checked_add(1));
     if elements == 0 || unknowns.is_none_or(|n| n > MAX_UNKNOWNS) {
@@ -120,7 +122,11 @@ pub fn free(solver: u64) -> Result<(), Failure> {
 
 /// Run `f` on a solver. A solver whose earlier call panicked is refused unless
 /// `recovering` (restoring a state into it).
-fn with_solver<R>(handle: u64, recovering: bool, f: impl FnOnce(&mut Live) -> Result<R, Failure>) -> Result<R, Failure> {
+fn with_solver<R>(
+    handle: u64,
+    recovering: bool,
+    f: impl FnOnce(&mut Live) -> Result<R, Failure>,
+) -> Result<R, Failure> {
     let entry = SOLVERS.get(handle)?;
     let mut live: MutexGuard<'_, Live> = entry.lock().unwrap_or_else(|poisoned| {
         entry.clear_poison();
@@ -144,7 +150,10 @@ fn with_solver<R>(handle: u64, recovering: bool, f: impl FnOnce(&mut Live) -> Re
 pub fn advance(solver: u64, t_end: f64, p: f64) -> Result<(), Failure> {
     with_solver(solver, false, |s| {
         if !(t_end.is_finite() && t_end >= s.time) {
-            return Err(Failure::invalid(format!("t_end = {t_end} is invalid: expected a finite time >= the solver's time {}", s.time)));
+            return Err(Failure::invalid(format!(
+                "t_end = {t_end} is invalid: expected a finite time >= the solver's time {}",
+                s.time
+            )));
         }
         check_edge_stress(p).map_err(|e| Failure::invalid(e.to_string()))?;
         let r_inf = s.params.r_inf;
@@ -157,7 +166,9 @@ pub fn advance(solver: u64, t_end: f64, p: f64) -> Result<(), Failure> {
         match s.solver.validity_violation(r_inf).filter(|_| was_valid) {
             Some(why) => Err(Failure::new(
                 WoStatus::WoOutsideValidity,
-                format!("advanced to t = {t_end}, where the run leaves the model's validity: {why}"),
+                format!(
+                    "advanced to t = {t_end}, where the run leaves the model's validity: {why}"
+                ),
             )),
             None => Ok(()),
         }
@@ -217,7 +228,10 @@ pub fn nodes(solver: u64, out: &mut [f64]) -> Result<(), Failure> {
 fn check_radii(radii: &[f64], r_inf: f64) -> Result<(), Failure> {
     match radii.iter().position(|r| !(1.0..=r_inf).contains(r)) {
         None => Ok(()),
-        Some(i) => Err(Failure::invalid(format!("radii[{i}] = {} is outside the tissue: expected 1 <= r <= R_inf = {r_inf}", radii[i]))),
+        Some(i) => Err(Failure::invalid(format!(
+            "radii[{i}] = {} is outside the tissue: expected 1 <= r <= R_inf = {r_inf}",
+            radii[i]
+        ))),
     }
 }
 
@@ -243,7 +257,13 @@ pub fn velocity(solver: u64, radii: &[f64], out: &mut [f64]) -> Result<(), Failu
 /// Copy the solver's state into a new saved state.
 pub fn save_state(solver: u64) -> Result<u64, Failure> {
     let saved = with_solver(solver, false, |s| {
-        Ok(Saved { params: s.params, settings: s.settings, time: s.time, edge_stress: s.edge_stress, state: s.solver.state() })
+        Ok(Saved {
+            params: s.params,
+            settings: s.settings,
+            time: s.time,
+            edge_stress: s.edge_stress,
+            state: s.solver.state(),
+        })
     })?;
     Ok(STATES.insert(saved))
 }
@@ -253,20 +273,27 @@ pub fn restore_state(solver: u64, state: u64) -> Result<(), Failure> {
     let saved = STATES.get(state)?;
     with_solver(solver, true, |s| {
         let (mine, theirs) = (s.params, saved.params);
-        for (name, a, b) in
-            [("lambda", mine.lambda, theirs.lambda), ("sigma", mine.sigma, theirs.sigma), ("R_inf", mine.r_inf, theirs.r_inf)]
-        {
+        for (name, a, b) in [
+            ("lambda", mine.lambda, theirs.lambda),
+            ("sigma", mine.sigma, theirs.sigma),
+            ("R_inf", mine.r_inf, theirs.r_inf),
+        ] {
             if a.to_bits() != b.to_bits() {
                 return Err(Failure::new(
                     WoStatus::WoIncompatibleState,
-                    format!("state {state:#x} was saved with {name} = {b} but this solver has {name} = {a}"),
+                    format!(
+                        "state {state:#x} was saved with {name} = {b} but this solver has {name} = {a}"
+                    ),
                 ));
             }
         }
         if saved.settings != s.settings {
             return Err(Failure::new(
                 WoStatus::WoIncompatibleState,
-                format!("state {state:#x} was saved on grid {:?} but this solver uses {:?}", saved.settings.mesh, s.settings.mesh),
+                format!(
+                    "state {state:#x} was saved on grid {:?} but this solver uses {:?}",
+                    saved.settings.mesh, s.settings.mesh
+                ),
             ));
         }
         s.solver.restore(&saved.state)?;

@@ -56,7 +56,10 @@ pub(super) fn input(p: *const f64, count: usize, what: &str) -> Result<Vec<f64>,
 
 /// `count` values that the address space could hold but the memory cannot.
 pub(super) fn too_large(what: &str, count: usize) -> Failure {
-    Failure::invalid(format!("{what}: count = {count} is invalid: {count} values ({:.3e} bytes) cannot be allocated", count as f64 * 8.0))
+    Failure::invalid(format!(
+        "{what}: count = {count} is invalid: {count} values ({:.3e} bytes) cannot be allocated",
+        count as f64 * 8.0
+    ))
 }
 
 /// `count` zeros, allocated fallibly (a working array as large as a caller's output).
@@ -78,7 +81,13 @@ pub(super) fn output<'a>(p: *mut f64, count: usize, what: &str) -> Result<&'a mu
 /// opening and the one under the edge stress p applied: max(|sigma|, |sigma - p|) S with
 /// S = 2 R_inf^2 / (3 (R_inf^2 - 1)) - 1/6. On success `*solver` is the new solver; on failure it is set to NULL.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_new(lambda: f64, sigma: f64, r_inf: f64, tolerance: f64, solver: *mut *mut WoSolver) -> WoStatus {
+pub unsafe extern "C" fn wo_solver_new(
+    lambda: f64,
+    sigma: f64,
+    r_inf: f64,
+    tolerance: f64,
+    solver: *mut *mut WoSolver,
+) -> WoStatus {
     run("wo_solver_new", || {
         let out = slot(solver, "solver")?;
         *out = std::ptr::null_mut();
@@ -114,7 +123,9 @@ pub unsafe extern "C" fn wo_solver_new_grid(
 /// `WO_UNKNOWN_HANDLE`. Saved states stay valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wo_solver_free(solver: *mut WoSolver) -> WoStatus {
-    run("wo_solver_free", || if solver.is_null() { Ok(()) } else { solver::free(handle(solver, "solver")?) })
+    run("wo_solver_free", || {
+        if solver.is_null() { Ok(()) } else { solver::free(handle(solver, "solver")?) }
+    })
 }
 
 /// Advance to the time `t_end` (>= the solver's time; equal is a no-op) with the edge
@@ -122,7 +133,11 @@ pub unsafe extern "C" fn wo_solver_free(solver: *mut WoSolver) -> WoStatus {
 /// `WO_OUTSIDE_VALIDITY` (a warning: the advance was done) when the state there has left
 /// the model's validity.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_advance(solver: *mut WoSolver, t_end: f64, edge_stress: f64) -> WoStatus {
+pub unsafe extern "C" fn wo_solver_advance(
+    solver: *mut WoSolver,
+    t_end: f64,
+    edge_stress: f64,
+) -> WoStatus {
     run("wo_solver_advance", || solver::advance(handle(solver, "solver")?, t_end, edge_stress))
 }
 
@@ -138,7 +153,10 @@ pub unsafe extern "C" fn wo_solver_time(solver: *const WoSolver, time: *mut f64)
 
 /// The wound radius R(t) = 1 + u(1, t), in R0.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_wound_radius(solver: *const WoSolver, radius: *mut f64) -> WoStatus {
+pub unsafe extern "C" fn wo_solver_wound_radius(
+    solver: *const WoSolver,
+    radius: *mut f64,
+) -> WoStatus {
     run("wo_solver_wound_radius", || {
         let out = slot(radius, "radius")?;
         *out = solver::wound_radius(handle(solver, "solver")?)?;
@@ -149,7 +167,10 @@ pub unsafe extern "C" fn wo_solver_wound_radius(solver: *const WoSolver, radius:
 /// The edge velocity dR/dt = u_t(1, t) with the edge stress of the last advance applied
 /// (0 before the first), in R0 / T.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_edge_velocity(solver: *const WoSolver, velocity: *mut f64) -> WoStatus {
+pub unsafe extern "C" fn wo_solver_edge_velocity(
+    solver: *const WoSolver,
+    velocity: *mut f64,
+) -> WoStatus {
     run("wo_solver_edge_velocity", || {
         let out = slot(velocity, "velocity")?;
         *out = solver::edge_velocity(handle(solver, "solver")?)?;
@@ -159,7 +180,10 @@ pub unsafe extern "C" fn wo_solver_edge_velocity(solver: *const WoSolver, veloci
 
 /// The number of grid nodes (unknowns).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_node_count(solver: *const WoSolver, count: *mut usize) -> WoStatus {
+pub unsafe extern "C" fn wo_solver_node_count(
+    solver: *const WoSolver,
+    count: *mut usize,
+) -> WoStatus {
     run("wo_solver_node_count", || {
         let out = slot(count, "count")?;
         *out = solver::node_count(handle(solver, "solver")?)?;
@@ -170,8 +194,14 @@ pub unsafe extern "C" fn wo_solver_node_count(solver: *const WoSolver, count: *m
 /// The grid's node radii, ascending from 1 to R_inf, into `radii[0 .. count)`; `count`
 /// must equal `wo_solver_node_count`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_nodes(solver: *const WoSolver, radii: *mut f64, count: usize) -> WoStatus {
-    run("wo_solver_nodes", || solver::nodes(handle(solver, "solver")?, output(radii, count, "radii")?))
+pub unsafe extern "C" fn wo_solver_nodes(
+    solver: *const WoSolver,
+    radii: *mut f64,
+    count: usize,
+) -> WoStatus {
+    run("wo_solver_nodes", || {
+        solver::nodes(handle(solver, "solver")?, output(radii, count, "radii")?)
+    })
 }
 
 /// Reads a profile of a solver at radii into an array (safe part).
@@ -197,20 +227,33 @@ fn profile(
 /// The displacement profile u(r, t) at `radii[i]` (each in [1, R_inf]) into `u[i]`, for
 /// `i < count`. `u` may be `radii` itself.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_displacement(solver: *const WoSolver, radii: *const f64, u: *mut f64, count: usize) -> WoStatus {
+pub unsafe extern "C" fn wo_solver_displacement(
+    solver: *const WoSolver,
+    radii: *const f64,
+    u: *mut f64,
+    count: usize,
+) -> WoStatus {
     profile("wo_solver_displacement", solver, radii, u, count, "u", solver::displacement)
 }
 
 /// The velocity profile u_t(r, t) at `radii[i]` (each in [1, R_inf]) into `v[i]`, with the
 /// edge stress of the last advance applied. `v` may be `radii` itself.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_velocity(solver: *const WoSolver, radii: *const f64, v: *mut f64, count: usize) -> WoStatus {
+pub unsafe extern "C" fn wo_solver_velocity(
+    solver: *const WoSolver,
+    radii: *const f64,
+    v: *mut f64,
+    count: usize,
+) -> WoStatus {
     profile("wo_solver_velocity", solver, radii, v, count, "v", solver::velocity)
 }
 
 /// Copy the solver's state (time, edge stress, solution) into a new saved state.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_save_state(solver: *const WoSolver, state: *mut *mut WoState) -> WoStatus {
+pub unsafe extern "C" fn wo_solver_save_state(
+    solver: *const WoSolver,
+    state: *mut *mut WoState,
+) -> WoStatus {
     run("wo_solver_save_state", || {
         let out = slot(state, "state")?;
         *out = std::ptr::null_mut();
@@ -222,15 +265,22 @@ pub unsafe extern "C" fn wo_solver_save_state(solver: *const WoSolver, state: *m
 /// Restore a saved state into a solver of the same problem (same lambda, sigma, R_inf and
 /// grid; otherwise `WO_INCOMPATIBLE_STATE`). The state stays valid.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wo_solver_restore_state(solver: *mut WoSolver, state: *const WoState) -> WoStatus {
-    run("wo_solver_restore_state", || solver::restore_state(handle(solver, "solver")?, handle(state, "state")?))
+pub unsafe extern "C" fn wo_solver_restore_state(
+    solver: *mut WoSolver,
+    state: *const WoState,
+) -> WoStatus {
+    run("wo_solver_restore_state", || {
+        solver::restore_state(handle(solver, "solver")?, handle(state, "state")?)
+    })
 }
 
 /// Free a saved state. NULL is a no-op; an unknown or already freed state is
 /// `WO_UNKNOWN_HANDLE`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wo_state_free(state: *mut WoState) -> WoStatus {
-    run("wo_state_free", || if state.is_null() { Ok(()) } else { solver::free_state(handle(state, "state")?) })
+    run("wo_state_free", || {
+        if state.is_null() { Ok(()) } else { solver::free_state(handle(state, "state")?) }
+    })
 }
 
 /// The calling thread's message of its last `wo_*` call: what was wrong, with the expected
@@ -255,5 +305,8 @@ pub extern "C" fn wo_status_name(status: c_int) -> *const c_char {
         c"WO_UNDEFINED",
         c"WO_OUTSIDE_VALIDITY",
     ];
-    usize::try_from(status).ok().and_then(|i| names.get(i)).map_or(c"unknown status".as_ptr(), |n| n.as_ptr())
+    usize::try_from(status)
+        .ok()
+        .and_then(|i| names.get(i))
+        .map_or(c"unknown status".as_ptr(), |n| n.as_ptr())
 }

@@ -41,7 +41,8 @@ static INSTANCES: Table<Entry> = Table::new("instance");
 
 /// Why a concurrent call is refused (FMI 2.0, section 2.1.5: an instance is not
 /// thread-safe; the master calls it from one thread at a time).
-pub const BUSY: &str = "another call on this instance is in progress (FMI forbids concurrent calls on one instance)";
+pub const BUSY: &str =
+    "another call on this instance is in progress (FMI forbids concurrent calls on one instance)";
 
 pub fn status_code(s: Status) -> fmi2Status {
     s as fmi2Status
@@ -55,7 +56,8 @@ fn handle_of(c: fmi2Component) -> u64 {
 /// (`fmi2Instantiate` does this; tests use it to give an instance a Rust logger.)
 pub fn register(instance: Instance) -> fmi2Component {
     let (logger, dialect) = (instance.logger(), instance.dialect());
-    INSTANCES.insert(Entry { logger, dialect, instance: Mutex::new(instance) }) as usize as fmi2Component
+    INSTANCES.insert(Entry { logger, dialect, instance: Mutex::new(instance) }) as usize
+        as fmi2Component
 }
 
 /// `fmi2FreeInstance`: forget the handle. An unknown handle (a second free, or one never
@@ -82,7 +84,11 @@ pub fn with_instance(
         let mut inst = match entry.instance.try_lock() {
             Ok(inst) => inst,
             Err(TryLockError::WouldBlock) => {
-                entry.logger.log(Status::Error, "logStatusError", &format!("{}: {BUSY}", (entry.dialect.name)(call)));
+                entry.logger.log(
+                    Status::Error,
+                    "logStatusError",
+                    &format!("{}: {BUSY}", (entry.dialect.name)(call)),
+                );
                 return Status::Error;
             }
             // A panic escaped an earlier call while it held the lock (only a panicking
@@ -102,7 +108,10 @@ pub fn with_instance(
             Ok(Ok((s, warning))) => s.max(warning),
             Ok(Err(s)) => s,
             Err(panic) => {
-                inst.fail(&format!("{}: internal error (caught panic: {panic})", (entry.dialect.name)(call)));
+                inst.fail(&format!(
+                    "{}: internal error (caught panic: {panic})",
+                    (entry.dialect.name)(call)
+                ));
                 Status::Error
             }
         }
@@ -134,14 +143,32 @@ impl Logger for CallbackLogger {
         if let Some(f) = self.logger {
             let (cat, msg) = (c_text(category), c_text(message));
             // SAFETY: the importer promised a valid logger; the message goes through "%s".
-            unsafe { f(self.env, self.name.as_ptr(), status_code(status), cat.as_ptr(), c"%s".as_ptr(), msg.as_ptr()) };
+            unsafe {
+                f(
+                    self.env,
+                    self.name.as_ptr(),
+                    status_code(status),
+                    cat.as_ptr(),
+                    c"%s".as_ptr(),
+                    msg.as_ptr(),
+                )
+            };
         }
     }
 }
 
 impl CallbackLogger {
-    pub fn log_once(logger: fmi2CallbackLogger, env: fmi2ComponentEnvironment, name: &str, message: &str) {
-        CallbackLogger { logger, env, name: c_text(name) }.log(Status::Error, "logStatusError", message);
+    pub fn log_once(
+        logger: fmi2CallbackLogger,
+        env: fmi2ComponentEnvironment,
+        name: &str,
+        message: &str,
+    ) {
+        CallbackLogger { logger, env, name: c_text(name) }.log(
+            Status::Error,
+            "logStatusError",
+            message,
+        );
     }
 }
 

@@ -34,6 +34,7 @@ pub fn model_for_guid(guid: Option<&str>, what: &str) -> Result<fn() -> Box<dyn 
     if let Some((_, fresh)) = MODELS.iter().find(|(d, _)| Some(d.guid) == guid) {
         return Ok(*fresh);
     }
-    let known: Vec<String> = MODELS.iter().map(|(d, _)| format!("{} ({})", d.guid, d.model_identifier)).collect();
+    let known: Vec<String> =
+        MODELS.iter().map(|(d, _)| format!("{} ({})", d.guid, d.model_identifier)).collect();
     Err(format!("Expected {what} {} but was {}", known.join(" or "), guid.unwrap_or("NULL")))
 }

@@ -56,7 +56,12 @@ pub unsafe fn set_fmu_state(c: *mut c_void, state: *mut c_void, n: Names) -> Sta
 
 /// Frees `*state` and sets it to NULL; freeing a NULL state is a no-op, as for free().
 /// `null_slot_ok`: FMI 3.0 also accepts a NULL pointer to the state.
-pub unsafe fn free_fmu_state(c: *mut c_void, state: *mut *mut c_void, null_slot_ok: bool, n: Names) -> StatusCode {
+pub unsafe fn free_fmu_state(
+    c: *mut c_void,
+    state: *mut *mut c_void,
+    null_slot_ok: bool,
+    n: Names,
+) -> StatusCode {
     with_instance(
         c,
         Call::FreeFmuState,
@@ -74,7 +79,12 @@ pub unsafe fn free_fmu_state(c: *mut c_void, state: *mut *mut c_void, null_slot_
     )
 }
 
-pub unsafe fn serialized_fmu_state_size(c: *mut c_void, state: *mut c_void, size: *mut usize, n: Names) -> StatusCode {
+pub unsafe fn serialized_fmu_state_size(
+    c: *mut c_void,
+    state: *mut c_void,
+    size: *mut usize,
+    n: Names,
+) -> StatusCode {
     with_instance(
         c,
         Call::SerializeFmuState,
@@ -87,7 +97,13 @@ pub unsafe fn serialized_fmu_state_size(c: *mut c_void, state: *mut c_void, size
     )
 }
 
-pub unsafe fn serialize_fmu_state(c: *mut c_void, state: *mut c_void, bytes_out: *mut u8, size: usize, n: Names) -> StatusCode {
+pub unsafe fn serialize_fmu_state(
+    c: *mut c_void,
+    state: *mut c_void,
+    bytes_out: *mut u8,
+    size: usize,
+    n: Names,
+) -> StatusCode {
     with_instance(
         c,
         Call::SerializeFmuState,
@@ -95,15 +111,25 @@ pub unsafe fn serialize_fmu_state(c: *mut c_void, state: *mut c_void, bytes_out:
         |i| {
             let bytes = i.serialize_fmu_state(handle(state).ok_or_else(|| null(n.state))?)?;
             if size < bytes.len() {
-                return Err(format!("buffer of {size} bytes is too small: the state needs {}", bytes.len()));
+                return Err(format!(
+                    "buffer of {size} bytes is too small: the state needs {}",
+                    bytes.len()
+                ));
             }
-            unsafe { slice_mut(bytes_out, bytes.len(), "serializedState") }?.copy_from_slice(&bytes);
+            unsafe { slice_mut(bytes_out, bytes.len(), "serializedState") }?
+                .copy_from_slice(&bytes);
             OK
         },
     )
 }
 
-pub unsafe fn deserialize_fmu_state(c: *mut c_void, bytes: *const u8, size: usize, out: *mut *mut c_void, n: Names) -> StatusCode {
+pub unsafe fn deserialize_fmu_state(
+    c: *mut c_void,
+    bytes: *const u8,
+    size: usize,
+    out: *mut *mut c_void,
+    n: Names,
+) -> StatusCode {
     with_instance(
         c,
         Call::DeSerializeFmuState,
@@ -118,15 +144,30 @@ pub unsafe fn deserialize_fmu_state(c: *mut c_void, bytes: *const u8, size: usiz
 }
 
 /// A transition without arguments (`fmi2EnterContinuousTimeMode`, ...).
-pub fn transition(c: *mut c_void, call: Call, function: &'static str, method: fn(&mut Instance) -> Result<(), String>) -> StatusCode {
+pub fn transition(
+    c: *mut c_void,
+    call: Call,
+    function: &'static str,
+    method: fn(&mut Instance) -> Result<(), String>,
+) -> StatusCode {
     with_instance(c, call, || function.into(), |i| method(i).map(|_| Status::Ok))
 }
 
 pub fn set_time(c: *mut c_void, time: f64, function: &'static str) -> StatusCode {
-    with_instance(c, Call::SetTime, || format!("{function}(time={time})"), |i| i.set_time(time).map(|_| Status::Ok))
+    with_instance(
+        c,
+        Call::SetTime,
+        || format!("{function}(time={time})"),
+        |i| i.set_time(time).map(|_| Status::Ok),
+    )
 }
 
-pub unsafe fn set_continuous_states(c: *mut c_void, x: *const f64, nx: usize, function: &'static str) -> StatusCode {
+pub unsafe fn set_continuous_states(
+    c: *mut c_void,
+    x: *const f64,
+    nx: usize,
+    function: &'static str,
+) -> StatusCode {
     with_instance(
         c,
         Call::SetContinuousStates,
@@ -157,5 +198,10 @@ pub unsafe fn get_vector(
 }
 
 pub fn get_event_indicators(c: *mut c_void, ni: usize, function: &'static str) -> StatusCode {
-    with_instance(c, Call::GetEventIndicators, || format!("{function}(n={ni})"), |i| i.get_event_indicators(ni).map(|_| Status::Ok))
+    with_instance(
+        c,
+        Call::GetEventIndicators,
+        || format!("{function}(n={ni})"),
+        |i| i.get_event_indicators(ni).map(|_| Status::Ok),
+    )
 }

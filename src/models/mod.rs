@@ -20,5 +20,7 @@ use crate::fmi::common::model::{Description, FmuModel};
 pub type Fresh = fn() -> Box<dyn FmuModel>;
 
 /// The models of this library: description and a constructor of a fresh model.
-pub static MODELS: [(&Description, Fresh); 2] =
-    [(&wound::variables::DESCRIPTION, wound::WoundModel::fresh), (&purse_string::variables::DESCRIPTION, purse_string::PurseModel::fresh)];
+pub static MODELS: [(&Description, Fresh); 2] = [
+    (&wound::variables::DESCRIPTION, wound::WoundModel::fresh),
+    (&purse_string::variables::DESCRIPTION, purse_string::PurseModel::fresh),
+];

@@ -34,7 +34,10 @@ pub struct Case {
 }
 
 /// The cases of model `d` (none for a model other than WoundOpening).
-pub fn simulate(d: &'static Description, fresh: fn() -> Box<dyn FmuModel>) -> Result<Vec<Case>, String> {
+pub fn simulate(
+    d: &'static Description,
+    fresh: fn() -> Box<dyn FmuModel>,
+) -> Result<Vec<Case>, String> {
     if d.model_identifier != MODEL {
         return Ok(Vec::new());
     }
@@ -85,9 +88,18 @@ pub fn section_html(cases: &[Case]) -> Result<String, BoxError> {
     {
         let root = SVGBackend::with_string(&mut svg, (720, 420)).into_drawing_area();
         root.fill(&WHITE)?;
-        let column = cases[0].results.names.iter().position(|n| *n == "wound_radius").ok_or("no wound_radius output")? + 1;
+        let column = cases[0]
+            .results
+            .names
+            .iter()
+            .position(|n| *n == "wound_radius")
+            .ok_or("no wound_radius output")?
+            + 1;
         let mut chart = ChartBuilder::on(&root)
-            .caption("wound_radius, the paper's three cases (reference results)", ("sans-serif", 20))
+            .caption(
+                "wound_radius, the paper's three cases (reference results)",
+                ("sans-serif", 20),
+            )
             .margin(14)
             .x_label_area_size(56)
             .y_label_area_size(80)
@@ -107,7 +119,9 @@ pub fn section_html(cases: &[Case]) -> Result<String, BoxError> {
             chart
                 .draw_series(LineSeries::new(points, colour.stroke_width(3)))?
                 .label(format!("lambda = {}", c.lambda))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3)));
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3))
+                });
         }
         chart
             .configure_series_labels()
@@ -118,7 +132,8 @@ pub fn section_html(cases: &[Case]) -> Result<String, BoxError> {
             .draw()?;
         root.present()?;
     }
-    let files: Vec<String> = cases.iter().map(|c| format!("<code>{}_ref.csv</code>", c.stem)).collect();
+    let files: Vec<String> =
+        cases.iter().map(|c| format!("<code>{}_ref.csv</code>", c.stem)).collect();
     Ok(format!(
         "<h2>The paper's three cases</h2>\n<p>lambda = 0.1, 1 and 10 with sigma = 1, R_inf = 10, edge_stress = 0, from 0 to {stop} T at an output interval of {step} T: {files} in <code>{folder}/</code>, each with the fmusim options that made it (<code>.opt</code>). They agree with the exact solution (Laplace transform, python/wound_exact.py) within the default tolerance, 1e-10 of the opening R_final - R1 (measured: at most 7.8e-12, at lambda = 0.1).</p>\n{svg}\n",
         stop = EXPERIMENT.stop,

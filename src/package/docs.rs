@@ -11,7 +11,8 @@ type BoxError = Box<dyn std::error::Error>;
 /// One output over time, on a logarithmic time axis (the opening spans decades of time)
 /// from the first positive time: 720 x 400 px with 16 px text at 100 % zoom.
 fn plot_svg(results: &Results, column: usize, unit: &str) -> Result<String, BoxError> {
-    let points: Vec<(f64, f64)> = results.rows.iter().filter(|r| r[0] > 0.0).map(|r| (r[0], r[column + 1])).collect();
+    let points: Vec<(f64, f64)> =
+        results.rows.iter().filter(|r| r[0] > 0.0).map(|r| (r[0], r[column + 1])).collect();
     let (t0, t1) = (points[0].0, points[points.len() - 1].0);
     let lo = points.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let hi = points.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
@@ -43,7 +44,12 @@ fn plot_svg(results: &Results, column: usize, unit: &str) -> Result<String, BoxE
 
 /// How to run this FMU with fmpy, for its outputs.
 fn usage(d: &Description, file: &str) -> String {
-    let outputs: Vec<String> = d.variables.iter().filter(|v| v.causality.as_str() == "output").map(|v| format!("'{}'", v.name)).collect();
+    let outputs: Vec<String> = d
+        .variables
+        .iter()
+        .filter(|v| v.causality.as_str() == "output")
+        .map(|v| format!("'{}'", v.name))
+        .collect();
     let e = d.default_experiment;
     format!(
         "<h2>Usage with fmpy</h2>\n<pre>from fmpy import simulate_fmu\n\nresult = simulate_fmu('{file}', stop_time={stop}, output_interval={step},\n                      output=[{outputs}])\nprint(result['time'][-1], result[{first}][-1])</pre>\n",
@@ -87,7 +93,13 @@ const TABLE_HEAD: &str = "<tr><th>name</th><th>value reference</th><th>causality
 
 /// The page of one archive; `interfaces` says which FMI version and interface types it has.
 /// `more` is HTML appended after the reference results (the paper's cases, [`super::cases`]).
-pub fn index_html(d: &Description, interfaces: &str, file: &str, results: &Results, more: &str) -> Result<String, BoxError> {
+pub fn index_html(
+    d: &Description,
+    interfaces: &str,
+    file: &str,
+    results: &Results,
+    more: &str,
+) -> Result<String, BoxError> {
     let mut plots = String::new();
     for (i, name) in results.names.iter().enumerate() {
         let unit = d.variables.iter().find(|v| v.name == *name).map_or("", |v| v.unit);

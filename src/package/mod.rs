@@ -58,21 +58,45 @@ pub fn build_fmus() -> Result<Vec<PathBuf>, BoxError> {
         let paper = cases::simulate(description, *fresh)?;
         let (case_files, case_related) = cases::entries(&paper);
         let case_page = cases::section_html(&paper)?;
-        let fmi3 = ("-fmi3", "FMI 3.0: co-simulation and Model Exchange, from one library", Fmi::Three, fmi3::xml::fmi3(description));
+        let fmi3 = (
+            "-fmi3",
+            "FMI 3.0: co-simulation and Model Exchange, from one library",
+            Fmi::Three,
+            fmi3::xml::fmi3(description),
+        );
         let versions = if description.states.is_some() {
             vec![
-                ("", "FMI 2.0: co-simulation", Fmi::Two, fmi2::xml::fmi2_with(description, Interfaces::CoSimulation)),
-                ("-me", "FMI 2.0: Model Exchange", Fmi::Two, fmi2::xml::fmi2_with(description, Interfaces::ModelExchange)),
+                (
+                    "",
+                    "FMI 2.0: co-simulation",
+                    Fmi::Two,
+                    fmi2::xml::fmi2_with(description, Interfaces::CoSimulation),
+                ),
+                (
+                    "-me",
+                    "FMI 2.0: Model Exchange",
+                    Fmi::Two,
+                    fmi2::xml::fmi2_with(description, Interfaces::ModelExchange),
+                ),
                 fmi3,
             ]
         } else {
-            vec![("", "FMI 2.0: co-simulation and Model Exchange, from one library", Fmi::Two, fmi2::xml::fmi2(description)), fmi3]
+            vec![
+                (
+                    "",
+                    "FMI 2.0: co-simulation and Model Exchange, from one library",
+                    Fmi::Two,
+                    fmi2::xml::fmi2(description),
+                ),
+                fmi3,
+            ]
         };
         for (suffix, interfaces, version, model_description) in versions {
             let file = format!("{id}{suffix}.fmu");
             let docs = docs::index_html(description, interfaces, &file, &results, &case_page)?;
             let path = out_dir.join(&file);
-            let mut entries: Vec<(String, Vec<u8>)> = vec![("modelDescription.xml".into(), model_description.into_bytes())];
+            let mut entries: Vec<(String, Vec<u8>)> =
+                vec![("modelDescription.xml".into(), model_description.into_bytes())];
             entries.extend(binary_entries(&binaries, version, id));
             entries.extend([
                 ("documentation/index.html".into(), docs.into_bytes()),
@@ -99,7 +123,11 @@ enum Fmi {
 
 /// The archive entries `binaries/<folder>/<id><suffix>` of every platform binary, in the
 /// folders of FMI version `version`.
-fn binary_entries(binaries: &[platforms::Binary], version: Fmi, id: &str) -> Vec<(String, Vec<u8>)> {
+fn binary_entries(
+    binaries: &[platforms::Binary],
+    version: Fmi,
+    id: &str,
+) -> Vec<(String, Vec<u8>)> {
     binaries
         .iter()
         .filter_map(|b| {
@@ -117,7 +145,8 @@ fn binary_entries(binaries: &[platforms::Binary], version: Fmi, id: &str) -> Vec
 /// never a partial file. The partial file is this process's own: two writers at once (the
 /// test command's cross tests and its wheel build each run `fmu`) never rename each other's.
 fn write_zip(path: &Path, entries: &[(String, Vec<u8>)]) -> Result<(), BoxError> {
-    let name = path.file_name().and_then(|n| n.to_str()).ok_or("archive path without a file name")?;
+    let name =
+        path.file_name().and_then(|n| n.to_str()).ok_or("archive path without a file name")?;
     let partial = path.with_file_name(format!("{name}.partial-{}", std::process::id()));
     write_zip_to(&partial, entries)?;
     std::fs::rename(&partial, path)?;
@@ -130,10 +159,15 @@ fn write_zip_to(path: &Path, entries: &[(String, Vec<u8>)]) -> Result<(), BoxErr
     // The shared library is stored, not deflated: importers such as fmpy extract the
     // archive on every load, and inflating 1.5 MB costs them more than the whole
     // co-simulation run (see docs/benchmarks.md, "Loading the FMU").
-    let deflated = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
-    let stored = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    let deflated = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    let stored =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
     for (name, bytes) in entries {
-        zip.start_file(name.as_str(), if name.starts_with("binaries/") { stored } else { deflated })?;
+        zip.start_file(
+            name.as_str(),
+            if name.starts_with("binaries/") { stored } else { deflated },
+        )?;
         zip.write_all(bytes)?;
     }
     zip.finish()?;

@@ -29,7 +29,12 @@ type BoxError = Box<dyn std::error::Error>;
 /// The platforms built besides the host when their targets are installed: the Windows and
 /// aarch64 Linux binaries (run under Wine and qemu by scripts/cross_tests.sh) and the two
 /// macOS ones (their Mach-O headers checked by tests/python/test_desk_binaries.py).
-pub const CROSS_TARGETS: [&str; 4] = ["x86_64-pc-windows-gnu", "aarch64-unknown-linux-gnu", "x86_64-apple-darwin", "aarch64-apple-darwin"];
+pub const CROSS_TARGETS: [&str; 4] = [
+    "x86_64-pc-windows-gnu",
+    "aarch64-unknown-linux-gnu",
+    "x86_64-apple-darwin",
+    "aarch64-apple-darwin",
+];
 
 /// One platform binary: its FMI 2.0 and FMI 3.0 folders (None: not in that version's
 /// archives), the suffix of the library in the archive, and the library's bytes.
@@ -58,7 +63,9 @@ pub fn folders(triple: &str) -> Option<(&'static str, &'static str, &'static str
     Some(match triple {
         "x86_64-unknown-linux-gnu" => ("linux64", "x86_64-linux", "lib", ".so"),
         "aarch64-unknown-linux-gnu" => ("aarch64-linux", "aarch64-linux", "lib", ".so"),
-        "x86_64-pc-windows-gnu" | "x86_64-pc-windows-msvc" => ("win64", "x86_64-windows", "", ".dll"),
+        "x86_64-pc-windows-gnu" | "x86_64-pc-windows-msvc" => {
+            ("win64", "x86_64-windows", "", ".dll")
+        }
         "x86_64-apple-darwin" => ("darwin64", "x86_64-darwin", "lib", ".dylib"),
         "aarch64-apple-darwin" => ("darwin64", "aarch64-darwin", "lib", ".dylib"),
         _ => return None,
@@ -74,7 +81,11 @@ fn host_triple_of(os: &str, arch: &str) -> Result<&'static str, BoxError> {
     match (os, arch) {
         ("linux", "x86_64") => Ok("x86_64-unknown-linux-gnu"),
         ("linux", "aarch64") => Ok("aarch64-unknown-linux-gnu"),
-        ("windows", "x86_64") => Ok(if cfg!(target_env = "msvc") { "x86_64-pc-windows-msvc" } else { "x86_64-pc-windows-gnu" }),
+        ("windows", "x86_64") => Ok(if cfg!(target_env = "msvc") {
+            "x86_64-pc-windows-msvc"
+        } else {
+            "x86_64-pc-windows-gnu"
+        }),
         ("macos", "x86_64") => Ok("x86_64-apple-darwin"),
         ("macos", "aarch64") => Ok("aarch64-apple-darwin"),
         (os, arch) => Err(format!("no FMI platform folder for {os}/{arch}").into()),
@@ -97,9 +108,14 @@ pub fn binaries(profile: &Path) -> Result<Vec<Binary>, BoxError> {
     let mut triples = Vec::new();
     for triple in CROSS_TARGETS.into_iter().filter(|t| *t != host) {
         if !target_installed(triple) {
-            eprintln!("note: Rust target {triple} not installed: no {triple} binary (bash scripts/cross.sh installs it)");
+            eprintln!(
+                "note: Rust target {triple} not installed: no {triple} binary (bash scripts/cross.sh installs it)"
+            );
         } else if minimum_macos(triple).is_some() && !stubs.is_file() {
-            eprintln!("note: no {}: no {triple} binary (bash scripts/cross.sh writes it)", stubs.display());
+            eprintln!(
+                "note: no {}: no {triple} binary (bash scripts/cross.sh writes it)",
+                stubs.display()
+            );
         } else {
             triples.push(triple);
         }
@@ -110,31 +126,43 @@ pub fn binaries(profile: &Path) -> Result<Vec<Binary>, BoxError> {
     for triple in triples {
         out.push(read_binary(triple, &target_dir.join(triple).join("release"))?);
     }
-    let (darwin, mut out): (Vec<Binary>, Vec<Binary>) = out.into_iter().partition(|b| b.fmi2 == Some("darwin64"));
+    let (darwin, mut out): (Vec<Binary>, Vec<Binary>) =
+        out.into_iter().partition(|b| b.fmi2 == Some("darwin64"));
     if !darwin.is_empty() {
         let slices: Vec<&[u8]> = darwin.iter().map(|b| b.bytes.as_slice()).collect();
-        let fat = if slices.len() == 1 { slices[0].to_vec() } else { universal::universal(&slices)? };
-        out.push(Binary { fmi2: Some("darwin64"), fmi3: None, suffix: darwin[0].suffix, bytes: fat });
+        let fat =
+            if slices.len() == 1 { slices[0].to_vec() } else { universal::universal(&slices)? };
+        out.push(Binary {
+            fmi2: Some("darwin64"),
+            fmi3: None,
+            suffix: darwin[0].suffix,
+            bytes: fat,
+        });
         out.extend(darwin.into_iter().map(|b| Binary { fmi2: None, ..b }));
     }
     Ok(out)
 }
 
 fn read_binary(triple: &str, dir: &Path) -> Result<Binary, BoxError> {
-    let (fmi2, fmi3, prefix, suffix) = folders(triple).ok_or_else(|| format!("no FMI platform folder for {triple}"))?;
+    let (fmi2, fmi3, prefix, suffix) =
+        folders(triple).ok_or_else(|| format!("no FMI platform folder for {triple}"))?;
     let path: PathBuf = dir.join(format!("{prefix}wound_opening{suffix}"));
-    let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {} (built by cargo): {e}", path.display()))?;
+    let bytes = std::fs::read(&path)
+        .map_err(|e| format!("cannot read {} (built by cargo): {e}", path.display()))?;
     Ok(Binary { fmi2: Some(fmi2), fmi3: Some(fmi3), suffix, bytes })
 }
 
 /// Whether rustc has the standard library of `triple` (`rustup target add` installs it).
 fn target_installed(triple: &str) -> bool {
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
-    let libdir = Command::new(rustc).args(["--print", "target-libdir", "--target", triple]).output();
+    let libdir =
+        Command::new(rustc).args(["--print", "target-libdir", "--target", triple]).output();
     match libdir {
         Ok(out) if out.status.success() => {
             let dir = PathBuf::from(String::from_utf8_lossy(&out.stdout).trim());
-            std::fs::read_dir(dir).is_ok_and(|entries| entries.flatten().any(|e| e.file_name().to_string_lossy().starts_with("libstd-")))
+            std::fs::read_dir(dir).is_ok_and(|entries| {
+                entries.flatten().any(|e| e.file_name().to_string_lossy().starts_with("libstd-"))
+            })
         }
         _ => false,
     }
@@ -148,11 +176,17 @@ fn target_installed(triple: &str) -> bool {
 fn cross_build(triples: &[&str], target_dir: &Path, sdk: &Path) -> Result<(), BoxError> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut command = Command::new(cargo);
-    command.args(["build", "--release", "--quiet", "--lib", "--no-default-features", "--target-dir"]).arg(target_dir);
+    command
+        .args(["build", "--release", "--quiet", "--lib", "--no-default-features", "--target-dir"])
+        .arg(target_dir);
     for triple in triples {
         command.args(["--target", triple]);
     }
-    let status = command.env_remove("MACOSX_DEPLOYMENT_TARGET").env("SDKROOT", sdk).current_dir(env!("CARGO_MANIFEST_DIR")).status()?;
+    let status = command
+        .env_remove("MACOSX_DEPLOYMENT_TARGET")
+        .env("SDKROOT", sdk)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .status()?;
     if !status.success() {
         return Err(format!(
             "cargo build --release --lib --target {} failed (the linkers: bash scripts/cross.sh)",

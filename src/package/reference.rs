@@ -30,7 +30,10 @@ pub struct Results {
 }
 
 /// Run the default experiment with the start values.
-pub fn simulate(d: &'static Description, fresh: fn() -> Box<dyn FmuModel>) -> Result<Results, String> {
+pub fn simulate(
+    d: &'static Description,
+    fresh: fn() -> Box<dyn FmuModel>,
+) -> Result<Results, String> {
     simulate_with(d, fresh, &[], d.default_experiment)
 }
 
@@ -48,7 +51,11 @@ pub fn simulate_with(
     inst.setup_experiment(Some(e.tolerance), e.start, Some(e.stop))?;
     inst.enter_initialization_mode()?;
     for (name, value) in values {
-        let v = d.variables.iter().find(|v| v.name == *name).ok_or(format!("{} has no variable {name}", d.model_identifier))?;
+        let v = d
+            .variables
+            .iter()
+            .find(|v| v.name == *name)
+            .ok_or(format!("{} has no variable {name}", d.model_identifier))?;
         inst.set_real(&[v.value_reference], &[*value])?;
     }
     inst.exit_initialization_mode()?;
@@ -71,7 +78,10 @@ pub fn simulate_with(
 
 impl Results {
     pub fn csv(&self) -> String {
-        let head: Vec<String> = std::iter::once("time").chain(self.names.iter().copied()).map(|n| format!("\"{n}\"")).collect();
+        let head: Vec<String> = std::iter::once("time")
+            .chain(self.names.iter().copied())
+            .map(|n| format!("\"{n}\""))
+            .collect();
         let mut out = head.join(",") + "\n";
         for row in &self.rows {
             let cells: Vec<String> = row.iter().map(|&x| xml::number(x)).collect();

@@ -32,13 +32,19 @@ const STOP: f64 = 300.0;
 const STEP: f64 = 0.5;
 /// The parameter sets' name (ecos: `--parameterSet worked_example`).
 const SET: &str = "worked_example";
-const OMS: &str = "https://raw.githubusercontent.com/OpenModelica/OMSimulator/master/schema/oms.xsd";
+const OMS: &str =
+    "https://raw.githubusercontent.com/OpenModelica/OMSimulator/master/schema/oms.xsd";
 const OSP: &str = "http://opensimulationplatform.com/SSP/OSPAnnotations";
 const SSC: &str = "http://ssp-standard.org/SSP1/SystemStructureCommon";
 const SSV: &str = "http://ssp-standard.org/SSP1/SystemStructureParameterValues";
 
 /// (component, archive, connectors (name, kind), parameters (name, value)).
-type Component = (&'static str, &'static str, &'static [(&'static str, &'static str)], &'static [(&'static str, f64)]);
+type Component = (
+    &'static str,
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    &'static [(&'static str, f64)],
+);
 
 /// The worked example of python/wound_opening/coupling/loop.py (WOUND_EXAMPLE, PURSE_EXAMPLE):
 /// tests/python/test_ssp.py checks that they agree.
@@ -47,7 +53,14 @@ const COMPONENTS: [Component; 2] = [
         "wound",
         "WoundOpening.fmu",
         &[("edge_stress", "input"), ("wound_radius", "output"), ("edge_velocity", "output")],
-        &[("lambda", 1.0), ("sigma", 1.0), ("R_inf", 10.0), ("R0", 10.0), ("T", 10.0), ("G", 100.0)],
+        &[
+            ("lambda", 1.0),
+            ("sigma", 1.0),
+            ("R_inf", 10.0),
+            ("R0", 10.0),
+            ("T", 10.0),
+            ("G", 100.0),
+        ],
     ),
     (
         "purse",
@@ -58,8 +71,10 @@ const COMPONENTS: [Component; 2] = [
 ];
 
 /// (start element, start connector, end element, end connector).
-const CONNECTIONS: [(&str, &str, &str, &str); 2] =
-    [("wound", "wound_radius", "purse", "wound_radius"), ("purse", "edge_stress", "wound", "edge_stress")];
+const CONNECTIONS: [(&str, &str, &str, &str); 2] = [
+    ("wound", "wound_radius", "purse", "wound_radius"),
+    ("purse", "edge_stress", "wound", "edge_stress"),
+];
 
 /// `<ssv:Parameter>` lines of `values`, names prefixed with `prefix`.
 fn parameters(prefix: &str, values: &[(&str, f64)], indent: &str) -> String {
@@ -148,7 +163,8 @@ pub fn write_ssp(out_dir: &Path) -> Result<PathBuf, BoxError> {
     let mut entries = vec![("SystemStructure.ssd".to_string(), ssd().into_bytes())];
     for (name, archive, _, values) in COMPONENTS {
         let path = out_dir.join(archive);
-        let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {} for {FILE}: {e}", path.display()))?;
+        let bytes = std::fs::read(&path)
+            .map_err(|e| format!("cannot read {} for {FILE}: {e}", path.display()))?;
         entries.push((format!("resources/{name}.ssv"), ssv(values).into_bytes()));
         entries.push((format!("resources/{archive}"), bytes));
     }

@@ -35,7 +35,9 @@ pub fn universal(slices: &[&[u8]]) -> Result<Vec<u8>, BoxError> {
         if word(0)? != MH_MAGIC_64 {
             return Err("not a little-endian 64-bit Mach-O file".into());
         }
-        for field in [word(4)?, word(8)?, u32::try_from(offset)?, u32::try_from(slice.len())?, ALIGN_LOG2] {
+        for field in
+            [word(4)?, word(8)?, u32::try_from(offset)?, u32::try_from(slice.len())?, ALIGN_LOG2]
+        {
             header.extend(field.to_be_bytes());
         }
         body.resize(offset - align, 0);

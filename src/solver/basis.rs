@@ -31,7 +31,12 @@ struct Key {
 
 impl Key {
     fn new(spec: MeshSpec, r_inf: f64) -> Self {
-        Self { degree: spec.degree, elements: spec.elements, edge_scale: spec.edge_scale.to_bits(), r_inf: r_inf.to_bits() }
+        Self {
+            degree: spec.degree,
+            elements: spec.elements,
+            edge_scale: spec.edge_scale.to_bits(),
+            r_inf: r_inf.to_bits(),
+        }
     }
 }
 

@@ -51,7 +51,9 @@ impl std::fmt::Display for SolverError {
             }
             Self::StateNotFinite => write!(f, "state holds a non-finite value"),
             Self::Mesh(why) => write!(f, "mesh settings invalid: {why}"),
-            Self::Tolerance(t) => write!(f, "tolerance = {t} is invalid: it must be finite and > 0"),
+            Self::Tolerance(t) => {
+                write!(f, "tolerance = {t} is invalid: it must be finite and > 0")
+            }
             Self::Unresolved { sigma, tolerance, floor } => write!(
                 f,
                 "sigma = {sigma:e} is too small for tolerance {tolerance:e}: accepted: sigma = 0 or |sigma| >= {floor:.2e} \

@@ -72,7 +72,8 @@ pub fn velocity_response(lambda: f64, r_inf: f64, r: f64) -> f64 {
     let det = d_ia * d_kb * (2.0 * x * (1.0 - r_inf)).exp() - d_ka * d_ib;
     let xr = x * r;
     // num e^{x - x R} = d_kb I1~(xr) e^{x (r + 1 - 2R)} - d_ib K1~(xr) e^{x (1 - r)}
-    let num = d_kb * ive(1, xr) * (x * (r + 1.0 - 2.0 * r_inf)).exp() - d_ib * kve(1, xr) * (x * (1.0 - r)).exp();
+    let num = d_kb * ive(1, xr) * (x * (r + 1.0 - 2.0 * r_inf)).exp()
+        - d_ib * kve(1, xr) * (x * (1.0 - r)).exp();
     num / (det * lambda * lambda)
 }
 

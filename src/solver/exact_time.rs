@@ -35,14 +35,20 @@ impl Operator {
         Self::check_mesh(spec)?;
         let basis = basis::basis(spec, r_inf).map_err(SolverError::Modal)?;
         let nu = basis.relaxation_times(lambda);
-        let slope = if lambda > 0.0 { exact::edge_velocity_slope(lambda, r_inf) } else { f64::NEG_INFINITY };
+        let slope = if lambda > 0.0 {
+            exact::edge_velocity_slope(lambda, r_inf)
+        } else {
+            f64::NEG_INFINITY
+        };
         Ok(Self { lambda, r_inf, basis, nu, slope })
     }
 
     pub(crate) fn check_mesh(spec: MeshSpec) -> Result<(), SolverError> {
         let size = spec.degree.saturating_mul(spec.elements);
         if spec.degree == 0 || spec.elements == 0 || size > 4000 {
-            return Err(SolverError::Mesh("need degree >= 1, elements >= 1, degree*elements <= 4000"));
+            return Err(SolverError::Mesh(
+                "need degree >= 1, elements >= 1, degree*elements <= 4000",
+            ));
         }
         if !(spec.edge_scale.is_finite() && spec.edge_scale > 0.0) {
             return Err(SolverError::Mesh("edge_scale must be finite and > 0"));
@@ -170,7 +176,11 @@ impl Engine for ModalEngine {
 
     fn displacement(&self, radii: &[f64]) -> Vec<f64> {
         let v = self.profile(&self.coeffs, radii);
-        radii.iter().zip(v).map(|(r, v)| self.sigma * r.clamp(1.0, self.op.r_inf) / 6.0 + v).collect()
+        radii
+            .iter()
+            .zip(v)
+            .map(|(r, v)| self.sigma * r.clamp(1.0, self.op.r_inf) / 6.0 + v)
+            .collect()
     }
 
     /// The same values as [`Engine::displacement`] (the same sums, in the same order), and

@@ -64,7 +64,8 @@ impl ExplicitEngine {
         let c = l2 / dt;
         let (e, o): (Row, Row) = (self.grid.d_edge, self.grid.d_outer);
         u[0] = Self::edge_value((e[1], e[2]), c, p, (self.u[0], self.u[1]), u[1]);
-        u[n - 1] = Self::edge_value((o[1], o[0]), c, self.sigma, (self.u[n - 1], self.u[n - 2]), u[n - 2]);
+        u[n - 1] =
+            Self::edge_value((o[1], o[0]), c, self.sigma, (self.u[n - 1], self.u[n - 2]), u[n - 2]);
         v[0] = (u[0] - self.u[0]) / dt;
         v[n - 1] = (u[n - 1] - self.u[n - 1]) / dt;
         self.u = u;
@@ -81,7 +82,14 @@ pub fn stability_limits(points: usize, r_inf: f64, lambda: f64) -> (f64, f64) {
 /// Wound radius after each of `steps` explicit steps of `dt` from the cut, with no
 /// stability check: for measuring where the scheme really fails (examples/stability_map.rs,
 /// tests/stability.rs), which the [`super::Solver`] no longer lets it reach.
-pub fn unchecked_trajectory(points: usize, r_inf: f64, lambda: f64, sigma: f64, dt: f64, steps: usize) -> Vec<f64> {
+pub fn unchecked_trajectory(
+    points: usize,
+    r_inf: f64,
+    lambda: f64,
+    sigma: f64,
+    dt: f64,
+    steps: usize,
+) -> Vec<f64> {
     let mut engine = ExplicitEngine::new(Arc::new(Grid::new(points, r_inf)), lambda, sigma, dt);
     (0..steps)
         .map(|_| {

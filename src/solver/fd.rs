@@ -27,7 +27,8 @@ impl Grid {
     pub(crate) fn new(points: usize, r_inf: f64) -> Self {
         let n = points.max(3);
         let dr = (r_inf - 1.0) / (n - 1) as f64;
-        let r: Vec<f64> = (0..n).map(|i| if i == n - 1 { r_inf } else { 1.0 + i as f64 * dr }).collect();
+        let r: Vec<f64> =
+            (0..n).map(|i| if i == n - 1 { r_inf } else { 1.0 + i as f64 * dr }).collect();
         let d2 = (0..n)
             .map(|i| {
                 if i == 0 || i == n - 1 {

@@ -107,7 +107,8 @@ pub(crate) fn assemble(mesh: &Mesh, functions: Functions) -> Matrices {
         }
         for &(gi, fi, di) in &local {
             for &(gj, fj, dj) in &local {
-                stiffness[(gi, gj)] += dw * (4.0 * r * di * dj + 2.0 * (di * fj + fi * dj) + 4.0 * fi * fj / r);
+                stiffness[(gi, gj)] +=
+                    dw * (4.0 * r * di * dj + 2.0 * (di * fj + fi * dj) + 4.0 * fi * fj / r);
                 mass[(gi, gj)] += dw * r * fi * fj;
             }
         }
@@ -194,7 +195,8 @@ mod tests {
     #[test]
     fn constant_first_is_a_change_of_basis() {
         let mesh = Mesh::new(MeshSpec { degree: 4, elements: 3, edge_scale: 0.2 }, 2.5);
-        let (nodal, constant) = (assemble(&mesh, Functions::Nodal), assemble(&mesh, Functions::ConstantFirst));
+        let (nodal, constant) =
+            (assemble(&mesh, Functions::Nodal), assemble(&mesh, Functions::ConstantFirst));
         let t = to_nodal(Functions::ConstantFirst, DMatrix::identity(mesh.len(), mesh.len()));
         let a = t.transpose() * &nodal.stiffness * &t;
         let m = t.transpose() * &nodal.mass * &t;
@@ -209,12 +211,22 @@ mod tests {
         for r_inf in [1.3, 7.0, 300.0] {
             let rate = assemble_r_inf_rate(&Mesh::new(spec, r_inf));
             let h = 1e-5 * r_inf;
-            let (up, down) =
-                (assemble(&Mesh::new(spec, r_inf + h), Functions::Nodal), assemble(&Mesh::new(spec, r_inf - h), Functions::Nodal));
+            let (up, down) = (
+                assemble(&Mesh::new(spec, r_inf + h), Functions::Nodal),
+                assemble(&Mesh::new(spec, r_inf - h), Functions::Nodal),
+            );
             let fd_a = (up.stiffness - down.stiffness) / (2.0 * h);
             let fd_m = (up.mass - down.mass) / (2.0 * h);
-            assert!((&fd_a - &rate.stiffness).amax() < 1e-6 * fd_a.amax(), "{r_inf}: {}", (&fd_a - &rate.stiffness).amax());
-            assert!((&fd_m - &rate.mass).amax() < 1e-6 * fd_m.amax(), "{r_inf}: {}", (&fd_m - &rate.mass).amax());
+            assert!(
+                (&fd_a - &rate.stiffness).amax() < 1e-6 * fd_a.amax(),
+                "{r_inf}: {}",
+                (&fd_a - &rate.stiffness).amax()
+            );
+            assert!(
+                (&fd_m - &rate.mass).amax() < 1e-6 * fd_m.amax(),
+                "{r_inf}: {}",
+                (&fd_m - &rate.mass).amax()
+            );
         }
     }
 

@@ -4,7 +4,10 @@
 
 use super::engine::{Engine, Ode};
 use super::exact_time::{ModalEngine, Operator};
-use super::{MAX_STEP_WORK, Mesh, Params, Scheme, Settings, SolverError, check_edge_stress, explicit, fd, paper, trbdf2, validity};
+use super::{
+    MAX_STEP_WORK, Mesh, Params, Scheme, Settings, SolverError, check_edge_stress, explicit, fd,
+    paper, trbdf2, validity,
+};
 use std::sync::Arc;
 
 /// A solver state that can be saved and restored: the time and the engine's state.
@@ -62,11 +65,21 @@ impl Solver {
             }
             Scheme::Paper { points, max_step } => {
                 check_resolution(points, max_step)?;
-                Box::new(paper::PaperEngine::new(Arc::new(fd::Grid::new(points, r_inf)), lambda, sigma, max_step))
+                Box::new(paper::PaperEngine::new(
+                    Arc::new(fd::Grid::new(points, r_inf)),
+                    lambda,
+                    sigma,
+                    max_step,
+                ))
             }
             Scheme::Explicit { points, max_step } => {
                 check_resolution(points, max_step)?;
-                Box::new(explicit::ExplicitEngine::new(Arc::new(fd::Grid::new(points, r_inf)), lambda, sigma, max_step))
+                Box::new(explicit::ExplicitEngine::new(
+                    Arc::new(fd::Grid::new(points, r_inf)),
+                    lambda,
+                    sigma,
+                    max_step,
+                ))
             }
         };
         Ok(Self { engine, sigma, time: 0.0 })
@@ -179,13 +192,23 @@ impl Solver {
 
     /// Mean velocity at each radius over the next `window` (in T) with `p` held,
     /// `(u(r, t + window) - u(r, t)) / window`.
-    pub fn mean_velocity(&self, p: f64, radii: &[f64], window: f64) -> Result<Vec<f64>, SolverError> {
+    pub fn mean_velocity(
+        &self,
+        p: f64,
+        radii: &[f64],
+        window: f64,
+    ) -> Result<Vec<f64>, SolverError> {
         self.mean_rate(p, window, |s| s.displacement(radii))
     }
 
     /// `(q(t + window) - q(t)) / window` for the quantities `q` measures, the solver
     /// advanced on a copy with `p` held.
-    fn mean_rate(&self, p: f64, window: f64, q: impl Fn(&Self) -> Vec<f64>) -> Result<Vec<f64>, SolverError> {
+    fn mean_rate(
+        &self,
+        p: f64,
+        window: f64,
+        q: impl Fn(&Self) -> Vec<f64>,
+    ) -> Result<Vec<f64>, SolverError> {
         let mut ahead = self.clone();
         ahead.advance(window, p)?;
         Ok(q(&ahead).iter().zip(q(self)).map(|(b, a)| (b - a) / window).collect())

@@ -38,7 +38,8 @@ const MAX_SWEEPS: usize = 60;
 pub(crate) fn symmetric_eigen(h: &DMatrix<f64>) -> Option<(DVector<f64>, DMatrix<f64>)> {
     let n = h.nrows();
     // Row-major copy: rows p and q are contiguous; the matrix is kept symmetric.
-    let mut a: Vec<f64> = (0..n * n).map(|k| 0.5 * (h[(k / n, k % n)] + h[(k % n, k / n)])).collect();
+    let mut a: Vec<f64> =
+        (0..n * n).map(|k| 0.5 * (h[(k / n, k % n)] + h[(k % n, k / n)])).collect();
     let mut v = vec![0.0; n * n];
     (0..n).for_each(|i| v[i * n + i] = 1.0);
     let mut converged = false;
@@ -49,12 +50,18 @@ pub(crate) fn symmetric_eigen(h: &DMatrix<f64>) -> Option<(DVector<f64>, DMatrix
                 let apq = a[p * n + q];
                 let (app, aqq) = (a[p * n + p], a[q * n + q]);
                 // Not above the threshold, NaN included.
-                if apq.abs().partial_cmp(&(THRESHOLD * (app * aqq).abs().sqrt())) != Some(std::cmp::Ordering::Greater) {
+                if apq.abs().partial_cmp(&(THRESHOLD * (app * aqq).abs().sqrt()))
+                    != Some(std::cmp::Ordering::Greater)
+                {
                     continue;
                 }
                 rotations += 1;
                 let theta = (aqq - app) / (2.0 * apq);
-                let t = if theta == 0.0 { 1.0 } else { theta.signum() / (theta.abs() + theta.hypot(1.0)) };
+                let t = if theta == 0.0 {
+                    1.0
+                } else {
+                    theta.signum() / (theta.abs() + theta.hypot(1.0))
+                };
                 let c = 1.0 / t.hypot(1.0);
                 let s = t * c;
                 rotate(&mut a, n, p, q, c, s);
@@ -114,7 +121,11 @@ mod tests {
     #[test]
     fn small_eigenvalues_of_a_graded_matrix_keep_their_relative_accuracy() {
         let d = [1e-6, 1e-6, 1e6, 1e6];
-        let s = DMatrix::from_row_slice(4, 4, &[2., 1., 0., 0., 1., 2., 0., 0., 0., 0., 2., 1., 0., 0., 1., 2.]);
+        let s = DMatrix::from_row_slice(
+            4,
+            4,
+            &[2., 1., 0., 0., 1., 2., 0., 0., 0., 0., 2., 1., 0., 0., 1., 2.],
+        );
         let h = DMatrix::from_fn(4, 4, |i, j| d[i] * s[(i, j)] * d[j]);
         let (mu, x) = symmetric_eigen(&h).unwrap();
         let want = [1e-12, 3e-12, 1e12, 3e12];

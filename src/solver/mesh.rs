@@ -44,7 +44,8 @@ impl Mesh {
         let e = spec.elements.max(1);
         let ell = spec.edge_scale;
         let stretch = 1.0 + (r_inf - 1.0) / ell;
-        let mut breaks: Vec<f64> = (0..=e).map(|j| 1.0 + ell * (stretch.powf(j as f64 / e as f64) - 1.0)).collect();
+        let mut breaks: Vec<f64> =
+            (0..=e).map(|j| 1.0 + ell * (stretch.powf(j as f64 / e as f64) - 1.0)).collect();
         breaks[e] = r_inf;
         let reference_nodes = gauss_lobatto_nodes(spec.degree.max(1));
         let mut nodes = vec![1.0];
@@ -67,7 +68,9 @@ impl Mesh {
         let e = self.breaks.len() - 1;
         let r_inf = self.breaks[e];
         let stretch = 1.0 + (r_inf - 1.0) / self.edge_scale;
-        let mut rates: Vec<f64> = (0..=e).map(|j| j as f64 / e as f64 * stretch.powf(j as f64 / e as f64 - 1.0)).collect();
+        let mut rates: Vec<f64> = (0..=e)
+            .map(|j| j as f64 / e as f64 * stretch.powf(j as f64 / e as f64 - 1.0))
+            .collect();
         rates[e] = 1.0;
         rates
     }

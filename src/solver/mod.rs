@@ -35,12 +35,14 @@ pub mod validity;
 pub use mesh::{Mesh, MeshSpec};
 pub use modal::ModalError;
 pub use params::{
-    EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX, SIGMA_MIN, check_edge_stress,
-    check_lambda, check_r_inf, check_sigma,
+    EDGE_STRESS_MAX, LAMBDA_MAX, LAMBDA_MIN, ParamError, Params, R_INF_MAX, R_INF_MIN, SIGMA_MAX,
+    SIGMA_MIN, check_edge_stress, check_lambda, check_r_inf, check_sigma,
 };
 pub use profile_rates::{VelocityRates, velocity_rates};
 pub use sensitivity::{RadiusSensitivities, radius_sensitivities};
-pub use tolerance::{DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy, sigma_floor};
+pub use tolerance::{
+    DEGREE as TOLERANCE_DEGREE, FINEST_TOLERANCE, delivered_accuracy, sigma_floor,
+};
 
 pub use explicit::stability_limits as explicit_stability_limits;
 

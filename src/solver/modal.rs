@@ -95,7 +95,8 @@ const QR_UP_TO: f64 = 1e4;
 /// 1e-12 and QR, five times faster than Jacobi, is used; beyond, the relatively accurate
 /// Jacobi method ([`super::jacobi`]). Either choice is a deterministic function of `C`.
 fn eigen(c: DMatrix<f64>) -> Result<(DVector<f64>, DMatrix<f64>), ModalError> {
-    let bound = c.row_iter().map(|row| row.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
+    let bound =
+        c.row_iter().map(|row| row.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
     // Beyond the bound, NaN included.
     if bound.partial_cmp(&QR_UP_TO).is_none_or(|o| o == std::cmp::Ordering::Greater) {
         return jacobi::symmetric_eigen(&c).ok_or(ModalError::NoConvergence);
@@ -105,7 +106,8 @@ fn eigen(c: DMatrix<f64>) -> Result<(DVector<f64>, DMatrix<f64>), ModalError> {
     let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
     order.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
     let values = DVector::from_iterator(order.len(), order.iter().map(|&i| eig.eigenvalues[i]));
-    let vectors = DMatrix::from_fn(order.len(), order.len(), |r, k| eig.eigenvectors[(r, order[k])]);
+    let vectors =
+        DMatrix::from_fn(order.len(), order.len(), |r, k| eig.eigenvectors[(r, order[k])]);
     Ok((values, vectors))
 }
 
@@ -116,18 +118,24 @@ impl Basis {
 
     pub(crate) fn new(mesh: Mesh) -> Result<Self, ModalError> {
         let r_inf = *mesh.nodes.last().expect("a mesh has nodes");
-        let functions = if r_inf <= Self::CONSTANT_FIRST_UP_TO { Functions::ConstantFirst } else { Functions::Nodal };
+        let functions = if r_inf <= Self::CONSTANT_FIRST_UP_TO {
+            Functions::ConstantFirst
+        } else {
+            Functions::Nodal
+        };
         let m = galerkin::assemble(&mesh, functions);
         let chol = m.stiffness.cholesky().ok_or(ModalError::StiffnessNotPositive)?;
         let l = chol.l();
         // C = L^-1 (4 M) L^-T, through Y = L^-1 (4 M) and C = L^-1 Y^T (M symmetric).
-        let y = l.solve_lower_triangular(&(4.0 * &m.mass)).ok_or(ModalError::StiffnessNotPositive)?;
+        let y =
+            l.solve_lower_triangular(&(4.0 * &m.mass)).ok_or(ModalError::StiffnessNotPositive)?;
         let c = l.solve_lower_triangular(&y.transpose()).ok_or(ModalError::StiffnessNotPositive)?;
         let (mu, q) = eigen(c)?;
         if let Some((k, &v)) = mu.iter().enumerate().find(|(_, v)| !(**v > 0.0 && v.is_finite())) {
             return Err(ModalError::BadRelaxationTime(k, v));
         }
-        let coefficients = l.tr_solve_lower_triangular(&q).ok_or(ModalError::StiffnessNotPositive)?;
+        let coefficients =
+            l.tr_solve_lower_triangular(&q).ok_or(ModalError::StiffnessNotPositive)?;
         // Nodal shapes; the edge row is the same in both bases (only the first function
         // is nonzero at r = 1), so the load (sigma - p) e_first keeps its modal form.
         let shapes = galerkin::to_nodal(functions, coefficients);
@@ -188,7 +196,12 @@ impl ModeRates {
             let (ms, xs) = (m.as_slice(), x.as_slice());
             DMatrix::from_fn(n, n, |i, c| {
                 let (lo, hi) = (i.saturating_sub(band), (i + band + 1).min(n));
-                scale * ms[i * n + lo..i * n + hi].iter().zip(&xs[c * n + lo..c * n + hi]).map(|(a, b)| a * b).sum::<f64>()
+                scale
+                    * ms[i * n + lo..i * n + hi]
+                        .iter()
+                        .zip(&xs[c * n + lo..c * n + hi])
+                        .map(|(a, b)| a * b)
+                        .sum::<f64>()
             })
         };
         let (y, z) = (banded(&rate.mass, 4.0), banded(&rate.stiffness, 1.0));
@@ -200,7 +213,8 @@ impl ModeRates {
             mu_rate[k] = x.column(k).dot(&g);
             edge[k] = xw.column(k).dot(&g) - 0.5 * x.column(k).dot(&z.column(k)) * e[k];
         }
-        let smallest_gap = mu.as_slice().windows(2).map(|w| (w[1] - w[0]) / w[1]).fold(1.0, f64::min);
+        let smallest_gap =
+            mu.as_slice().windows(2).map(|w| (w[1] - w[0]) / w[1]).fold(1.0, f64::min);
         Self { mu: mu_rate, edge, smallest_gap }
     }
 }
@@ -223,7 +237,11 @@ impl ShapeRates {
         let (y, z) = (4.0 * &rate.mass * x, &rate.stiffness * x);
         let (xy, xz) = (x.transpose() * y, x.transpose() * z);
         let coupling = DMatrix::from_fn(mu.len(), mu.len(), |j, k| {
-            if j == k { -0.5 * xz[(k, k)] } else { (xy[(j, k)] - mu[k] * xz[(j, k)]) / (mu[k] - mu[j]) }
+            if j == k {
+                -0.5 * xz[(k, k)]
+            } else {
+                (xy[(j, k)] - mu[k] * xz[(j, k)]) / (mu[k] - mu[j])
+            }
         });
         Self { coupling }
     }

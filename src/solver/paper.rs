@@ -36,7 +36,16 @@ pub(crate) struct PaperEngine {
 impl PaperEngine {
     pub(crate) fn new(grid: Arc<Grid>, lambda: f64, sigma: f64, max_step: f64) -> Self {
         let u0: Vec<f64> = grid.r.iter().map(|r| sigma * r / 6.0).collect();
-        Self { grid, lambda, sigma, max_step, prev: u0.clone(), now: u0, spacing: 0.0, systems: None }
+        Self {
+            grid,
+            lambda,
+            sigma,
+            max_step,
+            prev: u0.clone(),
+            now: u0,
+            spacing: 0.0,
+            systems: None,
+        }
     }
 
     /// Matrix rows of `(-I + (lambda^2 + k) D2)` inside, `(lambda^2 + k) D` at the edges.
@@ -70,7 +79,11 @@ impl PaperEngine {
 
     fn step(&mut self, dt: f64, p: f64) {
         if self.systems.as_ref().is_none_or(|s| s.0 != dt) {
-            self.systems = Some((dt, Tridiagonal::factor(&self.rows(dt)), Tridiagonal::factor(&self.rows(2.0 * dt))));
+            self.systems = Some((
+                dt,
+                Tridiagonal::factor(&self.rows(dt)),
+                Tridiagonal::factor(&self.rows(2.0 * dt)),
+            ));
         }
         let (_, single, double) = self.systems.as_ref().expect("set above");
         if self.spacing != dt {

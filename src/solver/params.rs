@@ -30,7 +30,11 @@ pub enum ParamError {
 /// A value as a message shows it: plain (`-1`, `0.5`, `2000000`), but in exponent form far
 /// from 1 (`1e-300`, not 300 zeros).
 fn shown(v: f64) -> String {
-    if v != 0.0 && v.is_finite() && !(1e-4..1e16).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
+    if v != 0.0 && v.is_finite() && !(1e-4..1e16).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
 }
 
 impl std::fmt::Display for ParamError {
@@ -40,16 +44,24 @@ impl std::fmt::Display for ParamError {
         };
         match *self {
             Self::Lambda(_) => {
-                write!(f, "lambda = {v} is outside the accepted range: 0 or [{LAMBDA_MIN:e}, {LAMBDA_MAX:e}]")
+                write!(
+                    f,
+                    "lambda = {v} is outside the accepted range: 0 or [{LAMBDA_MIN:e}, {LAMBDA_MAX:e}]"
+                )
             }
             Self::Sigma(_) => write!(
                 f,
                 "sigma = {v} is outside the accepted range ({SIGMA_MIN}, {SIGMA_MAX:e}] \
                  (the wound radius just after the cut, R1 = R0 (1 + sigma/6), must be > 0)"
             ),
-            Self::RInf(_) => write!(f, "R_inf = {v} is outside the accepted range [{R_INF_MIN}, {R_INF_MAX:e}]"),
+            Self::RInf(_) => {
+                write!(f, "R_inf = {v} is outside the accepted range [{R_INF_MIN}, {R_INF_MAX:e}]")
+            }
             Self::EdgeStress(_) => {
-                write!(f, "edge stress {v} (in units of G) is outside the accepted range [-{EDGE_STRESS_MAX:e}, {EDGE_STRESS_MAX:e}]")
+                write!(
+                    f,
+                    "edge stress {v} (in units of G) is outside the accepted range [-{EDGE_STRESS_MAX:e}, {EDGE_STRESS_MAX:e}]"
+                )
             }
         }
     }
@@ -88,7 +100,11 @@ pub const EDGE_STRESS_MAX: f64 = 1e6;
 
 /// `lambda` 0 or in `[LAMBDA_MIN, LAMBDA_MAX]`.
 pub fn check_lambda(v: f64) -> Result<f64, ParamError> {
-    if v == 0.0 || (LAMBDA_MIN..=LAMBDA_MAX).contains(&v) { Ok(v) } else { Err(ParamError::Lambda(v)) }
+    if v == 0.0 || (LAMBDA_MIN..=LAMBDA_MAX).contains(&v) {
+        Ok(v)
+    } else {
+        Err(ParamError::Lambda(v))
+    }
 }
 
 /// `sigma` in `(SIGMA_MIN, SIGMA_MAX]`.
@@ -103,7 +119,11 @@ pub fn check_r_inf(v: f64) -> Result<f64, ParamError> {
 
 /// The edge stress `p` (in units of G) in `[-EDGE_STRESS_MAX, EDGE_STRESS_MAX]`.
 pub fn check_edge_stress(v: f64) -> Result<f64, ParamError> {
-    if (-EDGE_STRESS_MAX..=EDGE_STRESS_MAX).contains(&v) { Ok(v) } else { Err(ParamError::EdgeStress(v)) }
+    if (-EDGE_STRESS_MAX..=EDGE_STRESS_MAX).contains(&v) {
+        Ok(v)
+    } else {
+        Err(ParamError::EdgeStress(v))
+    }
 }
 
 impl Params {
@@ -142,7 +162,8 @@ mod tests {
             let msg = p.validate().unwrap_err().to_string();
             assert!(msg.contains("outside the accepted range"), "{msg}");
         }
-        let edges = [(0.0, 1e6, 1.001), (1e6, -5.999, 1e6), (1e-150, -5.999, 1.001), (1e-150, 1e6, 1e6)];
+        let edges =
+            [(0.0, 1e6, 1.001), (1e6, -5.999, 1e6), (1e-150, -5.999, 1.001), (1e-150, 1e6, 1e6)];
         for (lambda, sigma, r_inf) in edges {
             assert!(Params { lambda, sigma, r_inf }.validate().is_ok());
         }

@@ -113,7 +113,9 @@ pub fn velocity_rates(
         weights(&|e, nu, d| e * d / nu),
         weights(&|e, nu, d| -e * d / nu / nu),
         weights(&|e, nu, d| if d == 0.0 { 0.0 } else { -2.0 * lambda * e * (d / nu) * (tau / nu) }),
-        weights(&|e, nu, d| if d == 0.0 { 0.0 } else { 2.0 * lambda * e * (d / nu) * (tau / nu - 1.0) / nu }),
+        weights(&|e, nu, d| {
+            if d == 0.0 { 0.0 } else { 2.0 * lambda * e * (d / nu) * (tau / nu - 1.0) / nu }
+        }),
     ];
     // R_inf moves mu_k and the whole shapes (nodes held): d(X w)/dR_inf = X (C w + w'), with
     // w' the weights' own rates through e_k' and mu_k' (= nu_k').
@@ -131,11 +133,16 @@ pub fn velocity_rates(
         &basis.shapes * (coupling * c + w_rate)
     };
     let r_inf_nodal = [
-        moved(&w[0], &|e, nu, d, de, dmu| de * -(-tau / nu).exp_m1() - if d == 0.0 { 0.0 } else { e * d * (tau / nu) / nu * dmu }),
-        moved(&w[1], &|e, nu, d, de, dmu| de * d / nu + if d == 0.0 { 0.0 } else { e * dmu * d * (tau - nu) / (nu * nu * nu) }),
+        moved(&w[0], &|e, nu, d, de, dmu| {
+            de * -(-tau / nu).exp_m1() - if d == 0.0 { 0.0 } else { e * d * (tau / nu) / nu * dmu }
+        }),
+        moved(&w[1], &|e, nu, d, de, dmu| {
+            de * d / nu + if d == 0.0 { 0.0 } else { e * dmu * d * (tau - nu) / (nu * nu * nu) }
+        }),
     ];
     let nodal = w.map(|c| &basis.shapes * c);
-    let nodal = [&nodal[0], &nodal[1], &nodal[2], &nodal[3], &nodal[4], &r_inf_nodal[0], &r_inf_nodal[1]];
+    let nodal =
+        [&nodal[0], &nodal[1], &nodal[2], &nodal[3], &nodal[4], &r_inf_nodal[0], &r_inf_nodal[1]];
     let mesh = &basis.mesh;
     let break_rates = mesh.break_rates();
     let lagrange = LagrangeBasis::new(&mesh.reference_nodes);

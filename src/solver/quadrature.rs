@@ -49,7 +49,12 @@ impl LagrangeBasis {
             .iter()
             .enumerate()
             .map(|(j, &xj)| {
-                let prod: f64 = nodes.iter().enumerate().filter(|&(m, _)| m != j).map(|(_, &xm)| xj - xm).product();
+                let prod: f64 = nodes
+                    .iter()
+                    .enumerate()
+                    .filter(|&(m, _)| m != j)
+                    .map(|(_, &xm)| xj - xm)
+                    .product();
                 1.0 / prod
             })
             .collect();

@@ -56,7 +56,12 @@ pub struct RadiusSensitivities {
 /// The exact derivatives of the wound radius of the modal solver (`settings`, edge stress
 /// `p` held from the cut) with respect to lambda and `R_inf`, the mesh's degree, element
 /// count and grading length held fixed. Times are not checked here (the caller does).
-pub fn radius_sensitivities(params: &Params, settings: &Settings, p: f64, times: &[f64]) -> Result<RadiusSensitivities, SolverError> {
+pub fn radius_sensitivities(
+    params: &Params,
+    settings: &Settings,
+    p: f64,
+    times: &[f64],
+) -> Result<RadiusSensitivities, SolverError> {
     check_lambda(params.lambda)?;
     check_r_inf(params.r_inf)?;
     super::exact_time::Operator::check_mesh(settings.mesh)?;
@@ -65,7 +70,8 @@ pub fn radius_sensitivities(params: &Params, settings: &Settings, p: f64, times:
     let (l2, load) = (params.lambda * params.lambda, params.sigma - p);
     let nu: Vec<f64> = basis.mu.iter().map(|m| m + l2).collect();
     let mut decays = Decays::new(nu.len());
-    let (mut d_lambda, mut d_r_inf) = (Vec::with_capacity(times.len()), Vec::with_capacity(times.len()));
+    let (mut d_lambda, mut d_r_inf) =
+        (Vec::with_capacity(times.len()), Vec::with_capacity(times.len()));
     for &t in times {
         let (mut dl, mut dr) = (0.0, 0.0);
         for (k, &decay) in decays.at(t, &nu).iter().enumerate() {
@@ -143,12 +149,22 @@ mod tests {
                 let opening = radius(&params, &settings, 1e12) - radius(&params, &settings, 0.0);
                 let (dl, dr) = (1e-4 * lambda.max(0.01), 1e-4 * (r_inf - 1.0));
                 for (i, &t) in times.iter().enumerate() {
-                    let at = |lambda, r_inf| radius(&Params { lambda, sigma: 0.7, r_inf }, &settings, t);
-                    let fd_l = (at(lambda + dl, r_inf) - at((lambda - dl).abs(), r_inf)) / (2.0 * dl);
+                    let at =
+                        |lambda, r_inf| radius(&Params { lambda, sigma: 0.7, r_inf }, &settings, t);
+                    let fd_l =
+                        (at(lambda + dl, r_inf) - at((lambda - dl).abs(), r_inf)) / (2.0 * dl);
                     let fd_r = (at(lambda, r_inf + dr) - at(lambda, r_inf - dr)) / (2.0 * dr);
                     let what = format!("R_inf {r_inf} lambda {lambda} t {t}");
-                    assert!((got.d_lambda[i] - fd_l).abs() < 1e-7 * opening, "{what}: {} vs {fd_l}", got.d_lambda[i]);
-                    assert!(((got.d_r_inf[i] - fd_r) * (r_inf - 1.0)).abs() < 1e-7 * opening, "{what}: {} vs {fd_r}", got.d_r_inf[i]);
+                    assert!(
+                        (got.d_lambda[i] - fd_l).abs() < 1e-7 * opening,
+                        "{what}: {} vs {fd_l}",
+                        got.d_lambda[i]
+                    );
+                    assert!(
+                        ((got.d_r_inf[i] - fd_r) * (r_inf - 1.0)).abs() < 1e-7 * opening,
+                        "{what}: {} vs {fd_r}",
+                        got.d_r_inf[i]
+                    );
                 }
             }
         }

@@ -27,9 +27,13 @@ pub enum RunStatus {
 pub fn classify(params: &Params, scheme: &Scheme, dt: f64, steps: usize) -> RunStatus {
     let Params { lambda, sigma, r_inf } = *params;
     let radii: Box<dyn Iterator<Item = Option<f64>>> = match *scheme {
-        Scheme::Explicit { points, .. } => Box::new(unchecked_trajectory(points, r_inf, lambda, sigma, dt, steps).into_iter().map(Some)),
+        Scheme::Explicit { points, .. } => Box::new(
+            unchecked_trajectory(points, r_inf, lambda, sigma, dt, steps).into_iter().map(Some),
+        ),
         _ => {
-            let Ok(mut s) = Solver::with_scheme(params, scheme) else { return RunStatus::Unbounded };
+            let Ok(mut s) = Solver::with_scheme(params, scheme) else {
+                return RunStatus::Unbounded;
+            };
             Box::new((0..steps).map(move |_| s.advance(dt, 0.0).ok().map(|_| s.wound_radius())))
         }
     };

@@ -38,8 +38,18 @@
 use super::{MeshSpec, Params, Settings, SolverError};
 
 /// `(tolerance, largest element width dxi)` pairs, tolerance decreasing.
-const MAX_DXI: [(f64, f64); 10] =
-    [(1e-2, 3.2), (1e-3, 2.5), (1e-4, 2.2), (1e-5, 1.75), (1e-6, 1.5), (1e-7, 1.25), (1e-8, 1.05), (1e-9, 0.9), (1e-10, 0.8), (1e-11, 0.6)];
+const MAX_DXI: [(f64, f64); 10] = [
+    (1e-2, 3.2),
+    (1e-3, 2.5),
+    (1e-4, 2.2),
+    (1e-5, 1.75),
+    (1e-6, 1.5),
+    (1e-7, 1.25),
+    (1e-8, 1.05),
+    (1e-9, 0.9),
+    (1e-10, 0.8),
+    (1e-11, 0.6),
+];
 
 /// Polynomial degree of the tolerance-driven meshes.
 pub const DEGREE: usize = 8;
@@ -79,7 +89,8 @@ fn max_dxi(tol: f64) -> f64 {
     if tol <= last.0 {
         return last.1;
     }
-    let k = MAX_DXI.windows(2).position(|w| tol <= w[0].0 && tol >= w[1].0).expect("inside the table");
+    let k =
+        MAX_DXI.windows(2).position(|w| tol <= w[0].0 && tol >= w[1].0).expect("inside the table");
     let ((t0, d0), (t1, d1)) = (MAX_DXI[k], MAX_DXI[k + 1]);
     let s = (tol.log10() - t0.log10()) / (t1.log10() - t0.log10());
     d0 + s * (d1 - d0)
@@ -117,7 +128,10 @@ mod tests {
         assert_eq!(elements(10.0, 1e-9), 6); // ln(91) / 0.9 = 5.01
         assert_eq!(elements(100.0, 1e-10), 9); // ln(991) / 0.8 = 8.6
         for r_inf in [1.001, 2.0, 10.0, 1e3, 1e6] {
-            let counts: Vec<usize> = [1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12].iter().map(|&t| elements(r_inf, t)).collect();
+            let counts: Vec<usize> = [1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12]
+                .iter()
+                .map(|&t| elements(r_inf, t))
+                .collect();
             assert!(counts.windows(2).all(|w| w[0] <= w[1]), "{r_inf}: {counts:?}");
             assert!(counts[0] >= 1);
         }
@@ -138,12 +152,18 @@ mod tests {
     fn a_sigma_below_the_rounding_floor_is_refused_with_the_range() {
         let at = |sigma, tol| Settings::for_tolerance(&Params { sigma, ..Params::default() }, tol);
         assert!((sigma_floor(1e-10) - 1.33e-5).abs() < 1e-7);
-        assert_eq!(sigma_floor(1e-13), sigma_floor(1e-11), "the floor follows the delivered accuracy");
+        assert_eq!(
+            sigma_floor(1e-13),
+            sigma_floor(1e-11),
+            "the floor follows the delivered accuracy"
+        );
         for (sigma, tol) in [(1e-6, 1e-10), (-1e-6, 1e-10), (1e-12, 1e-3), (1.3e-5, 1e-10)] {
             let msg = at(sigma, tol).unwrap_err().to_string();
             assert!(msg.contains("accepted: sigma = 0 or |sigma| >= 1.3"), "{msg}");
         }
-        for (sigma, tol) in [(0.0, 1e-10), (1.34e-5, 1e-10), (-1.34e-5, 1e-10), (1e-12, 1e-2), (2e-9, 1e-6)] {
+        for (sigma, tol) in
+            [(0.0, 1e-10), (1.34e-5, 1e-10), (-1.34e-5, 1e-10), (1e-12, 1e-2), (2e-9, 1e-6)]
+        {
             assert!(at(sigma, tol).is_ok(), "{sigma} {tol}");
         }
     }

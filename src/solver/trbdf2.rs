@@ -36,7 +36,10 @@ impl TrBdf2Operator {
     pub(crate) fn new(mesh: Mesh, lambda: f64) -> Result<Self, SolverError> {
         let m = galerkin::assemble(&mesh, galerkin::Functions::Nodal);
         let mass = 4.0 * &m.mass + lambda * lambda * &m.stiffness;
-        let mass_chol = mass.clone().cholesky().ok_or(SolverError::Mesh("mass matrix is not positive definite"))?;
+        let mass_chol = mass
+            .clone()
+            .cholesky()
+            .ok_or(SolverError::Mesh("mass matrix is not positive definite"))?;
         Ok(Self { mesh, stiffness: m.stiffness, mass, mass_chol })
     }
 }
@@ -99,7 +102,8 @@ impl Engine for TrBdf2Engine {
 
     fn displacement(&self, radii: &[f64]) -> Vec<f64> {
         let nodes = self.op.mesh.nodes();
-        let u: Vec<f64> = nodes.iter().zip(self.v.iter()).map(|(r, v)| self.sigma * r / 6.0 + v).collect();
+        let u: Vec<f64> =
+            nodes.iter().zip(self.v.iter()).map(|(r, v)| self.sigma * r / 6.0 + v).collect();
         super::engine::interpolate(nodes, &u, radii)
     }
 

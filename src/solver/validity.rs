@@ -36,7 +36,9 @@ pub fn violation(edges: Edges, r_inf: f64) -> Option<String> {
     let Edges { edge, edge_slope, outer } = edges;
     let (radius, outer_radius) = (1.0 + edge, r_inf + outer);
     if radius <= 0.0 {
-        return Some(format!("the wound radius is {radius:.6} R0 <= 0: the linear model has no meaning here"));
+        return Some(format!(
+            "the wound radius is {radius:.6} R0 <= 0: the linear model has no meaning here"
+        ));
     }
     if outer_radius <= radius || 1.0 + edge_slope <= 0.0 {
         return Some(format!(

@@ -21,7 +21,17 @@ pub const PURSE: &str = wound_opening::models::purse_string::variables::GUID;
 pub fn instantiate(guid: &str, name: &str) -> fmi2Component {
     let (name, guid) = (CString::new(name).unwrap(), CString::new(guid).unwrap());
     let callbacks = fmi2CallbackFunctions::NONE;
-    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_CO_SIMULATION, guid.as_ptr(), c"".as_ptr(), &callbacks, 0, 0) };
+    let c = unsafe {
+        fmi2Instantiate(
+            name.as_ptr(),
+            FMI2_CO_SIMULATION,
+            guid.as_ptr(),
+            c"".as_ptr(),
+            &callbacks,
+            0,
+            0,
+        )
+    };
     assert!(!c.is_null(), "fmi2Instantiate({name:?})");
     c
 }
@@ -45,7 +55,17 @@ pub fn initialized(guid: &str, start: f64, params: &[(u32, f64)]) -> fmi2Compone
 pub fn continuous_time(params: &[(u32, f64)]) -> fmi2Component {
     let (name, guid) = (CString::new("me").unwrap(), CString::new(WOUND).unwrap());
     let callbacks = fmi2CallbackFunctions::NONE;
-    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_MODEL_EXCHANGE, guid.as_ptr(), c"".as_ptr(), &callbacks, 0, 0) };
+    let c = unsafe {
+        fmi2Instantiate(
+            name.as_ptr(),
+            FMI2_MODEL_EXCHANGE,
+            guid.as_ptr(),
+            c"".as_ptr(),
+            &callbacks,
+            0,
+            0,
+        )
+    };
     assert!(!c.is_null());
     unsafe {
         assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), OK);
@@ -56,7 +76,11 @@ pub fn continuous_time(params: &[(u32, f64)]) -> fmi2Component {
         assert_eq!(fmi2ExitInitializationMode(c), OK);
         let mut info: fmi2EventInfo = std::mem::zeroed();
         assert_eq!(fmi2NewDiscreteStates(c, &mut info), OK);
-        assert_eq!((info.valuesOfContinuousStatesChanged, info.nominalsOfContinuousStatesChanged), (0, 0), "no event at the start");
+        assert_eq!(
+            (info.valuesOfContinuousStatesChanged, info.nominalsOfContinuousStatesChanged),
+            (0, 0),
+            "no event at the start"
+        );
         assert_eq!(fmi2EnterContinuousTimeMode(c), OK);
     }
     c
@@ -113,13 +137,36 @@ pub fn every_call(c: fmi2Component) -> Vec<(&'static str, fmi2Status)> {
             ("fmi2SetString", fmi2SetString(c, vr.as_ptr(), 1, s.as_ptr())),
             ("fmi2GetFMUstate", fmi2GetFMUstate(c, &mut state)),
             ("fmi2SetFMUstate", fmi2SetFMUstate(c, 1 as fmi2FMUstate)),
-            ("fmi2SerializedFMUstateSize", fmi2SerializedFMUstateSize(c, 1 as fmi2FMUstate, &mut size)),
-            ("fmi2SerializeFMUstate", fmi2SerializeFMUstate(c, 1 as fmi2FMUstate, byte.as_mut_ptr(), 64)),
+            (
+                "fmi2SerializedFMUstateSize",
+                fmi2SerializedFMUstateSize(c, 1 as fmi2FMUstate, &mut size),
+            ),
+            (
+                "fmi2SerializeFMUstate",
+                fmi2SerializeFMUstate(c, 1 as fmi2FMUstate, byte.as_mut_ptr(), 64),
+            ),
             ("fmi2DeSerializeFMUstate", fmi2DeSerializeFMUstate(c, byte.as_ptr(), 64, &mut state)),
             ("fmi2FreeFMUstate", fmi2FreeFMUstate(c, &mut (1 as fmi2FMUstate))),
-            ("fmi2GetDirectionalDerivative", fmi2GetDirectionalDerivative(c, vr.as_ptr(), 1, vr.as_ptr(), 1, r.as_ptr(), r.as_mut_ptr())),
-            ("fmi2SetRealInputDerivatives", fmi2SetRealInputDerivatives(c, vr.as_ptr(), 1, i.as_ptr(), r.as_ptr())),
-            ("fmi2GetRealOutputDerivatives", fmi2GetRealOutputDerivatives(c, vr.as_ptr(), 1, i.as_ptr(), r.as_mut_ptr())),
+            (
+                "fmi2GetDirectionalDerivative",
+                fmi2GetDirectionalDerivative(
+                    c,
+                    vr.as_ptr(),
+                    1,
+                    vr.as_ptr(),
+                    1,
+                    r.as_ptr(),
+                    r.as_mut_ptr(),
+                ),
+            ),
+            (
+                "fmi2SetRealInputDerivatives",
+                fmi2SetRealInputDerivatives(c, vr.as_ptr(), 1, i.as_ptr(), r.as_ptr()),
+            ),
+            (
+                "fmi2GetRealOutputDerivatives",
+                fmi2GetRealOutputDerivatives(c, vr.as_ptr(), 1, i.as_ptr(), r.as_mut_ptr()),
+            ),
             ("fmi2DoStep", fmi2DoStep(c, 0.0, 0.1, 0)),
             ("fmi2CancelStep", fmi2CancelStep(c)),
             ("fmi2GetStatus", fmi2GetStatus(c, FMI2_TERMINATED, &mut st)),
@@ -136,7 +183,10 @@ pub fn every_call(c: fmi2Component) -> Vec<(&'static str, fmi2Status)> {
             ("fmi2GetDerivatives", fmi2GetDerivatives(c, r.as_mut_ptr(), 1)),
             ("fmi2GetEventIndicators", fmi2GetEventIndicators(c, r.as_mut_ptr(), 1)),
             ("fmi2GetContinuousStates", fmi2GetContinuousStates(c, r.as_mut_ptr(), 1)),
-            ("fmi2GetNominalsOfContinuousStates", fmi2GetNominalsOfContinuousStates(c, r.as_mut_ptr(), 1)),
+            (
+                "fmi2GetNominalsOfContinuousStates",
+                fmi2GetNominalsOfContinuousStates(c, r.as_mut_ptr(), 1),
+            ),
             ("fmi2Terminate", fmi2Terminate(c)),
             ("fmi2Reset", fmi2Reset(c)),
         ]

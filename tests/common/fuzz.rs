@@ -1,4 +1,4 @@
-//! What the fuzz harnesses (tests/fuzz_fmi.rs, tests/fuzz_deserialize.rs,
+//! What the fuzz harnesses (tests/fuzz_fmi/, tests/fuzz_deserialize.rs,
 //! tests/fuzz_capi.rs) share: a seeded xorshift64*
 //! generator, the interesting values it draws, the time budget, and the mutations of
 //! serialized FMU states.
@@ -94,8 +94,10 @@ pub struct Budget {
 
 impl Budget {
     pub fn from_env(default_seed: u64) -> Self {
-        let seconds: f64 = std::env::var("WO_FUZZ_SECONDS").ok().and_then(|s| s.parse().ok()).unwrap_or(3.0);
-        let seed = std::env::var("WO_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(default_seed);
+        let seconds: f64 =
+            std::env::var("WO_FUZZ_SECONDS").ok().and_then(|s| s.parse().ok()).unwrap_or(3.0);
+        let seed =
+            std::env::var("WO_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(default_seed);
         Self { seed, end: Instant::now() + Duration::from_secs_f64(seconds.max(0.0)) }
     }
 

@@ -72,9 +72,12 @@ impl Call {
     pub fn interface(self) -> Option<Interface> {
         use Call::*;
         match self {
-            DoStep | FinishStep | CancelStep | GetStatus | SetRealInputDerivatives | GetRealOutputDerivatives => {
-                Some(Interface::CoSimulation)
-            }
+            DoStep
+            | FinishStep
+            | CancelStep
+            | GetStatus
+            | SetRealInputDerivatives
+            | GetRealOutputDerivatives => Some(Interface::CoSimulation),
             EnterEventMode
             | NewDiscreteStates
             | EnterContinuousTimeMode
@@ -94,7 +97,9 @@ impl Call {
     /// where the dialect differs, its rules.
     pub fn allowed_in(self, m: Machine, dialect: &Dialect) -> bool {
         self.allowed(m)
-            || (dialect.get_before_initialization && self == Call::Get && matches!(m, Machine::Instantiated | Machine::ConfigurationMode))
+            || (dialect.get_before_initialization
+                && self == Call::Get
+                && matches!(m, Machine::Instantiated | Machine::ConfigurationMode))
     }
 
     /// States in which FMI 2.0 allows the call (FMI 3.0's extra states included: an FMI 2.0
@@ -137,7 +142,9 @@ impl Call {
                 matches!(m, InitializationMode | EventMode | ContinuousTimeMode | Terminated)
             }
             Call::GetDerivatives => matches!(m, EventMode | ContinuousTimeMode | Terminated),
-            Call::GetNominalsOfContinuousStates => matches!(m, Instantiated | EventMode | ContinuousTimeMode | Terminated),
+            Call::GetNominalsOfContinuousStates => {
+                matches!(m, Instantiated | EventMode | ContinuousTimeMode | Terminated)
+            }
             Call::GetNumberOf | Call::Unsupported => true,
             Call::EnterConfigurationMode => m == Instantiated,
             Call::FinishStep => m == IntermediateUpdate,
@@ -149,10 +156,16 @@ impl Call {
             | Call::FreeFmuState
             | Call::SerializeFmuState
             | Call::DeSerializeFmuState => true,
-            Call::Get | Call::GetDirectionalDerivative => !matches!(m, Instantiated | IntermediateUpdate),
+            Call::Get | Call::GetDirectionalDerivative => {
+                !matches!(m, Instantiated | IntermediateUpdate)
+            }
             Call::Set => m != Terminated,
-            Call::SetRealInputDerivatives => matches!(m, Instantiated | InitializationMode | StepComplete),
-            Call::GetStatus | Call::GetRealOutputDerivatives => matches!(m, StepComplete | Terminated),
+            Call::SetRealInputDerivatives => {
+                matches!(m, Instantiated | InitializationMode | StepComplete)
+            }
+            Call::GetStatus | Call::GetRealOutputDerivatives => {
+                matches!(m, StepComplete | Terminated)
+            }
             // Refused by its body: steps are never asynchronous, so there is nothing to cancel.
             Call::CancelStep => true,
         }

@@ -31,7 +31,11 @@ pub struct EventInfo {
 impl Instance {
     fn check_count(&self, n: usize, what: &str) -> Result<(), Rejected> {
         let want = self.description().state_count();
-        if n == want { Ok(()) } else { Err(format!("{what} = {n} but this model has {want} continuous states")) }
+        if n == want {
+            Ok(())
+        } else {
+            Err(format!("{what} = {n} but this model has {want} continuous states"))
+        }
     }
 
     pub fn enter_event_mode(&mut self) -> Result<(), Rejected> {
@@ -60,7 +64,10 @@ impl Instance {
     /// `fmi2SetTime`: the master's time, not before `startTime` (the cut).
     pub fn set_time(&mut self, t: f64) -> Result<(), Rejected> {
         if !(t.is_finite() && t >= self.clock.start) {
-            return Err(format!("time = {t} is invalid: it must be finite and >= startTime = {}", self.clock.start));
+            return Err(format!(
+                "time = {t} is invalid: it must be finite and >= startTime = {}",
+                self.clock.start
+            ));
         }
         self.model.set_time(t - self.clock.start)?;
         self.clock.time = t;
@@ -104,7 +111,10 @@ impl Instance {
         self.prepare()?;
         let rates = self.model.derivatives(self.clock.since_start());
         match rates.iter().position(|x| !x.is_finite()) {
-            Some(i) => Err(format!("derivative {i} is {}: the states set are outside what the model accepts", rates[i])),
+            Some(i) => Err(format!(
+                "derivative {i} is {}: the states set are outside what the model accepts",
+                rates[i]
+            )),
             None => Ok(rates),
         }
     }
@@ -118,6 +128,10 @@ impl Instance {
 
     /// No event indicators: only `ni = 0` is valid.
     pub fn get_event_indicators(&mut self, n: usize) -> Result<(), Rejected> {
-        if n == 0 { Ok(()) } else { Err(format!("ni = {n} but this model has no event indicators")) }
+        if n == 0 {
+            Ok(())
+        } else {
+            Err(format!("ni = {n} but this model has no event indicators"))
+        }
     }
 }

@@ -17,6 +17,8 @@ use crate::fmi::common::model::{Causality, Description, FmuModel, Kind, Named, V
 use std::collections::HashMap;
 use std::sync::Arc;
 
+/// The Jacobian, directional and adjoint derivatives of an instance.
+mod derivatives;
 mod fmu_states;
 use fmu_states::Snapshot;
 
@@ -144,7 +146,10 @@ impl Instance {
         }
         let name = self.name_of(call);
         if let Some(only) = call.interface().filter(|&i| i != self.interface) {
-            self.log_error(&format!("{name} is a {only:?} function but this instance is {:?}", self.interface));
+            self.log_error(&format!(
+                "{name} is a {only:?} function but this instance is {:?}",
+                self.interface
+            ));
             return Err(Status::Error);
         }
         if !call.allowed_in(self.machine, &self.dialect) {
@@ -172,15 +177,24 @@ impl Instance {
         self.log.switch(on, names)
     }
 
-    pub fn setup_experiment(&mut self, tolerance: Option<f64>, start: f64, stop: Option<f64>) -> Result<(), Rejected> {
+    pub fn setup_experiment(
+        &mut self,
+        tolerance: Option<f64>,
+        start: f64,
+        stop: Option<f64>,
+    ) -> Result<(), Rejected> {
         if !start.is_finite() {
             return Err(format!("startTime = {start} is invalid: it must be finite"));
         }
         if let Some(s) = stop.filter(|&s| !(s.is_finite() && s >= start)) {
-            return Err(format!("stopTime = {s} is invalid: it must be finite and >= startTime = {start}"));
+            return Err(format!(
+                "stopTime = {s} is invalid: it must be finite and >= startTime = {start}"
+            ));
         }
         if let Some(tol) = tolerance.filter(|&t| !(t.is_finite() && t >= 0.0)) {
-            return Err(format!("tolerance = {tol} is invalid: it must be finite and > 0 (or 0: none given)"));
+            return Err(format!(
+                "tolerance = {tol} is invalid: it must be finite and > 0 (or 0: none given)"
+            ));
         }
         // 0 is "none given": OMSimulator passes it when an SSP sets no tolerance.
         if tolerance == Some(0.0) {
@@ -241,15 +255,22 @@ impl Instance {
         for &v in vrs {
             named.push(d.named(kind, v)?);
         }
-        let computed = |n: &Named| !matches!(n, Named::Table(v) if v.causality != Causality::Output);
+        let computed =
+            |n: &Named| !matches!(n, Named::Table(v) if v.causality != Causality::Output);
         if !named.iter().any(computed) {
             let t = self.clock.since_start();
             return Ok(vrs.iter().map(|&v| self.model.get(v, t)).collect());
         }
         self.prepare()?;
         let t = self.clock.since_start();
-        let states = named.iter().any(|n| matches!(n, Named::State(_))).then(|| self.model.continuous_states());
-        let rates = named.iter().any(|n| matches!(n, Named::Derivative(_))).then(|| self.model.derivatives(t));
+        let states = named
+            .iter()
+            .any(|n| matches!(n, Named::State(_)))
+            .then(|| self.model.continuous_states());
+        let rates = named
+            .iter()
+            .any(|n| matches!(n, Named::Derivative(_)))
+            .then(|| self.model.derivatives(t));
         Ok(vrs
             .iter()
             .zip(&named)
@@ -277,9 +298,9 @@ impl Instance {
     /// required intermediate inputs inside it.
     fn settable_now(&self, vr: u32) -> Result<(), Rejected> {
         match (&self.intermediate, self.machine) {
-            (Some((_, vrs)), Machine::IntermediateUpdate) if !vrs.contains(&vr) => {
-                Err(format!("value reference {vr} is not a required intermediate variable: it cannot be set in Intermediate Update Mode"))
-            }
+            (Some((_, vrs)), Machine::IntermediateUpdate) if !vrs.contains(&vr) => Err(format!(
+                "value reference {vr} is not a required intermediate variable: it cannot be set in Intermediate Update Mode"
+            )),
             _ => Ok(()),
         }
     }
@@ -306,10 +327,13 @@ impl Instance {
                     ));
                 }
             };
-            let fixed_now =
-                var.variability == Variability::Fixed && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
+            let fixed_now = var.variability == Variability::Fixed
+                && !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode);
             if var.causality == Causality::Output {
-                return Err(format!("{} (value reference {v}) is an output and cannot be set", var.name));
+                return Err(format!(
+                    "{} (value reference {v}) is an output and cannot be set",
+                    var.name
+                ));
             }
             if fixed_now {
                 return Err(format!(
@@ -345,7 +369,12 @@ impl Instance {
     /// `maxInputDerivativeOrder` being 1), all checked before any is stored. The input is
     /// then `value + rate (t - t_now)` over the next steps, until `fmi2SetReal` sets it
     /// again (which resets its rate to 0).
-    pub fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], rates: &[f64]) -> Result<(), Rejected> {
+    pub fn set_real_input_derivatives(
+        &mut self,
+        vrs: &[u32],
+        orders: &[i32],
+        rates: &[f64],
+    ) -> Result<(), Rejected> {
         let d = self.description();
         for ((&v, &order), &rate) in vrs.iter().zip(orders).zip(rates) {
             let var = d.typed(Kind::Real, v)?;
@@ -353,10 +382,16 @@ impl Instance {
                 return Err(format!("{} (value reference {v}) is not an input", var.name));
             }
             if order != 1 {
-                return Err(format!("order = {order} for {} is invalid: this FMU interpolates linearly (order 1 only)", var.name));
+                return Err(format!(
+                    "order = {order} for {} is invalid: this FMU interpolates linearly (order 1 only)",
+                    var.name
+                ));
             }
             if !rate.is_finite() {
-                return Err(format!("the derivative of {} = {rate} is invalid: it must be finite", var.name));
+                return Err(format!(
+                    "the derivative of {} = {rate} is invalid: it must be finite",
+                    var.name
+                ));
             }
             self.model.check_input_rate(v, rate)?;
         }
@@ -368,74 +403,6 @@ impl Instance {
     pub fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Result<(), Rejected> {
         let values: Vec<f64> = values.iter().map(|&v| v as f64).collect();
         self.set_values(Kind::Integer, vrs, &values)
-    }
-
-    /// The Jacobian `J[i][j] = d unknown_i / d known_j` (row-major) at the current time:
-    /// unknowns are outputs or (Model Exchange) state derivatives, knowns inputs or (Model
-    /// Exchange) states; `seed` (the vector it multiplies) must be finite.
-    fn jacobian(&mut self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> Result<Vec<f64>, Rejected> {
-        let d = self.description();
-        let exchange = self.interface == Interface::ModelExchange;
-        let role = |v: u32, want: Causality, state: bool, what: &str| -> Result<(), Rejected> {
-            match d.named(Kind::Real, v)? {
-                Named::Table(var) if var.causality == want => Ok(()),
-                Named::State(_) if state && exchange => Ok(()),
-                Named::Derivative(_) if !state && exchange => Ok(()),
-                named => {
-                    let role = match named {
-                        Named::Table(var) => var.causality.as_str(),
-                        Named::State(_) => "state",
-                        Named::Derivative(_) => "state derivative",
-                    };
-                    let article = if role.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
-                    let also = match (exchange, state) {
-                        (false, _) => "",
-                        (true, true) => " or a continuous state",
-                        (true, false) => " or a state derivative",
-                    };
-                    Err(format!(
-                        "{} (value reference {v}) is {article} {role} but {} {what} must be a Real {}{also}",
-                        d.state_name(named),
-                        if what.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" },
-                        want.as_str()
-                    ))
-                }
-            }
-        };
-        let [unknown, known, seed_name] = self.dialect.derivative_arguments;
-        unknowns.iter().try_for_each(|&v| role(v, Causality::Output, false, &format!("{unknown} entry")))?;
-        knowns.iter().try_for_each(|&v| role(v, Causality::Input, true, &format!("{known} entry")))?;
-        if let Some(x) = seed.iter().find(|x| !x.is_finite()) {
-            return Err(format!("{seed_name} = {x} is invalid: it must be finite"));
-        }
-        self.prepare()?;
-        self.model.jacobian(unknowns, knowns, self.clock.since_start())
-    }
-
-    /// `fmi2GetDirectionalDerivative` / `fmi3GetDirectionalDerivative`: `J seed`
-    /// ([`Instance::jacobian`]), one value per unknown.
-    pub fn directional_derivative(&mut self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> Result<Vec<f64>, Rejected> {
-        let j = self.jacobian(unknowns, knowns, seed)?;
-        let got: Vec<f64> = (0..unknowns.len()).map(|i| (0..knowns.len()).map(|k| j[i * knowns.len() + k] * seed[k]).sum()).collect();
-        self.overflow(&got, unknowns)
-    }
-
-    /// `fmi3GetAdjointDerivative`: `seed^T J` (`seed` per unknown), one value per known.
-    pub fn adjoint_derivative(&mut self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> Result<Vec<f64>, Rejected> {
-        let j = self.jacobian(unknowns, knowns, seed)?;
-        let got: Vec<f64> = (0..knowns.len()).map(|k| (0..unknowns.len()).map(|i| seed[i] * j[i * knowns.len() + k]).sum()).collect();
-        self.overflow(&got, knowns)
-    }
-
-    fn overflow(&self, got: &[f64], names: &[u32]) -> Result<Vec<f64>, Rejected> {
-        let d = self.description();
-        match got.iter().position(|x| !x.is_finite()) {
-            Some(i) => {
-                let name = d.named(Kind::Real, names[i]).map_or_else(|_| names[i].to_string(), |n| d.state_name(n));
-                Err(format!("the derivative of {name} overflows for this {}", self.dialect.derivative_arguments[2]))
-            }
-            None => Ok(got.to_vec()),
-        }
     }
 
     /// `fmi2DoStep`: the inputs set before the call are held over `[t, t + h]`.
@@ -457,7 +424,9 @@ impl Instance {
     /// The checks of [`Instance::do_step`], before anything moves: the end of the step.
     pub(in crate::fmi) fn check_step(&self, t: f64, h: f64) -> Result<f64, Rejected> {
         if !(h.is_finite() && h > 0.0) {
-            return Err(format!("communicationStepSize = {h} is invalid: it must be finite and > 0"));
+            return Err(format!(
+                "communicationStepSize = {h} is invalid: it must be finite and > 0"
+            ));
         }
         let now = self.clock.time;
         let slack = time_slack(h, now);
@@ -469,10 +438,14 @@ impl Instance {
         }
         let end = t + h;
         if !end.is_finite() {
-            return Err(format!("a step of {h} from {t} ends at {end}: communicationStepSize is too large"));
+            return Err(format!(
+                "a step of {h} from {t} ends at {end}: communicationStepSize is too large"
+            ));
         }
         if let Some(stop) = self.clock.stop.filter(|&s| end > s + time_slack(h, s)) {
-            return Err(format!("a step of {h} from {t} would end at {end}, past stopTime = {stop}"));
+            return Err(format!(
+                "a step of {h} from {t} would end at {end}, past stopTime = {stop}"
+            ));
         }
         Ok(end)
     }

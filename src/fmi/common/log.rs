@@ -86,7 +86,9 @@ impl Log {
         let mut idx = Vec::with_capacity(names.len());
         for n in names {
             let i = LOG_CATEGORIES.iter().position(|(c, _)| c == n);
-            idx.push(i.ok_or_else(|| format!("unknown log category \"{n}\"; declared: {}", category_list()))?);
+            idx.push(i.ok_or_else(|| {
+                format!("unknown log category \"{n}\"; declared: {}", category_list())
+            })?);
         }
         if idx.is_empty() {
             idx = (0..LOG_CATEGORIES.len()).collect();

@@ -4,7 +4,9 @@
 //!
 //! ```text
 //! model.rs          what the glue knows of a model: the FmuModel trait and its Description table
+//! model/fmu_model.rs  the FmuModel trait itself
 //! instance.rs       one instance: calls, variables, logging
+//! instance/derivatives.rs  its Jacobian, directional and adjoint derivatives
 //! instance/fmu_states.rs  its table of saved FMU states (get, set, free, serialize)
 //! machine.rs        the state machine's states and the master's clock
 //! call.rs           the calls, and in which state each is allowed

@@ -1,7 +1,10 @@
 //! What the shared FMI glue knows of a model: its description (identity, variables,
-//! dependencies, the XML) and the [`FmuModel`] trait. The glue
+//! dependencies, the XML) and the [`FmuModel`] trait (in model/fmu_model.rs). The glue
 //! ([`crate::fmi::common::instance`], [`crate::fmi::fmi2::functions`]) runs the state machine, the clock, logging and
 //! FMU states for any model; a model sees plain values only.
+
+mod fmu_model;
+pub use fmu_model::FmuModel;
 
 /// Log categories of every model's `modelDescription.xml`, with their descriptions.
 pub const LOG_CATEGORIES: [(&str, &str); 4] = [
@@ -84,28 +87,95 @@ pub struct Variable {
 
 impl Variable {
     /// A fixed Real parameter.
-    pub const fn parameter(name: &'static str, vr: u32, start: f64, unit: &'static str, description: &'static str) -> Self {
-        let (kind, causality, variability, range) = (Kind::Real, Causality::Parameter, Variability::Fixed, None);
-        Self { name, value_reference: vr, kind, causality, variability, start: Some(start), unit, range, description }
+    pub const fn parameter(
+        name: &'static str,
+        vr: u32,
+        start: f64,
+        unit: &'static str,
+        description: &'static str,
+    ) -> Self {
+        let (kind, causality, variability, range) =
+            (Kind::Real, Causality::Parameter, Variability::Fixed, None);
+        Self {
+            name,
+            value_reference: vr,
+            kind,
+            causality,
+            variability,
+            start: Some(start),
+            unit,
+            range,
+            description,
+        }
     }
 
     /// A fixed Integer parameter in `min ..= max`.
-    pub const fn integer(name: &'static str, vr: u32, start: i32, range: (i32, i32), description: &'static str) -> Self {
-        let (kind, causality, variability, unit) = (Kind::Integer, Causality::Parameter, Variability::Fixed, "");
+    pub const fn integer(
+        name: &'static str,
+        vr: u32,
+        start: i32,
+        range: (i32, i32),
+        description: &'static str,
+    ) -> Self {
+        let (kind, causality, variability, unit) =
+            (Kind::Integer, Causality::Parameter, Variability::Fixed, "");
         let start = Some(start as f64);
-        Self { name, value_reference: vr, kind, causality, variability, start, unit, range: Some(range), description }
+        Self {
+            name,
+            value_reference: vr,
+            kind,
+            causality,
+            variability,
+            start,
+            unit,
+            range: Some(range),
+            description,
+        }
     }
 
     /// A continuous Real output.
-    pub const fn output(name: &'static str, vr: u32, unit: &'static str, description: &'static str) -> Self {
-        let (kind, causality, variability, range) = (Kind::Real, Causality::Output, Variability::Continuous, None);
-        Self { name, value_reference: vr, kind, causality, variability, start: None, unit, range, description }
+    pub const fn output(
+        name: &'static str,
+        vr: u32,
+        unit: &'static str,
+        description: &'static str,
+    ) -> Self {
+        let (kind, causality, variability, range) =
+            (Kind::Real, Causality::Output, Variability::Continuous, None);
+        Self {
+            name,
+            value_reference: vr,
+            kind,
+            causality,
+            variability,
+            start: None,
+            unit,
+            range,
+            description,
+        }
     }
 
     /// A continuous Real input.
-    pub const fn input(name: &'static str, vr: u32, start: f64, unit: &'static str, description: &'static str) -> Self {
-        let (kind, causality, variability, range) = (Kind::Real, Causality::Input, Variability::Continuous, None);
-        Self { name, value_reference: vr, kind, causality, variability, start: Some(start), unit, range, description }
+    pub const fn input(
+        name: &'static str,
+        vr: u32,
+        start: f64,
+        unit: &'static str,
+        description: &'static str,
+    ) -> Self {
+        let (kind, causality, variability, range) =
+            (Kind::Real, Causality::Input, Variability::Continuous, None);
+        Self {
+            name,
+            value_reference: vr,
+            kind,
+            causality,
+            variability,
+            start: Some(start),
+            unit,
+            range,
+            description,
+        }
     }
 }
 
@@ -264,7 +334,12 @@ impl Description {
     pub fn typed(&self, kind: Kind, vr: u32) -> Result<&'static Variable, Rejected> {
         match self.variables.iter().find(|v| v.value_reference == vr) {
             Some(v) if v.kind == kind => Ok(v),
-            Some(v) => Err(format!("{} (value reference {vr}) is {}, not {}", v.name, v.kind.as_str(), kind.as_str())),
+            Some(v) => Err(format!(
+                "{} (value reference {vr}) is {}, not {}",
+                v.name,
+                v.kind.as_str(),
+                kind.as_str()
+            )),
             None => Err(format!("no {} variable has value reference {vr}", kind.as_str())),
         }
     }
@@ -290,7 +365,9 @@ impl Description {
         let (first, n) = (self.first_state() as usize, self.state_count());
         let k = (vr as usize).wrapping_sub(first);
         match self.typed(kind, vr) {
-            Err(_) if k < 2 * n && kind == Kind::Real => Ok(if k < n { Named::State(k) } else { Named::Derivative(k - n) }),
+            Err(_) if k < 2 * n && kind == Kind::Real => {
+                Ok(if k < n { Named::State(k) } else { Named::Derivative(k - n) })
+            }
             row => row.map(Named::Table),
         }
     }
@@ -303,125 +380,5 @@ impl Description {
             Named::State(k) => format!("{s}[{}]", k + 1),
             Named::Derivative(k) => format!("der({s}[{}])", k + 1),
         }
-    }
-}
-
-/// A model behind the FMI glue. Value references arrive checked against the
-/// description (existing, of the right type; outputs never set; fixed parameters only
-/// before initialization ends). Times are since the master's `startTime` (the cut), in
-/// the master's unit: every model of the FMU counts from the same instant.
-pub trait FmuModel: Send {
-    fn description(&self) -> &'static Description;
-    fn boxed_clone(&self) -> Box<dyn FmuModel>;
-    /// Validate `x` for variable `vr` (a parameter or input); return the value to store.
-    fn check(&self, vr: u32, x: f64) -> Result<f64, Rejected>;
-    /// Store a checked value.
-    fn set(&mut self, vr: u32, x: f64);
-    /// The tolerance of `fmi2SetupExperiment`, if defined.
-    fn set_experiment_tolerance(&mut self, tolerance: Option<f64>);
-    /// Build what outputs and steps need, if not yet built; `Some(text)` to log when
-    /// something was built.
-    fn prepare(&mut self) -> Result<Option<String>, Rejected>;
-    /// Value of `vr` at time `time` since the cut (after [`FmuModel::prepare`] for outputs).
-    fn get(&self, vr: u32, time: f64) -> f64;
-    /// Advance from `time` by `h > 0` (after `prepare`).
-    fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected>;
-    /// `d output / d input` at time `time` since the cut (after `prepare`); `Err` with the
-    /// reason where the exact derivative is infinite or undefined.
-    fn partial(&self, output: u32, input: u32, time: f64) -> Result<f64, Rejected>;
-    /// The Jacobian `d unknown_i / d known_j`, row-major (`unknowns.len()` rows), at time
-    /// `time` since the cut (after `prepare`). Unknowns are outputs or (Model Exchange)
-    /// derivatives, knowns inputs or (Model Exchange) states, checked by the glue. The
-    /// default is [`FmuModel::partial`] per entry (models without states).
-    fn jacobian(&self, unknowns: &[u32], knowns: &[u32], time: f64) -> Result<Vec<f64>, Rejected> {
-        let mut out = Vec::with_capacity(unknowns.len() * knowns.len());
-        for &u in unknowns {
-            for &k in knowns {
-                out.push(self.partial(u, k, time)?);
-            }
-        }
-        Ok(out)
-    }
-    /// The model's part of a serialized FMU state.
-    fn encode(&self) -> Result<Vec<u8>, Rejected>;
-    /// A model from `encode`d bytes, which must fit this instance's parameters.
-    fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected>;
-    /// A warning about the call that just succeeded, if the model has one (taken: asked
-    /// once per call). The glue logs it under `logStatusWarning` and the call returns
-    /// `fmi2Warning`: the result is usable, but the master should know (FMI 2.0.2,
-    /// section 2.1.3). The default has none.
-    fn take_warning(&mut self) -> Option<String> {
-        None
-    }
-    /// A note about the current call: logged under `logStatusWarning` with status OK (the
-    /// call's status stays OK), for what the master should know about a result that is
-    /// the best answer the model has (a tolerance below the floor, an infinite value in
-    /// the model answered by a stated finite one). The default has none.
-    fn take_note(&mut self) -> Option<String> {
-        None
-    }
-
-    /// `fmi2SetRealInputDerivatives`: validate `rate`, the first time derivative of the
-    /// input `vr` per second of master time, which makes the input linear in time over the
-    /// next steps (`canInterpolateInputs`). The default refuses.
-    fn check_input_rate(&self, vr: u32, _rate: f64) -> Result<(), Rejected> {
-        Err(format!("value reference {vr}: this model does not interpolate its inputs"))
-    }
-    /// Store a checked input rate (reset to 0 by the next `set` of that input).
-    fn set_input_rate(&mut self, _vr: u32, _rate: f64) {}
-
-    /// Model Exchange: whether this parameter set can run as an ODE for an outside
-    /// integrator (`Err` with the reason; after [`FmuModel::prepare`]). Models without
-    /// states can.
-    fn check_model_exchange(&self) -> Result<(), Rejected> {
-        Ok(())
-    }
-    /// Model Exchange starts (initialization ends, after [`FmuModel::check_model_exchange`]):
-    /// the inputs set now are the start of the run.
-    fn enter_model_exchange(&mut self) {}
-    /// The master's time, `time` since the cut, set in Model Exchange (the states and
-    /// inputs kept).
-    fn set_time(&mut self, _time: f64) -> Result<(), Rejected> {
-        Ok(())
-    }
-    /// The continuous states, `description().state_count()` of them (after `prepare`).
-    fn continuous_states(&self) -> Vec<f64> {
-        Vec::new()
-    }
-    /// Set the continuous states at time `time` since the cut (validated: finite, the
-    /// declared count).
-    fn set_continuous_states(&mut self, _time: f64, x: &[f64]) -> Result<(), Rejected> {
-        if x.is_empty() { Ok(()) } else { Err(format!("this model has no continuous states, {} given", x.len())) }
-    }
-    /// `dx/dt` per unit of the master's time at `time` since the cut, under the inputs set.
-    fn derivatives(&self, _time: f64) -> Vec<f64> {
-        Vec::new()
-    }
-    /// Model Exchange, Event Mode (`fmi2NewDiscreteStates`): update the discrete states
-    /// after the inputs set; `(values of the continuous states changed, their nominals
-    /// changed)`. The default has none.
-    fn update_discrete_states(&mut self) -> (bool, bool) {
-        (false, false)
-    }
-    /// Nominal values of the states (> 0).
-    fn nominals(&self) -> Vec<f64> {
-        vec![1.0; self.description().state_count()]
-    }
-
-    /// FMI 3.0 arrays ([`Arrays`]): the current length.
-    fn array_length(&self) -> u64 {
-        0
-    }
-    /// Set the length (checked by the glue against `1 ..= length_max`); the parameter
-    /// arrays take their start values, or as many as fit.
-    fn set_array_length(&mut self, _n: u64) {}
-    /// Validate the values of parameter array `j` (length checked by the glue).
-    fn check_array(&self, j: usize, _values: &[f64]) -> Result<(), Rejected> {
-        Err(format!("array {j} cannot be set"))
-    }
-    fn set_array(&mut self, _j: usize, _values: &[f64]) {}
-    /// Array `j` at time `time` since the cut (after `prepare` for outputs).
-    fn get_array(&self, j: usize, _time: f64) -> Result<Vec<f64>, Rejected> {
-        Err(format!("this model has no array {j}"))
     }
 }

@@ -76,11 +76,16 @@ impl<'a> Reader<'a> {
     /// Whether every byte was read.
     pub fn finish(&self) -> Result<(), String> {
         let left = self.bytes.len() - self.at;
-        if left == 0 { Ok(()) } else { Err(format!("serialized FMU state has {left} unread bytes")) }
+        if left == 0 {
+            Ok(())
+        } else {
+            Err(format!("serialized FMU state has {left} unread bytes"))
+        }
     }
     fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
         let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
-        let end = end.ok_or_else(|| format!("serialized FMU state is truncated at byte {}", self.at))?;
+        let end =
+            end.ok_or_else(|| format!("serialized FMU state is truncated at byte {}", self.at))?;
         let out = &self.bytes[self.at..end];
         self.at = end;
         Ok(out)
@@ -111,48 +116,72 @@ impl<'a> Reader<'a> {
 /// state's value)` must agree to the bit.
 pub fn same_parameters(pairs: &[(&str, f64, f64)]) -> Result<(), String> {
     match pairs.iter().find(|(_, mine, theirs)| mine.to_bits() != theirs.to_bits()) {
-        Some((name, mine, theirs)) => Err(format!("serialized FMU state has {name} = {theirs} but this instance has {name} = {mine}")),
+        Some((name, mine, theirs)) => Err(format!(
+            "serialized FMU state has {name} = {theirs} but this instance has {name} = {mine}"
+        )),
         None => Ok(()),
     }
 }
 
 /// Open the envelope: the machine state, the clock and the model's bytes, checked to come
 /// from the model `model_identifier`.
-pub fn decode<'a>(model_identifier: &str, bytes: &'a [u8]) -> Result<(Machine, Clock, &'a [u8]), String> {
+pub fn decode<'a>(
+    model_identifier: &str,
+    bytes: &'a [u8],
+) -> Result<(Machine, Clock, &'a [u8]), String> {
     if bytes.len() < HEADER + 4 {
-        return Err(format!("serialized FMU state is {} bytes, shorter than its header", bytes.len()));
+        return Err(format!(
+            "serialized FMU state is {} bytes, shorter than its header",
+            bytes.len()
+        ));
     }
     if &bytes[..8] != MAGIC {
-        return Err("serialized FMU state does not start with \"WOUNDFMU\": not a state of this library".into());
+        return Err(
+            "serialized FMU state does not start with \"WOUNDFMU\": not a state of this library"
+                .into(),
+        );
     }
     let mut r = Reader { bytes: &bytes[..bytes.len().saturating_sub(4)], at: 8 };
     let version = r.u32()?;
     if version != FORMAT_VERSION {
-        return Err(format!("serialized FMU state has format version {version}; this FMU reads version {FORMAT_VERSION}"));
+        return Err(format!(
+            "serialized FMU state has format version {version}; this FMU reads version {FORMAT_VERSION}"
+        ));
     }
     let payload = r.u32()? as usize;
     if bytes.len() != HEADER + payload + 4 {
-        return Err(format!("serialized FMU state is {} bytes but its header announces {}", bytes.len(), HEADER + payload + 4));
+        return Err(format!(
+            "serialized FMU state is {} bytes but its header announces {}",
+            bytes.len(),
+            HEADER + payload + 4
+        ));
     }
     let stored = u32::from_le_bytes(bytes[HEADER + payload..].try_into().expect("4 bytes"));
     let actual = crc32fast::hash(&bytes[..HEADER + payload]);
     if stored != actual {
-        return Err(format!("serialized FMU state is corrupted: checksum {actual:08x}, expected {stored:08x}"));
+        return Err(format!(
+            "serialized FMU state is corrupted: checksum {actual:08x}, expected {stored:08x}"
+        ));
     }
     let n = r.u8()? as usize;
     let theirs = String::from_utf8_lossy(r.take(n)?).into_owned();
     if theirs != model_identifier {
-        return Err(format!("serialized FMU state is of model {theirs:?} but this instance is {model_identifier:?}"));
+        return Err(format!(
+            "serialized FMU state is of model {theirs:?} but this instance is {model_identifier:?}"
+        ));
     }
     let code = r.u8()?;
-    let machine = Machine::from_code(code).ok_or_else(|| format!("serialized FMU state has machine state {code}"))?;
+    let machine = Machine::from_code(code)
+        .ok_or_else(|| format!("serialized FMU state has machine state {code}"))?;
     let start = r.finite("start time")?;
     let time = r.finite("time")?;
     let has_stop = r.flag("stop time")?;
     let stop = r.finite("stop time")?;
     let stop = has_stop.then_some(stop);
     if time < start || stop.is_some_and(|s| s < start) {
-        return Err(format!("serialized FMU state has start time {start}, time {time}, stop time {stop:?}"));
+        return Err(format!(
+            "serialized FMU state has start time {start}, time {time}, stop time {stop:?}"
+        ));
     }
     Ok((machine, Clock { start, stop, time }, &r.bytes[r.at..]))
 }

@@ -29,7 +29,12 @@ fn unit_definitions(d: &Description) -> String {
             let _ = writeln!(out, "    <Unit name=\"{}\"/>", escape(name));
         } else {
             let attrs: Vec<String> = base.iter().map(|(k, v)| format!("{k}=\"{v}\"")).collect();
-            let _ = writeln!(out, "    <Unit name=\"{}\"><BaseUnit {}/></Unit>", escape(name), attrs.join(" "));
+            let _ = writeln!(
+                out,
+                "    <Unit name=\"{}\"><BaseUnit {}/></Unit>",
+                escape(name),
+                attrs.join(" ")
+            );
         }
     }
     out.push_str("  </UnitDefinitions>\n");
@@ -60,7 +65,11 @@ pub(in crate::fmi) fn units_categories_experiment(d: &Description) -> String {
 fn log_categories() -> String {
     let mut out = String::from("  <LogCategories>\n");
     for (name, description) in LOG_CATEGORIES {
-        let _ = writeln!(out, "    <Category name=\"{name}\" description=\"{}\"/>", escape(description));
+        let _ = writeln!(
+            out,
+            "    <Category name=\"{name}\" description=\"{}\"/>",
+            escape(description)
+        );
     }
     out.push_str("  </LogCategories>\n");
     out
@@ -102,7 +111,8 @@ impl Structure {
                 (*vr, all)
             })
             .collect();
-        let mut initial: Vec<(u32, Vec<u32>)> = d.initial_unknowns.iter().map(|(v, deps)| (*v, deps.to_vec())).collect();
+        let mut initial: Vec<(u32, Vec<u32>)> =
+            d.initial_unknowns.iter().map(|(v, deps)| (*v, deps.to_vec())).collect();
         let mut derivatives = Vec::new();
         if let Some(s) = d.states {
             let n = s.count as u32;

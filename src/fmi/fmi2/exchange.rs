@@ -15,11 +15,19 @@ fn flag(b: bool) -> fmi2Boolean {
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
-    with_instance(c, Call::EnterEventMode, || "fmi2EnterEventMode".into(), |i| i.enter_event_mode().map(|_| Status::Ok))
+    with_instance(
+        c,
+        Call::EnterEventMode,
+        || "fmi2EnterEventMode".into(),
+        |i| i.enter_event_mode().map(|_| Status::Ok),
+    )
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: *mut fmi2EventInfo) -> fmi2Status {
+pub unsafe extern "C" fn fmi2NewDiscreteStates(
+    c: fmi2Component,
+    fmi2eventInfo: *mut fmi2EventInfo,
+) -> fmi2Status {
     unsafe {
         with_instance(
             c,
@@ -44,7 +52,12 @@ pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: 
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
-    shims::transition(c, Call::EnterContinuousTimeMode, "fmi2EnterContinuousTimeMode", Instance::enter_continuous_time_mode)
+    shims::transition(
+        c,
+        Call::EnterContinuousTimeMode,
+        "fmi2EnterContinuousTimeMode",
+        Instance::enter_continuous_time_mode,
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -61,7 +74,8 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
             || "fmi2CompletedIntegratorStep".into(),
             |i| {
                 let enter = enterEventMode.as_mut().ok_or("enterEventMode is NULL")?;
-                let terminate = terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
+                let terminate =
+                    terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
                 let (e, t) = i.completed_integrator_step()?;
                 (*enter, *terminate) = (flag(e), flag(t));
                 OK
@@ -76,27 +90,65 @@ pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, time: fmi2Real) -> fmi2St
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetContinuousStates(c: fmi2Component, x: *const fmi2Real, nx: usize) -> fmi2Status {
+pub unsafe extern "C" fn fmi2SetContinuousStates(
+    c: fmi2Component,
+    x: *const fmi2Real,
+    nx: usize,
+) -> fmi2Status {
     unsafe { shims::set_continuous_states(c, x, nx, "fmi2SetContinuousStates") }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, derivatives: *mut fmi2Real, nx: usize) -> fmi2Status {
-    unsafe { shims::get_vector(c, Call::GetDerivatives, derivatives, nx, Instance::get_derivatives, "fmi2GetDerivatives") }
+pub unsafe extern "C" fn fmi2GetDerivatives(
+    c: fmi2Component,
+    derivatives: *mut fmi2Real,
+    nx: usize,
+) -> fmi2Status {
+    unsafe {
+        shims::get_vector(
+            c,
+            Call::GetDerivatives,
+            derivatives,
+            nx,
+            Instance::get_derivatives,
+            "fmi2GetDerivatives",
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetEventIndicators(c: fmi2Component, _eventIndicators: *mut fmi2Real, ni: usize) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetEventIndicators(
+    c: fmi2Component,
+    _eventIndicators: *mut fmi2Real,
+    ni: usize,
+) -> fmi2Status {
     shims::get_event_indicators(c, ni, "fmi2GetEventIndicators")
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2Real, nx: usize) -> fmi2Status {
-    unsafe { shims::get_vector(c, Call::GetContinuousStates, x, nx, Instance::get_continuous_states, "fmi2GetContinuousStates") }
+pub unsafe extern "C" fn fmi2GetContinuousStates(
+    c: fmi2Component,
+    x: *mut fmi2Real,
+    nx: usize,
+) -> fmi2Status {
+    unsafe {
+        shims::get_vector(
+            c,
+            Call::GetContinuousStates,
+            x,
+            nx,
+            Instance::get_continuous_states,
+            "fmi2GetContinuousStates",
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, x_nominal: *mut fmi2Real, nx: usize) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
+    c: fmi2Component,
+    x_nominal: *mut fmi2Real,
+    nx: usize,
+) -> fmi2Status {
     unsafe {
         shims::get_vector(
             c,

@@ -1,13 +1,17 @@
 //! The exported FMI 2.0 functions: thin `extern "C"` shims that convert pointers and hand
 //! over to the safe [`Instance`]. Each is framed by [`with_instance`] (lookup of the
 //! instance handle, its lock, panic boundary, state machine, logging) or, without an
-//! instance, by [`guard`].
+//! instance, by [`guard`]. The `fmi2Get*Status` functions are in
+//! [`crate::fmi::fmi2::status`] (re-exported here).
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
 use crate::boundary::guard;
 use crate::fmi::common::instance::{Call, Instance, Interface, Status};
+pub use crate::fmi::fmi2::status::*;
 use crate::fmi::fmi2::types::*;
-use crate::fmi::frame::{CallbackLogger, register, slice, slice_mut, text, unregister, with_instance};
+use crate::fmi::frame::{
+    CallbackLogger, register, slice, slice_mut, text, unregister, with_instance,
+};
 use crate::fmi::shims::{self, Names};
 use std::ffi::{CString, c_char};
 use std::sync::Arc;
@@ -17,12 +21,16 @@ const OK: Result<Status, String> = Ok(Status::Ok);
 fn no_variables(kind: &str, vr: &[fmi2ValueReference]) -> Result<Status, String> {
     match vr.first() {
         None => OK,
-        Some(v) => Err(format!("no {kind} variable has value reference {v} (this FMU has Real and Integer variables only)")),
+        Some(v) => Err(format!(
+            "no {kind} variable has value reference {v} (this FMU has Real and Integer variables only)"
+        )),
     }
 }
 
 fn not_supported(what: &str) -> Result<Status, String> {
-    Err(format!("{what} is not supported by this FMU (see the capability flags of modelDescription.xml)"))
+    Err(format!(
+        "{what} is not supported by this FMU (see the capability flags of modelDescription.xml)"
+    ))
 }
 
 #[unsafe(no_mangle)]
@@ -58,14 +66,19 @@ pub unsafe extern "C" fn fmi2Instantiate(
         let interface = match fmuType {
             FMI2_CO_SIMULATION => Interface::CoSimulation,
             FMI2_MODEL_EXCHANGE => Interface::ModelExchange,
-            other => return fail(format!("fmuType = {other}: this FMU supports Model Exchange (0) and co-simulation (1)")),
+            other => {
+                return fail(format!(
+                    "fmuType = {other}: this FMU supports Model Exchange (0) and co-simulation (1)"
+                ));
+            }
         };
         let guid = unsafe { text(fmuGUID) };
         let fresh = match crate::fmi::model_for_guid(guid.as_deref(), "GUID") {
             Ok(fresh) => fresh,
             Err(msg) => return fail(msg),
         };
-        let sink = CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
+        let sink =
+            CallbackLogger { logger, env, name: CString::new(name.as_str()).unwrap_or_default() };
         Some(register(Instance::of_interface(
             interface,
             crate::fmi::fmi2::names::FMI2,
@@ -98,7 +111,8 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
             || format!("fmi2SetDebugLogging(loggingOn={loggingOn}, nCategories={nCategories})"),
             |i| {
                 let names = slice(categories, nCategories, "categories")?;
-                let names: Vec<String> = names.iter().map(|&p| text(p).unwrap_or_default()).collect();
+                let names: Vec<String> =
+                    names.iter().map(|&p| text(p).unwrap_or_default()).collect();
                 i.set_debug_logging(loggingOn != FMI2_FALSE, &names).map(|_| Status::Ok)
             },
         )
@@ -119,7 +133,11 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
     with_instance(
         c,
         Call::SetupExperiment,
-        || format!("fmi2SetupExperiment(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"),
+        || {
+            format!(
+                "fmi2SetupExperiment(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"
+            )
+        },
         |i| i.setup_experiment(tol, startTime, stop).map(|_| Status::Ok),
     )
 }
@@ -127,8 +145,17 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 /// A call without arguments that only moves the state machine: `fmi2EnterInitializationMode`,
 /// `fmi2ExitInitializationMode`, `fmi2Terminate`, `fmi2Reset`. (Written out below, one
 /// function each rather than by a macro, so that cbindgen sees every exported function.)
-fn transition(c: fmi2Component, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi2Status {
-    with_instance(c, call, || crate::fmi::fmi2::names::name(call).to_string(), |i| method(i).map(|_| Status::Ok))
+fn transition(
+    c: fmi2Component,
+    call: Call,
+    method: fn(&mut Instance) -> Result<(), String>,
+) -> fmi2Status {
+    with_instance(
+        c,
+        call,
+        || crate::fmi::fmi2::names::name(call).to_string(),
+        |i| method(i).map(|_| Status::Ok),
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -152,7 +179,12 @@ pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Real) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetReal(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    value: *mut fmi2Real,
+) -> fmi2Status {
     unsafe {
         with_instance(
             c,
@@ -168,7 +200,12 @@ pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueRefer
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Real) -> fmi2Status {
+pub unsafe extern "C" fn fmi2SetReal(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    value: *const fmi2Real,
+) -> fmi2Status {
     unsafe {
         with_instance(
             c,
@@ -196,7 +233,14 @@ unsafe fn no_such_variables(
     vr: *const fmi2ValueReference,
     nvr: usize,
 ) -> fmi2Status {
-    unsafe { with_instance(c, call, || format!("{fname}(nvr={nvr})"), |_| no_variables(kind, slice(vr, nvr, "vr")?)) }
+    unsafe {
+        with_instance(
+            c,
+            call,
+            || format!("{fname}(nvr={nvr})"),
+            |_| no_variables(kind, slice(vr, nvr, "vr")?),
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -231,7 +275,12 @@ pub unsafe extern "C" fn fmi2GetBoolean(
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, _value: *mut fmi2String) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetString(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    _value: *mut fmi2String,
+) -> fmi2Status {
     unsafe { no_such_variables(c, Call::Get, "fmi2GetString", "String", vr, nvr) }
 }
 
@@ -281,7 +330,10 @@ fn names(function: &'static str) -> Names {
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetFMUstate(
+    c: fmi2Component,
+    FMUstate: *mut fmi2FMUstate,
+) -> fmi2Status {
     unsafe { shims::get_fmu_state(c, FMUstate, names("fmi2GetFMUstate")) }
 }
 
@@ -291,13 +343,22 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstat
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+pub unsafe extern "C" fn fmi2FreeFMUstate(
+    c: fmi2Component,
+    FMUstate: *mut fmi2FMUstate,
+) -> fmi2Status {
     unsafe { shims::free_fmu_state(c, FMUstate, false, names("fmi2FreeFMUstate")) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: fmi2FMUstate, size: *mut usize) -> fmi2Status {
-    unsafe { shims::serialized_fmu_state_size(c, FMUstate, size, names("fmi2SerializedFMUstateSize")) }
+pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
+    c: fmi2Component,
+    FMUstate: fmi2FMUstate,
+    size: *mut usize,
+) -> fmi2Status {
+    unsafe {
+        shims::serialized_fmu_state_size(c, FMUstate, size, names("fmi2SerializedFMUstateSize"))
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -307,7 +368,15 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     serializedState: *mut fmi2Byte,
     size: usize,
 ) -> fmi2Status {
-    unsafe { shims::serialize_fmu_state(c, FMUstate, serializedState as *mut u8, size, names("fmi2SerializeFMUstate")) }
+    unsafe {
+        shims::serialize_fmu_state(
+            c,
+            FMUstate,
+            serializedState as *mut u8,
+            size,
+            names("fmi2SerializeFMUstate"),
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -317,7 +386,15 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    unsafe { shims::deserialize_fmu_state(c, serializedState as *const u8, size, FMUstate, names("fmi2DeSerializeFMUstate")) }
+    unsafe {
+        shims::deserialize_fmu_state(
+            c,
+            serializedState as *const u8,
+            size,
+            FMUstate,
+            names("fmi2DeSerializeFMUstate"),
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -397,80 +474,21 @@ pub unsafe extern "C" fn fmi2DoStep(
     with_instance(
         c,
         Call::DoStep,
-        || format!("fmi2DoStep(currentCommunicationPoint={currentCommunicationPoint}, communicationStepSize={communicationStepSize})"),
+        || {
+            format!(
+                "fmi2DoStep(currentCommunicationPoint={currentCommunicationPoint}, communicationStepSize={communicationStepSize})"
+            )
+        },
         |i| i.do_step(currentCommunicationPoint, communicationStepSize).map(|_| Status::Ok),
     )
 }
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
-    with_instance(c, Call::CancelStep, || "fmi2CancelStep".into(), |_| not_supported("fmi2CancelStep"))
-}
-
-/// `fmi2Get*Status` asked for a kind this FMU does not provide: `fmi2Discard`, with the
-/// reason logged. FMI 2.0.2, section 2.1.3: "For co-simulation: fmi2Discard is returned
-/// also if the slave is not able to return the required status information"; section 4.2.3
-/// (fmi2GetXXXStatus): "If a status is required which cannot be retrieved by the slave it
-/// returns fmi2Discard". The Reference-FMUs (src/fmi2Functions.c, `getStatus`) do the same.
-/// A value that is no `fmi2StatusKind` at all is an invalid argument: `fmi2Error`.
-fn status_not_provided(i: &Instance, function: &str, kind: fmi2StatusKind) -> Result<Status, String> {
-    const KINDS: [&str; 4] = ["fmi2DoStepStatus", "fmi2PendingStatus", "fmi2LastSuccessfulTime", "fmi2Terminated"];
-    let name = usize::try_from(kind).ok().and_then(|k| KINDS.get(k));
-    let name = name.ok_or_else(|| format!("status kind {kind} is not an fmi2StatusKind (0 to 3)"))?;
-    Ok(i.discard(&format!(
-        "{function}: {name} is not provided by this FMU (it provides fmi2LastSuccessfulTime through \
-         fmi2GetRealStatus and fmi2Terminated through fmi2GetBooleanStatus; its fmi2DoStep is \
-         synchronous, never pending)"
-    )))
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Status) -> fmi2Status {
-    with_instance(c, Call::GetStatus, || format!("fmi2GetStatus({s})"), |i| status_not_provided(i, "fmi2GetStatus", s))
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status {
-    unsafe {
-        with_instance(
-            c,
-            Call::GetStatus,
-            || format!("fmi2GetRealStatus({s})"),
-            |i| {
-                if s != FMI2_LAST_SUCCESSFUL_TIME {
-                    return status_not_provided(i, "fmi2GetRealStatus", s);
-                }
-                *value.as_mut().ok_or("value is NULL")? = i.last_successful_time();
-                OK
-            },
-        )
-    }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Integer) -> fmi2Status {
-    with_instance(c, Call::GetStatus, || format!("fmi2GetIntegerStatus({s})"), |i| status_not_provided(i, "fmi2GetIntegerStatus", s))
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status {
-    unsafe {
-        with_instance(
-            c,
-            Call::GetStatus,
-            || format!("fmi2GetBooleanStatus({s})"),
-            |i| {
-                if s != FMI2_TERMINATED {
-                    return status_not_provided(i, "fmi2GetBooleanStatus", s);
-                }
-                *value.as_mut().ok_or("value is NULL")? = if i.wants_to_terminate() { FMI2_TRUE } else { FMI2_FALSE };
-                OK
-            },
-        )
-    }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2String) -> fmi2Status {
-    with_instance(c, Call::GetStatus, || format!("fmi2GetStringStatus({s})"), |i| status_not_provided(i, "fmi2GetStringStatus", s))
+    with_instance(
+        c,
+        Call::CancelStep,
+        || "fmi2CancelStep".into(),
+        |_| not_supported("fmi2CancelStep"),
+    )
 }

@@ -4,6 +4,7 @@
 //! ```text
 //! types.rs       fmi2TypesPlatform.h, fmi2FunctionTypes.h as Rust declarations
 //! functions.rs   the common and co-simulation functions
+//! status.rs      the fmi2Get*Status functions
 //! names.rs       its Dialect: the functions' names (safe Rust)
 //! exchange.rs    the Model Exchange functions
 //! xml.rs         modelDescription.xml (fmi2ModelDescription.xsd)
@@ -12,5 +13,6 @@
 pub mod exchange;
 pub mod functions;
 pub mod names;
+pub mod status;
 pub mod types;
 pub mod xml;

@@ -10,7 +10,12 @@ use std::sync::Arc;
 
 impl Instance {
     /// An FMI 2.0 co-simulation instance of the model that `fresh` makes.
-    pub fn new(fresh: fn() -> Box<dyn FmuModel>, name: &str, logger: Arc<dyn Logger>, logging_on: bool) -> Self {
+    pub fn new(
+        fresh: fn() -> Box<dyn FmuModel>,
+        name: &str,
+        logger: Arc<dyn Logger>,
+        logging_on: bool,
+    ) -> Self {
         Self::of_interface(Interface::CoSimulation, FMI2, fresh, name, logger, logging_on)
     }
 }

@@ -28,7 +28,16 @@ pub const FMI2_LAST_SUCCESSFUL_TIME: fmi2StatusKind = 2;
 pub const FMI2_TERMINATED: fmi2StatusKind = 3;
 
 /// `fmi2CallbackLogger`: printf-like, so messages are passed as the argument of `"%s"`.
-pub type fmi2CallbackLogger = Option<unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...)>;
+pub type fmi2CallbackLogger = Option<
+    unsafe extern "C" fn(
+        fmi2ComponentEnvironment,
+        fmi2String,
+        fmi2Status,
+        fmi2String,
+        fmi2String,
+        ...
+    ),
+>;
 pub type fmi2CallbackAllocateMemory = Option<unsafe extern "C" fn(usize, usize) -> *mut c_void>;
 pub type fmi2CallbackFreeMemory = Option<unsafe extern "C" fn(*mut c_void)>;
 pub type fmi2StepFinished = Option<unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2Status)>;
@@ -45,8 +54,13 @@ pub struct fmi2CallbackFunctions {
 impl fmi2CallbackFunctions {
     /// Callbacks without a logger or memory functions, for Rust callers (benchmarks,
     /// tests), which cannot define the variadic C logger.
-    pub const NONE: Self =
-        Self { logger: None, allocateMemory: None, freeMemory: None, stepFinished: None, componentEnvironment: std::ptr::null_mut() };
+    pub const NONE: Self = Self {
+        logger: None,
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: std::ptr::null_mut(),
+    };
 }
 
 /// `fmi2EventInfo` (Model Exchange), filled by `fmi2NewDiscreteStates`.

@@ -8,7 +8,9 @@
 //! `<ModelExchange>` and `<CoSimulation>` with the same `modelIdentifier`.
 
 use crate::fmi::common::model::{Causality, ContinuousStates, Description, Named, Variable};
-use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, units_categories_experiment, value_attributes};
+use crate::fmi::common::xml::{
+    GENERATION_TOOL, Structure, escape, units_categories_experiment, value_attributes,
+};
 use std::fmt::Write;
 
 /// Flags of `<CoSimulation>`: what the glue provides, the same for every model.
@@ -40,7 +42,11 @@ pub const MODEL_EXCHANGE_FLAGS: [(&str, &str); 6] = [
 fn unknown(vr: u32, deps: &[(u32, &str)]) -> String {
     let list: Vec<String> = deps.iter().map(|(k, _)| (k + 1).to_string()).collect();
     let kinds: Vec<&str> = deps.iter().map(|(_, kind)| *kind).collect();
-    let kinds = if kinds.is_empty() { String::new() } else { format!(" dependenciesKind=\"{}\"", kinds.join(" ")) };
+    let kinds = if kinds.is_empty() {
+        String::new()
+    } else {
+        format!(" dependenciesKind=\"{}\"", kinds.join(" "))
+    };
     format!("      <Unknown index=\"{}\" dependencies=\"{}\"{kinds}/>\n", vr + 1, list.join(" "))
 }
 
@@ -104,7 +110,11 @@ pub fn fmi2_with(d: &Description, which: Interfaces) -> String {
         summary = escape(d.summary),
     );
     if which != Interfaces::CoSimulation {
-        let _ = write!(x, "  <ModelExchange\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
+        let _ = write!(
+            x,
+            "  <ModelExchange\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n",
+            d.model_identifier
+        );
         for (flag, value) in MODEL_EXCHANGE_FLAGS {
             let _ = writeln!(x, "    {flag}=\"{value}\"");
         }
@@ -112,7 +122,11 @@ pub fn fmi2_with(d: &Description, which: Interfaces) -> String {
         x.push_str("/>\n\n");
     }
     if which != Interfaces::ModelExchange {
-        let _ = write!(x, "  <CoSimulation\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n", d.model_identifier);
+        let _ = write!(
+            x,
+            "  <CoSimulation\n    modelIdentifier=\"{}\"\n    needsExecutionTool=\"false\"\n",
+            d.model_identifier
+        );
         for (flag, value) in CO_SIMULATION_FLAGS {
             let _ = writeln!(x, "    {flag}=\"{value}\"");
         }
@@ -162,9 +176,16 @@ pub fn fmi2_with(d: &Description, which: Interfaces) -> String {
     x.push_str("    <InitialUnknowns>\n");
     for (vr, deps) in structure.initial {
         let list: Vec<String> = deps.iter().map(|k| index(*k)).collect();
-        let _ = writeln!(x, "      <Unknown index=\"{}\" dependencies=\"{}\"/>", index(vr), list.join(" "));
+        let _ = writeln!(
+            x,
+            "      <Unknown index=\"{}\" dependencies=\"{}\"/>",
+            index(vr),
+            list.join(" ")
+        );
     }
     x.push_str("    </InitialUnknowns>\n  </ModelStructure>\n</fmiModelDescription>\n");
-    debug_assert!(d.variables.iter().filter(|v| v.causality == Causality::Output).count() == d.outputs.len());
+    debug_assert!(
+        d.variables.iter().filter(|v| v.causality == Causality::Output).count() == d.outputs.len()
+    );
     x
 }

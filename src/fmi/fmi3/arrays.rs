@@ -30,7 +30,9 @@ impl Instance {
         match vr.checked_sub(time)? {
             0 => Some(Extra::Time),
             1 if arrays.is_some() => Some(Extra::Length),
-            k => arrays.filter(|a| ((k - 2) as usize) < a.arrays.len()).map(|_| Extra::Array((k - 2) as usize)),
+            k => arrays
+                .filter(|a| ((k - 2) as usize) < a.arrays.len())
+                .map(|_| Extra::Array((k - 2) as usize)),
         }
     }
 
@@ -42,7 +44,8 @@ impl Instance {
             match self.extra(vr) {
                 Some(Extra::Time) => out.push(self.clock.time),
                 Some(Extra::Array(j)) => {
-                    let is_output = self.arrays().is_some_and(|a| a.arrays[j].causality == Causality::Output);
+                    let is_output =
+                        self.arrays().is_some_and(|a| a.arrays[j].causality == Causality::Output);
                     if is_output {
                         if self.before_initialization() {
                             return Err(format!(
@@ -54,7 +57,11 @@ impl Instance {
                     }
                     out.extend(self.model.get_array(j, self.clock.since_start())?);
                 }
-                Some(Extra::Length) => return Err(format!("value reference {vr} is a UInt64 (the structural parameter), not a Float64")),
+                Some(Extra::Length) => {
+                    return Err(format!(
+                        "value reference {vr} is a UInt64 (the structural parameter), not a Float64"
+                    ));
+                }
                 None => {
                     let d = self.description();
                     let computed = match d.named(Kind::Real, vr)? {
@@ -62,7 +69,9 @@ impl Instance {
                         _ => true,
                     };
                     if computed && self.before_initialization() {
-                        return Err(format!("value reference {vr} is computed: it has no value before fmi3EnterInitializationMode"));
+                        return Err(format!(
+                            "value reference {vr} is computed: it has no value before fmi3EnterInitializationMode"
+                        ));
                     }
                     let mut x = [0.0];
                     self.get_real(&[vr], &mut x)?;
@@ -74,7 +83,10 @@ impl Instance {
             }
         }
         if out.len() != n_values {
-            return Err(format!("nValues = {n_values} but the variables named have {} values", out.len()));
+            return Err(format!(
+                "nValues = {n_values} but the variables named have {} values",
+                out.len()
+            ));
         }
         Ok(out)
     }
@@ -93,17 +105,28 @@ impl Instance {
                 Some(Extra::Array(j)) => {
                     let a = self.arrays().expect("an array value reference").arrays[j];
                     if a.causality != Causality::Parameter {
-                        return Err(format!("{} (value reference {vr}) is an output and cannot be set", a.name));
+                        return Err(format!(
+                            "{} (value reference {vr}) is an output and cannot be set",
+                            a.name
+                        ));
                     }
-                    if !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode) {
-                        return Err(format!("{} is a fixed parameter: it can only be set before fmi3ExitInitializationMode", a.name));
+                    if !matches!(self.machine, Machine::Instantiated | Machine::InitializationMode)
+                    {
+                        return Err(format!(
+                            "{} is a fixed parameter: it can only be set before fmi3ExitInitializationMode",
+                            a.name
+                        ));
                     }
-                    let part = values.get(at..at + length).ok_or_else(|| format!("too few values for {} ({length} each)", a.name))?;
+                    let part = values
+                        .get(at..at + length)
+                        .ok_or_else(|| format!("too few values for {} ({length} each)", a.name))?;
                     self.model.check_array(j, part)?;
                     arrays.push((j, part.to_vec()));
                     at += length;
                 }
-                Some(_) => return Err(format!("value reference {vr} cannot be set with fmi3SetFloat64")),
+                Some(_) => {
+                    return Err(format!("value reference {vr} cannot be set with fmi3SetFloat64"));
+                }
                 None => {
                     let x = *values.get(at).ok_or("too few values")?;
                     scalars.push((vr, x));
@@ -149,7 +172,10 @@ impl Instance {
                 ));
             }
             if !(1..=a.length_max).contains(&n) {
-                return Err(format!("{} = {n} is invalid: it must be in 1 ..= {}", a.length_name, a.length_max));
+                return Err(format!(
+                    "{} = {n} is invalid: it must be in 1 ..= {}",
+                    a.length_name, a.length_max
+                ));
             }
         }
         values.iter().for_each(|&n| self.model.set_array_length(n));

@@ -7,7 +7,8 @@ use crate::fmi::common::instance::Call;
 use crate::fmi::fmi3::types::*;
 use crate::fmi::frame::{slice, slice_mut, with_instance};
 
-const OK: Result<crate::fmi::common::instance::Status, String> = Ok(crate::fmi::common::instance::Status::Ok);
+const OK: Result<crate::fmi::common::instance::Status, String> =
+    Ok(crate::fmi::common::instance::Status::Ok);
 
 /// `fmi3GetDirectionalDerivative` (`adjoint = false`: sensitivity = J seed) and
 /// `fmi3GetAdjointDerivative` (`true`: sensitivity = seed^T J).
@@ -26,9 +27,11 @@ unsafe fn derivative_of(
             Call::GetDirectionalDerivative,
             || format!("{name}(nUnknowns={n_unknowns}, nKnowns={n_knowns})"),
             |i| {
-                let (seeds, sensitivities) = if adjoint { (n_unknowns, n_knowns) } else { (n_knowns, n_unknowns) };
+                let (seeds, sensitivities) =
+                    if adjoint { (n_unknowns, n_knowns) } else { (n_knowns, n_unknowns) };
                 if n_seed != seeds || n_sensitivity != sensitivities {
-                    let (a, b) = if adjoint { ("nUnknowns", "nKnowns") } else { ("nKnowns", "nUnknowns") };
+                    let (a, b) =
+                        if adjoint { ("nUnknowns", "nKnowns") } else { ("nKnowns", "nUnknowns") };
                     return Err(format!(
                         "nSeed = {n_seed} and nSensitivity = {n_sensitivity} must equal {a} = {seeds} and {b} = {sensitivities} (scalar variables)"
                     ));
@@ -37,7 +40,11 @@ unsafe fn derivative_of(
                 let k = slice(knowns, n_knowns, "knowns")?;
                 let s = slice(seed, n_seed, "seed")?;
                 let out = slice_mut(sensitivity, n_sensitivity, "sensitivity")?;
-                let got = if adjoint { i.adjoint_derivative(u, k, s)? } else { i.directional_derivative(u, k, s)? };
+                let got = if adjoint {
+                    i.adjoint_derivative(u, k, s)?
+                } else {
+                    i.directional_derivative(u, k, s)?
+                };
                 out.copy_from_slice(&got);
                 OK
             },
@@ -57,8 +64,19 @@ pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
     sensitivity: *mut fmi3Float64,
     nSensitivity: usize,
 ) -> fmi3Status {
-    let args = ((unknowns, nUnknowns), (knowns, nKnowns), (seed, nSeed), (sensitivity, nSensitivity));
-    unsafe { derivative_of(instance, "fmi3GetDirectionalDerivative", false, args.0, args.1, args.2, args.3) }
+    let args =
+        ((unknowns, nUnknowns), (knowns, nKnowns), (seed, nSeed), (sensitivity, nSensitivity));
+    unsafe {
+        derivative_of(
+            instance,
+            "fmi3GetDirectionalDerivative",
+            false,
+            args.0,
+            args.1,
+            args.2,
+            args.3,
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -73,6 +91,9 @@ pub unsafe extern "C" fn fmi3GetAdjointDerivative(
     sensitivity: *mut fmi3Float64,
     nSensitivity: usize,
 ) -> fmi3Status {
-    let args = ((unknowns, nUnknowns), (knowns, nKnowns), (seed, nSeed), (sensitivity, nSensitivity));
-    unsafe { derivative_of(instance, "fmi3GetAdjointDerivative", true, args.0, args.1, args.2, args.3) }
+    let args =
+        ((unknowns, nUnknowns), (knowns, nKnowns), (seed, nSeed), (sensitivity, nSensitivity));
+    unsafe {
+        derivative_of(instance, "fmi3GetAdjointDerivative", true, args.0, args.1, args.2, args.3)
+    }
 }

@@ -17,7 +17,12 @@ fn flag(b: bool) -> fmi3Boolean {
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3EnterContinuousTimeMode(instance: fmi3Instance) -> fmi3Status {
-    shims::transition(instance, Call::EnterContinuousTimeMode, "fmi3EnterContinuousTimeMode", Instance::enter_continuous_time_mode)
+    shims::transition(
+        instance,
+        Call::EnterContinuousTimeMode,
+        "fmi3EnterContinuousTimeMode",
+        Instance::enter_continuous_time_mode,
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -31,7 +36,14 @@ pub unsafe extern "C" fn fmi3SetContinuousStates(
     continuousStates: *const fmi3Float64,
     nContinuousStates: usize,
 ) -> fmi3Status {
-    unsafe { shims::set_continuous_states(instance, continuousStates, nContinuousStates, "fmi3SetContinuousStates") }
+    unsafe {
+        shims::set_continuous_states(
+            instance,
+            continuousStates,
+            nContinuousStates,
+            "fmi3SetContinuousStates",
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -111,7 +123,8 @@ pub unsafe extern "C" fn fmi3CompletedIntegratorStep(
             || "fmi3CompletedIntegratorStep".into(),
             |i| {
                 let enter = enterEventMode.as_mut().ok_or("enterEventMode is NULL")?;
-                let terminate = terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
+                let terminate =
+                    terminateSimulation.as_mut().ok_or("terminateSimulation is NULL")?;
                 let (e, t) = i.completed_integrator_step()?;
                 (*enter, *terminate) = (flag(e), flag(t));
                 Ok(Status::Ok)
@@ -146,9 +159,20 @@ pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
                 if outs.iter().any(|p| p.is_null()) || nextEventTime.is_null() {
                     return Err("an out-argument is NULL".into());
                 }
-                let EventInfo { new_discrete_states_needed, terminate_simulation, nominals_changed, values_changed, next_event_time } =
-                    i.new_discrete_states()?;
-                let flags = [new_discrete_states_needed, terminate_simulation, nominals_changed, values_changed, next_event_time.is_some()];
+                let EventInfo {
+                    new_discrete_states_needed,
+                    terminate_simulation,
+                    nominals_changed,
+                    values_changed,
+                    next_event_time,
+                } = i.new_discrete_states()?;
+                let flags = [
+                    new_discrete_states_needed,
+                    terminate_simulation,
+                    nominals_changed,
+                    values_changed,
+                    next_event_time.is_some(),
+                ];
                 outs.iter().zip(flags).for_each(|(p, f)| **p = flag(f));
                 *nextEventTime = next_event_time.unwrap_or(0.0);
                 Ok(Status::Ok)
@@ -158,14 +182,20 @@ pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
 }
 
 /// `fmi3GetNumberOfContinuousStates` and `fmi3GetNumberOfEventIndicators` (0).
-unsafe fn number_of(instance: fmi3Instance, out: *mut usize, name: &'static str, states: bool) -> fmi3Status {
+unsafe fn number_of(
+    instance: fmi3Instance,
+    out: *mut usize,
+    name: &'static str,
+    states: bool,
+) -> fmi3Status {
     unsafe {
         with_instance(
             instance,
             Call::GetNumberOf,
             || name.into(),
             |i| {
-                *out.as_mut().ok_or("the out-argument is NULL")? = if states { i.description().state_count() } else { 0 };
+                *out.as_mut().ok_or("the out-argument is NULL")? =
+                    if states { i.description().state_count() } else { 0 };
                 Ok(Status::Ok)
             },
         )
@@ -173,11 +203,17 @@ unsafe fn number_of(instance: fmi3Instance, out: *mut usize, name: &'static str,
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetNumberOfContinuousStates(instance: fmi3Instance, nContinuousStates: *mut usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetNumberOfContinuousStates(
+    instance: fmi3Instance,
+    nContinuousStates: *mut usize,
+) -> fmi3Status {
     unsafe { number_of(instance, nContinuousStates, "fmi3GetNumberOfContinuousStates", true) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetNumberOfEventIndicators(instance: fmi3Instance, nEventIndicators: *mut usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetNumberOfEventIndicators(
+    instance: fmi3Instance,
+    nEventIndicators: *mut usize,
+) -> fmi3Status {
     unsafe { number_of(instance, nEventIndicators, "fmi3GetNumberOfEventIndicators", false) }
 }

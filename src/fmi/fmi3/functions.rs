@@ -5,7 +5,8 @@
 //! `fmi3EnterInitializationMode` carrying the experiment, `nValues` beside every array,
 //! `fmi3DoStep`'s out-arguments, a logger without format string. The functions this FMU
 //! does not provide (clocks, configuration mode, scheduled execution, adjoint derivatives,
-//! the other variable types) are in [`crate::fmi::fmi3::unsupported`].
+//! the other variable types) are in [`crate::fmi::fmi3::unsupported`]; the get and set
+//! functions of its variable types in [`crate::fmi::fmi3::values`] (re-exported here).
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 
 use crate::boundary::guard;
@@ -13,7 +14,8 @@ use crate::fmi::common::instance::{Call, Instance, Interface, Logger, Status};
 pub use crate::fmi::fmi3::derivatives::*;
 pub use crate::fmi::fmi3::states::*;
 use crate::fmi::fmi3::types::*;
-use crate::fmi::frame::{register, slice, slice_mut, text, unregister, with_instance};
+pub use crate::fmi::fmi3::values::*;
+use crate::fmi::frame::{register, slice, text, unregister, with_instance};
 use std::ffi::{CString, c_char};
 use std::sync::Arc;
 
@@ -35,7 +37,8 @@ impl Logger for LogMessage {
     fn log(&self, status: Status, category: &str, message: &str) {
         if let Some(f) = self.callback {
             let cat = CString::new(category.replace('\0', "\\0")).unwrap_or_default();
-            let msg = CString::new(message.replace('\0', "\\0").replace('#', "##")).unwrap_or_default();
+            let msg =
+                CString::new(message.replace('\0', "\\0").replace('#', "##")).unwrap_or_default();
             // SAFETY: the importer promised a valid callback.
             unsafe { f(self.env, status as fmi3Status, cat.as_ptr(), msg.as_ptr()) };
         }
@@ -63,7 +66,9 @@ fn instantiate(
             sink.log(Status::Error, "logStatusError", &format!("fmi3Instantiate: {msg}"));
             None
         };
-        let Some(name) = (unsafe { text(instanceName) }) else { return fail("instanceName is NULL".into()) };
+        let Some(name) = (unsafe { text(instanceName) }) else {
+            return fail("instanceName is NULL".into());
+        };
         if let Some(why) = refuse {
             return fail(why);
         }
@@ -72,8 +77,14 @@ fn instantiate(
             Ok(fresh) => fresh,
             Err(msg) => return fail(msg),
         };
-        let instance =
-            Instance::of_interface(interface, crate::fmi::fmi3::names::FMI3, fresh, &name, Arc::new(sink), loggingOn != FMI3_FALSE);
+        let instance = Instance::of_interface(
+            interface,
+            crate::fmi::fmi3::names::FMI3,
+            fresh,
+            &name,
+            Arc::new(sink),
+            loggingOn != FMI3_FALSE,
+        );
         Some(register(instance))
     });
     made.ok().flatten().unwrap_or(std::ptr::null_mut())
@@ -89,14 +100,30 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
     instanceEnvironment: fmi3InstanceEnvironment,
     logMessage: fmi3LogMessageCallback,
 ) -> fmi3Instance {
-    instantiate(Interface::ModelExchange, instanceName, instantiationToken, loggingOn, instanceEnvironment, logMessage, None)
+    instantiate(
+        Interface::ModelExchange,
+        instanceName,
+        instantiationToken,
+        loggingOn,
+        instanceEnvironment,
+        logMessage,
+        None,
+    )
 }
 
 /// The importer's `intermediateUpdate` callback, asked for the inputs at the end of each
 /// step (see [`crate::fmi::fmi3::intermediate`]).
 struct IntermediateUpdate {
-    callback:
-        unsafe extern "C" fn(fmi3InstanceEnvironment, f64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut f64),
+    callback: unsafe extern "C" fn(
+        fmi3InstanceEnvironment,
+        f64,
+        fmi3Boolean,
+        fmi3Boolean,
+        fmi3Boolean,
+        fmi3Boolean,
+        *mut fmi3Boolean,
+        *mut f64,
+    ),
     env: fmi3InstanceEnvironment,
 }
 
@@ -109,7 +136,18 @@ impl crate::fmi::common::instance::Requester for IntermediateUpdate {
     fn request_inputs(&self, time: f64) {
         let (mut early, mut early_time) = (FMI3_FALSE, time);
         // SAFETY: the importer promised a valid callback; the out-arguments are ours.
-        unsafe { (self.callback)(self.env, time, FMI3_TRUE, FMI3_FALSE, FMI3_FALSE, FMI3_FALSE, &mut early, &mut early_time) };
+        unsafe {
+            (self.callback)(
+                self.env,
+                time,
+                FMI3_TRUE,
+                FMI3_FALSE,
+                FMI3_FALSE,
+                FMI3_FALSE,
+                &mut early,
+                &mut early_time,
+            )
+        };
     }
 }
 
@@ -133,13 +171,26 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     intermediateUpdate: fmi3IntermediateUpdateCallback,
 ) -> fmi3Instance {
     let refuse = if eventModeUsed != FMI3_FALSE {
-        Some("eventModeUsed = true but this FMU has no event mode (hasEventMode = false)".to_string())
+        Some(
+            "eventModeUsed = true but this FMU has no event mode (hasEventMode = false)"
+                .to_string(),
+        )
     } else if nRequiredIntermediateVariables > 0 && intermediateUpdate.is_none() {
-        Some(format!("{nRequiredIntermediateVariables} requiredIntermediateVariables but intermediateUpdate is NULL"))
+        Some(format!(
+            "{nRequiredIntermediateVariables} requiredIntermediateVariables but intermediateUpdate is NULL"
+        ))
     } else {
         None
     };
-    let c = instantiate(Interface::CoSimulation, instanceName, instantiationToken, loggingOn, instanceEnvironment, logMessage, refuse);
+    let c = instantiate(
+        Interface::CoSimulation,
+        instanceName,
+        instantiationToken,
+        loggingOn,
+        instanceEnvironment,
+        logMessage,
+        refuse,
+    );
     let (Some(callback), false) = (intermediateUpdate, c.is_null()) else { return c };
     if nRequiredIntermediateVariables == 0 {
         return c;
@@ -149,10 +200,18 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
         Call::Unsupported,
         || "fmi3InstantiateCoSimulation(requiredIntermediateVariables)".into(),
         |i| {
-            let vrs = unsafe { slice(requiredIntermediateVariables, nRequiredIntermediateVariables, "requiredIntermediateVariables")? };
+            let vrs = unsafe {
+                slice(
+                    requiredIntermediateVariables,
+                    nRequiredIntermediateVariables,
+                    "requiredIntermediateVariables",
+                )?
+            };
             let requester = Arc::new(IntermediateUpdate { callback, env: instanceEnvironment });
             let set = i.set_intermediate_update(requester, vrs);
-            set.map(|_| Status::Ok).map_err(|why| format!("fmi3InstantiateCoSimulation: requiredIntermediateVariables: {why}"))
+            set.map(|_| Status::Ok).map_err(|why| {
+                format!("fmi3InstantiateCoSimulation: requiredIntermediateVariables: {why}")
+            })
         },
     );
     if required == Status::Ok as fmi3Status {
@@ -183,7 +242,8 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
             || format!("fmi3SetDebugLogging(loggingOn={loggingOn}, nCategories={nCategories})"),
             |i| {
                 let names = slice(categories, nCategories, "categories")?;
-                let names: Vec<String> = names.iter().map(|&p| text(p).unwrap_or_default()).collect();
+                let names: Vec<String> =
+                    names.iter().map(|&p| text(p).unwrap_or_default()).collect();
                 i.set_debug_logging(loggingOn != FMI3_FALSE, &names).map(|_| Status::Ok)
             },
         )
@@ -205,7 +265,11 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
     with_instance(
         instance,
         Call::EnterInitializationMode,
-        || format!("fmi3EnterInitializationMode(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"),
+        || {
+            format!(
+                "fmi3EnterInitializationMode(tolerance={tol:?}, startTime={startTime}, stopTime={stop:?})"
+            )
+        },
         |i| {
             i.setup_experiment(tol, startTime, stop)?;
             i.enter_initialization_mode().map(|_| Status::Ok)
@@ -213,8 +277,17 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
     )
 }
 
-fn transition(instance: fmi3Instance, call: Call, method: fn(&mut Instance) -> Result<(), String>) -> fmi3Status {
-    with_instance(instance, call, || crate::fmi::fmi3::names::name(call), |i| method(i).map(|_| Status::Ok))
+fn transition(
+    instance: fmi3Instance,
+    call: Call,
+    method: fn(&mut Instance) -> Result<(), String>,
+) -> fmi3Status {
+    with_instance(
+        instance,
+        call,
+        || crate::fmi::fmi3::names::name(call),
+        |i| method(i).map(|_| Status::Ok),
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -238,103 +311,6 @@ pub unsafe extern "C" fn fmi3Reset(instance: fmi3Instance) -> fmi3Status {
     transition(instance, Call::Reset, Instance::reset)
 }
 
-/// FMI 3.0 passes `nValues` beside the value references; for scalar variables they agree.
-fn scalars(nvr: usize, n_values: usize) -> Result<(), String> {
-    if nvr == n_values { Ok(()) } else { Err(format!("nValues = {n_values} but {nvr} scalar variables were named")) }
-}
-
-/// Scalars, `time` and whole arrays (one value reference each, values concatenated).
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetFloat64(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Float64,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Get,
-            || format!("fmi3GetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                let got = i.get_float64(vr, nValues)?;
-                slice_mut(values, nValues, "values")?.copy_from_slice(&got);
-                OK
-            },
-        )
-    }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetFloat64(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Float64,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Set,
-            || format!("fmi3SetFloat64(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                i.set_float64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-            },
-        )
-    }
-}
-
-/// The structural parameter (the number of probes).
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetUInt64(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3UInt64,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Get,
-            || format!("fmi3GetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                scalars(nValueReferences, nValues)?;
-                let got = i.get_uint64(slice(valueReferences, nValueReferences, "valueReferences")?)?;
-                slice_mut(values, nValues, "values")?.copy_from_slice(&got);
-                OK
-            },
-        )
-    }
-}
-
-/// In Configuration Mode only.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetUInt64(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3UInt64,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Set,
-            || format!("fmi3SetUInt64(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                scalars(nValueReferences, nValues)?;
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                i.set_uint64(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-            },
-        )
-    }
-}
-
 /// Configuration Mode, for the structural parameter (from Instantiated, back to it).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3EnterConfigurationMode(instance: fmi3Instance) -> fmi3Status {
@@ -344,50 +320,6 @@ pub unsafe extern "C" fn fmi3EnterConfigurationMode(instance: fmi3Instance) -> f
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3ExitConfigurationMode(instance: fmi3Instance) -> fmi3Status {
     transition(instance, Call::ExitConfigurationMode, Instance::exit_configuration_mode)
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetInt32(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Int32,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Get,
-            || format!("fmi3GetInt32(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                scalars(nValueReferences, nValues)?;
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                i.get_integer(vr, slice_mut(values, nValues, "values")?).map(|_| Status::Ok)
-            },
-        )
-    }
-}
-
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetInt32(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Int32,
-    nValues: usize,
-) -> fmi3Status {
-    unsafe {
-        with_instance(
-            instance,
-            Call::Set,
-            || format!("fmi3SetInt32(nValueReferences={nValueReferences}, nValues={nValues})"),
-            |i| {
-                scalars(nValueReferences, nValues)?;
-                let vr = slice(valueReferences, nValueReferences, "valueReferences")?;
-                i.set_integer(vr, slice(values, nValues, "values")?).map(|_| Status::Ok)
-            },
-        )
-    }
 }
 
 /// One step; never early, no event handling (no event mode), `lastSuccessfulTime` the end
@@ -406,10 +338,12 @@ pub unsafe extern "C" fn fmi3DoStep(
     lastSuccessfulTime: *mut fmi3Float64,
 ) -> fmi3Status {
     let (t, h) = (currentCommunicationPoint, communicationStepSize);
-    let describe = || format!("fmi3DoStep(currentCommunicationPoint={t}, communicationStepSize={h})");
+    let describe =
+        || format!("fmi3DoStep(currentCommunicationPoint={t}, communicationStepSize={h})");
     let outs = |i: &Instance| -> Result<(), String> {
         let event = unsafe { eventHandlingNeeded.as_mut() }.ok_or("eventHandlingNeeded is NULL")?;
-        let terminate = unsafe { terminateSimulation.as_mut() }.ok_or("terminateSimulation is NULL")?;
+        let terminate =
+            unsafe { terminateSimulation.as_mut() }.ok_or("terminateSimulation is NULL")?;
         let early = unsafe { earlyReturn.as_mut() }.ok_or("earlyReturn is NULL")?;
         let last = unsafe { lastSuccessfulTime.as_mut() }.ok_or("lastSuccessfulTime is NULL")?;
         (*event, *early) = (FMI3_FALSE, FMI3_FALSE);

@@ -25,12 +25,19 @@ pub type Asking = (std::sync::Arc<dyn Requester>, Vec<f64>);
 
 impl Instance {
     /// Use `requester` for the inputs `vrs` (each a continuous Real input) in every step.
-    pub fn set_intermediate_update(&mut self, requester: std::sync::Arc<dyn Requester>, vrs: &[u32]) -> Result<(), Rejected> {
+    pub fn set_intermediate_update(
+        &mut self,
+        requester: std::sync::Arc<dyn Requester>,
+        vrs: &[u32],
+    ) -> Result<(), Rejected> {
         let d = self.description();
         for &vr in vrs {
             let v = d.typed(Kind::Real, vr)?;
             if !(v.causality == Causality::Input && v.variability == Variability::Continuous) {
-                return Err(format!("{} (value reference {vr}) is not a continuous input: it cannot be an intermediate variable", v.name));
+                return Err(format!(
+                    "{} (value reference {vr}) is not a continuous input: it cannot be an intermediate variable",
+                    v.name
+                ));
             }
         }
         self.intermediate = Some((requester, vrs.to_vec()));
@@ -66,7 +73,10 @@ impl Instance {
         let stepped = self.do_step(t, h);
         // Held again at the values the importer set (a refused step keeps them, rate 0).
         for (&vr, &b) in vrs.iter().zip(&p1) {
-            self.model.set(vr, if stepped.is_ok() { self.model.get(vr, self.clock.since_start()) } else { b });
+            self.model.set(
+                vr,
+                if stepped.is_ok() { self.model.get(vr, self.clock.since_start()) } else { b },
+            );
         }
         stepped
     }

@@ -5,6 +5,7 @@
 //! ```text
 //! types.rs         fmi3PlatformTypes.h, fmi3FunctionTypes.h as Rust declarations
 //! functions.rs     the common and co-simulation functions
+//! values.rs        the get and set functions of Float64, UInt64 and Int32
 //! derivatives.rs   the directional and adjoint derivatives
 //! intermediate.rs  Intermediate Update Mode inside a step (safe Rust)
 //! names.rs         its Dialect: the functions' names, each written out (safe Rust)
@@ -24,4 +25,5 @@ pub mod names;
 pub mod states;
 pub mod types;
 pub mod unsupported;
+pub mod values;
 pub mod xml;

@@ -7,8 +7,12 @@ use crate::fmi::common::call::{Call, Dialect};
 
 /// FMI 3.0, section 2.3.2: fmi3Get* also reads start values in Instantiated and
 /// Configuration Mode.
-pub const FMI3: Dialect =
-    Dialect { name, get_before_initialization: true, configuration_mode: true, derivative_arguments: ["unknowns", "knowns", "seed"] };
+pub const FMI3: Dialect = Dialect {
+    name,
+    get_before_initialization: true,
+    configuration_mode: true,
+    derivative_arguments: ["unknowns", "knowns", "seed"],
+};
 
 /// The call's FMI 3.0 name, each written out (no rewriting of FMI 2.0's).
 pub fn name(call: Call) -> String {
@@ -58,9 +62,18 @@ mod tests {
     /// instance's version: there is no `fmi2EnterConfigurationMode` to point a reader to.
     #[test]
     fn fmi3_only_calls_have_no_fmi2_name() {
-        for call in [Call::EnterConfigurationMode, Call::ExitConfigurationMode, Call::GetNumberOf, Call::FinishStep] {
+        for call in [
+            Call::EnterConfigurationMode,
+            Call::ExitConfigurationMode,
+            Call::GetNumberOf,
+            Call::FinishStep,
+        ] {
             for dialect in [FMI2, FMI3] {
-                assert!((dialect.name)(call).starts_with("fmi3"), "{call:?}: {}", (dialect.name)(call));
+                assert!(
+                    (dialect.name)(call).starts_with("fmi3"),
+                    "{call:?}: {}",
+                    (dialect.name)(call)
+                );
             }
         }
         assert_eq!((FMI2.name)(Call::GetFmuState), "fmi2GetFMUstate");

@@ -11,23 +11,43 @@ fn names(function: &'static str) -> Names {
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetFMUState(instance: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetFMUState(
+    instance: fmi3Instance,
+    FMUState: *mut fmi3FMUState,
+) -> fmi3Status {
     unsafe { shims::get_fmu_state(instance, FMUState, names("fmi3GetFMUState")) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetFMUState(instance: fmi3Instance, FMUState: fmi3FMUState) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetFMUState(
+    instance: fmi3Instance,
+    FMUState: fmi3FMUState,
+) -> fmi3Status {
     unsafe { shims::set_fmu_state(instance, FMUState, names("fmi3SetFMUState")) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3FreeFMUState(instance: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
+pub unsafe extern "C" fn fmi3FreeFMUState(
+    instance: fmi3Instance,
+    FMUState: *mut fmi3FMUState,
+) -> fmi3Status {
     unsafe { shims::free_fmu_state(instance, FMUState, true, names("fmi3FreeFMUState")) }
 }
 
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SerializedFMUStateSize(instance: fmi3Instance, FMUState: fmi3FMUState, size: *mut usize) -> fmi3Status {
-    unsafe { shims::serialized_fmu_state_size(instance, FMUState, size, names("fmi3SerializedFMUStateSize")) }
+pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
+    instance: fmi3Instance,
+    FMUState: fmi3FMUState,
+    size: *mut usize,
+) -> fmi3Status {
+    unsafe {
+        shims::serialized_fmu_state_size(
+            instance,
+            FMUState,
+            size,
+            names("fmi3SerializedFMUStateSize"),
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -37,7 +57,15 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
     serializedState: *mut fmi3Byte,
     size: usize,
 ) -> fmi3Status {
-    unsafe { shims::serialize_fmu_state(instance, FMUState, serializedState, size, names("fmi3SerializeFMUState")) }
+    unsafe {
+        shims::serialize_fmu_state(
+            instance,
+            FMUState,
+            serializedState,
+            size,
+            names("fmi3SerializeFMUState"),
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -47,5 +75,13 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     size: usize,
     FMUState: *mut fmi3FMUState,
 ) -> fmi3Status {
-    unsafe { shims::deserialize_fmu_state(instance, serializedState, size, FMUState, names("fmi3DeserializeFMUState")) }
+    unsafe {
+        shims::deserialize_fmu_state(
+            instance,
+            serializedState,
+            size,
+            FMUState,
+            names("fmi3DeserializeFMUState"),
+        )
+    }
 }

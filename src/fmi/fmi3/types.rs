@@ -35,9 +35,19 @@ pub const FMI3_TRUE: fmi3Boolean = 1;
 pub const FMI3_FALSE: fmi3Boolean = 0;
 
 /// `fmi3LogMessageCallback`: the message is final text (no format string).
-pub type fmi3LogMessageCallback = Option<unsafe extern "C" fn(fmi3InstanceEnvironment, fmi3Status, fmi3String, fmi3String)>;
+pub type fmi3LogMessageCallback =
+    Option<unsafe extern "C" fn(fmi3InstanceEnvironment, fmi3Status, fmi3String, fmi3String)>;
 pub type fmi3IntermediateUpdateCallback = Option<
-    unsafe extern "C" fn(fmi3InstanceEnvironment, f64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut f64),
+    unsafe extern "C" fn(
+        fmi3InstanceEnvironment,
+        f64,
+        fmi3Boolean,
+        fmi3Boolean,
+        fmi3Boolean,
+        fmi3Boolean,
+        *mut fmi3Boolean,
+        *mut f64,
+    ),
 >;
 pub type fmi3ClockUpdateCallback = Option<unsafe extern "C" fn(fmi3InstanceEnvironment)>;
 pub type fmi3LockPreemptionCallback = Option<unsafe extern "C" fn()>;

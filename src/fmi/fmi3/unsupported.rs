@@ -39,7 +39,12 @@ unsafe fn no_variables(
 
 /// A function this FMU does not provide: refused with the reason.
 fn unsupported(instance: fmi3Instance, name: &'static str, why: &'static str) -> fmi3Status {
-    with_instance(instance, Call::Unsupported, || name.into(), |_| Err(format!("{name} is not supported by this FMU: {why}")))
+    with_instance(
+        instance,
+        Call::Unsupported,
+        || name.into(),
+        |_| Err(format!("{name} is not supported by this FMU: {why}")),
+    )
 }
 
 macro_rules! typed_access {
@@ -76,7 +81,16 @@ pub unsafe extern "C" fn fmi3GetBinary(
     _values: *mut fmi3Binary,
     _nValues: usize,
 ) -> fmi3Status {
-    unsafe { no_variables(instance, Call::Get, "fmi3GetBinary", "Binary", valueReferences, nValueReferences) }
+    unsafe {
+        no_variables(
+            instance,
+            Call::Get,
+            "fmi3GetBinary",
+            "Binary",
+            valueReferences,
+            nValueReferences,
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -88,7 +102,16 @@ pub unsafe extern "C" fn fmi3SetBinary(
     _values: *const fmi3Binary,
     _nValues: usize,
 ) -> fmi3Status {
-    unsafe { no_variables(instance, Call::Set, "fmi3SetBinary", "Binary", valueReferences, nValueReferences) }
+    unsafe {
+        no_variables(
+            instance,
+            Call::Set,
+            "fmi3SetBinary",
+            "Binary",
+            valueReferences,
+            nValueReferences,
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -98,7 +121,16 @@ pub unsafe extern "C" fn fmi3GetClock(
     nValueReferences: usize,
     _values: *mut fmi3Clock,
 ) -> fmi3Status {
-    unsafe { no_variables(instance, Call::Get, "fmi3GetClock", "Clock", valueReferences, nValueReferences) }
+    unsafe {
+        no_variables(
+            instance,
+            Call::Get,
+            "fmi3GetClock",
+            "Clock",
+            valueReferences,
+            nValueReferences,
+        )
+    }
 }
 
 #[unsafe(no_mangle)]
@@ -108,7 +140,16 @@ pub unsafe extern "C" fn fmi3SetClock(
     nValueReferences: usize,
     _values: *const fmi3Clock,
 ) -> fmi3Status {
-    unsafe { no_variables(instance, Call::Set, "fmi3SetClock", "Clock", valueReferences, nValueReferences) }
+    unsafe {
+        no_variables(
+            instance,
+            Call::Set,
+            "fmi3SetClock",
+            "Clock",
+            valueReferences,
+            nValueReferences,
+        )
+    }
 }
 
 const NO_CLOCKS: &str = "it has no clocks";
@@ -205,7 +246,11 @@ pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(
     _vr: fmi3ValueReference,
     _n: *mut usize,
 ) -> fmi3Status {
-    unsupported(instance, "fmi3GetNumberOfVariableDependencies", "the dependencies are those of modelDescription.xml")
+    unsupported(
+        instance,
+        "fmi3GetNumberOfVariableDependencies",
+        "the dependencies are those of modelDescription.xml",
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -218,7 +263,11 @@ pub unsafe extern "C" fn fmi3GetVariableDependencies(
     _dependencyKinds: *mut fmi3DependencyKind,
     _nDependencies: usize,
 ) -> fmi3Status {
-    unsupported(instance, "fmi3GetVariableDependencies", "the dependencies are those of modelDescription.xml")
+    unsupported(
+        instance,
+        "fmi3GetVariableDependencies",
+        "the dependencies are those of modelDescription.xml",
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -228,7 +277,11 @@ pub unsafe extern "C" fn fmi3EvaluateDiscreteStates(instance: fmi3Instance) -> f
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi3EnterStepMode(instance: fmi3Instance) -> fmi3Status {
-    unsupported(instance, "fmi3EnterStepMode", "it has no event mode in co-simulation (hasEventMode = false)")
+    unsupported(
+        instance,
+        "fmi3EnterStepMode",
+        "it has no event mode in co-simulation (hasEventMode = false)",
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -267,10 +320,15 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
     _unlockPreemption: fmi3UnlockPreemptionCallback,
 ) -> fmi3Instance {
     use crate::fmi::common::instance::Logger;
-    let sink = crate::fmi::fmi3::functions::LogMessage { callback: logMessage, env: instanceEnvironment };
+    let sink =
+        crate::fmi::fmi3::functions::LogMessage { callback: logMessage, env: instanceEnvironment };
     // A panic in the importer's logger is caught; the answer is NULL either way.
     let _ = crate::boundary::guard(|| {
-        sink.log(Status::Error, "logStatusError", "fmi3InstantiateScheduledExecution: this FMU does not provide scheduled execution")
+        sink.log(
+            Status::Error,
+            "logStatusError",
+            "fmi3InstantiateScheduledExecution: this FMU does not provide scheduled execution",
+        )
     });
     std::ptr::null_mut()
 }

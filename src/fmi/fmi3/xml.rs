@@ -4,8 +4,12 @@
 //! references `table + k` and `table + count + k`, as in FMI 2.0), then the independent
 //! variable `time` (FMI 3.0 wants exactly one). `ModelStructure` names value references.
 
-use crate::fmi::common::model::{Arrays, Causality, ContinuousStates, Description, Kind, Named, Variability, Variable};
-use crate::fmi::common::xml::{GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes};
+use crate::fmi::common::model::{
+    Arrays, Causality, ContinuousStates, Description, Kind, Named, Variability, Variable,
+};
+use crate::fmi::common::xml::{
+    GENERATION_TOOL, Structure, escape, number, units_categories_experiment, value_attributes,
+};
 use std::fmt::Write;
 
 /// Value reference of the independent variable `time`.
@@ -50,7 +54,11 @@ fn states(d: &Description, s: &ContinuousStates) -> String {
 fn unknown(element: &str, vr: u32, deps: &[(u32, &str)]) -> String {
     let list: Vec<String> = deps.iter().map(|(k, _)| k.to_string()).collect();
     let kinds: Vec<&str> = deps.iter().map(|(_, kind)| *kind).collect();
-    let kinds = if kinds.is_empty() { String::new() } else { format!(" dependenciesKind=\"{}\"", kinds.join(" ")) };
+    let kinds = if kinds.is_empty() {
+        String::new()
+    } else {
+        format!(" dependenciesKind=\"{}\"", kinds.join(" "))
+    };
     format!("    <{element} valueReference=\"{vr}\" dependencies=\"{}\"{kinds}/>\n", list.join(" "))
 }
 
@@ -86,7 +94,9 @@ pub fn fmi3(d: &Description) -> String {
         token = escape(d.guid),
         summary = escape(d.summary),
     );
-    for (element, flags) in [("ModelExchange", &MODEL_EXCHANGE_FLAGS[..]), ("CoSimulation", &CO_SIMULATION_FLAGS[..])] {
+    for (element, flags) in
+        [("ModelExchange", &MODEL_EXCHANGE_FLAGS[..]), ("CoSimulation", &CO_SIMULATION_FLAGS[..])]
+    {
         let _ = write!(x, "  <{element}\n    modelIdentifier=\"{id}\"");
         for (flag, value) in flags {
             let _ = write!(x, "\n    {flag}=\"{value}\"");
@@ -142,7 +152,11 @@ pub fn fmi3(d: &Description) -> String {
     }
     for (vr, deps) in &structure.initial {
         let list: Vec<String> = deps.iter().map(|k| k.to_string()).collect();
-        let _ = writeln!(x, "    <InitialUnknown valueReference=\"{vr}\" dependencies=\"{}\"/>", list.join(" "));
+        let _ = writeln!(
+            x,
+            "    <InitialUnknown valueReference=\"{vr}\" dependencies=\"{}\"/>",
+            list.join(" ")
+        );
     }
     // Initially the array outputs depend on every known (no `dependencies` attribute).
     for (vr, _) in &array_outputs {
@@ -189,7 +203,8 @@ fn arrays(d: &Description, a: &Arrays) -> String {
 fn array_outputs(d: &Description) -> Vec<(u32, Vec<(u32, &'static str)>)> {
     let Some(a) = d.arrays else { return Vec::new() };
     let (length, table) = (time_reference(d) + 1, d.first_state());
-    let states: Vec<(u32, &str)> = (0..d.state_count() as u32).map(|k| (table + k, "fixed")).collect();
+    let states: Vec<(u32, &str)> =
+        (0..d.state_count() as u32).map(|k| (table + k, "fixed")).collect();
     a.arrays
         .iter()
         .enumerate()

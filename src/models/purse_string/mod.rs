@@ -113,7 +113,9 @@ impl FmuModel for PurseModel {
 
     fn partial(&self, output: u32, input: u32, time: f64) -> Result<f64, Rejected> {
         Ok(match (Vr::from_u32(output), Vr::from_u32(input)) {
-            (Some(Vr::EdgeStress), Some(Vr::WoundRadius)) => self.purse.edge_stress_slope(time, self.wound_radius),
+            (Some(Vr::EdgeStress), Some(Vr::WoundRadius)) => {
+                self.purse.edge_stress_slope(time, self.wound_radius)
+            }
             _ => 0.0,
         })
     }
@@ -121,7 +123,10 @@ impl FmuModel for PurseModel {
     /// `T_max, t_assembly, t_delay, thickness, wound_radius, its rate` (f64 LE).
     fn encode(&self) -> Result<Vec<u8>, Rejected> {
         let mut w = Writer(Vec::with_capacity(48));
-        self.parameters().into_iter().chain([self.wound_radius, self.radius_rate]).for_each(|v| w.f64(v));
+        self.parameters()
+            .into_iter()
+            .chain([self.wound_radius, self.radius_rate])
+            .for_each(|v| w.f64(v));
         Ok(w.0)
     }
 
@@ -131,10 +136,15 @@ impl FmuModel for PurseModel {
         let radius = r.f64()?;
         let radius_rate = r.finite("radius rate")?;
         r.finish()?;
-        let pairs: Vec<(&str, f64, f64)> =
-            Vr::ALL.iter().zip(self.parameters()).zip(theirs).map(|((vr, a), b)| (vr.var().name, a, b)).collect();
+        let pairs: Vec<(&str, f64, f64)> = Vr::ALL
+            .iter()
+            .zip(self.parameters())
+            .zip(theirs)
+            .map(|((vr, a), b)| (vr.var().name, a, b))
+            .collect();
         same_parameters(&pairs)?;
-        let wound_radius = check_radius(radius).map_err(|e| format!("serialized FMU state: {e}"))?;
+        let wound_radius =
+            check_radius(radius).map_err(|e| format!("serialized FMU state: {e}"))?;
         Ok(Box::new(Self { purse: self.purse, wound_radius, radius_rate }))
     }
 }

@@ -37,13 +37,25 @@ pub static DESCRIPTION: Description = Description {
     about: include_str!("about.html"),
     variables: VARIABLES,
     // p = T_c / (h R) is nonlinear in R (`dependent`); T_c depends on time only.
-    outputs: &[(Vr::EdgeStress as u32, &[(Vr::WoundRadius as u32, "dependent")]), (Vr::LineTension as u32, &[])],
+    outputs: &[
+        (Vr::EdgeStress as u32, &[(Vr::WoundRadius as u32, "dependent")]),
+        (Vr::LineTension as u32, &[]),
+    ],
     initial_unknowns: &[
         (
             Vr::EdgeStress as u32,
-            &[Vr::MaxTension as u32, Vr::AssemblyTime as u32, Vr::Delay as u32, Vr::Thickness as u32, Vr::WoundRadius as u32],
+            &[
+                Vr::MaxTension as u32,
+                Vr::AssemblyTime as u32,
+                Vr::Delay as u32,
+                Vr::Thickness as u32,
+                Vr::WoundRadius as u32,
+            ],
         ),
-        (Vr::LineTension as u32, &[Vr::MaxTension as u32, Vr::AssemblyTime as u32, Vr::Delay as u32]),
+        (
+            Vr::LineTension as u32,
+            &[Vr::MaxTension as u32, Vr::AssemblyTime as u32, Vr::Delay as u32],
+        ),
     ],
     units: &UNITS,
     default_experiment: Experiment { start: 0.0, stop: 300.0, step: 0.5, tolerance: 1e-10 },

@@ -56,7 +56,8 @@ pub struct Saved {
 }
 
 pub fn encode(s: &Saved) -> Vec<u8> {
-    let mut w = Writer(Vec::with_capacity(128 + 8 * s.solver.as_ref().map_or(0, |x| x.coeffs.len())));
+    let mut w =
+        Writer(Vec::with_capacity(128 + 8 * s.solver.as_ref().map_or(0, |x| x.coeffs.len())));
     let (p, k) = (s.params, s.scales);
     for v in [p.lambda, p.sigma, p.r_inf, k.length, k.time, k.stress] {
         w.f64(v);
@@ -104,14 +105,19 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
     let (method, grid_points) = (r.u32()?, r.u32()?);
     let internal_step = r.finite("internal_step")?;
     if method > 3 || !(3..=100_000).contains(&grid_points) || internal_step <= 0.0 {
-        return Err(format!("serialized FMU state has method {method}, grid_points {grid_points}, internal_step {internal_step}"));
+        return Err(format!(
+            "serialized FMU state has method {method}, grid_points {grid_points}, internal_step {internal_step}"
+        ));
     }
-    let scheme = SchemeChoice { method: method as i32, grid_points: grid_points as i32, internal_step };
+    let scheme =
+        SchemeChoice { method: method as i32, grid_points: grid_points as i32, internal_step };
     let solver = if r.flag("solver")? {
         let st = r.finite("solver time")?;
         let n = r.u32()? as usize;
         if n > MAX_COEFFS {
-            return Err(format!("serialized FMU state has {n} modal coefficients (at most {MAX_COEFFS})"));
+            return Err(format!(
+                "serialized FMU state has {n} modal coefficients (at most {MAX_COEFFS})"
+            ));
         }
         let coeffs = (0..n).map(|_| r.finite("a modal coefficient")).collect::<Result<_, _>>()?;
         Some(SolverState { time: st, coeffs })
@@ -120,7 +126,17 @@ pub fn decode(bytes: &[u8]) -> Result<Saved, String> {
     };
     let edge_stress_rate = r.finite("edge stress rate")?;
     r.finish()?;
-    Ok(Saved { params, scales, settings, tolerance, experiment_tolerance, scheme, edge_stress, edge_stress_rate, solver })
+    Ok(Saved {
+        params,
+        scales,
+        settings,
+        tolerance,
+        experiment_tolerance,
+        scheme,
+        edge_stress,
+        edge_stress_rate,
+        solver,
+    })
 }
 
 #[cfg(test)]

@@ -117,7 +117,8 @@ impl WoundModel {
     fn set_departure(&mut self, t: f64, ode: &Ode, y: &[f64]) -> Result<(), Rejected> {
         let c: Vec<f64> = y.iter().zip(self.held_response(ode, t)).map(|(y, c0)| y + c0).collect();
         let p = self.p();
-        let solver = self.solver.as_mut().expect("prepare() builds the solver before states are set");
+        let solver =
+            self.solver.as_mut().expect("prepare() builds the solver before states are set");
         solver.set_ode_state(t, &c, p).map_err(|e| e.to_string())
     }
 
@@ -134,7 +135,9 @@ impl WoundModel {
     /// An event: an edge stress other than the reference's becomes the reference (module
     /// documentation). `(values changed, nominals changed)`.
     pub(super) fn exchange_event(&mut self) -> (bool, bool) {
-        let Some(old) = self.exchange.reference.as_ref().filter(|r| r.p != self.p()) else { return (false, false) };
+        let Some(old) = self.exchange.reference.as_ref().filter(|r| r.p != self.p()) else {
+            return (false, false);
+        };
         let (states, nominals) = (self.exchange_states(), self.nominals_at(old.p));
         self.exchange.reference = self.reference_now();
         let p = self.p();
@@ -156,7 +159,11 @@ impl WoundModel {
             Some(ode) => self.set_departure(self.model_time(time)?, &ode, &x[..used])?,
             None => {
                 let (t, p) = (self.model_time(time)?, self.p());
-                self.solver.as_mut().expect("prepare() builds the solver").set_ode_state(t, &[], p).map_err(|e| e.to_string())?
+                self.solver
+                    .as_mut()
+                    .expect("prepare() builds the solver")
+                    .set_ode_state(t, &[], p)
+                    .map_err(|e| e.to_string())?
             }
         }
         self.exchange.spare = x[used..].to_vec();
@@ -188,10 +195,15 @@ impl WoundModel {
     pub(super) fn exchange_derivatives(&self) -> Vec<f64> {
         let mut dx = match self.exchange_ode() {
             Some(ode) => {
-                let dp = self.exchange.reference.as_ref().map_or(self.params.sigma, |r| r.p) - self.p();
+                let dp =
+                    self.exchange.reference.as_ref().map_or(self.params.sigma, |r| r.p) - self.p();
                 let y = self.departure(&ode);
                 let t = self.scales.time;
-                y.iter().zip(&ode.loads).zip(&ode.relaxation_times).map(|((y, x), nu)| (dp * x - y) / nu / t).collect()
+                y.iter()
+                    .zip(&ode.loads)
+                    .zip(&ode.relaxation_times)
+                    .map(|((y, x), nu)| (dp * x - y) / nu / t)
+                    .collect()
             }
             None => Vec::new(),
         };
@@ -202,11 +214,18 @@ impl WoundModel {
     /// The exact Jacobian (module documentation), row-major over `unknowns` x `knowns`
     /// (outputs and derivatives over inputs and states); output-input entries are
     /// [`FmuModel::partial`]'s.
-    pub(super) fn exchange_jacobian(&self, unknowns: &[u32], knowns: &[u32], time: f64) -> Result<Vec<f64>, Rejected> {
+    pub(super) fn exchange_jacobian(
+        &self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        time: f64,
+    ) -> Result<Vec<f64>, Rejected> {
         let d = self.description();
         let ode = self.exchange_ode();
         let (s, used) = (self.scales, ode.as_ref().map_or(0, |o| o.x.len()));
-        let mode = |k: usize| ode.as_ref().filter(|_| k < used).map(|o| (o.loads[k], o.relaxation_times[k]));
+        let mode = |k: usize| {
+            ode.as_ref().filter(|_| k < used).map(|o| (o.loads[k], o.relaxation_times[k]))
+        };
         let mut out = Vec::with_capacity(unknowns.len() * knowns.len());
         for &u in unknowns {
             let unknown = d.named(Kind::Real, u)?;
@@ -220,10 +239,12 @@ impl WoundModel {
                         mode(i).map_or(0.0, |(x, nu)| -x / (nu * s.time * s.stress))
                     }
                     (Named::Table(_), Named::State(j)) => self.output_slope(u, mode(j))?,
-                    (Named::Table(_), Named::Table(_)) => match self.evolved_slope(u, k, ode.as_ref()) {
-                        Some(slope) => slope,
-                        None => self.partial(u, k, time)?,
-                    },
+                    (Named::Table(_), Named::Table(_)) => {
+                        match self.evolved_slope(u, k, ode.as_ref()) {
+                            Some(slope) => slope,
+                            None => self.partial(u, k, time)?,
+                        }
+                    }
                     _ => 0.0,
                 };
                 out.push(value);
@@ -244,8 +265,10 @@ impl WoundModel {
     /// `d edge_velocity / d edge_stress` of [`WoundModel::evolved_edge_velocity`],
     /// `-(R0 / T) / G sum_k X_k^2 / nu_k`, where it applies (other pairs: `None`).
     fn evolved_slope(&self, output: u32, input: u32, ode: Option<&Ode>) -> Option<f64> {
-        let pair = (Vr::from_u32(output), Vr::from_u32(input)) == (Some(Vr::EdgeVelocity), Some(Vr::EdgeStress));
-        let ode = ode.filter(|_| pair && self.exchange.reference.is_some() && self.solver().time() > 0.0)?;
+        let pair = (Vr::from_u32(output), Vr::from_u32(input))
+            == (Some(Vr::EdgeVelocity), Some(Vr::EdgeStress));
+        let ode = ode
+            .filter(|_| pair && self.exchange.reference.is_some() && self.solver().time() > 0.0)?;
         let sum: f64 = ode.loads.iter().zip(&ode.relaxation_times).map(|(x, nu)| x * x / nu).sum();
         Some(-self.scales.velocity() / self.scales.stress * sum)
     }

@@ -12,6 +12,7 @@
 
 mod codec;
 mod exchange;
+mod fmu_state;
 mod probes;
 mod setup;
 pub mod variables;
@@ -19,8 +20,9 @@ pub mod variables;
 pub use codec::SchemeChoice;
 
 use crate::fmi::common::model::{Description, FmuModel, Rejected};
-use crate::fmi::common::serialized::same_parameters;
-use crate::solver::{EDGE_STRESS_MAX, Params, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma};
+use crate::solver::{
+    EDGE_STRESS_MAX, Params, Solver, check_edge_stress, check_lambda, check_r_inf, check_sigma,
+};
 use crate::units::{Scales, check_scale};
 use probes::Probes;
 use std::cell::RefCell;
@@ -67,8 +69,16 @@ impl WoundModel {
     pub fn fresh() -> Box<dyn FmuModel> {
         let start = |vr: Vr| vr.var().start.unwrap_or(0.0);
         Box::new(Self {
-            params: Params { lambda: start(Vr::Lambda), sigma: start(Vr::Sigma), r_inf: start(Vr::RInf) },
-            scales: Scales { length: start(Vr::LengthScale), time: start(Vr::TimeScale), stress: start(Vr::StressScale) },
+            params: Params {
+                lambda: start(Vr::Lambda),
+                sigma: start(Vr::Sigma),
+                r_inf: start(Vr::RInf),
+            },
+            scales: Scales {
+                length: start(Vr::LengthScale),
+                time: start(Vr::TimeScale),
+                stress: start(Vr::StressScale),
+            },
             tolerance: start(Vr::Tolerance),
             experiment_tolerance: None,
             scheme: SchemeChoice {
@@ -98,9 +108,15 @@ impl FmuModel for WoundModel {
     }
 
     fn check(&self, vr: u32, x: f64) -> Result<f64, Rejected> {
-        let Some(vr) = Vr::from_u32(vr) else { return Err(format!("no variable has value reference {vr}")) };
+        let Some(vr) = Vr::from_u32(vr) else {
+            return Err(format!("no variable has value reference {vr}"));
+        };
         let positive = |name: &str| {
-            if x.is_finite() && x > 0.0 { Ok(x) } else { Err(format!("{name} = {x} is invalid: it must be finite and > 0")) }
+            if x.is_finite() && x > 0.0 {
+                Ok(x)
+            } else {
+                Err(format!("{name} = {x} is invalid: it must be finite and > 0"))
+            }
         };
         let in_range = || {
             let (lo, hi) = vr.var().range.expect("Integer variables declare a range");
@@ -206,7 +222,10 @@ impl FmuModel for WoundModel {
                 }
                 let (solver, p) = (self.solver(), self.p());
                 if !solver.edge_velocity_defined(p) {
-                    let Ok(mean) = solver.mean_edge_velocity(p, MEAN_WINDOW).map(|v| self.scales.velocity() * v) else {
+                    let Ok(mean) = solver
+                        .mean_edge_velocity(p, MEAN_WINDOW)
+                        .map(|v| self.scales.velocity() * v)
+                    else {
                         self.warn("edge_velocity is infinite in the model here and its mean over the next 0.01 T could not be computed: the value returned is the mesh's".into());
                         return self.scales.velocity() * solver.edge_velocity(p);
                     };
@@ -231,7 +250,8 @@ impl FmuModel for WoundModel {
     /// `validity_warning = 0`; O(modes) per step.
     fn step(&mut self, time: f64, h: f64) -> Result<(), Rejected> {
         let r_inf = self.params.r_inf;
-        let was_valid = self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
+        let was_valid =
+            self.solver().time() == 0.0 || self.solver().validity_violation(r_inf).is_none();
         let (dt, p, rate) = (h / self.scales.time, self.p(), self.edge_stress_rate);
         if !dt.is_finite() {
             let t = self.scales.time;
@@ -287,17 +307,7 @@ impl FmuModel for WoundModel {
     }
 
     fn encode(&self) -> Result<Vec<u8>, Rejected> {
-        Ok(codec::encode(&codec::Saved {
-            params: self.params,
-            scales: self.scales,
-            settings: self.settings()?,
-            tolerance: self.tolerance,
-            experiment_tolerance: self.experiment_tolerance,
-            scheme: self.scheme,
-            edge_stress: self.edge_stress,
-            edge_stress_rate: self.edge_stress_rate,
-            solver: self.solver.as_ref().map(Solver::state),
-        }))
+        self.saved()
     }
 
     fn take_warning(&mut self) -> Option<String> {
@@ -313,7 +323,10 @@ impl FmuModel for WoundModel {
     fn check_model_exchange(&self) -> Result<(), Rejected> {
         match self.solver().ode(self.p()) {
             Some(ode) if ode.x.len() <= MODEL_EXCHANGE_STATES => Ok(()),
-            Some(ode) => Err(format!("the mesh has {} modes, more than the {MODEL_EXCHANGE_STATES} states declared", ode.x.len())),
+            Some(ode) => Err(format!(
+                "the mesh has {} modes, more than the {MODEL_EXCHANGE_STATES} states declared",
+                ode.x.len()
+            )),
             None => Err(format!(
                 "Model Exchange needs method = 0 (the modal scheme, an ODE in its modal coordinates); method = {} is a stepping scheme",
                 self.scheme.method
@@ -356,7 +369,9 @@ impl FmuModel for WoundModel {
             return Err(format!("{} is an output", variables::PROBE_ARRAYS[j.min(2)].name));
         }
         match values.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
-            Some(r) => Err(format!("probe radius {r} um is invalid: it must be finite and > 0 (and in [R0, R0 R_inf])")),
+            Some(r) => Err(format!(
+                "probe radius {r} um is invalid: it must be finite and > 0 (and in [R0, R0 R_inf])"
+            )),
             None => Ok(()),
         }
     }
@@ -378,7 +393,9 @@ impl FmuModel for WoundModel {
         }
         let (lo, hi) = (r0, r0 * self.params.r_inf);
         if let Some(r) = probes.iter().find(|&&r| !(lo..=hi).contains(&r)) {
-            return Err(format!("probe radius {r} um is outside the tissue [R0, R0 R_inf] = [{lo}, {hi}] um"));
+            return Err(format!(
+                "probe radius {r} um is outside the tissue [R0, R0 R_inf] = [{lo}, {hi}] um"
+            ));
         }
         let radii: Vec<f64> = probes.iter().map(|r| r / r0).collect();
         Ok(match j {
@@ -387,7 +404,8 @@ impl FmuModel for WoundModel {
                 let solver = self.solver();
                 if !solver.edge_velocity_defined(p) {
                     self.note(format!("velocity is infinite in the model at the edge at lambda = 0 at the cut and just after a change of edge_stress; the values returned are the mean velocities over the next {MEAN_WINDOW} T with edge_stress held"));
-                    let mean = solver.mean_velocity(p, &radii, MEAN_WINDOW).map_err(|e| e.to_string())?;
+                    let mean =
+                        solver.mean_velocity(p, &radii, MEAN_WINDOW).map_err(|e| e.to_string())?;
                     return Ok(mean.iter().map(|v| v * self.scales.velocity()).collect());
                 }
                 solver.velocity(p, &radii).iter().map(|v| v * self.scales.velocity()).collect()
@@ -412,57 +430,8 @@ impl FmuModel for WoundModel {
     }
 
     /// The bytes must come from an instance with the same parameters, scales, tolerance
-    /// and scheme (a state is a point of one trajectory, not a parameter set).
+    /// and scheme ([`WoundModel::restored`]).
     fn decode(&self, bytes: &[u8]) -> Result<Box<dyn FmuModel>, Rejected> {
-        let saved = codec::decode(bytes)?;
-        let (mine, theirs) = (self.params, saved.params);
-        let (a, b) = (self.scales, saved.scales);
-        same_parameters(&[
-            ("lambda", mine.lambda, theirs.lambda),
-            ("sigma", mine.sigma, theirs.sigma),
-            ("R_inf", mine.r_inf, theirs.r_inf),
-            ("R0", a.length, b.length),
-            ("T", a.time, b.time),
-            ("G", a.stress, b.stress),
-            ("tolerance", self.effective_tolerance(), saved.experiment_tolerance.unwrap_or(saved.tolerance)),
-        ])?;
-        if saved.scheme != self.scheme {
-            return Err(format!("serialized FMU state has {:?} but this instance has {:?}", saved.scheme, self.scheme));
-        }
-        // The mesh follows from parameters and tolerance (checked equal to ours above):
-        // bytes that claim another are forged.
-        let expected = self.settings()?;
-        if saved.settings != expected {
-            return Err(format!(
-                "serialized FMU state has mesh {:?} but its parameters and tolerance give {:?}",
-                saved.settings.mesh, expected.mesh
-            ));
-        }
-        check_edge_stress(saved.edge_stress / saved.scales.stress).map_err(|e| format!("serialized FMU state: {e}"))?;
-        let mut model = Self {
-            params: saved.params,
-            scales: saved.scales,
-            tolerance: saved.tolerance,
-            experiment_tolerance: saved.experiment_tolerance,
-            scheme: saved.scheme,
-            edge_stress: saved.edge_stress,
-            edge_stress_rate: saved.edge_stress_rate,
-            solver: None,
-            warning: RefCell::new(None),
-            note: RefCell::new(None),
-            exchange: self.exchange.clone(),
-            probe_radii: self.probe_radii.clone(),
-            validity_warning: self.validity_warning,
-        };
-        if let Some(st) = &saved.solver {
-            // Same parameters, tolerance and scheme: a clone of our own solver shares its operator.
-            let mut s = match &self.solver {
-                Some(own) => own.clone(),
-                None => model.build_solver()?,
-            };
-            s.restore(st).map_err(|e| format!("serialized FMU state: {e}"))?;
-            model.solver = Some(s);
-        }
-        Ok(Box::new(model))
+        Ok(Box::new(self.restored(bytes)?))
     }
 }

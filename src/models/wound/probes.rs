@@ -56,7 +56,10 @@ mod tests {
 
     #[test]
     fn defaults_are_the_declared_start_values_and_stay_in_any_tissue() {
-        assert_eq!(Probes::default().radii(1.0, 10.0), super::super::variables::PROBE_RADII.to_vec());
+        assert_eq!(
+            Probes::default().radii(1.0, 10.0),
+            super::super::variables::PROBE_RADII.to_vec()
+        );
         for (r0, r_inf) in [(6.0, 1.001), (1e-12, 1e6), (1e12, 1.001), (1e12, 1e6), (6.0, 3.7)] {
             for r in Probes::Default(9).radii(r0, r_inf) {
                 assert!((r0..=r0 * r_inf).contains(&r), "{r} outside [{r0}, {}]", r0 * r_inf);

@@ -34,7 +34,12 @@ impl WoundModel {
     pub(super) fn setup_warning(&self) -> Option<String> {
         let tol = self.effective_tolerance();
         if self.scheme.method != 0 {
-            let what = ["", "TR-BDF2 (method 1)", "the paper's scheme (method 2)", "the explicit scheme (method 3)"];
+            let what = [
+                "",
+                "TR-BDF2 (method 1)",
+                "the paper's scheme (method 2)",
+                "the explicit scheme (method 3)",
+            ];
             let name = what.get(self.scheme.method as usize).copied().unwrap_or("this method");
             return Some(format!(
                 "{name} is for comparison: its error depends on grid_points and internal_step, not on the tolerance {tol:e} (the paper's scheme is off by 10-20 % of the opening at 101 points); method = 0 meets the tolerance"
@@ -56,13 +61,18 @@ impl WoundModel {
     /// A solver at the cut for these parameters, tolerance and scheme choice (the
     /// internal step is in master time, the solver's in units of `T`).
     pub(super) fn build_solver(&self) -> Result<Solver, Rejected> {
-        let choice = SchemeChoice { internal_step: self.scheme.internal_step / self.scales.time, ..self.scheme };
+        let choice = SchemeChoice {
+            internal_step: self.scheme.internal_step / self.scales.time,
+            ..self.scheme
+        };
         let scheme = choice.scheme(self.settings()?);
         Solver::with_scheme(&self.params, &scheme).map_err(|e| e.to_string())
     }
 
     pub(super) fn solver(&self) -> &Solver {
-        self.solver.as_ref().expect("prepare() builds the solver before outputs, steps and derivatives")
+        self.solver
+            .as_ref()
+            .expect("prepare() builds the solver before outputs, steps and derivatives")
     }
 
     /// The states' nominals under the edge stress `p` (in G).

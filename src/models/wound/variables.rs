@@ -2,7 +2,8 @@
 //! from ([`crate::fmi::fmi2::xml`]), and that the code uses.
 
 pub use crate::fmi::common::model::{
-    ArrayVariable, Arrays, Causality, ContinuousStates, Description, Experiment, Kind, LOG_CATEGORIES, Unit, Variability, Variable,
+    ArrayVariable, Arrays, Causality, ContinuousStates, Description, Experiment, Kind,
+    LOG_CATEGORIES, Unit, Variability, Variable,
 };
 
 /// `modelIdentifier` of the FMU (and the name of its shared object).
@@ -77,7 +78,10 @@ pub static DESCRIPTION: Description = Description {
     variables: VARIABLES,
     // The edge velocity is linear in the edge stress with a factor set by fixed
     // parameters (`fixed`); the radius has no direct dependence on it.
-    outputs: &[(Vr::WoundRadius as u32, &[]), (Vr::EdgeVelocity as u32, &[(Vr::EdgeStress as u32, "fixed")])],
+    outputs: &[
+        (Vr::WoundRadius as u32, &[]),
+        (Vr::EdgeVelocity as u32, &[(Vr::EdgeStress as u32, "fixed")]),
+    ],
     // R1 = R0 (1 + sigma / 6); the initial velocity depends on everything but the outputs.
     initial_unknowns: &[
         (Vr::WoundRadius as u32, &[Vr::Sigma as u32, Vr::LengthScale as u32]),

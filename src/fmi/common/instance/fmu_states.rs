@@ -26,7 +26,8 @@ impl Clone for Snapshot {
 impl Instance {
     /// `fmi2GetFMUstate`: save into `handle` if given (it must be ours), else a new one.
     pub fn get_fmu_state(&mut self, handle: Option<u64>) -> Result<u64, Rejected> {
-        let snap = Snapshot { machine: self.machine, clock: self.clock, model: self.model.boxed_clone() };
+        let snap =
+            Snapshot { machine: self.machine, clock: self.clock, model: self.model.boxed_clone() };
         let h = match handle {
             Some(h) => self.snapshot(h).map(|_| h)?,
             None => fresh_handle(),
@@ -66,21 +67,31 @@ impl Instance {
     pub fn serialize_fmu_state(&self, handle: u64) -> Result<Vec<u8>, Rejected> {
         let snap = self.snapshot(handle)?;
         let model = snap.model.encode()?;
-        Ok(serialized::encode(self.description().model_identifier, snap.machine, &snap.clock, &model))
+        Ok(serialized::encode(
+            self.description().model_identifier,
+            snap.machine,
+            &snap.clock,
+            &model,
+        ))
     }
 
     /// `fmi2DeSerializeFMUstate`: the bytes must come from an instance of the same model
     /// with the same parameters (a state is a point of one trajectory, not a parameter
     /// set). Into `target` if given (it must be ours), else into a new state.
-    pub fn deserialize_fmu_state(&mut self, bytes: &[u8], target: Option<u64>) -> Result<u64, Rejected> {
+    pub fn deserialize_fmu_state(
+        &mut self,
+        bytes: &[u8],
+        target: Option<u64>,
+    ) -> Result<u64, Rejected> {
         if let Some(h) = target {
             self.snapshot(h)?;
         }
-        let (machine, clock, payload) = serialized::decode(self.description().model_identifier, bytes)?;
+        let (machine, clock, payload) =
+            serialized::decode(self.description().model_identifier, bytes)?;
         // Intermediate Update Mode exists only inside a step (no state is saved there),
         // Configuration Mode only in the dialects that have it.
-        let transient =
-            machine == Machine::IntermediateUpdate || (machine == Machine::ConfigurationMode && !self.dialect.configuration_mode);
+        let transient = machine == Machine::IntermediateUpdate
+            || (machine == Machine::ConfigurationMode && !self.dialect.configuration_mode);
         if transient || !machine.belongs_to(self.interface) {
             return Err(format!(
                 "serialized FMU state is in state {machine:?}, which this instance ({:?}) is never saved in",

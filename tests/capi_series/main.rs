@@ -1,6 +1,9 @@
 //! wo_series and wo_profile_series: the same numbers as the step-by-step handle API, values
 //! at current positions consistent with the reference-radius profiles, and every kind of
-//! bad input refused with a message and nothing written.
+//! bad input refused with a message and nothing written. (The sensitivities and rates of
+//! the series are in rates.rs.)
+
+mod rates;
 
 use std::ffi::CStr;
 use std::ptr::{null, null_mut};
@@ -43,13 +46,32 @@ fn a_series_is_the_handle_api_bit_for_bit() {
     for (lambda, p) in [(0.3, 0.0), (2.0, 0.4), (0.0, 1.0)] {
         let (want_r, want_v) = stepwise(lambda, 1.0, 10.0, p, &times);
         let (mut r, mut v) = (vec![0.0; 6], vec![0.0; 6]);
-        let status = unsafe { wo_series(pb(lambda, 1.0, 10.0, TOL, p), times.as_ptr(), 6, r.as_mut_ptr(), v.as_mut_ptr()) };
+        let status = unsafe {
+            wo_series(
+                pb(lambda, 1.0, 10.0, TOL, p),
+                times.as_ptr(),
+                6,
+                r.as_mut_ptr(),
+                v.as_mut_ptr(),
+            )
+        };
         assert_eq!(status, WoStatus::WoOk, "{}", last_error());
         assert_eq!(r, want_r);
         assert_eq!(v, want_v);
         // Radius only: the same radii.
         let mut r2 = vec![0.0; 6];
-        assert_eq!(unsafe { wo_series(pb(lambda, 1.0, 10.0, TOL, p), times.as_ptr(), 6, r2.as_mut_ptr(), null_mut()) }, WoStatus::WoOk);
+        assert_eq!(
+            unsafe {
+                wo_series(
+                    pb(lambda, 1.0, 10.0, TOL, p),
+                    times.as_ptr(),
+                    6,
+                    r2.as_mut_ptr(),
+                    null_mut(),
+                )
+            },
+            WoStatus::WoOk
+        );
         assert_eq!(r2, want_r);
     }
 }
@@ -58,12 +80,19 @@ fn a_series_is_the_handle_api_bit_for_bit() {
 fn lambda_zero_velocity_at_the_cut_is_undefined_and_nothing_is_written() {
     let times = [0.0, 1.0];
     let (mut r, mut v) = ([7.0; 2], [7.0; 2]);
-    let status = unsafe { wo_series(pb(0.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 2, r.as_mut_ptr(), v.as_mut_ptr()) };
+    let status = unsafe {
+        wo_series(pb(0.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 2, r.as_mut_ptr(), v.as_mut_ptr())
+    };
     assert_eq!(status, WoStatus::WoUndefined);
     assert!(last_error().contains("times[0] = 0 is infinite"), "{}", last_error());
     assert_eq!((r, v), ([7.0; 2], [7.0; 2]));
     // The radius alone is defined there: R(0) = 1 + sigma / 6.
-    assert_eq!(unsafe { wo_series(pb(0.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 2, r.as_mut_ptr(), null_mut()) }, WoStatus::WoOk);
+    assert_eq!(
+        unsafe {
+            wo_series(pb(0.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 2, r.as_mut_ptr(), null_mut())
+        },
+        WoStatus::WoOk
+    );
     assert!((r[0] - 7.0 / 6.0).abs() < 1e-12, "{}", r[0]);
 }
 
@@ -78,26 +107,58 @@ fn values_at_current_positions_are_those_of_the_material_points_there() {
         let (mut ux, mut vx) = (vec![0.0; xs.len()], vec![0.0; xs.len()]);
         unsafe {
             assert_eq!(wo_solver_advance(s, t, p), WoStatus::WoOk);
-            assert_eq!(wo_solver_displacement(s, xs.as_ptr(), ux.as_mut_ptr(), xs.len()), WoStatus::WoOk);
-            assert_eq!(wo_solver_velocity(s, xs.as_ptr(), vx.as_mut_ptr(), xs.len()), WoStatus::WoOk);
+            assert_eq!(
+                wo_solver_displacement(s, xs.as_ptr(), ux.as_mut_ptr(), xs.len()),
+                WoStatus::WoOk
+            );
+            assert_eq!(
+                wo_solver_velocity(s, xs.as_ptr(), vx.as_mut_ptr(), xs.len()),
+                WoStatus::WoOk
+            );
         }
         // Current positions of the material points X, then back.
         let current: Vec<f64> = xs.iter().zip(&ux).map(|(x, u)| x + u).collect();
         let (mut u, mut v) = (vec![0.0; xs.len()], vec![0.0; xs.len()]);
         let status = unsafe {
-            wo_profile_series(pb(lambda, sigma, r_inf, TOL, p), &times[i], 1, current.as_ptr(), xs.len(), u.as_mut_ptr(), v.as_mut_ptr())
+            wo_profile_series(
+                pb(lambda, sigma, r_inf, TOL, p),
+                &times[i],
+                1,
+                current.as_ptr(),
+                xs.len(),
+                u.as_mut_ptr(),
+                v.as_mut_ptr(),
+            )
         };
         assert_eq!(status, WoStatus::WoOk, "{}", last_error());
         let row = 0..xs.len();
         for j in 0..xs.len() {
             // The inverse is solved to a few ulps of X; u and u_t change by their slope times that.
-            assert!((u[row.start + j] - ux[j]).abs() < 1e-13, "u at X = {}: {} vs {}", xs[j], u[row.start + j], ux[j]);
-            assert!((v[row.start + j] - vx[j]).abs() < 1e-12 * (1.0 + vx[j].abs()), "v at X = {}", xs[j]);
+            assert!(
+                (u[row.start + j] - ux[j]).abs() < 1e-13,
+                "u at X = {}: {} vs {}",
+                xs[j],
+                u[row.start + j],
+                ux[j]
+            );
+            assert!(
+                (v[row.start + j] - vx[j]).abs() < 1e-12 * (1.0 + vx[j].abs()),
+                "v at X = {}",
+                xs[j]
+            );
         }
         // Only the displacement: the same numbers.
         let mut u2 = vec![0.0; xs.len()];
         let status = unsafe {
-            wo_profile_series(pb(lambda, sigma, r_inf, TOL, p), &times[i], 1, current.as_ptr(), xs.len(), u2.as_mut_ptr(), null_mut())
+            wo_profile_series(
+                pb(lambda, sigma, r_inf, TOL, p),
+                &times[i],
+                1,
+                current.as_ptr(),
+                xs.len(),
+                u2.as_mut_ptr(),
+                null_mut(),
+            )
         };
         assert_eq!(status, WoStatus::WoOk);
         assert_eq!(u2[row.clone()], u[row]);
@@ -107,7 +168,15 @@ fn values_at_current_positions_are_those_of_the_material_points_there() {
 
 fn series_error(times: &[f64], tolerance: f64) -> (WoStatus, String) {
     let mut r = vec![5.0; times.len().max(1)];
-    let status = unsafe { wo_series(pb(1.0, 1.0, 10.0, tolerance, 0.0), times.as_ptr(), times.len(), r.as_mut_ptr(), null_mut()) };
+    let status = unsafe {
+        wo_series(
+            pb(1.0, 1.0, 10.0, tolerance, 0.0),
+            times.as_ptr(),
+            times.len(),
+            r.as_mut_ptr(),
+            null_mut(),
+        )
+    };
     assert!(r.iter().all(|&x| x == 5.0), "written on failure");
     (status, last_error())
 }
@@ -115,7 +184,11 @@ fn series_error(times: &[f64], tolerance: f64) -> (WoStatus, String) {
 #[test]
 fn bad_series_input_is_refused_with_the_reason() {
     let cases: [(&[f64], f64, &str); 5] = [
-        (&[0.0, 2.0, 1.0], TOL, "wo_series: times[2] = 1 is before times[1] = 2: expected ascending times"),
+        (
+            &[0.0, 2.0, 1.0],
+            TOL,
+            "wo_series: times[2] = 1 is before times[1] = 2: expected ascending times",
+        ),
         (&[-1.0], TOL, "times[0] = -1 is invalid: expected a finite time >= 0"),
         (&[0.0, f64::NAN], TOL, "times[1] = NaN is invalid"),
         (&[1.0], 0.0, "tolerance"),
@@ -128,13 +201,28 @@ fn bad_series_input_is_refused_with_the_reason() {
     }
     let mut r = [0.0];
     unsafe {
-        assert_eq!(wo_series(pb(-1.0, 1.0, 10.0, TOL, 0.0), [1.0].as_ptr(), 1, r.as_mut_ptr(), null_mut()), WoStatus::WoInvalidArgument);
+        assert_eq!(
+            wo_series(pb(-1.0, 1.0, 10.0, TOL, 0.0), [1.0].as_ptr(), 1, r.as_mut_ptr(), null_mut()),
+            WoStatus::WoInvalidArgument
+        );
         assert!(last_error().contains("lambda"), "{}", last_error());
-        assert_eq!(wo_series(pb(1.0, 1.0, 10.0, TOL, 2e6), [1.0].as_ptr(), 1, r.as_mut_ptr(), null_mut()), WoStatus::WoInvalidArgument);
-        assert_eq!(wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), null(), 1, r.as_mut_ptr(), null_mut()), WoStatus::WoNullPointer);
+        assert_eq!(
+            wo_series(pb(1.0, 1.0, 10.0, TOL, 2e6), [1.0].as_ptr(), 1, r.as_mut_ptr(), null_mut()),
+            WoStatus::WoInvalidArgument
+        );
+        assert_eq!(
+            wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), null(), 1, r.as_mut_ptr(), null_mut()),
+            WoStatus::WoNullPointer
+        );
         assert!(last_error().contains("times (with count = 1) is NULL"), "{}", last_error());
-        assert_eq!(wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), [1.0].as_ptr(), 1, null_mut(), null_mut()), WoStatus::WoNullPointer);
-        assert_eq!(wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), null(), 0, null_mut(), null_mut()), WoStatus::WoOk);
+        assert_eq!(
+            wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), [1.0].as_ptr(), 1, null_mut(), null_mut()),
+            WoStatus::WoNullPointer
+        );
+        assert_eq!(
+            wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), null(), 0, null_mut(), null_mut()),
+            WoStatus::WoOk
+        );
     }
 }
 
@@ -143,102 +231,44 @@ fn current_radii_inside_the_wound_or_beyond_the_tissue_are_refused() {
     let times = [0.0, 5.0];
     let mut u = [3.0; 2];
     let mut refuse = |r: f64, needle: &str| {
-        let status =
-            unsafe { wo_profile_series(pb(1.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 2, [r].as_ptr(), 1, u.as_mut_ptr(), null_mut()) };
+        let status = unsafe {
+            wo_profile_series(
+                pb(1.0, 1.0, 10.0, TOL, 0.0),
+                times.as_ptr(),
+                2,
+                [r].as_ptr(),
+                1,
+                u.as_mut_ptr(),
+                null_mut(),
+            )
+        };
         assert_eq!(status, WoStatus::WoInvalidArgument, "{r}");
         let msg = last_error();
         assert!(msg.contains(needle), "{msg} lacks {needle}");
         assert_eq!(u, [3.0; 2]);
     };
     // Just after the cut the wound edge is at 1 + 1/6; the outer edge at 10 (1 + 1/6).
-    refuse(1.1, "radii[0] = 1.1 is inside the wound at times[0] = 0: the tissue spans current radii [1.1666");
+    refuse(
+        1.1,
+        "radii[0] = 1.1 is inside the wound at times[0] = 0: the tissue spans current radii [1.1666",
+    );
     refuse(11.7, "radii[0] = 11.7 is outside the tissue at times[0] = 0");
     refuse(f64::NAN, "radii[0] = NaN is invalid: expected a finite radius");
     // Later the wound has opened past 1.2.
     refuse(1.2, "radii[0] = 1.2 is inside the wound at times[1] = 5");
-    let status = unsafe { wo_profile_series(pb(1.0, 1.0, 10.0, TOL, 0.0), null(), usize::MAX, [2.0].as_ptr(), 2, null_mut(), null_mut()) };
+    let status = unsafe {
+        wo_profile_series(
+            pb(1.0, 1.0, 10.0, TOL, 0.0),
+            null(),
+            usize::MAX,
+            [2.0].as_ptr(),
+            2,
+            null_mut(),
+            null_mut(),
+        )
+    };
     assert_eq!(status, WoStatus::WoInvalidArgument);
     assert!(last_error().contains("overflows"), "{}", last_error());
-}
-
-/// wo_series_sensitivities: the radius and velocity of wo_series to the bit, optional
-/// outputs skipped by NULL, the radius required, and nothing written on a refusal (its
-/// derivatives are checked in src/solver/sensitivity.rs and tests/python/test_sensitivities.py).
-#[test]
-fn sensitivities_give_the_series_values_and_follow_the_pointer_rules() {
-    let times = [0.0, 0.5, 3.0, 40.0];
-    let problem = pb(0.7, 1.0, 10.0, TOL, 0.2);
-    let (mut r, mut v) = ([0.0; 4], [0.0; 4]);
-    let (mut r2, mut v2, mut dl, mut dr) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]);
-    unsafe {
-        assert_eq!(wo_series(problem, times.as_ptr(), 4, r.as_mut_ptr(), v.as_mut_ptr()), WoStatus::WoOk);
-        let status =
-            wo_series_sensitivities(problem, times.as_ptr(), 4, r2.as_mut_ptr(), v2.as_mut_ptr(), dl.as_mut_ptr(), dr.as_mut_ptr());
-        assert_eq!(status, WoStatus::WoOk, "{}", last_error());
-        assert_eq!((r, v), (r2, v2));
-        assert!(dl[1..].iter().all(|d| *d < 0.0) && dr[1..].iter().all(|d| *d < 0.0), "{dl:?} {dr:?}");
-        let mut only = [0.0; 4];
-        let status = wo_series_sensitivities(problem, times.as_ptr(), 4, r2.as_mut_ptr(), null_mut(), null_mut(), only.as_mut_ptr());
-        assert_eq!(status, WoStatus::WoOk);
-        assert_eq!(only, dr);
-        let status = wo_series_sensitivities(problem, times.as_ptr(), 4, null_mut(), null_mut(), dl.as_mut_ptr(), null_mut());
-        assert_eq!(status, WoStatus::WoNullPointer);
-        assert!(last_error().contains("wo_series_sensitivities: radius (with count = 4) is NULL"), "{}", last_error());
-        let mut untouched = [9.0; 2];
-        let status =
-            wo_series_sensitivities(problem, [1.0, 0.5].as_ptr(), 2, r2.as_mut_ptr(), null_mut(), untouched.as_mut_ptr(), null_mut());
-        assert_eq!(status, WoStatus::WoInvalidArgument);
-        assert!(last_error().contains("expected ascending times"), "{}", last_error());
-        assert_eq!(untouched, [9.0; 2]);
-    }
-}
-
-/// wo_profile_rates and wo_profile_sensitivities: the velocity of wo_profile_series (to
-/// 1e-13 of the largest: the same modal sums in another order), the first four of the six values per point equal to the four of the other, the edge
-/// output optional, the rates required, a count that overflows refused, and nothing written
-/// on a refusal (their derivatives are checked in src/capi/profile_rates.rs and
-/// tests/python/test_piv_jacobian.py).
-#[test]
-fn profile_rates_give_the_profile_velocities_and_follow_the_pointer_rules() {
-    let times = [0.5, 3.0];
-    let radii = [1.5, 2.5, 6.0];
-    let problem = pb(0.7, 0.8, 10.0, TOL, 0.0);
-    let mut v = [0.0; 6];
-    let (mut six, mut edge6) = ([0.0; 36], [0.0; 24]);
-    let (mut four, mut edge4) = ([0.0; 24], [0.0; 16]);
-    unsafe {
-        let status = wo_profile_series(problem, times.as_ptr(), 2, radii.as_ptr(), 3, null_mut(), v.as_mut_ptr());
-        assert_eq!(status, WoStatus::WoOk, "{}", last_error());
-        let status = wo_profile_rates(problem, times.as_ptr(), 2, radii.as_ptr(), 3, six.as_mut_ptr(), edge6.as_mut_ptr());
-        assert_eq!(status, WoStatus::WoOk, "{}", last_error());
-        let status = wo_profile_sensitivities(problem, times.as_ptr(), 2, radii.as_ptr(), 3, four.as_mut_ptr(), edge4.as_mut_ptr());
-        assert_eq!(status, WoStatus::WoOk, "{}", last_error());
-        let largest = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        for (k, (a, b)) in six.chunks(6).zip(four.chunks(4)).enumerate() {
-            assert!((a[0] - v[k]).abs() <= 1e-13 * largest, "point {k}: {} against {}", a[0], v[k]);
-            assert_eq!(&a[..4], b, "point {k}");
-            assert!(a[4].is_finite() && a[5].is_finite() && a[5] != 0.0, "point {k}: {a:?}");
-        }
-        for (a, b) in edge6.chunks(6).zip(edge4.chunks(4)) {
-            assert_eq!(&a[..4], b);
-        }
-        assert_eq!((edge6[5], edge6[17]), (0.0, 0.0), "the edge's own velocity does not depend on r");
-        let mut again = [0.0; 36];
-        let status = wo_profile_rates(problem, times.as_ptr(), 2, radii.as_ptr(), 3, again.as_mut_ptr(), null_mut());
-        assert_eq!(status, WoStatus::WoOk);
-        assert_eq!(again, six);
-        let status = wo_profile_rates(problem, times.as_ptr(), 2, radii.as_ptr(), 3, null_mut(), edge6.as_mut_ptr());
-        assert_eq!(status, WoStatus::WoNullPointer);
-        assert!(last_error().contains("wo_profile_rates: rates (with count = 36) is NULL"), "{}", last_error());
-        let mut untouched = [9.0; 36];
-        let status = wo_profile_rates(problem, [0.0, 1.0].as_ptr(), 2, radii.as_ptr(), 3, untouched.as_mut_ptr(), null_mut());
-        assert_eq!(status, WoStatus::WoInvalidArgument);
-        assert!(last_error().contains("the sensitivities need times > 0"), "{}", last_error());
-        assert_eq!(untouched, [9.0; 36]);
-        let status = wo_profile_rates(problem, times.as_ptr(), usize::MAX, radii.as_ptr(), 3, untouched.as_mut_ptr(), null_mut());
-        assert_eq!(status, WoStatus::WoInvalidArgument);
-        assert!(last_error().contains("overflows"), "{}", last_error());
-    }
 }
 
 /// The searches of many radii side by side give, bit for bit, what each radius's search
@@ -262,7 +292,10 @@ fn check_reference_radii(s: &wound_opening::solver::Solver) {
     use wound_opening::capi::series::reference_radii;
     let ends = s.displacement(&[1.0, 12.0]);
     let (lo, hi) = (1.0 + ends[0], 12.0 + ends[1]);
-    let radii: Vec<f64> = (0..=300).map(|j| lo + (hi - lo) * (j as f64 / 300.0).powi(3)).chain([hi, lo, 3.0, 3.0]).collect();
+    let radii: Vec<f64> = (0..=300)
+        .map(|j| lo + (hi - lo) * (j as f64 / 300.0).powi(3))
+        .chain([hi, lo, 3.0, 3.0])
+        .collect();
     let together = reference_radii(s, &radii, 12.0, (lo, hi));
     for (&r, &x) in radii.iter().zip(&together) {
         assert_eq!(x.to_bits(), reference_radii(s, &[r], 12.0, (lo, hi))[0].to_bits(), "{r}");
@@ -284,22 +317,54 @@ fn huge_counts_are_invalid_arguments_and_the_process_lives() {
                 usize::MAX,
                 "times: count = 18446744073709551615 is invalid: 18446744073709551615 elements of 8 bytes exceed the largest array the address space can hold (9223372036854775807 bytes)",
             ),
-            (big, "times: count = 144115188075855872 is invalid: 144115188075855872 values (1.153e18 bytes) cannot be allocated"),
+            (
+                big,
+                "times: count = 144115188075855872 is invalid: 144115188075855872 values (1.153e18 bytes) cannot be allocated",
+            ),
         ] {
-            assert_eq!(wo_series(p, times.as_ptr(), count, radius.as_mut_ptr(), null_mut()), WoStatus::WoInvalidArgument);
+            assert_eq!(
+                wo_series(p, times.as_ptr(), count, radius.as_mut_ptr(), null_mut()),
+                WoStatus::WoInvalidArgument
+            );
             assert!(last_error().contains(reason), "{}", last_error());
             assert!(!last_error().contains(".rs"), "{}", last_error());
         }
-        let status = wo_profile_series(p, times.as_ptr(), 1, radii.as_ptr(), big, radius.as_mut_ptr(), null_mut());
+        let status = wo_profile_series(
+            p,
+            times.as_ptr(),
+            1,
+            radii.as_ptr(),
+            big,
+            radius.as_mut_ptr(),
+            null_mut(),
+        );
         assert_eq!(status, WoStatus::WoInvalidArgument, "{}", last_error());
-        assert!(last_error().starts_with("wo_profile_series: radii: count = 144115188075855872"), "{}", last_error());
-        assert_eq!(wo_series(p, times.as_ptr(), 2, radius.as_mut_ptr(), null_mut()), WoStatus::WoOk);
+        assert!(
+            last_error().starts_with("wo_profile_series: radii: count = 144115188075855872"),
+            "{}",
+            last_error()
+        );
+        assert_eq!(
+            wo_series(p, times.as_ptr(), 2, radius.as_mut_ptr(), null_mut()),
+            WoStatus::WoOk
+        );
     }
     // FMI: a count beyond the address space is refused by name, not a panic.
     use wound_opening::fmi::fmi2::functions::*;
     use wound_opening::fmi::fmi2::types::*;
-    let (name, guid) = (c"huge", std::ffi::CString::new(wound_opening::models::wound::variables::GUID).unwrap());
-    let c = unsafe { fmi2Instantiate(name.as_ptr(), FMI2_CO_SIMULATION, guid.as_ptr(), c"".as_ptr(), &fmi2CallbackFunctions::NONE, 0, 0) };
+    let (name, guid) =
+        (c"huge", std::ffi::CString::new(wound_opening::models::wound::variables::GUID).unwrap());
+    let c = unsafe {
+        fmi2Instantiate(
+            name.as_ptr(),
+            FMI2_CO_SIMULATION,
+            guid.as_ptr(),
+            c"".as_ptr(),
+            &fmi2CallbackFunctions::NONE,
+            0,
+            0,
+        )
+    };
     let (vr, mut x) = ([0u32], [0.0f64]);
     let panics = wound_opening::boundary::caught_panics();
     assert_eq!(unsafe { fmi2GetReal(c, vr.as_ptr(), usize::MAX, x.as_mut_ptr()) }, 3);
@@ -315,9 +380,16 @@ fn huge_counts_are_invalid_arguments_and_the_process_lives() {
 fn leaving_the_validity_is_reported_with_the_outputs() {
     let times = [0.5, 1.0, 3.0, 10.0];
     let (mut r, mut v) = ([f64::NAN; 4], [f64::NAN; 4]);
-    let status = unsafe { wo_series(pb(1.0, 2.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), v.as_mut_ptr()) };
+    let status = unsafe {
+        wo_series(pb(1.0, 2.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), v.as_mut_ptr())
+    };
     assert_eq!(status, WoStatus::WoOutsideValidity, "{}", last_error());
-    assert!(last_error().starts_with("wo_series: times[") && last_error().contains("leaves the model's validity"), "{}", last_error());
+    assert!(
+        last_error().starts_with("wo_series: times[")
+            && last_error().contains("leaves the model's validity"),
+        "{}",
+        last_error()
+    );
     let mut s = null_mut();
     unsafe {
         assert_eq!(wo_solver_new(1.0, 2.0, 10.0, TOL, &mut s), WoStatus::WoOk);
@@ -334,9 +406,19 @@ fn leaving_the_validity_is_reported_with_the_outputs() {
             assert_eq!((r[k], v[k]), (a, b), "every output written, as the step API's");
         }
         let first = first.expect("the step API warns");
-        assert!(wo_series(pb(1.0, 2.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), null_mut()) == WoStatus::WoOutsideValidity);
-        assert!(last_error().contains(&format!("times[{first}] = {}", times[first])), "{}", last_error());
+        assert!(
+            wo_series(pb(1.0, 2.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), null_mut())
+                == WoStatus::WoOutsideValidity
+        );
+        assert!(
+            last_error().contains(&format!("times[{first}] = {}", times[first])),
+            "{}",
+            last_error()
+        );
         assert_eq!(wo_solver_free(s), WoStatus::WoOk);
-        assert_eq!(wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), null_mut()), WoStatus::WoOk);
+        assert_eq!(
+            wo_series(pb(1.0, 1.0, 10.0, TOL, 0.0), times.as_ptr(), 4, r.as_mut_ptr(), null_mut()),
+            WoStatus::WoOk
+        );
     }
 }

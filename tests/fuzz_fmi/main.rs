@@ -8,8 +8,15 @@
 //! What must hold: no crash or hang; every status is one of fmi2OK..fmi2Fatal; no call
 //! ever reaches the panic boundary (`caught_panics()` stays 0). Only valid memory is ever
 //! passed: the standard makes the caller responsible for that, not the FMU.
+//!
+//! main.rs holds the world and the FMI 2.0 calls; fmi3.rs the FMI 3.0 calls, exchange.rs
+//! the Model Exchange calls, status.rs the status queries and the refused calls.
 
+#[path = "../common/mod.rs"]
 mod common;
+mod exchange;
+mod fmi3;
+mod status;
 
 use common::fuzz::{Budget, NULL_CALLBACKS, Rng, mutated};
 use std::collections::BTreeMap;
@@ -42,7 +49,10 @@ struct World {
 
 impl World {
     fn new(seed: u64) -> Self {
-        let names = ["fuzz", "", "%s%n%p", "logCalls", "\u{e9}t\u{e9}"].iter().map(|s| CString::new(*s).unwrap()).collect();
+        let names = ["fuzz", "", "%s%n%p", "logCalls", "\u{e9}t\u{e9}"]
+            .iter()
+            .map(|s| CString::new(*s).unwrap())
+            .collect();
         Self {
             rng: Rng::new(seed),
             live: Vec::new(),
@@ -61,7 +71,11 @@ impl World {
 
     /// A live instance (index), or None for a NULL component now and then.
     fn target(&mut self) -> Option<usize> {
-        if self.live.is_empty() || self.rng.chance(0.03) { None } else { Some(self.rng.below(self.live.len())) }
+        if self.live.is_empty() || self.rng.chance(0.03) {
+            None
+        } else {
+            Some(self.rng.below(self.live.len()))
+        }
     }
 
     fn component(&self, i: Option<usize>) -> fmi2Component {
@@ -91,7 +105,11 @@ impl World {
     /// An Integer value for `vr`: method (7) any of the schemes or out of range, grid_points
     /// (8) at most 200 when valid (more is valid but slow with many internal steps).
     fn int_for(&mut self, vr: fmi2ValueReference) -> i32 {
-        let x = if self.rng.chance(0.7) { self.rng.pick(&[-1, 0, 1, 2, 3, 4, 2, 3, 101, 100_001]) } else { self.rng.next_u64() as i32 };
+        let x = if self.rng.chance(0.7) {
+            self.rng.pick(&[-1, 0, 1, 2, 3, 4, 2, 3, 101, 100_001])
+        } else {
+            self.rng.next_u64() as i32
+        };
         if vr == 8 && (201..=100_000).contains(&x) { 200 } else { x }
     }
 
@@ -124,9 +142,22 @@ impl World {
             2 => self.debug_logging(),
             3 => {
                 let i = self.target();
-                let args = (self.rng.below(2) as i32, self.rng.real(), self.rng.real(), self.rng.below(2) as i32, self.rng.real());
+                let args = (
+                    self.rng.below(2) as i32,
+                    self.rng.real(),
+                    self.rng.real(),
+                    self.rng.below(2) as i32,
+                    self.rng.real(),
+                );
                 let s = unsafe {
-                    fmi2SetupExperiment(self.component(i), args.0, args.1, if self.rng.chance(0.7) { 0.0 } else { args.2 }, args.3, args.4)
+                    fmi2SetupExperiment(
+                        self.component(i),
+                        args.0,
+                        args.1,
+                        if self.rng.chance(0.7) { 0.0 } else { args.2 },
+                        args.3,
+                        args.4,
+                    )
                 };
                 self.record("fmi2SetupExperiment", s);
             }
@@ -156,124 +187,15 @@ impl World {
         }
     }
 
-    /// FMI 3.0 functions on the same instances (one handle table for both versions): the
-    /// calls whose arguments differ from FMI 2.0's, with random counts and values, and an
-    /// FMI 3.0 instantiation now and then.
-    fn fmi3(&mut self) {
-        use wound_opening::fmi::fmi3::exchange::*;
-        use wound_opening::fmi::fmi3::functions::*;
-        use wound_opening::fmi::fmi3::unsupported::*;
-        if self.rng.chance(0.1) && self.live.len() < 6 {
-            let guid = CString::new(MODELS[self.rng.below(MODELS.len())].0.guid).unwrap();
-            let c = if self.rng.chance(0.5) {
-                unsafe { fmi3InstantiateModelExchange(c"f3".as_ptr(), guid.as_ptr(), std::ptr::null(), 0, 0, std::ptr::null_mut(), None) }
-            } else {
-                let event = self.rng.below(2) as u8;
-                unsafe {
-                    fmi3InstantiateCoSimulation(
-                        c"f3".as_ptr(),
-                        guid.as_ptr(),
-                        std::ptr::null(),
-                        0,
-                        0,
-                        event,
-                        0,
-                        std::ptr::null(),
-                        0,
-                        std::ptr::null_mut(),
-                        None,
-                        None,
-                    )
-                }
-            };
-            self.record("fmi3Instantiate*", if c.is_null() { 3 } else { 0 });
-            if !c.is_null() {
-                self.live.push(Live { c, states: Vec::new(), freed: Vec::new() });
-            }
-            return;
-        }
-        let i = self.target();
-        let c = self.component(i);
-        let nvr = self.rng.below(4);
-        // The FMI 3.0-only references too: time (447), n_probes (448), probe_radii,
-        // displacement, velocity (449..451), and the states and derivatives (13..446).
-        let vrs: Vec<u32> =
-            (0..nvr).map(|_| if self.rng.chance(0.5) { 440 + self.rng.below(14) as u32 } else { self.value_reference() }).collect();
-        let n_values = if self.rng.chance(0.8) { nvr } else { self.rng.below(6) };
-        let x: Vec<f64> = (0..n_values.max(nvr)).map(|_| self.rng.real()).collect();
-        let mut k: Vec<i32> = (0..n_values.max(nvr)).map(|_| self.rng.next_u64() as i32).collect();
-        let (mut b, mut t) = ([0u8; 5], 0.0);
-        let mut big: Vec<u64> =
-            (0..n_values.max(nvr)).map(|_| if self.rng.chance(0.8) { self.rng.below(12) as u64 } else { self.rng.next_u64() }).collect();
-        let (name, s) = match self.rng.below(12) {
-            8 => ("fmi3EnterConfigurationMode", unsafe { fmi3EnterConfigurationMode(c) }),
-            9 => ("fmi3ExitConfigurationMode", unsafe { fmi3ExitConfigurationMode(c) }),
-            10 => ("fmi3SetUInt64", unsafe { fmi3SetUInt64(c, vrs.as_ptr(), nvr, big.as_ptr(), n_values) }),
-            11 => ("fmi3GetUInt64", unsafe { fmi3GetUInt64(c, vrs.as_ptr(), nvr, big.as_mut_ptr(), n_values) }),
-            0 => {
-                // Arrays take up to 1000 values each: a buffer that large, nValues as chosen.
-                let mut out = vec![0.0; 4000];
-                let n = if self.rng.chance(0.5) { n_values } else { self.rng.below(30) };
-                ("fmi3GetFloat64", unsafe { fmi3GetFloat64(c, vrs.as_ptr(), nvr, out.as_mut_ptr(), n) })
-            }
-            1 => ("fmi3SetFloat64", unsafe { fmi3SetFloat64(c, vrs.as_ptr(), nvr, x.as_ptr(), n_values) }),
-            2 => ("fmi3GetInt32", unsafe { fmi3GetInt32(c, vrs.as_ptr(), nvr, k.as_mut_ptr(), n_values) }),
-            3 => ("fmi3SetInt32", unsafe { fmi3SetInt32(c, vrs.as_ptr(), nvr, k.as_ptr(), n_values) }),
-            4 => {
-                let (tol, stop) = (self.rng.real(), self.rng.real());
-                let tol_defined = self.rng.below(2) as u8;
-                ("fmi3EnterInitializationMode", unsafe {
-                    fmi3EnterInitializationMode(c, tol_defined, tol, 0.0, self.rng.below(2) as u8, stop)
-                })
-            }
-            5 => {
-                let (mut now, h) = (0.0, self.rng.unit() * 10.0);
-                let _ = unsafe { fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now) };
-                let [e, f, g, ..] = &mut b;
-                ("fmi3DoStep", unsafe { fmi3DoStep(c, now, h, 0, e, f, g, &mut t) })
-            }
-            6 => {
-                let [p, q, r, u, v] = &mut b;
-                ("fmi3UpdateDiscreteStates", unsafe { fmi3UpdateDiscreteStates(c, p, q, r, u, v, &mut t) })
-            }
-            _ => ("fmi3GetClock", unsafe { fmi3GetClock(c, vrs.as_ptr(), nvr, b.as_mut_ptr()) }),
-        };
-        self.record(name, s);
-    }
-
-    /// The Model Exchange functions with random counts, states and times, on instances of
-    /// either interface (a CS instance refuses them all).
-    fn exchange(&mut self) {
-        let i = self.target();
-        let c = self.component(i);
-        let nx = if self.rng.chance(0.7) { 217 } else { self.rng.below(300) };
-        let mut x: Vec<f64> = (0..nx).map(|_| if self.rng.chance(0.8) { self.rng.unit() - 0.5 } else { self.rng.real() }).collect();
-        let (mut a, mut b) = (0, 0);
-        let (name, s) = match self.rng.below(9) {
-            0 => ("fmi2EnterEventMode", unsafe { fmi2EnterEventMode(c) }),
-            1 => ("fmi2NewDiscreteStates", unsafe { fmi2NewDiscreteStates(c, &mut std::mem::zeroed()) }),
-            2 => ("fmi2EnterContinuousTimeMode", unsafe { fmi2EnterContinuousTimeMode(c) }),
-            3 => ("fmi2CompletedIntegratorStep", unsafe { fmi2CompletedIntegratorStep(c, 1, &mut a, &mut b) }),
-            4 => ("fmi2SetTime", unsafe { fmi2SetTime(c, if self.rng.chance(0.7) { self.rng.unit() * 10.0 } else { self.rng.real() }) }),
-            5 => ("fmi2SetContinuousStates", unsafe { fmi2SetContinuousStates(c, x.as_ptr(), nx) }),
-            6 => {
-                let s = unsafe { fmi2GetDerivatives(c, x.as_mut_ptr(), nx) };
-                if s == 0 {
-                    assert!(x.iter().all(|v| v.is_finite()), "derivatives accepted with OK are finite");
-                }
-                ("fmi2GetDerivatives", s)
-            }
-            7 => ("fmi2GetContinuousStates", unsafe { fmi2GetContinuousStates(c, x.as_mut_ptr(), nx) }),
-            _ => ("fmi2GetNominalsOfContinuousStates", unsafe { fmi2GetNominalsOfContinuousStates(c, x.as_mut_ptr(), nx) }),
-        };
-        self.record(name, s);
-    }
-
     fn instantiate(&mut self) {
         if self.live.len() >= 6 {
             return;
         }
-        let name = if self.rng.chance(0.05) { std::ptr::null() } else { self.names[self.rng.below(self.names.len())].as_ptr() };
+        let name = if self.rng.chance(0.05) {
+            std::ptr::null()
+        } else {
+            self.names[self.rng.below(self.names.len())].as_ptr()
+        };
         // Either model of the shared object (WoundOpening or PurseString).
         let guid = CString::new(MODELS[self.rng.below(MODELS.len())].0.guid).unwrap();
         let wrong = c"{00000000-0000-0000-0000-000000000000}";
@@ -288,9 +210,23 @@ impl World {
             6..=8 => 0,
             _ => self.rng.next_u64() as i32,
         };
-        let functions: *const fmi2CallbackFunctions = if self.rng.chance(0.05) { std::ptr::null() } else { &self.callbacks };
-        let c = unsafe { fmi2Instantiate(name, kind, guid_ptr, c"".as_ptr(), functions, 0, self.rng.below(2) as i32) };
-        let valid = !name.is_null() && (kind == 0 || kind == 1) && guid_ptr == guid.as_ptr() && !functions.is_null();
+        let functions: *const fmi2CallbackFunctions =
+            if self.rng.chance(0.05) { std::ptr::null() } else { &self.callbacks };
+        let c = unsafe {
+            fmi2Instantiate(
+                name,
+                kind,
+                guid_ptr,
+                c"".as_ptr(),
+                functions,
+                0,
+                self.rng.below(2) as i32,
+            )
+        };
+        let valid = !name.is_null()
+            && (kind == 0 || kind == 1)
+            && guid_ptr == guid.as_ptr()
+            && !functions.is_null();
         assert_eq!(!c.is_null(), valid, "fmi2Instantiate succeeds exactly for valid arguments");
         if !c.is_null() {
             self.live.push(Live { c, states: Vec::new(), freed: Vec::new() });
@@ -301,9 +237,19 @@ impl World {
         let i = self.target();
         let n = self.rng.below(4);
         let choices: Vec<*const c_char> = (0..n)
-            .map(|_| if self.rng.chance(0.1) { std::ptr::null() } else { self.names[self.rng.below(self.names.len())].as_ptr() })
+            .map(|_| {
+                if self.rng.chance(0.1) {
+                    std::ptr::null()
+                } else {
+                    self.names[self.rng.below(self.names.len())].as_ptr()
+                }
+            })
             .collect();
-        let (ptr, n) = if self.rng.chance(0.05) { (std::ptr::null(), n.max(1)) } else { (choices.as_ptr(), n) };
+        let (ptr, n) = if self.rng.chance(0.05) {
+            (std::ptr::null(), n.max(1))
+        } else {
+            (choices.as_ptr(), n)
+        };
         let s = unsafe { fmi2SetDebugLogging(self.component(i), self.rng.below(2) as i32, n, ptr) };
         self.record("fmi2SetDebugLogging", s);
     }
@@ -336,9 +282,13 @@ impl World {
         let mut ints: Vec<i32> = vrs.iter().map(|&vr| self.int_for(vr)).collect();
         let mut strs = vec![c"x".as_ptr(); n];
         let (name, s) = match self.rng.below(6) {
-            0 => ("fmi2GetInteger", unsafe { fmi2GetInteger(c, vrs.as_ptr(), n, ints.as_mut_ptr()) }),
+            0 => {
+                ("fmi2GetInteger", unsafe { fmi2GetInteger(c, vrs.as_ptr(), n, ints.as_mut_ptr()) })
+            }
             1 => ("fmi2SetInteger", unsafe { fmi2SetInteger(c, vrs.as_ptr(), n, ints.as_ptr()) }),
-            2 => ("fmi2GetBoolean", unsafe { fmi2GetBoolean(c, vrs.as_ptr(), n, ints.as_mut_ptr()) }),
+            2 => {
+                ("fmi2GetBoolean", unsafe { fmi2GetBoolean(c, vrs.as_ptr(), n, ints.as_mut_ptr()) })
+            }
             3 => ("fmi2SetBoolean", unsafe { fmi2SetBoolean(c, vrs.as_ptr(), n, ints.as_ptr()) }),
             4 => ("fmi2GetString", unsafe { fmi2GetString(c, vrs.as_ptr(), n, strs.as_mut_ptr()) }),
             _ => ("fmi2SetString", unsafe { fmi2SetString(c, vrs.as_ptr(), n, strs.as_ptr()) }),
@@ -353,7 +303,8 @@ impl World {
         let before = h;
         match self.rng.below(3) {
             0 => {
-                let slot: *mut fmi2FMUstate = if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut h };
+                let slot: *mut fmi2FMUstate =
+                    if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut h };
                 let s = unsafe { fmi2GetFMUstate(c, slot) };
                 self.record("fmi2GetFMUstate", s);
                 if let (0, Some(i)) = (s, i)
@@ -367,7 +318,8 @@ impl World {
                 self.record("fmi2SetFMUstate", s);
             }
             _ => {
-                let slot: *mut fmi2FMUstate = if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut h };
+                let slot: *mut fmi2FMUstate =
+                    if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut h };
                 let s = unsafe { fmi2FreeFMUstate(c, slot) };
                 self.record("fmi2FreeFMUstate", s);
                 if let (0, Some(i), false) = (s, i, before.is_null()) {
@@ -384,11 +336,21 @@ impl World {
         let c = self.component(i);
         let h = self.state_handle(i);
         let mut size = 0usize;
-        let s = unsafe { fmi2SerializedFMUstateSize(c, h, if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut size }) };
+        let s = unsafe {
+            fmi2SerializedFMUstateSize(
+                c,
+                h,
+                if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut size },
+            )
+        };
         self.record("fmi2SerializedFMUstateSize", s);
         let n = if s == 0 && self.rng.chance(0.9) { size } else { self.rng.below(64) };
         let mut buf = vec![0u8; n];
-        let ptr = if self.rng.chance(0.03) { std::ptr::null_mut() } else { buf.as_mut_ptr() as *mut fmi2Byte };
+        let ptr = if self.rng.chance(0.03) {
+            std::ptr::null_mut()
+        } else {
+            buf.as_mut_ptr() as *mut fmi2Byte
+        };
         let s = unsafe { fmi2SerializeFMUstate(c, h, ptr, n) };
         self.record("fmi2SerializeFMUstate", s);
         if s == 0 && n == size && self.blobs.len() < 64 {
@@ -401,8 +363,13 @@ impl World {
         let c = self.component(i);
         let (bytes, _) = mutated(&mut self.rng, &self.blobs);
         let mut h = if self.rng.chance(0.8) { std::ptr::null_mut() } else { self.state_handle(i) };
-        let slot: *mut fmi2FMUstate = if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut h };
-        let ptr = if self.rng.chance(0.03) { std::ptr::null() } else { bytes.as_ptr() as *const fmi2Byte };
+        let slot: *mut fmi2FMUstate =
+            if self.rng.chance(0.03) { std::ptr::null_mut() } else { &mut h };
+        let ptr = if self.rng.chance(0.03) {
+            std::ptr::null()
+        } else {
+            bytes.as_ptr() as *const fmi2Byte
+        };
         let s = unsafe { fmi2DeSerializeFMUstate(c, ptr, bytes.len(), slot) };
         self.record("fmi2DeSerializeFMUstate", s);
         if let (0, Some(i)) = (s, i) {
@@ -420,7 +387,11 @@ impl World {
         if !self.gone.is_empty() && self.rng.chance(0.05) {
             let c = self.gone[self.rng.below(self.gone.len())];
             let mut now = 0.0;
-            assert_eq!(unsafe { fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now) }, 3, "a freed instance");
+            assert_eq!(
+                unsafe { fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now) },
+                3,
+                "a freed instance"
+            );
             return self.do_step_on_component(c);
         }
         let i = self.target();
@@ -439,7 +410,11 @@ impl World {
         let s = unsafe { fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now) };
         self.record("fmi2GetRealStatus", s);
         let t = if s == 0 && self.rng.chance(0.85) { now } else { self.rng.real() };
-        let mut h = if self.rng.chance(0.7) { self.rng.unit() * self.rng.pick(&[1e-6, 0.01, 1.0, 100.0]) } else { self.rng.real() };
+        let mut h = if self.rng.chance(0.7) {
+            self.rng.unit() * self.rng.pick(&[1e-6, 0.01, 1.0, 100.0])
+        } else {
+            self.rng.real()
+        };
         // The stepping schemes (method 1..3) take h / internal_step internal steps, with no
         // bound (README, "C API" findings: 1e5 does not return within 30 s): keep h <= 100
         // for them. The default modal scheme is exact for any h, so it gets any.
@@ -453,50 +428,6 @@ impl World {
         let mut out = [0.0; 2];
         let s = unsafe { fmi2GetReal(c, vrs.as_ptr(), 2, out.as_mut_ptr()) };
         self.record("fmi2GetReal", s);
-    }
-
-    fn status(&mut self) {
-        let i = self.target();
-        let c = self.component(i);
-        let kind = if self.rng.chance(0.8) { self.rng.below(4) as i32 } else { self.rng.next_u64() as i32 };
-        let (mut st, mut r, mut n, mut s) = (0, 0.0, 0, std::ptr::null());
-        let null = self.rng.chance(0.1);
-        let (name, status) = match self.rng.below(5) {
-            0 => ("fmi2GetStatus", unsafe { fmi2GetStatus(c, kind, if null { std::ptr::null_mut() } else { &mut st }) }),
-            1 => ("fmi2GetRealStatus", unsafe { fmi2GetRealStatus(c, kind, if null { std::ptr::null_mut() } else { &mut r }) }),
-            2 => ("fmi2GetIntegerStatus", unsafe { fmi2GetIntegerStatus(c, kind, if null { std::ptr::null_mut() } else { &mut n }) }),
-            3 => ("fmi2GetBooleanStatus", unsafe { fmi2GetBooleanStatus(c, kind, if null { std::ptr::null_mut() } else { &mut n }) }),
-            _ => ("fmi2GetStringStatus", unsafe { fmi2GetStringStatus(c, kind, if null { std::ptr::null_mut() } else { &mut s }) }),
-        };
-        self.record(name, status);
-    }
-
-    fn unsupported(&mut self) {
-        let i = self.target();
-        let c = self.component(i);
-        let (vr, order, mut x) = ([3u32], [1i32], [0.5f64]);
-        let (name, s) = match self.rng.below(4) {
-            0 => {
-                // Random unknowns and knowns (any role, or out of range), random seeds.
-                let (nu, nk) = (self.rng.below(4), self.rng.below(4));
-                let unknowns: Vec<u32> = (0..nu).map(|_| self.value_reference()).collect();
-                let knowns: Vec<u32> = (0..nk).map(|_| self.value_reference()).collect();
-                let seed: Vec<f64> = (0..nk).map(|_| self.rng.real()).collect();
-                let mut out = vec![0.0; nu];
-                let s =
-                    unsafe { fmi2GetDirectionalDerivative(c, unknowns.as_ptr(), nu, knowns.as_ptr(), nk, seed.as_ptr(), out.as_mut_ptr()) };
-                if s == 0 {
-                    assert!(out.iter().all(|v| v.is_finite()), "a derivative accepted with OK is finite: {out:?}");
-                }
-                ("fmi2GetDirectionalDerivative", s)
-            }
-            1 => ("fmi2SetRealInputDerivatives", unsafe { fmi2SetRealInputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_ptr()) }),
-            2 => {
-                ("fmi2GetRealOutputDerivatives", unsafe { fmi2GetRealOutputDerivatives(c, vr.as_ptr(), 1, order.as_ptr(), x.as_mut_ptr()) })
-            }
-            _ => ("fmi2CancelStep", unsafe { fmi2CancelStep(c) }),
-        };
-        self.record(name, s);
     }
 }
 
@@ -518,7 +449,12 @@ fn random_fmi_call_sequences_never_reach_the_panic_boundary() {
     while budget.left() {
         world.step();
         iterations += 1;
-        assert_eq!(caught_panics(), 0, "seed {}: iteration {iterations} reached the panic boundary", budget.seed);
+        assert_eq!(
+            caught_panics(),
+            0,
+            "seed {}: iteration {iterations} reached the panic boundary",
+            budget.seed
+        );
     }
     for l in world.live.drain(..) {
         unsafe { fmi2FreeInstance(l.c) };
@@ -526,5 +462,8 @@ fn random_fmi_call_sequences_never_reach_the_panic_boundary() {
     report("FMI call sequences", budget.seed, iterations, &world.stats);
     let ok_steps = world.stats.get("fmi2DoStep").map_or(0, |c| c[0]);
     let ok_restores = world.stats.get("fmi2DeSerializeFMUstate").map_or(0, |c| c[0]);
-    assert!(iterations < 2000 || (ok_steps > 0 && ok_restores > 0), "the fuzzer should reach steps and accepted states");
+    assert!(
+        iterations < 2000 || (ok_steps > 0 && ok_restores > 0),
+        "the fuzzer should reach steps and accepted states"
+    );
 }
