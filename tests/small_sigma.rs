@@ -169,27 +169,39 @@ fn an_edge_stress_meets_the_tolerance_on_the_larger_opening() {
 
 /// `(t, R(t))` at lambda = 0, sigma = 1, R_inf = 1000: the 30-digit mpmath inversion
 /// (`python/wound_exact.py`, `edge_mp`; 40 digits give the same doubles).
-const REFERENCE_FRICTION_1000: [(f64, f64); 2] = [(0.01, 1.1948100659958139), (1.0, 1.4095355678459203)];
+const REFERENCE_FRICTION_1000: [(f64, f64); 2] =
+    [(0.01, 1.1948100659958139), (1.0, 1.4095355678459203)];
 
 /// The runs that missed the old scale (relative to the free opening alone) by 691x and
 /// 68,000x: lambda 1, sigma 1.4e-5, R_inf 10, p = 1, and lambda 0, sigma 1e-3, R_inf 1000,
 /// p = 1000; on the larger of the free and the actual opening each meets its tolerance.
 #[test]
 fn the_runs_that_missed_the_free_openings_scale_meet_the_larger_one() {
-    let cases = [(1.0, 1.4e-5, 10.0, 1.0, REFERENCE), (0.0, 1e-3, 1000.0, 1000.0, REFERENCE_FRICTION_1000)];
+    let cases =
+        [(1.0, 1.4e-5, 10.0, 1.0, REFERENCE), (0.0, 1e-3, 1000.0, 1000.0, REFERENCE_FRICTION_1000)];
     for (lambda, sigma, r_inf, p, reference) in cases {
         let s = exact::final_radius(1.0, r_inf) - exact::initial_radius(1.0);
         for tol in [1e-10, 1e-6] {
             let problem = WoProblem { lambda, sigma, r_inf, tolerance: tol, edge_stress: p };
             let times: Vec<f64> = reference.iter().map(|r| r.0).collect();
             let mut radius = vec![f64::NAN; times.len()];
-            let status = unsafe { wo_series(problem, times.as_ptr(), 2, radius.as_mut_ptr(), std::ptr::null_mut()) };
-            assert!(matches!(status, WoStatus::WoOk | WoStatus::WoOutsideValidity), "{}", last_error());
+            let status = unsafe {
+                wo_series(problem, times.as_ptr(), 2, radius.as_mut_ptr(), std::ptr::null_mut())
+            };
+            assert!(
+                matches!(status, WoStatus::WoOk | WoStatus::WoOutsideValidity),
+                "{}",
+                last_error()
+            );
             let scale = sigma.abs().max((sigma - p).abs()) * s;
             for (k, r) in radius.into_iter().enumerate() {
                 let want = 1.0 + sigma / 6.0 + (sigma - p) * (reference[k].1 - 7.0 / 6.0);
                 let err = (r - want).abs() / scale;
-                assert!(err <= tol, "lambda {lambda}, p {p}, tolerance {tol:e}, t {}: error {err:e} of the larger opening", reference[k].0);
+                assert!(
+                    err <= tol,
+                    "lambda {lambda}, p {p}, tolerance {tol:e}, t {}: error {err:e} of the larger opening",
+                    reference[k].0
+                );
             }
         }
     }
