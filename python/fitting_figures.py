@@ -6,7 +6,7 @@
                                 symlog time axis, residuals, the PIV profile, the four profile
                                 likelihoods (plots.fit_figure)
     sweep_example.png           a lambda x sigma sweep: opening fraction coloured by lambda and the
-                                half-opening time (plots.sweep_figure)
+                                half-opening time (sim_plots.sweep_figure)
     fitting_identifiability.png lambda's profile likelihood from the radius alone (2 % noise,
                                 a typical case) and with the velocity profile added; and
                                 R(t) for scaled (G, eta, zeta): identical curves
@@ -147,7 +147,7 @@ def main():
         wo.fit(radius, profile, outer_radius_um=OUTER), radius, profile, out / "fitting_example.png"
     )
     identifiability(out / "fitting_identifiability.png")
-    from wound_opening.results.plots import sweep_figure
+    from wound_opening.results.sim_plots import sweep_figure
 
     grid = {"lambda": [0, 0.1, 0.3, 1, 3, 10], "sigma": [0.25, 0.5, 1, 2], "R_inf": [10, 30]}
     sweep_figure(wo.sweep(grid, times=[0, 1, 10, 100], processes=1), out / "sweep_example.png")

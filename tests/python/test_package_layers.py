@@ -202,3 +202,13 @@ def test_a_radius_file_goes_down_the_layers_from_the_command_line_to_the_optimis
         "wound_opening.fitting.single",
     } <= entered
     assert not climbs, "calls back up a layer:\n" + "\n".join(sorted(climbs))
+
+
+def test_no_module_is_over_500_lines():
+    """The package's modules stay small (docs/layout.md): none over 500 lines."""
+    long = {
+        str(p.relative_to(PACKAGE)): n
+        for p in PACKAGE.rglob("*.py")
+        if (n := len(p.read_text().splitlines())) > 500
+    }
+    assert not long, long

@@ -430,7 +430,7 @@ def test_every_option_of_every_subcommand_shows_its_default_and_unit():
 
 
 def test_the_sweep_figure_shows_the_opening_coloured_by_lambda_and_the_half_opening_time(tmp_path):
-    from wound_opening.results.plots import sweep_figure
+    from wound_opening.results.sim_plots import sweep_figure
 
     df = wo.sweep(
         {"lambda": [0.0, 0.3, 3.0, 30.0], "sigma": [0.5, 1.0], "R_inf": [10.0]},

@@ -226,7 +226,7 @@ def sweep_command(args) -> None:
     if args.parquet:
         df.to_parquet(args.parquet)
     if args.plot:
-        from ..results.plots import sweep_figure
+        from ..results.sim_plots import sweep_figure
 
         sweep_figure(df, args.plot)
     print(f"{len(df)} rows -> {args.csv}")
@@ -262,7 +262,7 @@ def simulate_command(args) -> None:
     else:
         print(frame.to_string(index=False, float_format=lambda x: f"{x:.6g}"))
     if args.plot:
-        from ..results.plots import simulate_figure
+        from ..results.sim_plots import simulate_figure
 
         simulate_figure(sim, args.plot)
     if args.csv:
