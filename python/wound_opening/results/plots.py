@@ -163,7 +163,7 @@ def drawn_once(result, key, draw, path, dpi: int):
     result (`figures`: key -> (figure, PNG bytes)), so the report's and the command line's
     `--plot` are one drawing."""
     cache = result.figures
-    if path is not None and cache is not None and key in cache:
+    if path is not None and key in cache:
         fig, png = cache[key]
     else:
         with plt.rc_context(FIXED_TITLES):
@@ -173,8 +173,7 @@ def drawn_once(result, key, draw, path, dpi: int):
             buf = io.BytesIO()
             fig.savefig(buf, dpi=dpi, format="png")
             png = buf.getvalue()
-            if cache is not None:
-                cache[key] = fig, png
+            cache[key] = fig, png
         plt.close(fig)
     if png is not None and hasattr(path, "write"):
         path.write(png)
