@@ -87,6 +87,15 @@ def add_lab_file_arguments(parser) -> None:
         "VELOCITY LENGTH/s or LENGTH/frame (PIVlab files name theirs)",
     )
     g.add_argument(
+        "--piv-window",
+        default="32px",
+        metavar="SIZE",
+        help="the side of the PIV interrogation window of the final pass, e.g. 32px (with "
+        "--pixel-size-um) or 6.4um; the default, 32px, is OpenPIV's tutorial and PIVlab's last "
+        "pass; without a pixel size, px files' windows are in px and um files' are taken as 4 "
+        "grid steps (OpenPIV's window 32 with overlap 24)",
+    )
+    g.add_argument(
         "--piv-first-frame",
         type=int,
         default=1,
@@ -305,8 +314,27 @@ def _piv(args, where, radius, outer, centre, origin):
         units=units if field_is_openpiv(field) else None,
         frame_interval_s=args.frame_interval_s,
         pixel_size_um=args.pixel_size_um,
+        window_um=window_of(args.piv_window, args.pixel_size_um, field),
     )
     return profile
+
+
+def window_of(text: str, pixel_size_um, field) -> float:
+    """The interrogation window's side [um] from --piv-window (32px, 6.4um)."""
+    from ..inputs.columns import InputError
+
+    value, unit = text.strip()[:-2], text.strip()[-2:]
+    try:
+        size = float(value)
+    except ValueError:
+        size = float("nan")
+    if unit not in ("px", "um") or not (math.isfinite(size) and size > 0):
+        raise InputError(f"--piv-window {text!r}: expected a size such as 32px or 6.4um")
+    if unit == "um":
+        return size
+    if pixel_size_um is not None:
+        return size * pixel_size_um
+    return 4.0 * field.spacing_um  # um files of OpenPIV's tutorial (window 32, overlap 24)
 
 
 def field_is_openpiv(field) -> bool:

@@ -46,6 +46,7 @@ import numpy as np
 from .. import _native
 from .parameters import Coordinate, Coordinates, between, factor, span
 from .problem import Problem
+from .profile_model import STEP, ProfileModel
 
 #: Largest lambda searched: a viscous length of 50 R0, beyond which the tissues of these
 #: experiments (outer radius ~10 R0) move as one and R(t) depends on tau = lambda^2 T only.
@@ -61,8 +62,6 @@ TOLERANCE_FIT = 1e-9
 #: and the velocity far from the edge early on is some 40 times less accurate (at 1e-10,
 #: 4e-7 of the largest velocity; tests/python/test_piv_jacobian.py holds 3e-7).
 TOLERANCE_PIV = 1e-11
-#: Relative step of the central differences.
-STEP = 1e-4
 #: Smallest R_inf the solver accepts (the fits bound R0 by outer / R_INF_MIN).
 R_INF_MIN = 1.001
 
@@ -150,7 +149,7 @@ def _as_z(w) -> np.ndarray:
     return np.asarray(w, dtype=float)
 
 
-class Objective(Problem):
+class Objective(ProfileModel, Problem):
     """Residuals (model - data) / uncertainty, radius points first, then profile points.
     `sd` holds the per-point uncertainties: the data's own where given, else a first guess
     (`estimated` says which data sets: radius, profile) that `estimate_noise` scales to the
@@ -183,6 +182,12 @@ class Objective(Problem):
         self.group_times = np.array([g[0] for g in self.groups])
         self.sd, self.estimated = self._uncertainties(radius, profile)  # [um or um/s]
         self.tolerance = TOLERANCE_PIV if self.groups else TOLERANCE_FIT
+        #: a PIV profile's frame interval [s] and window half-side [um] (piv_measure.py): its
+        #: points are displacements over [t - dt/2, t + dt/2] / dt, window means; None: the
+        #: velocity at t and r
+        self.interval = getattr(profile, "interval_s", None) if profile is not None else None
+        self.whiten = self._whitening(profile)
+        self.half_window = 0.5 * (getattr(profile, "window_um", None) or 0.0)
         self.evaluations = 0
         self.inside_edge = 0
         self.coordinates = wound_coordinates(self.outer, nuisances)
@@ -247,7 +252,8 @@ class Objective(Problem):
         lower = np.append(lower, [c.bound_z(c.lower) for c in extra])
         upper = np.append(upper, [c.bound_z(c.upper) for c in extra])
         if self.cut is not None:  # the cut before every time (a frame at the cut excluded)
-            first = min(float(self.t_sorted[0]), float(np.min(self.group_times, initial=np.inf)))
+            starts = self.group_times - 0.5 * (self.interval or 0.0)  # a pair's first frame
+            first = min(float(self.t_sorted[0]), float(np.min(starts, initial=np.inf)))
             upper[self.cut] = min(upper[self.cut], first * (1 - 1e-9))
         return lower, upper
 
@@ -279,96 +285,6 @@ class Objective(Problem):
         )
         return r - 1.0, v, d_lam, d_r_inf
 
-    def _rows(self, R0: float, edge_r: np.ndarray) -> list:
-        """Per group the rows' radii in R0 with the mask of those beyond the model's wound
-        edge (`edge_r`, in R0, per group): the tissue."""
-        rows = []
-        for k, (_, r, _, _) in enumerate(self.groups):
-            x = r / R0
-            rows.append((x, x > edge_r[k] * (1 + 1e-12)))
-        return rows
-
-    def _profile(self, theta, r_inf: float, times) -> np.ndarray:
-        """Model velocities [um/s] of the profile rows (group order) at the groups' `times`
-        after the cut, the edge velocity for rows at or inside the model's wound edge; sets
-        `inside_edge`."""
-        R0, sigma, lam, T = theta
-        if not self.groups:
-            return np.empty(0)
-        tau = times / T
-        h, dh = self._h(lam, r_inf, tau)
-        out, inside = [], 0
-        for k, (x, tissue) in enumerate(self._rows(R0, 1.0 + sigma * h)):
-            v = np.full(x.size, sigma * dh[k])
-            if np.any(tissue):
-                _, vt = _native.profile_series(
-                    abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=self.tolerance
-                )
-                v[tissue] = vt[0]
-            inside += int(np.sum(~tissue))
-            out.append(R0 / T * v)
-        self.inside_edge = inside
-        return np.concatenate(out)
-
-    def _profile_columns(self, theta, r_inf: float, times) -> np.ndarray:
-        """d (model velocity) / d (ln R0, sigma, lambda, ln T) of the profile rows,
-        (n_profile, 4).
-
-        With the dimensionless velocity V at fixed current radius x = r / R0, tau = t / T and
-        R_inf = outer / R0, the data's R0 / T V has d/d sigma = R0/T dV/dsigma,
-        d/d lambda = R0/T dV/dlambda, d/d ln T = -(R0/T) (V + tau dV/dtau) and
-        d/d ln R0 = R0/T (V - x dV/dx - R_inf dV/dR_inf) (x and R_inf both scale as 1 / R0),
-        exact on the solver's grid; edge rows take the edge's (its material point held:
-        dV/dx = 0). A row switches from tissue to edge where the edge radius e(z) crosses its
-        x: the model is continuous there, its slope is not. With g = e - x and its rate
-        g' (h, sigma dh/dlambda, -tau sigma h' in sigma, lambda, ln T; x - R_inf sigma
-        dh/dR_inf in ln R0, where x moves too), where the crossing is within the step s of a
-        coordinate (|g / g'| < s), the column is the central difference over z -+ s of the two
-        one-sided slopes (the edge's own, J_in, and the tissue's limit at the edge, J_out):
-        with the crossing at d = -g / g' and J_+ the slope beyond it (J_in when g' > 0),
-        (J_- (s + d) + J_+ (s - d)) / (2 s). This is the central difference the fit used
-        before, without its evaluations; a one-sided slope there leaves the trust region
-        stepping across the kink (fits stop at a chi^2 higher by ~1e-5 and move the
-        estimates in their 4th digit)."""
-        R0, sigma, lam, T = theta
-        tau = times / T
-        h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, tau)
-        edge_r = 1.0 + sigma * h
-        step = np.array([STEP, STEP * max(1.0, abs(sigma)), STEP * max(lam, 0.01), STEP])
-
-        def columns(d, k, x):  # (V, dV/dsigma, dV/dlambda, dV/dtau, dV/dR_inf, dV/dx) -> z
-            return np.column_stack(
-                [
-                    d[:, 0] - x * d[:, 5] - r_inf * d[:, 4],
-                    d[:, 1],
-                    d[:, 2],
-                    -(d[:, 0] + tau[k] * d[:, 3]),
-                ]
-            )
-
-        out = []
-        for k, (x, tissue) in enumerate(self._rows(R0, edge_r)):
-            points, edge = _native.profile_rates(
-                abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=self.tolerance
-            )
-            j_in = columns(np.repeat(edge[:, 0], x.size, axis=0), k, x)
-            d = np.repeat(edge[:, 1], x.size, axis=0)
-            d[tissue] = points[0]
-            j_out = columns(d, k, x)
-            j = np.where(tissue[:, None], j_out, j_in)
-            slope = np.column_stack(  # g' per row and coordinate
-                [x - r_inf * sigma * dh_dr[k]]
-                + [np.full(x.size, g) for g in (h[k], sigma * dh_dl[k], -tau[k] * sigma * dh[k])]
-            )
-            j_plus = np.where(slope > 0, j_in, j_out)
-            j_minus = np.where(slope > 0, j_out, j_in)
-            with np.errstate(divide="ignore", invalid="ignore"):  # g' = 0: never near
-                cross = -(edge_r[k] - x)[:, None] / slope
-                blend = (j_minus * (step + cross) + j_plus * (step - cross)) / (2 * step)
-            near = np.abs(cross) < step
-            out.append(np.where(near, blend, j))
-        return R0 / T * np.concatenate(out)
-
     def model(self, z) -> np.ndarray:
         """Model values at the data points (radius [um], then velocities [um/s])."""
         R0, sigma, lam, T = theta = from_z(z)
@@ -380,7 +296,7 @@ class Objective(Problem):
         return np.concatenate([radius, self._profile(theta, r_inf, times)])
 
     def residuals(self, z) -> np.ndarray:
-        return (self.model(z) - self.data()) / self.sd
+        return self._whitened((self.model(z) - self.data()) / self.sd)
 
     def jacobian(self, z, columns=None) -> np.ndarray:
         """d residuals / d z, (size, n): see the module docstring (a nuisance's column: its
@@ -395,6 +311,7 @@ class Objective(Problem):
         R0, sigma, lam, T = theta = from_z(z)
         r_inf = self.outer / R0
         t, times = self.since_cut(z)
+        measured = None  # the PIV measurement's model values, when computed below
         h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, t / T)
         with np.errstate(invalid="ignore"):
             dlnT = np.where(t > 0, -(t / T) * R0 * sigma * dh, 0.0)
@@ -406,6 +323,9 @@ class Objective(Problem):
             if np.all(times > 0):
                 sign = np.array([1, 1, math.copysign(1, z[2]), 1])
                 profile = self._profile_columns(theta, r_inf, times) * sign
+                if self.interval is not None:
+                    ratio, measured = self._measure_ratio(theta, r_inf, times)
+                    profile *= ratio[:, None]
             else:  # a frame at the cut: central differences
                 steps = np.array([STEP, STEP * max(1.0, abs(sigma)), STEP * max(lam, 0.01), STEP])
                 profile = np.zeros((self.n_profile, 4))
@@ -434,16 +354,17 @@ class Objective(Problem):
             if self.offset is not None:
                 jr[: self.n_radius, self.offset] = 1.0
             if self.cut is not None and self.cut in columns:
-                jr[:, self.cut] = self._cut_column(theta, r_inf, t, times, jr[:, 3])
+                jr[:, self.cut] = self._cut_column(theta, r_inf, t, times, jr[:, 3], measured)
         jr[:, [i for i in range(n) if i not in columns]] = 0.0
-        return jr / self.sd[:, None]
+        return self._whitened(jr / self.sd[:, None])
 
-    def _cut_column(self, theta, r_inf, t, times, d_ln_t) -> np.ndarray:
-        """d model / d cut (CUT's declaration): (d model / d ln T + the model velocity on the
-        PIV rows) / (t - cut)."""
-        inside = self.inside_edge
-        v = self._profile(theta, r_inf, times)
-        self.inside_edge = inside
+    def _cut_column(self, theta, r_inf, t, times, d_ln_t, v=None) -> np.ndarray:
+        """d model / d cut (CUT's declaration): (d model / d ln T + the model velocity `v` on
+        the PIV rows, computed when None) / (t - cut)."""
+        if v is None:
+            inside = self.inside_edge
+            v = self._profile(theta, r_inf, times)
+            self.inside_edge = inside
         after = np.concatenate([t] + [np.full(g[1].size, s) for g, s in zip(self.groups, times)])
         return (d_ln_t + np.concatenate([np.zeros(self.n_radius), v])) / after
 

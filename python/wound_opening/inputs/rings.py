@@ -16,9 +16,11 @@ so the noise comes from the scatter within the rings, as the data give it."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
+from . import piv_errors
 from .columns import InputError
 from .edge_speed import check_edge_speed
 from .provenance import RawFile
@@ -54,6 +56,35 @@ def keep(radius: RadiusSeries, outer_um: float, t, r):
     return ~inside & ~beyond & np.isfinite(r), int(inside.sum()), int(beyond.sum())
 
 
+@dataclass(frozen=True)
+class Measurement:
+    """How the field's vectors were measured: each vector's frame pair, position [um] and
+    the grid step [um]; the pairs' interval [s] and the interrogation window's side [um]
+    (None: not known, the vectors are then velocities at their points and times)."""
+
+    pair: np.ndarray
+    x_um: np.ndarray
+    y_um: np.ndarray
+    spacing_um: float
+    interval_s: float | None = None
+    window_um: float | None = None
+
+
+def _measured(measurement, radius, t, r, ok):
+    """(vectors kept, windows touching the wound, at the grid's border): a window whose
+    corner comes within the wound edge at either frame of its pair, or on the grid's outer
+    rows and columns, is not a measurement of the tissue's motion (piv_errors.border)."""
+    if measurement is None or measurement.window_um is None:
+        return ok, 0, 0
+    half_dt = 0.5 * (measurement.interval_s or 0.0)
+    reach = measurement.window_um / math.sqrt(2.0)
+    edge = np.maximum(_edge(radius, t - half_dt), _edge(radius, t + half_dt))
+    touch = ok & (r - reach <= edge)
+    grid = piv_errors.grid_of(measurement.x_um, measurement.y_um, measurement.spacing_um)
+    rim = ok & ~touch & piv_errors.border(grid)
+    return ok & ~touch & ~rim, int(touch.sum()), int(rim.sum())
+
+
 def ring_profile(
     t,
     r,
@@ -65,12 +96,18 @@ def ring_profile(
     min_vectors: int = MIN_VECTORS,
     files: tuple = (),
     source: str | None = None,
+    measurement: Measurement | None = None,
 ) -> tuple[VelocityProfile, dict]:
-    """(the ring profile, counts) of radial vectors (module docstring)."""
+    """(the ring profile, counts) of radial vectors (module docstring); with their
+    `measurement`, windows touching the wound or the border are left out, the points are
+    the pairs' displacements over the window (fitting/piv_measure.py) and their errors
+    correlated (piv_errors.py)."""
     if not (math.isfinite(ring_width_um) and ring_width_um > 0):
         raise InputError(f"--ring-width-um {ring_width_um}: must be finite and > 0")
     ok, inside, beyond = keep(radius, outer_um, t, r)
-    t, r, vr = t[ok], r[ok], vr[ok]
+    ok, touch, rim = _measured(measurement, radius, t, r, ok)
+    sel = np.flatnonzero(ok)
+    t, r, vr = t[sel], r[sel], vr[sel]
     edge = _edge(radius, t)
     ring = np.floor((r - edge) / ring_width_um).astype(int)
     keys = np.stack([t, ring])
@@ -84,7 +121,8 @@ def ring_profile(
             "wound edge and the outer radius: widen the rings (--ring-width-um)"
         )
     few = int((~big).sum())
-    t, r, vr, group = t[big], r[big], vr[big], np.unique(group[big], return_inverse=True)[1]
+    t, r, vr, sel = t[big], r[big], vr[big], sel[big]
+    group = np.unique(group[big], return_inverse=True)[1]
     n = np.bincount(group)
     tm = np.bincount(group, t) / n
     mean = np.bincount(group, vr) / n
@@ -101,24 +139,59 @@ def ring_profile(
         "used": int(vr.size),
         "rings": int(n.size),
     }
+    extra, cov, corr = {}, None, None
+    if measurement is not None and measurement.window_um is not None:
+        counts["windows touching the wound"] = touch
+        counts["at the grid's border"] = rim
+        cov, corr = _ring_covariance(measurement, sel, group, vr - mean[group], s * s)
+        cov = cov[np.ix_(order, order)]
+        extra = {"interval_s": measurement.interval_s, "window_um": measurement.window_um}
+    sd = np.sqrt(np.diag(cov)) if cov is not None else s / np.sqrt(n[order])
     profile = VelocityProfile(
         tm[order],
         harmonic[order],
         mean[order],
-        sd_um_s=s / np.sqrt(n[order]),
+        sd_um_s=sd,
         source=source,
         files=tuple(files)
-        + (RawFile("(rings)", "", "ring averages", counts, (_note(counts, s, ring_width_um),)),),
+        + (
+            RawFile(
+                "(rings)", "", "ring averages", counts, (_note(counts, s, ring_width_um, corr),)
+            ),
+        ),
+        covariance=cov,
+        **extra,
     )
     return profile, counts
 
 
-def _note(counts, s, width) -> str:
+def _ring_covariance(measurement, sel, group, deviation, s2):
+    """(covariance of the ring means, (rho_s at one grid step, rho_t)) (piv_errors.py)."""
+    m = measurement
+    grid = piv_errors.grid_of(m.x_um, m.y_um, m.spacing_um)
+    used = piv_errors.Grid(grid.ix[sel], grid.iy[sel], grid.shape)
+    reach = max(int(math.ceil(m.window_um / m.spacing_um)) - 1, 0)
+    pair = m.pair[sel]
+    rho, rho_t = piv_errors.correlations(deviation, pair, used, reach, s2)
+    cov = piv_errors.ring_covariance(group, pair, used, rho, rho_t, s2)
+    step = float(rho[reach, reach + 1]) if reach else 0.0
+    return cov, (step, rho_t)
+
+
+def _note(counts, s, width, corr=None) -> str:
+    said = (
+        ""
+        if corr is None
+        else f"; errors correlated {corr[0]:.2f} between neighbouring windows and "
+        f"{corr[1]:.2f} between the frame pairs of one grid point; left out "
+        f"{counts['windows touching the wound']} windows touching the wound, "
+        f"{counts['at the grid' + chr(39) + 's border']} at the grid's border"
+    )
     return (
         f"PIV: {counts['used']} vectors in {counts['rings']} rings of {width:.3g} um "
         f"(scatter within rings {s:.3g} um/s); dropped {counts['inside the wound edge']} inside "
         f"the wound edge, {counts['beyond the outer radius']} beyond the outer radius, "
-        f"{counts[next(k for k in counts if k.startswith('in rings'))]} in rings too sparse"
+        f"{counts[next(k for k in counts if k.startswith('in rings'))]} in rings too sparse" + said
     )
 
 
@@ -159,12 +232,14 @@ def field_profile(
     units=None,
     frame_interval_s: float | None = None,
     pixel_size_um: float | None = None,
+    window_um: float | None = None,
 ):
     """(VelocityProfile, Centre) of a piv.Field: the centre given (centre.Centre) or
     estimated, the radial projection, then rings (default width: the PIV grid spacing) or
     every vector. `units`, `frame_interval_s`, `pixel_size_um`: as read (OpenPIV's
     --piv-units; None for files naming theirs), to name a unit mistake the edge speed
-    shows (edge_speed.unit_mistake)."""
+    shows (edge_speed.unit_mistake). With `frame_interval_s` and `window_um` (the
+    interrogation window's side) the rings are measurements of the pairs (Measurement)."""
     from .centre import estimate_centre, radial
 
     flow = estimate_centre(field.x_um, field.y_um, field.u_um_s, field.v_um_s, field.pair)
@@ -197,8 +272,19 @@ def field_profile(
             "with --piv-likelihood vectors"
         )
     width = ring_width_um if ring_width_um is not None else field.spacing_um
+    measurement = Measurement(
+        field.pair, field.x_um, field.y_um, field.spacing_um, frame_interval_s, window_um
+    )
     return ring_profile(
-        field.time_s, r, vr, radius, outer_um, width, files=files, source=field.source
+        field.time_s,
+        r,
+        vr,
+        radius,
+        outer_um,
+        width,
+        files=files,
+        source=field.source,
+        measurement=measurement,
     )[0], centre
 
 

@@ -53,10 +53,27 @@ class VelocityProfile:
     lines: np.ndarray | None = None
     #: The raw files read for it (provenance.RawFile), e.g. one PIVlab file per frame pair.
     files: tuple = ()
+    #: PIV: the frame pair's interval [s], each point then the displacement over
+    #: [t - interval/2, t + interval/2] divided by it (fitting/piv_measure.py), and the
+    #: interrogation window's side [um] it is the mean over (None: a point's velocity).
+    interval_s: float | None = None
+    window_um: float | None = None
+    #: The points' covariance [(um/s)^2] (inputs/piv_errors.py), when their errors are
+    #: correlated; its diagonal is sd_um_s squared.
+    covariance: np.ndarray | None = None
 
     def __post_init__(self):
         _check_columns("profile", self.times_s, self.r_um, self.velocity_um_s)
         _check_noise(self, "profile", self.noise_um_s, self.sd_um_s, np.size(self.r_um))
+        n = np.size(self.r_um)
+        if self.covariance is not None and (
+            np.shape(self.covariance) != (n, n) or self.sd_um_s is None
+        ):
+            raise ValueError(f"profile: a covariance of {n} x {n} goes with sd_um_s")
+        for name in ("interval_s", "window_um"):
+            v = getattr(self, name)
+            if v is not None and not (math.isfinite(v) and v > 0):
+                raise ValueError(f"profile: {name} = {v:g}: must be finite and > 0")
         bad = np.flatnonzero(~(np.asarray(self.r_um, dtype=float) > 0))
         if bad.size:
             raise ValueError(

@@ -1,0 +1,123 @@
+"""The errors of PIV ring means, estimated from the field itself: correlated between
+overlapping windows and between the frame pairs of one grid point.
+
+A PIV vector's error is mostly the texture in its window: the same cells sit in the window
+of a grid point pair after pair (they move a fraction of a window per pair), and windows
+that overlap share texture. So the error e_{g,k} of the vector at grid point g in pair k is
+modelled as
+
+    Cov(e_{g,k}, e_{h,j}) = s^2 rho_s(g - h) (1 if j = k else rho_t),
+
+s^2 the variance of a vector about its ring's mean (pooled over every ring of every pair,
+as rings.py estimates it), rho_s the correlation of two vectors of one pair at the grid
+offset g - h, rho_t the correlation of one grid point's errors in two different pairs. Both
+are estimated from the deviations d = v_r - (ring mean) of the vectors used:
+
+    rho_s(o) = sum_k sum_g d_{g,k} d_{g+o,k} / (s^2 N_o)      (|o| < the window, else 0)
+    rho_t    = sum_{j != k} sum_g d_{g,k} d_{g,j} / (s^2 N_t)
+
+(N the number of products summed; rho_s symmetrised, clipped to [-1, 1], its negative
+tail beyond the first zero set to 0; rho_t clipped to [0, 1)). A ring mean m_a = (1/n_a)
+sum_{g in a} v_g then has
+
+    Cov(m_a, m_b) = s^2 / (n_a n_b) sum_{g in a, h in b} rho_s(g - h) (1 or rho_t),
+
+computed as I_a . (rho_s * I_b) with I the rings' indicator images on the grid (* a 2-D
+convolution). With rho_s = delta and rho_t = 0 this is the independent s^2 / n_a the rings
+used before; with OpenPIV's errors (rho_t 0.8) 24 pairs weigh like two or three. The matrix
+is made positive definite by clipping its correlation's eigenvalues at EIGEN_FLOOR."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.signal import fftconvolve
+
+#: Smallest eigenvalue kept in the ring means' correlation matrix.
+EIGEN_FLOOR = 1e-6
+
+
+@dataclass(frozen=True)
+class Grid:
+    """The PIV grid: each vector's column and row index, and the grid's shape."""
+
+    ix: np.ndarray
+    iy: np.ndarray
+    shape: tuple
+
+
+def grid_of(x, y, spacing: float) -> Grid:
+    """Indices of positions on a regular grid of step `spacing` (same units)."""
+    ix = np.rint((x - np.min(x)) / spacing).astype(int)
+    iy = np.rint((y - np.min(y)) / spacing).astype(int)
+    return Grid(ix, iy, (int(iy.max()) + 1, int(ix.max()) + 1))
+
+
+def border(grid: Grid) -> np.ndarray:
+    """The vectors on the grid's outer rows and columns: their windows' search areas reach
+    the image border (OpenPIV and PIVlab pad there)."""
+    return (
+        (grid.ix == 0)
+        | (grid.iy == 0)
+        | (grid.ix == grid.shape[1] - 1)
+        | (grid.iy == grid.shape[0] - 1)
+    )
+
+
+def _images(values, pair, grid: Grid, pairs):
+    """(values, mask) as images per pair: (len(pairs), ny, nx)."""
+    img = np.zeros((len(pairs), *grid.shape))
+    mask = np.zeros_like(img)
+    k = np.searchsorted(pairs, pair)
+    img[k, grid.iy, grid.ix] = values
+    mask[k, grid.iy, grid.ix] = 1.0
+    return img, mask
+
+
+def correlations(d, pair, grid: Grid, reach: int, s2: float):
+    """(rho_s as a (2 reach + 1)^2 kernel, rho_t) of the deviations `d` (module docstring)."""
+    pairs = np.unique(pair)
+    img, mask = _images(d, pair, grid, pairs)
+    flip = img[:, ::-1, ::-1]
+    prod = fftconvolve(img, flip, axes=(1, 2))
+    count = fftconvolve(mask, mask[:, ::-1, ::-1], axes=(1, 2))
+    cy, cx = grid.shape[0] - 1, grid.shape[1] - 1
+    window = (slice(None), slice(cy - reach, cy + reach + 1), slice(cx - reach, cx + reach + 1))
+    num, n = prod[window].sum(axis=0), np.rint(count[window].sum(axis=0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rho = np.where(n >= 10, num / (np.maximum(n, 1) * s2), 0.0)
+    rho = np.clip(0.5 * (rho + rho[::-1, ::-1]), -1.0, 1.0)
+    rho[reach, reach] = 1.0
+    rho[rho < 0] = 0.0  # past the overlap the estimate is noise about 0
+    total, both = img.sum(axis=0), mask.sum(axis=0)
+    same = float(np.sum(total**2) - np.sum(img**2))  # sum over j != k at one grid point
+    pairs_n = float(np.sum(both**2) - np.sum(both))
+    rho_t = same / (pairs_n * s2) if pairs_n >= 10 else 0.0
+    return rho, float(np.clip(rho_t, 0.0, 0.99))
+
+
+def ring_covariance(ring, pair, grid: Grid, rho, rho_t: float, s2: float) -> np.ndarray:
+    """Cov of the ring means (rings 0 .. n-1; `ring` of each vector, `pair` its frame pair)."""
+    rings = int(ring.max()) + 1
+    ind = np.zeros((rings, *grid.shape))
+    np.add.at(ind, (ring, grid.iy, grid.ix), 1.0)
+    smooth = fftconvolve(ind, rho[None, :, :], mode="same", axes=(1, 2))
+    raw = ind.reshape(rings, -1) @ smooth.reshape(rings, -1).T
+    ring_pair = np.zeros(rings, dtype=pair.dtype)
+    ring_pair[ring] = pair
+    same = ring_pair[:, None] == ring_pair[None, :]
+    n = ind.reshape(rings, -1).sum(axis=1)
+    cov = s2 * raw * np.where(same, 1.0, rho_t) / np.outer(n, n)
+    return _positive(cov)
+
+
+def _positive(cov: np.ndarray) -> np.ndarray:
+    sd = np.sqrt(np.diag(cov))
+    corr = cov / np.outer(sd, sd)
+    w, v = np.linalg.eigh(0.5 * (corr + corr.T))
+    if w[0] >= EIGEN_FLOOR:
+        return cov
+    corr = (v * np.maximum(w, EIGEN_FLOOR)) @ v.T
+    d = np.sqrt(np.diag(corr))
+    return corr / np.outer(d, d) * np.outer(sd, sd)
