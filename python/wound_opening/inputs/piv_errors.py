@@ -23,7 +23,10 @@ sum_{g in a} v_g then has
     Cov(m_a, m_b) = s^2 / (n_a n_b) sum_{g in a, h in b} rho_s(g - h) (1 or rho_t),
 
 computed as I_a . (rho_s * I_b) with I the rings' indicator images on the grid (* a 2-D
-convolution). With rho_s = delta and rho_t = 0 this is the independent s^2 / n_a the rings
+convolution). The pooled s^2, sum d^2 / (N - rings), is scaled by (N - rings) / sum_a (n_a -
+raw_aa / n_a) (raw_aa = sum_(g, h in a) rho_s(g - h)): the deviations about a ring's mean
+lose the part of the errors the ring shares, which correlated errors make larger than one
+vector's worth. With rho_s = delta and rho_t = 0 this is the independent s^2 / n_a the rings
 used before; with OpenPIV's errors (rho_t 0.8) 24 pairs weigh like two or three. The matrix
 is made positive definite by clipping its correlation's eigenvalues at EIGEN_FLOOR."""
 
@@ -108,7 +111,10 @@ def ring_covariance(ring, pair, grid: Grid, rho, rho_t: float, s2: float) -> np.
     ring_pair[ring] = pair
     same = ring_pair[:, None] == ring_pair[None, :]
     n = ind.reshape(rings, -1).sum(axis=1)
-    cov = s2 * raw * np.where(same, 1.0, rho_t) / np.outer(n, n)
+    # s^2 from the deviations about the ring means, sum d^2 / (N - rings), is low where the
+    # errors are correlated: E sum_(g in a) d_g^2 = s^2 (n_a - raw_aa / n_a), not (n_a - 1)
+    unbiased = (n.sum() - rings) / float(np.sum(n - np.diag(raw) / n))
+    cov = unbiased * s2 * raw * np.where(same, 1.0, rho_t) / np.outer(n, n)
     return _positive(cov)
 
 
