@@ -6,7 +6,9 @@ solution (wound_exact.py), for the README's "Fitting a lab's own files":
   tracking failed) of a cut of R0 = 8 um, one frame every 0.25 s;
 - piv_8um/PIVlab_0001.txt ..: six PIVlab ASCII exports (calibrated, m and m/s, info lines,
   "Vector type [-]", CRLF, 10 digits, y down) of frame pairs 4-5, 24-25, .., 104-105 of the
-  same movie, a 25 x 25 grid every 20 px (625 vectors each), masked (NaN) inside the wound;
+  same movie, a 25 x 25 grid every 20 px (625 vectors each) of 32-px windows: each vector
+  the exact displacement over its pair's frame interval averaged over its window, divided
+  by the interval (what PIV measures), masked (NaN) where a window reaches the wound;
 - Results_4um.csv, Results_8um.csv, Results_16um.csv: three wounds of one tissue.
 
 The tissue: viscous length 20 um, tension/G 0.5, zeta/G 0.1 s/um^2 (eta/G = 10 s), outer
@@ -30,7 +32,7 @@ from scipy.interpolate import CubicSpline
 VISCOUS_UM, SIGMA, ZETA_OVER_G, OUTER_UM = 20.0, 0.5, 0.1, 100.0
 PIXEL_UM, FRAME_S, CUT_AFTER, FRAMES = 0.2, 0.25, 3, 163
 CENTRE_PX = (251.3, 262.8)
-GRID_PX, IMAGE_PX = 20, 512
+GRID_PX, IMAGE_PX, WINDOW_PX = 20, 512, 32
 PIV_FIRST, PIV_STEP, PIV_PAIRS = 4, 20, 6
 NOISE_PX, NOISE_UM_S, SEED = 0.3, 0.05, 2026
 
@@ -96,17 +98,55 @@ def grid_px():
     return x.T.ravel(), y.T.ravel()  # MATLAB's reshape order (column-major): y runs fastest
 
 
+def displacement(R0: float, t_a: float, t_b: float):
+    """The exact radial displacement [um] from t_a to t_b [s] of the material point at
+    CURRENT distance r_um at t_a: u(X, t_b) - u(X, t_a) at the X with X + u(X, t_a) = r, on
+    400 material points, interpolated (cubic) at the current positions."""
+    lam, sigma, T = parameters(R0)
+    r_inf = OUTER_UM / R0
+    X = 1 + (r_inf - 1) * np.linspace(0, 1, 400) ** 2
+    u, _ = we.profile(lam, sigma, r_inf, X, np.array([t_a, t_b]) / T)
+    spline = CubicSpline(X + u[0], u[1] - u[0])
+    return lambda r_um: R0 * spline(np.asarray(r_um, float) / R0)
+
+
+def measured(R0: float, t: float, dx_um, dy_um):
+    """(u, v) [um/s] that PIV measures for the pair about time t (frames t -+ FRAME_S / 2)
+    in windows of WINDOW_PX centred at dx, dy [um] from the wound centre: the mean of the
+    exact displacement over the axis-aligned square window (6 x 6 Gauss-Legendre points)
+    divided by the frame interval."""
+    move = displacement(R0, t - FRAME_S / 2, t + FRAME_S / 2)
+    g, w = np.polynomial.legendre.leggauss(6)
+    half = WINDOW_PX * PIXEL_UM / 2
+    dx, dy = np.asarray(dx_um, float), np.asarray(dy_um, float)
+    u, v = np.zeros(dx.size), np.zeros(dx.size)
+    for a, wa in zip(g, w):
+        for b, wb in zip(g, w):
+            px, py = dx + a * half, dy + b * half
+            r = np.hypot(px, py)
+            d = move(r) * wa * wb / 4
+            u, v = u + d * px / r, v + d * py / r
+    return u / FRAME_S, v / FRAME_S
+
+
+def measured_radial(R0: float, t: float, dx_um, dy_um) -> np.ndarray:
+    """The radial component [um/s] of `measured` at offsets dx, dy [um] from the centre."""
+    u, v = measured(R0, t, dx_um, dy_um)
+    return (u * np.asarray(dx_um) + v * np.asarray(dy_um)) / np.hypot(dx_um, dy_um)
+
+
 def field(R0, t, *, noise=0.0, rng=None):
-    """(x, y [px], u, v [um/s], vector type) of the exact field at time t, y down: type 0
-    (NaN) for windows reaching into the wound (r < R(t) + 1 window half-width)."""
+    """(x, y [px], u, v [um/s], vector type) of the field PIV measures (`measured`) for the
+    pair about time t, y down: type 0 (NaN) for windows reaching into the wound at either
+    frame (a corner within R(t + FRAME_S / 2))."""
     x, y = grid_px()
     dx, dy = (x - CENTRE_PX[0]) * PIXEL_UM, (y - CENTRE_PX[1]) * PIXEL_UM
     r = np.hypot(dx, dy)
-    edge = radius(R0, [t])[0]
-    kind = np.where(r < edge + GRID_PX / 2 * PIXEL_UM, 0, 1)
-    vr = np.zeros(r.size)
-    vr[kind == 1] = velocity(R0, t, r[kind == 1])
-    u, v = vr * dx / np.where(r > 0, r, 1), vr * dy / np.where(r > 0, r, 1)
+    edge = radius(R0, [t + FRAME_S / 2])[0]
+    kind = np.where(r - WINDOW_PX / 2 * PIXEL_UM * math.sqrt(2) <= edge, 0, 1)
+    u, v = np.zeros(r.size), np.zeros(r.size)
+    ok = kind == 1
+    u[ok], v[ok] = measured(R0, t, dx[ok], dy[ok])
     if noise:
         u, v = u + noise * rng.standard_normal(r.size), v + noise * rng.standard_normal(r.size)
         interp = (rng.random(r.size) < 0.03) & (kind == 1)

@@ -135,7 +135,13 @@ def test_pivlab_export_gives_the_exact_field_with_masked_vectors_counted(tmp_pat
             *(a[sel] for a in (field.u_um_s, field.v_um_s)),
         )
         # 10 significant digits (PIVlab's dlmwrite precision)
-        np.testing.assert_allclose(vr, lab.velocity(R0, lab.pair_time(k), r), rtol=1e-8)
+        exact = lab.measured_radial(
+            R0,
+            lab.pair_time(k),
+            field.x_um[sel] - TRUE_CENTRE_UM[0],
+            field.y_um[sel] - TRUE_CENTRE_UM[1],
+        )
+        np.testing.assert_allclose(vr, exact, rtol=1e-8)
     assert field.spacing_um == pytest.approx(lab.GRID_PX * lab.PIXEL_UM)
 
 
@@ -149,7 +155,12 @@ def test_openpiv_files_give_the_exact_field_to_their_four_digits(tmp_path):
         Centre(*TRUE_CENTRE_UM),
         *(a[sel] for a in (field.x_um, field.y_um, field.u_um_s, field.v_um_s)),
     )
-    exact = lab.velocity(R0, lab.pair_time(k), r)
+    exact = lab.measured_radial(
+        R0,
+        lab.pair_time(k),
+        field.x_um[sel] - TRUE_CENTRE_UM[0],
+        field.y_um[sel] - TRUE_CENTRE_UM[1],
+    )
     # %.4e: 5e-5 relative on each of x, y, u, v; the direction from the centre moves with x, y
     np.testing.assert_allclose(vr, exact, rtol=2e-3, atol=1e-4 * np.abs(exact).max())
     masked = [f.counts["masked"] for f in field.files]

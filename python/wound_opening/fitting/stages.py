@@ -16,7 +16,7 @@ from scipy import special
 
 from .._native import SolverError
 from ..inputs.series import where
-from ..results.outcome import CHI2_FAIL_P
+from ..results.outcome import CHI2_FAIL_P, CHI2_WARN_P
 from .bounds import regular
 from .gof import judge_series
 from .local import cost, local_fit
@@ -174,6 +174,30 @@ def verdict(
     )
 
 
+def field_test(part: Objective, residuals, share: float) -> tuple[list, list]:
+    """(reasons the fit fails, warnings) from the PIV profile's own chi^2, where its noise
+    comes with the data (the rings' covariance or scatter, or a given noise): the sum of its
+    (whitened) residuals squared against chi^2 with n (1 - share) degrees of freedom, `share`
+    the fraction of the data the parameters take. A failing field is named, whatever the
+    radius series does: the vectors are then not the model's flow at these parameters."""
+    if not part.groups or part.estimated[1]:
+        return [], []
+    res = part.split(np.asarray(residuals, float))[1]
+    dof = max(res.size * (1 - share), 1.0)
+    chi2 = float(np.sum(res**2))
+    p = float(special.chdtrc(dof, chi2))
+    if p >= CHI2_WARN_P:
+        return [], []
+    said = (
+        f"the PIV field disagrees with the model: chi^2 = {chi2:.4g} for {dof:.0f} degrees "
+        f"of freedom of its {res.size} points (p = {p:.2g}); the vectors are not the model's "
+        "flow at the fitted parameters: a wrong centre (--centre-um), windows that straddle "
+        "the wound (--piv-window), a unit or frame mistake (--piv-units, --frame-interval-s), "
+        "or a tissue the model does not describe"
+    )
+    return ([said], []) if p < CHI2_FAIL_P else ([], [said])
+
+
 def alternates(problem: Problem, z, ends, chi2_min: float, loss: str) -> list:
     """Other local optima among the fits' ends (z, delta chi^2 refitted at the final noise),
     more than 1e-2 apart in every coordinate: a profile may reach them."""
@@ -238,6 +262,10 @@ def settle(obj, parts, z_of, starts, loss: str, runs, who: str, what: str = "the
         what=what,
         runs=runs(residuals),
     )
+    for k, part in enumerate(parts):
+        failed, warned = field_test(part, part.residuals(z_of(k, z)), len(obj.free) / obj.size)
+        judged.reasons += failed
+        judged.warnings += tuple(warned)
     held = list(obj.fixed)
     judged.cov[held, :], judged.cov[:, held] = 0.0, 0.0  # no variance
     others = alternates(obj, z, ends, chi2, loss)
