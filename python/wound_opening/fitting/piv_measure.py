@@ -40,7 +40,7 @@ from .. import _native
 
 #: Gauss-Legendre points per side of a window (3: exact for fields of degree 5 across it).
 GAUSS = 3
-#: Secant iterations at most, and their relative stopping change.
+#: Secant iterations at most, and the residual (relative to the radius) they stop at.
 ITERATIONS, CHANGE = 12, 1e-13
 #: Chebyshev points of a pair's displacement interpolant (_smooth_displacement), and the
 #: interpolant's accuracy relative to the largest displacement (measured with 20 points:
@@ -52,11 +52,15 @@ def window_nodes(x: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray, np
     """(distances (n, 9), cosines (n, 9), weights (9,)) of the 3 x 3 Gauss-Legendre nodes of
     windows of half-side `half` centred at distances `x` (same units), the cosine of each
     node's radial direction with the window centre's, the weights summing to 1."""
-    g, w = np.polynomial.legendre.leggauss(GAUSS)
-    dx, dy = np.meshgrid(half * g, half * g, indexing="ij")
-    px = x[:, None] + dx.ravel()[None, :]
-    rho = np.hypot(px, dy.ravel()[None, :])
-    return rho, px / rho, np.outer(w, w).ravel() / 4
+    px = x[:, None] + half * _NODE_X[None, :]
+    rho = np.hypot(px, half * _NODE_Y[None, :])
+    return rho, px / rho, _NODE_W
+
+
+_G, _W = np.polynomial.legendre.leggauss(GAUSS)
+#: The window's nodes in units of its half-side (radial x, tangential y) and their weights.
+_NODE_X, _NODE_Y = (a.ravel() for a in np.meshgrid(_G, _G, indexing="ij"))
+_NODE_W = np.outer(_W, _W).ravel() / 4
 
 
 def displacement(lam, sigma, r_inf, tau_a, tau_b, x, edge, *, tolerance) -> np.ndarray:
@@ -83,13 +87,12 @@ def displacement(lam, sigma, r_inf, tau_a, tau_b, x, edge, *, tolerance) -> np.n
     x1 = np.maximum(x0 - g0, low)  # one fixed-point step: X = rho + u_c(X)
     for _ in range(ITERATIONS):
         g1 = residual(x1)
-        step = np.abs(x1 - x0)
-        if np.all(step <= CHANGE * np.maximum(np.abs(x1), 1.0)):
-            break
         with np.errstate(divide="ignore", invalid="ignore"):
             slope = (g1 - g0) / (x1 - x0)
         slope = np.where(np.isfinite(slope) & (slope > 0.05), slope, 1.0)
         x0, g0, x1 = x1, g1, np.maximum(x1 - g1 / slope, low)
+        if np.all(np.abs(g1) <= CHANGE * np.maximum(np.abs(x0), 1.0)):
+            break  # x1, a step past a residual this small, is at the root to rounding
     out[tissue] = x1 - p
     return out
 

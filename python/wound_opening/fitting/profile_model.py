@@ -55,6 +55,17 @@ class ProfileModel:
         else the velocity (_velocity); sets `inside_edge`."""
         if self.interval is None or not self.groups:
             return self._velocity(theta, r_inf, times)
+        key = (tuple(theta), r_inf, np.asarray(times, float).tobytes())
+        last = getattr(self, "_last_measure", None)
+        if last is not None and last[0] == key:  # the Jacobian at the point just evaluated
+            self.inside_edge = last[2]
+            return last[1].copy()
+        out = self._measure(theta, r_inf, times)
+        self._last_measure = (key, out.copy(), self.inside_edge)
+        return out
+
+    def _measure(self, theta, r_inf: float, times) -> np.ndarray:
+        """The PIV measurement's model values of the profile rows (piv_measure.py)."""
         R0, sigma, lam, T = theta
         half_dt = 0.5 * self.interval
         ends = np.concatenate([times - half_dt, times + half_dt]) / T

@@ -6,28 +6,30 @@ of a grid point pair after pair (they move a fraction of a window per pair), and
 that overlap share texture. So the error e_{g,k} of the vector at grid point g in pair k is
 modelled as
 
-    Cov(e_{g,k}, e_{h,j}) = s^2 rho_s(g - h) (1 if j = k else rho_t),
+    Cov(e_{g,k}, e_{h,j}) = s^2 rho_s(g - h) rho_t(|j - k|),    rho_t(0) = 1,
 
 s^2 the variance of a vector about its ring's mean (pooled over every ring of every pair,
 as rings.py estimates it), rho_s the correlation of two vectors of one pair at the grid
-offset g - h, rho_t the correlation of one grid point's errors in two different pairs. Both
-are estimated from the deviations d = v_r - (ring mean) of the vectors used:
+offset g - h, rho_t(l) the correlation of one grid point's errors in two pairs l apart in
+the pairs' order (the texture moves on: it decays with l). Both are estimated from the
+deviations d = v_r - (ring mean) of the vectors used:
 
     rho_s(o) = sum_k sum_g d_{g,k} d_{g+o,k} / (s^2 N_o)      (|o| < the window, else 0)
-    rho_t    = sum_{j != k} sum_g d_{g,k} d_{g,j} / (s^2 N_t)
+    rho_t(l) = sum_k sum_g d_{g,k} d_{g,k+l} / (s^2 N_l)
 
 (N the number of products summed; rho_s symmetrised, clipped to [-1, 1], its negative
-tail beyond the first zero set to 0; rho_t clipped to [0, 1)). A ring mean m_a = (1/n_a)
-sum_{g in a} v_g then has
+values set to 0; rho_t clipped to [0, 0.99] and made non-increasing in l). A ring mean m_a =
+(1/n_a) sum_{g in a} v_g of pair k_a then has
 
-    Cov(m_a, m_b) = s^2 / (n_a n_b) sum_{g in a, h in b} rho_s(g - h) (1 or rho_t),
+    Cov(m_a, m_b) = s^2 / (n_a n_b) sum_{g in a, h in b} rho_s(g - h) rho_t(|k_a - k_b|),
 
 computed as I_a . (rho_s * I_b) with I the rings' indicator images on the grid (* a 2-D
 convolution). The pooled s^2, sum d^2 / (N - rings), is scaled by (N - rings) / sum_a (n_a -
 raw_aa / n_a) (raw_aa = sum_(g, h in a) rho_s(g - h)): the deviations about a ring's mean
 lose the part of the errors the ring shares, which correlated errors make larger than one
 vector's worth. With rho_s = delta and rho_t = 0 this is the independent s^2 / n_a the rings
-used before; with OpenPIV's errors (rho_t 0.8) 24 pairs weigh like two or three. The matrix
+used before; with errors as locked to the texture as OpenPIV's (rho_t 0.8 over many pairs) 24 pairs
+weigh like a few. The matrix
 is made positive definite by clipping its correlation's eigenvalues at EIGEN_FLOOR."""
 
 from __future__ import annotations
@@ -79,7 +81,8 @@ def _images(values, pair, grid: Grid, pairs):
 
 
 def correlations(d, pair, grid: Grid, reach: int, s2: float):
-    """(rho_s as a (2 reach + 1)^2 kernel, rho_t) of the deviations `d` (module docstring)."""
+    """(rho_s as a (2 reach + 1)^2 kernel, rho_t by the lag in frame-pair order, 1 at lag 0)
+    of the deviations `d` (module docstring)."""
     pairs = np.unique(pair)
     img, mask = _images(d, pair, grid, pairs)
     flip = img[:, ::-1, ::-1]
@@ -93,28 +96,30 @@ def correlations(d, pair, grid: Grid, reach: int, s2: float):
     rho = np.clip(0.5 * (rho + rho[::-1, ::-1]), -1.0, 1.0)
     rho[reach, reach] = 1.0
     rho[rho < 0] = 0.0  # past the overlap the estimate is noise about 0
-    total, both = img.sum(axis=0), mask.sum(axis=0)
-    same = float(np.sum(total**2) - np.sum(img**2))  # sum over j != k at one grid point
-    pairs_n = float(np.sum(both**2) - np.sum(both))
-    rho_t = same / (pairs_n * s2) if pairs_n >= 10 else 0.0
-    return rho, float(np.clip(rho_t, 0.0, 0.99))
+    rho_t = np.ones(len(pairs))
+    for lag in range(1, len(pairs)):
+        num = float(np.sum(img[lag:] * img[:-lag]))
+        n_lag = float(np.sum(mask[lag:] * mask[:-lag]))
+        rho_t[lag] = num / (n_lag * s2) if n_lag >= 10 else 0.0
+    # clipped to [0, 0.99] and never rising with the lag (the texture only moves on)
+    return rho, np.minimum.accumulate(np.clip(rho_t, 0.0, 0.99))
 
 
-def ring_covariance(ring, pair, grid: Grid, rho, rho_t: float, s2: float) -> np.ndarray:
+def ring_covariance(ring, pair, grid: Grid, rho, rho_t, s2: float) -> np.ndarray:
     """Cov of the ring means (rings 0 .. n-1; `ring` of each vector, `pair` its frame pair)."""
     rings = int(ring.max()) + 1
     ind = np.zeros((rings, *grid.shape))
     np.add.at(ind, (ring, grid.iy, grid.ix), 1.0)
     smooth = fftconvolve(ind, rho[None, :, :], mode="same", axes=(1, 2))
     raw = ind.reshape(rings, -1) @ smooth.reshape(rings, -1).T
-    ring_pair = np.zeros(rings, dtype=pair.dtype)
-    ring_pair[ring] = pair
-    same = ring_pair[:, None] == ring_pair[None, :]
+    ring_pair = np.zeros(rings, dtype=int)
+    ring_pair[ring] = np.searchsorted(np.unique(pair), pair)  # the pair's place in order
+    lag = np.abs(ring_pair[:, None] - ring_pair[None, :])
     n = ind.reshape(rings, -1).sum(axis=1)
     # s^2 from the deviations about the ring means, sum d^2 / (N - rings), is low where the
     # errors are correlated: E sum_(g in a) d_g^2 = s^2 (n_a - raw_aa / n_a), not (n_a - 1)
     unbiased = (n.sum() - rings) / float(np.sum(n - np.diag(raw) / n))
-    cov = unbiased * s2 * raw * np.where(same, 1.0, rho_t) / np.outer(n, n)
+    cov = unbiased * s2 * raw * rho_t[lag] / np.outer(n, n)
     return _positive(cov)
 
 

@@ -166,7 +166,8 @@ def ring_profile(
 
 
 def _ring_covariance(measurement, sel, group, deviation, s2):
-    """(covariance of the ring means, (rho_s at one grid step, rho_t)) (piv_errors.py)."""
+    """(covariance of the ring means, (rho_s at one grid step, rho_t by lag))
+    (piv_errors.py)."""
     m = measurement
     grid = piv_errors.grid_of(m.x_um, m.y_um, m.spacing_um)
     used = piv_errors.Grid(grid.ix[sel], grid.iy[sel], grid.shape)
@@ -183,7 +184,9 @@ def _note(counts, s, width, corr=None) -> str:
         ""
         if corr is None
         else f"; errors correlated {corr[0]:.2f} between neighbouring windows and "
-        f"{corr[1]:.2f} between the frame pairs of one grid point; left out "
+        f"{corr[1][min(1, corr[1].size - 1)]:.2f} between consecutive frame pairs at one "
+        f"grid point ({corr[1][min(10, corr[1].size - 1)]:.2f} "
+        f"{min(10, corr[1].size - 1)} pairs apart); left out "
         f"{counts['windows touching the wound']} windows touching the wound, "
         f"{counts['at the grid' + chr(39) + 's border']} at the grid's border"
     )
