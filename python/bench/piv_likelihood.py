@@ -45,7 +45,9 @@ def draw(seed: int, folder: Path):
 
 
 def run(radius, field, likelihood: str) -> str:
-    profile, _ = field_profile(field, radius, lab.OUTER_UM, likelihood=likelihood)
+    profile, _ = field_profile(
+        field, radius, lab.OUTER_UM, likelihood=likelihood, window_um=lab.WINDOW_PX * lab.PIXEL_UM
+    )
     t0 = time.process_time()
     result = fit(radius, profile, outer_radius_um=lab.OUTER_UM)
     cpu = time.process_time() - t0

@@ -91,9 +91,8 @@ def add_lab_file_arguments(parser) -> None:
         default="32px",
         metavar="SIZE",
         help="the side of the PIV interrogation window of the final pass, e.g. 32px (with "
-        "--pixel-size-um) or 6.4um; the default, 32px, is OpenPIV's tutorial and PIVlab's last "
-        "pass; without a pixel size, px files' windows are in px and um files' are taken as 4 "
-        "grid steps (OpenPIV's window 32 with overlap 24)",
+        "--pixel-size-um) or 6.4um (default: 32px, OpenPIV's tutorial and PIVlab's last pass; "
+        "files in um without a pixel size: 4 grid steps, OpenPIV's window 32 with overlap 24)",
     )
     g.add_argument(
         "--piv-first-frame",

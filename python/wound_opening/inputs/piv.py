@@ -96,6 +96,8 @@ class Field:
     files: tuple
     notes: tuple
     spacing_um: float
+    #: The frame interval [s]: each pair spans one (Frames.frame_interval_s).
+    interval_s: float | None = None
 
     @property
     def source(self) -> str:
@@ -314,7 +316,14 @@ def read_field(
             + (")" if keep_interpolated else ", interpolated)")
             + " or in frame pairs before the cut"
         )
-    return Field(*cols, pair, tuple(records), tuple(notes), float(np.median(spacing)))
+    return Field(
+        *cols,
+        pair,
+        tuple(records),
+        tuple(notes),
+        float(np.median(spacing)),
+        frames.frame_interval_s,
+    )
 
 
 def _spacing(x, y) -> float:

@@ -69,15 +69,21 @@ class Measurement:
     interval_s: float | None = None
     window_um: float | None = None
 
+    @property
+    def side_um(self) -> float:
+        """The window's side, or where not known the grid step (the smallest a window of
+        a grid without gaps can be)."""
+        return self.window_um if self.window_um is not None else self.spacing_um
+
 
 def _measured(measurement, radius, t, r, ok):
     """(vectors kept, windows touching the wound, at the grid's border): a window whose
     corner comes within the wound edge at either frame of its pair, or on the grid's outer
     rows and columns, is not a measurement of the tissue's motion (piv_errors.border)."""
-    if measurement is None or measurement.window_um is None:
+    if measurement is None or measurement.interval_s is None:
         return ok, 0, 0
-    half_dt = 0.5 * (measurement.interval_s or 0.0)
-    reach = measurement.window_um / math.sqrt(2.0)
+    half_dt = 0.5 * measurement.interval_s
+    reach = measurement.side_um / math.sqrt(2.0)
     edge = np.maximum(_edge(radius, t - half_dt), _edge(radius, t + half_dt))
     touch = ok & (r - reach <= edge)
     grid = piv_errors.grid_of(measurement.x_um, measurement.y_um, measurement.spacing_um)
@@ -140,7 +146,7 @@ def ring_profile(
         "rings": int(n.size),
     }
     extra, cov, corr = {}, None, None
-    if measurement is not None and measurement.window_um is not None:
+    if measurement is not None and measurement.interval_s is not None:
         counts["windows touching the wound"] = touch
         counts["at the grid's border"] = rim
         cov, corr = _ring_covariance(measurement, sel, group, vr - mean[group], s * s)
@@ -171,7 +177,7 @@ def _ring_covariance(measurement, sel, group, deviation, s2):
     m = measurement
     grid = piv_errors.grid_of(m.x_um, m.y_um, m.spacing_um)
     used = piv_errors.Grid(grid.ix[sel], grid.iy[sel], grid.shape)
-    reach = max(int(math.ceil(m.window_um / m.spacing_um)) - 1, 0)
+    reach = max(int(math.ceil(m.side_um / m.spacing_um)) - 1, 0)
     pair = m.pair[sel]
     rho, rho_t = piv_errors.correlations(deviation, pair, used, reach, s2)
     cov = piv_errors.ring_covariance(group, pair, used, rho, rho_t, s2)
@@ -241,8 +247,10 @@ def field_profile(
     estimated, the radial projection, then rings (default width: the PIV grid spacing) or
     every vector. `units`, `frame_interval_s`, `pixel_size_um`: as read (OpenPIV's
     --piv-units; None for files naming theirs), to name a unit mistake the edge speed
-    shows (edge_speed.unit_mistake). With `frame_interval_s` and `window_um` (the
-    interrogation window's side) the rings are measurements of the pairs (Measurement)."""
+    shows (edge_speed.unit_mistake). The rings are measurements of the pairs (Measurement):
+    displacements over the frame interval (`frame_interval_s`, default the field's), means
+    over the interrogation window of side `window_um` (None: the window's centre, and the
+    grid step as the side that decides which windows touch the wound)."""
     from .centre import estimate_centre, radial
 
     flow = estimate_centre(field.x_um, field.y_um, field.u_um_s, field.v_um_s, field.pair)
@@ -276,7 +284,12 @@ def field_profile(
         )
     width = ring_width_um if ring_width_um is not None else field.spacing_um
     measurement = Measurement(
-        field.pair, field.x_um, field.y_um, field.spacing_um, frame_interval_s, window_um
+        field.pair,
+        field.x_um,
+        field.y_um,
+        field.spacing_um,
+        frame_interval_s or getattr(field, "interval_s", None),
+        window_um,
     )
     return ring_profile(
         field.time_s,
