@@ -8,7 +8,8 @@ the frame interval. Its error e = measured - truth, in radial and tangential com
 the true centre, is studied on the windows whose search area (40 px) stays clear of the wound
 at both frames ("tissue windows"): the correlation of e at one grid point between pairs
 k and k + L (pooled over points and pairs), and between windows 1, 2 and 4 grid steps apart
-in one pair (8 px steps: 1 and 2 steps overlap by 75 and 50 %, 4 steps do not). The windows
+in one pair (grid steps of 40 - 24 = 16 px: the 32 px windows 1 step apart share half their
+pixels, 2 and 4 steps apart none). The windows
 that reach into the wound are summarised by their mean radial velocity over the exact one
 at their centre.
 

@@ -6,7 +6,7 @@ files written as those programs write them, and their errors against the truth
 
     cd python && python -m bench.lab_movies --out DIR --R0-um 10 --sigma 1 --lambda 1 --T-s 2 \
         [--pixel-um 0.2 --frame-s 0.5 --frames 30 --size-px 512 --cut-offset-s 0.05 --seed 0] \
-        [--fit]
+        [--imagej] [--fit]
 
 writes
 
@@ -16,6 +16,8 @@ writes
 - DIR/truth.json: the true parameters and material ratios, the true centre in the PIV files'
   axes (um), the cut on the camera's clock, the exact radius per frame, the files' errors
   against the truth, and `fit_command`, the documented `wound-opening fit` of these files;
+- with --imagej, the outline measured by ImageJ itself too (lab_imagej.py):
+  DIR/radius_imagej.csv, its errors and its fit command in truth.json;
 - with --fit, that command run (DIR/fit.json, DIR/fit_report.html, DIR/fit.png), its output
   in DIR/fit.txt and its estimates against the truth in truth.json's "fit"; and the same
   without the PIV options (DIR/fit_radius.*, "fit_radius_only").
@@ -36,6 +38,7 @@ import numpy as np
 import tifffile
 
 from bench.lab_errors import outline_errors, piv_errors
+from bench.lab_imagej import available, measure_imagej
 from bench.lab_measure import file_axes_centre_um, write_piv, write_results
 from bench.lab_render import Movie, render
 
@@ -69,7 +72,7 @@ def fit_command(out: Path, m: Movie, radius: Path, piv: Path) -> list[str]:
     ]  # fmt: skip
 
 
-def measure(out: Path, m: Movie, frames, truth: dict) -> dict:
+def measure(out: Path, m: Movie, frames, truth: dict, imagej: bool = False) -> dict:
     """Every file of the module docstring but the fit's; returns truth.json's content."""
     out.mkdir(parents=True, exist_ok=True)
     tifffile.imwrite(
@@ -86,7 +89,7 @@ def measure(out: Path, m: Movie, frames, truth: dict) -> dict:
     roi_half = int(min(2 * r_final / m.pixel_um, m.size_px / 2 - 2))
     rad = write_results(out / "radius.csv", frames, first, m.centre(), roi_half, m.pixel_um)
     cmd = fit_command(out, m, out / "radius.csv", out / "piv")
-    return {
+    record = {
         "parameters": {"R0_um": m.R0_um, "sigma": m.sigma, "lambda": m.lam, "T_s": m.T_s},
         "material": material(m),
         "movie": m.as_dict(),
@@ -107,6 +110,17 @@ def measure(out: Path, m: Movie, frames, truth: dict) -> dict:
         "piv_errors": piv_errors(m, truth, piv),
         "fit_command": shlex.join(cmd),
     }
+    if imagej:
+        missing = available()
+        if missing:
+            raise SystemExit(f"--imagej: {missing} missing (apt-get install imagej xvfb xauth)")
+        r_ij = measure_imagej(out, m.centre(), roi_half, first + 1, m.frames)
+        record["radius_imagej_um"] = [None if math.isnan(r) else float(r) for r in r_ij]
+        record["outline_errors_imagej"] = outline_errors(m, truth, r_ij)
+        record["fit_command_imagej"] = shlex.join(
+            fit_command(out, m, out / "radius_imagej.csv", out / "piv")
+        )
+    return record
 
 
 def radius_only(cmd: list[str]) -> list[str]:
@@ -186,6 +200,9 @@ def main(argv=None) -> None:
     ap.add_argument("--cell-um", type=float, default=4.0)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--fit", action="store_true", help="run the fit command on the files")
+    ap.add_argument(
+        "--imagej", action="store_true", help="outline by ImageJ too (radius_imagej.csv)"
+    )
     a = ap.parse_args(argv)
     offset = a.cut_offset_s
     if offset < 0:
@@ -198,21 +215,24 @@ def main(argv=None) -> None:
     t0 = time.process_time()
     frames, truth = render(m)
     t1 = time.process_time()
-    record = measure(a.out, m, frames, truth)
+    record = measure(a.out, m, frames, truth, imagej=a.imagej)
     record["cpu_s"] = {"render": round(t1 - t0, 2), "measure": round(time.process_time() - t1, 2)}
     if a.fit:
         cmd = shlex.split(record["fit_command"])
         record["fit"] = run_fit(a.out, record, cmd, "fit")
         record["fit_radius_only"] = run_fit(a.out, record, radius_only(cmd), "fit_radius")
     (a.out / "truth.json").write_text(json.dumps(record, indent=1) + "\n")
-    o, p = record["outline_errors"], record["piv_errors"]
+    p = record["piv_errors"]
     print(f"{a.out}: {record['piv_pairs']} pairs x {record['piv_vectors_per_pair']} vectors; "
           f"cpu {record['cpu_s']}")  # fmt: skip
-    print(
-        f"outline offset {o['offset_mean_um']:+.3f} um (sd {o['offset_sd_um']:.3f}, "
-        f"{o['offset_min_um']:+.3f}..{o['offset_max_um']:+.3f}), lag-1 "
-        f"{o['lag1_correlation']:.2f}, {o['lag1_correlation_detrended']:.2f} less the drift"
-    )
+    for name in ("outline_errors", "outline_errors_imagej"):
+        if name in record:
+            o = record[name]
+            print(
+                f"{name}: offset {o['offset_mean_um']:+.3f} um (sd {o['offset_sd_um']:.3f}, "
+                f"{o['offset_min_um']:+.3f}..{o['offset_max_um']:+.3f}), lag-1 "
+                f"{o['lag1_correlation']:.2f}, {o['lag1_correlation_detrended']:.2f} less the drift"
+            )
     for comp in ("radial", "tangential"):
         c = p[comp]
         print(f"PIV {comp}: rms {c['rms_um_s']:.4f} um/s, mean {c['mean_um_s']:+.4f}; "

@@ -3,13 +3,14 @@ solution, measured by OpenPIV-python and outlined by scikit-image as ImageJ outl
 files read by the package's readers (inputs/fiji.py, inputs/piv.py) and compared with the
 exact solution. A test of the instrument, not of the fitter: no fit here.
 
-Bounds, at 0.2 um per pixel and 0.5 s per frame:
-- the outline's radius within 2 px (0.4 um) of the exact R(t) in every frame after the cut
-  (the blur, the threshold and the pixel grid; measured up to 0.24 um here);
-- the OpenPIV vectors of the windows clear of the wound within 0.2 px per frame rms
-  (0.08 um/s; measured 0.04) of the exact displacement of their window's material between
-  the pair's two frames, radial and tangential about the true centre, their mean error
-  within 0.05 px per frame: a vector in the wrong axes, units or times is off by far more.
+Bounds, at 0.2 um per pixel and 0.5 s per frame (this seed's values measured in brackets):
+- the outline's radius within 1 px (0.2 um) of the exact R(t) in every frame after the cut
+  (the blur, the threshold and the pixel grid; -0.11 to +0.02 um);
+- the OpenPIV vectors of the windows clear of the wound within 0.25 px per frame rms
+  (0.1 um/s; radial 0.043, tangential 0.055 um/s) of the exact displacement of their
+  window's material between the pair's two frames, radial and tangential about the true
+  centre, their mean error within 0.1 px per frame (0.04 um/s; radial -0.015 um/s): a
+  field read in the wrong axes, units or times is off by about its own speed (1 px/frame).
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ MOVIE = Movie(
     R0_um=4.0, sigma=1.0, lam=1.0, T_s=1.0, size_px=160, frames=11, pre_frames=5,
     cut_offset_s=0.2, seed=7,
 )  # fmt: skip
-RADIUS_PX, PIV_RMS_PX, PIV_MEAN_PX = 2.0, 0.2, 0.05
+RADIUS_PX, PIV_RMS_PX, PIV_MEAN_PX = 1.0, 0.25, 0.1
 
 
 def test_rendered_movie_measured_by_openpiv_and_outlined(tmp_path):
