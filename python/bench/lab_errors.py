@@ -6,8 +6,10 @@ a + 1, of the material in its interrogation window at frame a (the exact displac
 8 x 8 lattice of points spread over the 32 px window, averaged over those on tissue), over
 the frame interval. Its error e = measured - truth, in radial and tangential components about
 the true centre, is studied on the windows whose search area (40 px) stays clear of the wound
-at both frames ("tissue windows"): the correlation of e at one grid point between pairs
-k and k + L (pooled over points and pairs), and between windows 1, 2 and 4 grid steps apart
+at both frames ("tissue windows"): the least-squares slope of the measured radial velocity
+on the true one (and on the displacement of the window's centre point alone), the
+correlation of e at one grid point between pairs k and k + L (pooled over points and
+pairs), and between windows 1, 2 and 4 grid steps apart
 in one pair (grid steps of 40 - 24 = 16 px: the 32 px windows 1 step apart share half their
 pixels, 2 and 4 steps apart none). The windows
 that reach into the wound are summarised by their mean radial velocity over the exact one
@@ -51,7 +53,7 @@ def piv_errors(m: Movie, truth: dict, piv: dict) -> dict:
     r_px = np.hypot(d[:, 0], d[:, 1])
     er = d / r_px[:, None]
     n_side = int(round(np.sqrt(len(px))))
-    err_r, err_t, near_ratio = [], [], []
+    err_r, err_t, near_ratio, slope = [], [], [], np.zeros((2, 2))
     for a, u, v, fl in zip(piv["a"], piv["u"], piv["v"], piv["flags"]):
         true = window_truth(m, truth, a, px) / m.frame_s
         meas = np.column_stack([u, v])
@@ -65,13 +67,22 @@ def piv_errors(m: Movie, truth: dict, piv: dict) -> dict:
         er_k[bad], et_k[bad] = np.nan, np.nan
         err_r.append(er_k)
         err_t.append(et_k)
+        ok = ~bad
+        centre = lagrangian_displacement_um(m, truth, a, px[ok]) / m.frame_s
+        vr_meas = np.sum(meas[ok] * er[ok], 1)
+        for j, t in enumerate((np.sum(true[ok] * er[ok], 1), np.sum(centre * er[ok], 1))):
+            slope[j] += (np.sum(vr_meas * t), np.sum(t * t))
         ring = (~clear) & (fl == 0) & (r_px > wound_px)
         centre_true = lagrangian_displacement_um(m, truth, a, px[ring]) / m.frame_s
         vr_true = np.sum(centre_true * er[ring], 1)
         vr_meas = np.sum(meas[ring] * er[ring], 1)
         near_ratio.append(float(np.sum(vr_meas) / np.sum(vr_true)))
     E = {"radial": np.array(err_r), "tangential": np.array(err_t)}
-    out = {"tissue_windows_per_pair": int(np.isfinite(E["radial"][0]).sum())}
+    out = {
+        "tissue_windows_per_pair": int(np.isfinite(E["radial"][0]).sum()),
+        "radial_slope_on_window_truth": float(slope[0, 0] / slope[0, 1]),
+        "radial_slope_on_centre_point": float(slope[1, 0] / slope[1, 1]),
+    }
     for name, e in E.items():
         k = e.shape[0]
         grid = e.reshape(k, n_side, n_side)

@@ -17,7 +17,8 @@ writes
   axes (um), the cut on the camera's clock, the exact radius per frame, the files' errors
   against the truth, and `fit_command`, the documented `wound-opening fit` of these files;
 - with --imagej, the outline measured by ImageJ itself too (lab_imagej.py):
-  DIR/radius_imagej.csv, its errors and its fit command in truth.json;
+  DIR/radius_imagej.csv, its errors and its fit command in truth.json (with --fit run too:
+  DIR/fit_imagej.*, "fit_imagej");
 - with --fit, that command run (DIR/fit.json, DIR/fit_report.html, DIR/fit.png), its output
   in DIR/fit.txt and its estimates against the truth in truth.json's "fit"; and the same
   without the PIV options (DIR/fit_radius.*, "fit_radius_only").
@@ -55,7 +56,7 @@ def material(m: Movie) -> dict:
     }
 
 
-def fit_command(out: Path, m: Movie, radius: Path, piv: Path) -> list[str]:
+def fit_command(out: Path, m: Movie, radius: Path, piv: Path, stem: str = "fit") -> list[str]:
     """The documented `wound-opening fit` of the files (docs/fitting.md, "Lab files"): frames
     1..pre_frames before the cut (the cut itself fitted between frames N and N + 1), the PIV
     pairs from frame N + 1, one frame apart, in um and um/s."""
@@ -67,8 +68,8 @@ def fit_command(out: Path, m: Movie, radius: Path, piv: Path) -> list[str]:
         "--outer-radius-um", repr(m.outer_um),
         "--piv", str(piv), "--piv-first-frame", str(n + 1), "--piv-pair-step", "1",
         "--piv-units", "um,um/s",
-        "--json", str(out / "fit.json"), "--report", str(out / "fit_report.html"),
-        "--plot", str(out / "fit.png"),
+        "--json", str(out / f"{stem}.json"), "--report", str(out / f"{stem}_report.html"),
+        "--plot", str(out / f"{stem}.png"),
     ]  # fmt: skip
 
 
@@ -118,7 +119,7 @@ def measure(out: Path, m: Movie, frames, truth: dict, imagej: bool = False) -> d
         record["radius_imagej_um"] = [None if math.isnan(r) else float(r) for r in r_ij]
         record["outline_errors_imagej"] = outline_errors(m, truth, r_ij)
         record["fit_command_imagej"] = shlex.join(
-            fit_command(out, m, out / "radius_imagej.csv", out / "piv")
+            fit_command(out, m, out / "radius_imagej.csv", out / "piv", "fit_imagej")
         )
     return record
 
@@ -134,7 +135,7 @@ def radius_only(cmd: list[str]) -> list[str]:
             skip = 1
             continue
         path = Path(arg)
-        if path.name in ("fit.json", "fit_report.html", "fit.png"):
+        if path.suffix in (".json", ".html", ".png"):
             arg = str(path.with_name(path.name.replace("fit", "fit_radius", 1)))
         out.append(arg)
     return out
@@ -221,6 +222,9 @@ def main(argv=None) -> None:
         cmd = shlex.split(record["fit_command"])
         record["fit"] = run_fit(a.out, record, cmd, "fit")
         record["fit_radius_only"] = run_fit(a.out, record, radius_only(cmd), "fit_radius")
+        if a.imagej:
+            cmd = shlex.split(record["fit_command_imagej"])
+            record["fit_imagej"] = run_fit(a.out, record, cmd, "fit_imagej")
     (a.out / "truth.json").write_text(json.dumps(record, indent=1) + "\n")
     p = record["piv_errors"]
     print(f"{a.out}: {record['piv_pairs']} pairs x {record['piv_vectors_per_pair']} vectors; "
@@ -238,8 +242,15 @@ def main(argv=None) -> None:
         print(f"PIV {comp}: rms {c['rms_um_s']:.4f} um/s, mean {c['mean_um_s']:+.4f}; "
               f"pairs lag {c['pairs_lag']}; neighbours {c['neighbours_steps']}")  # fmt: skip
     print(f"PIV ring at the wound: measured / exact radial {p['wound_ring_ratio_range']}")
+    print(
+        "PIV tissue windows: measured radial on exact, slope "
+        f"{p['radial_slope_on_window_truth']:.3f} (window), "
+        f"{p['radial_slope_on_centre_point']:.3f} (centre point)"
+    )
     print(f"fit: {record['fit_command']}")
-    for name in ("fit", "fit_radius_only") if a.fit else ():
+    for name in ("fit", "fit_radius_only", "fit_imagej") if a.fit else ():
+        if name not in record:
+            continue
         f = record[name]
         print(f"{name}: exit {f['exit']}, {f['wall_s']} s wall; {f.get('reasons') or ''}")
         for key, row in f.get("estimates", {}).items():
