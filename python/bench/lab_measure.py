@@ -39,7 +39,8 @@ BLUR_PX = 2.0
 
 def piv_pair(frame_a, frame_b, frame_s: float, pixel_um: float):
     """One frame pair as OpenPIV's tutorial measures it: (x, y, u, v, flags) after scaling
-    and transform_coordinates (um, um/s, y up), and the window centres in image px."""
+    and transform_coordinates (um, um/s, y up), and the centres of the windows correlated
+    in image px (lab_render's axes; the file states them `stated_offset_px` further)."""
     a, b = frame_a.astype(np.int32), frame_b.astype(np.int32)
     u, v, s2n = pyprocess.extended_search_area_piv(
         a,
@@ -53,7 +54,8 @@ def piv_pair(frame_a, frame_b, frame_s: float, pixel_um: float):
     x, y = pyprocess.get_coordinates(
         image_size=a.shape, search_area_size=SEARCH_PX, overlap=OVERLAP_PX
     )
-    px_img = np.column_stack([x.ravel(), y.ravel()])
+    x0, y0 = _grid(a.shape, False)  # the windows correlated, in lab_render's axes:
+    px_img = np.column_stack([x0.ravel() - 0.5, y0.ravel() - 0.5])
     flags_s2n = validation.sig2noise_val(s2n, threshold=S2N_THRESHOLD)
     limit = SEARCH_PX / frame_s  # px/s: a displacement beyond the search area is no vector
     flags_g = validation.global_val(u, v, (-limit, limit), (-limit, limit))
@@ -81,26 +83,42 @@ def write_piv(folder: Path, frames, first: int, frame_s: float, pixel_um: float)
     return out
 
 
-def file_axes_centre_um(centre_px, image_shape, pixel_um: float) -> tuple[float, float]:
-    """The wound centre in the OpenPIV files' axes: x scaled; y as transform_coordinates
-    leaves it (the grid's rows reversed: y' = y_first + y_last - y), scaled."""
-    _, y = pyprocess.get_coordinates(
-        image_size=image_shape, search_area_size=SEARCH_PX, overlap=OVERLAP_PX
+def _grid(image_shape, centred: bool):
+    """OpenPIV's window centres (x, y), its pixel-edge convention (pixel k spans [k, k + 1))."""
+    x, y = pyprocess.get_coordinates(
+        image_size=image_shape,
+        search_area_size=SEARCH_PX,
+        overlap=OVERLAP_PX,
+        center_on_field=centred,
     )
+    return x, y
+
+
+def stated_offset_px(image_shape) -> tuple[float, float]:
+    """How far (x, y, px) the positions the tutorial writes (get_coordinates, which centres
+    the grid on the image by default) lie right of and below the windows that
+    extended_search_area_piv correlated (sliding_window_array: from the image's corner):
+    4 px each at 192, 256 and 512 px for windows 40 px, overlap 24."""
+    (xc, yc), (x0, y0) = _grid(image_shape, True), _grid(image_shape, False)
+    return float(xc.flat[0] - x0.flat[0]), float(yc.flat[0] - y0.flat[0])
+
+
+def file_axes_centre_um(centre_px, image_shape, pixel_um: float) -> tuple[float, float]:
+    """A point of the image (px, pixel centres at integers: lab_render's axes) in the OpenPIV
+    files' axes: OpenPIV's pixel-edge convention (+ 0.5 px), x scaled, y as
+    transform_coordinates leaves it (the rows reversed: y' = y_first + y_last - y), scaled."""
+    _, y = _grid(image_shape, True)
     ys = np.unique(y)
-    return (centre_px[0] * pixel_um, (ys[0] + ys[-1] - centre_px[1]) * pixel_um)
+    return ((centre_px[0] + 0.5) * pixel_um, (ys[0] + ys[-1] - centre_px[1] - 0.5) * pixel_um)
 
 
 def image_px(x_um, y_um, image_shape, pixel_um: float) -> np.ndarray:
-    """Image px (n, 2: x right, y down) of positions in the OpenPIV files' axes (the inverse
-    of `file_axes_centre_um`'s map)."""
-    _, y = pyprocess.get_coordinates(
-        image_size=image_shape, search_area_size=SEARCH_PX, overlap=OVERLAP_PX
-    )
+    """Image px (n, 2: lab_render's axes) of positions in the OpenPIV files' axes (the inverse
+    of `file_axes_centre_um`)."""
+    _, y = _grid(image_shape, True)
     ys = np.unique(y)
-    return np.column_stack(
-        [np.asarray(x_um) / pixel_um, ys[0] + ys[-1] - np.asarray(y_um) / pixel_um]
-    )
+    x = np.asarray(x_um) / pixel_um - 0.5
+    return np.column_stack([x, ys[0] + ys[-1] - np.asarray(y_um) / pixel_um - 0.5])
 
 
 def intermodes(image) -> float:

@@ -11,7 +11,8 @@ files written as those programs write them, and their errors against the truth
 writes
 
 - DIR/movie.tif: the frames (uint16, ImageJ hyperstack metadata: pixel size, frame interval);
-- DIR/piv/field_0001.txt ...: one OpenPIV file per frame pair after the cut (um, um/s, y up);
+- DIR/piv/field_0001.txt ...: one OpenPIV file per frame pair after the cut (um, um/s, y up;
+  positions as the tutorial writes them: 4 px right of and below the windows correlated);
 - DIR/radius.csv: the Fiji Results table of the wound's area (um^2) per Slice;
 - DIR/truth.json: the true parameters and material ratios, the true centre in the PIV files'
   axes (um), the cut on the camera's clock, the exact radius per frame, the files' errors
@@ -40,7 +41,7 @@ import tifffile
 
 from bench.lab_errors import outline_errors, piv_errors
 from bench.lab_imagej import available, measure_imagej
-from bench.lab_measure import file_axes_centre_um, write_piv, write_results
+from bench.lab_measure import file_axes_centre_um, stated_offset_px, write_piv, write_results
 from bench.lab_render import Movie, render
 
 
@@ -107,6 +108,7 @@ def measure(out: Path, m: Movie, frames, truth: dict, imagej: bool = False) -> d
         "outline_roi_half_px": roi_half,
         "piv_pairs": len(piv["a"]),
         "piv_vectors_per_pair": int(len(piv["px"])),
+        "piv_stated_offset_px": list(stated_offset_px(frames.shape[1:])),
         "outline_errors": outline_errors(m, truth, rad["radius_um"]),
         "piv_errors": piv_errors(m, truth, piv),
         "fit_command": shlex.join(cmd),

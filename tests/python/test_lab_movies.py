@@ -9,18 +9,19 @@ Bounds, at 0.2 um per pixel and 0.5 s per frame (this movie's values measured in
   (the blur, the threshold and the pixel grid; -0.48 to -0.36 px);
 - the OpenPIV vectors of the windows clear of the wound: their error from the exact
   displacement of their window's material between the pair's two frames, radial and
-  tangential about the true centre, within 0.25 px per frame rms (0.115, 0.138) and 0.1 px
-  per frame on average (+0.019, -0.004); the measured radial velocity over the exact one
-  (least squares) within 0.85 to 1.15 (1.097: sub-pixel displacements read about 10 % high
-  here, 0.27 px per frame rms); a field read in other axes (y down), units (px) or times
-  (another pair) fails these.
+  tangential about the true centre, within 0.25 px per frame rms (0.115, 0.146) and 0.1 px
+  per frame on average (+0.023, +0.003); the measured radial velocity over the exact one
+  (least squares) within 0.85 to 1.15 (1.113: sub-pixel displacements read about 10 % high
+  here, 0.26 px per frame rms); a field read in other axes (y down), units (px) or times
+  (another pair) fails these. The windows are where OpenPIV correlated them: the tutorial's
+  `get_coordinates` writes them 4 px right of and below that (asserted).
 """
 
 from __future__ import annotations
 
 import numpy as np
 from bench.lab_errors import window_truth
-from bench.lab_measure import SEARCH_PX, image_px
+from bench.lab_measure import SEARCH_PX, image_px, stated_offset_px
 from bench.lab_movies import measure
 from bench.lab_render import Movie, edge_radius_um, render
 
@@ -58,18 +59,22 @@ def test_rendered_movie_measured_by_openpiv_and_outlined(tmp_path):
     )  # fmt: skip
     pairs = m.frames - m.pre_frames - 1
     assert len(field.files) == pairs
-    cx, cy = record["centre_piv_axes_um"]
+    # OpenPIV's tutorial writes positions 4 px right of and below the windows it correlated
+    offset = stated_offset_px(frames.shape[1:])
+    assert offset == (4.0, 4.0)
+    centre = image_px(*record["centre_piv_axes_um"], frames.shape[1:], m.pixel_um)
+    assert np.allclose(centre, m.centre())
     errs, v_r = [], []
     for k in range(1, pairs + 1):
         sel = field.pair == k
         a = m.pre_frames + k - 1  # the pair's first frame (0-based)
         assert np.allclose(field.time_s[sel], truth["t_s"][a] + m.frame_s / 2)
-        px = image_px(field.x_um[sel], field.y_um[sel], frames.shape[1:], m.pixel_um)
-        true = window_truth(m, truth, a, px) / m.frame_s * [1, -1]  # y up, as the files
-        d = np.column_stack([field.x_um[sel] - cx, field.y_um[sel] - cy])
+        px = image_px(field.x_um[sel], field.y_um[sel], frames.shape[1:], m.pixel_um) - offset
+        true = window_truth(m, truth, a, px) / m.frame_s  # image axes, y down
+        d = px - m.centre()
         r = np.hypot(d[:, 0], d[:, 1])
-        clear = r - SEARCH_PX / np.sqrt(2) * m.pixel_um > edge_radius_um(m, truth["t_s"][a + 1])
-        e = np.column_stack([field.u_um_s[sel], field.v_um_s[sel]]) - true
+        clear = r - SEARCH_PX / np.sqrt(2) > edge_radius_um(m, truth["t_s"][a + 1]) / m.pixel_um
+        e = np.column_stack([field.u_um_s[sel], -field.v_um_s[sel]]) - true
         e_r = np.sum(e * d, 1) / r
         e_t = (e[:, 1] * d[:, 0] - e[:, 0] * d[:, 1]) / r
         errs.append(np.column_stack([e_r, e_t])[clear])
