@@ -8,11 +8,11 @@ modelled as
 
     Cov(e_{g,k}, e_{h,j}) = s^2 rho_s(g - h) rho_t(|j - k|),    rho_t(0) = 1,
 
-s^2 the variance of a vector about its ring's mean (pooled over every ring of every pair,
-as rings.py estimates it), rho_s the correlation of two vectors of one pair at the grid
-offset g - h, rho_t(l) the correlation of one grid point's errors in two pairs l apart in
-the pairs' order (the texture moves on: it decays with l). Both are estimated from the
-deviations d = v_r - (ring mean) of the vectors used:
+s^2 the variance of a vector's error, rho_s the correlation of two vectors of one pair at the
+grid offset g - h, rho_t(l) the correlation of one grid point's errors in two pairs l apart in
+the pairs' order (the texture moves on: it decays with l). All are estimated from the
+deviations d of the vectors used from their pair's smooth radial profile (`deviations`: a
+least-squares a / r + b / r^2 + c / r^3 + d per pair, so s^2 = sum d^2 / (N - 4 pairs)):
 
     rho_s(o) = sum_k sum_g d_{g,k} d_{g+o,k} / (s^2 N_o)      (|o| < the window, else 0)
     rho_t(l) = sum_k sum_g d_{g,k} d_{g,k+l} / (s^2 N_l)
@@ -24,10 +24,7 @@ values set to 0; rho_t clipped to [0, 0.99] and made non-increasing in l). A rin
     Cov(m_a, m_b) = s^2 / (n_a n_b) sum_{g in a, h in b} rho_s(g - h) rho_t(|k_a - k_b|),
 
 computed as I_a . (rho_s * I_b) with I the rings' indicator images on the grid (* a 2-D
-convolution). The pooled s^2, sum d^2 / (N - rings), is scaled by (N - rings) / sum_a (n_a -
-raw_aa / n_a) (raw_aa = sum_(g, h in a) rho_s(g - h)): the deviations about a ring's mean
-lose the part of the errors the ring shares, which correlated errors make larger than one
-vector's worth. With rho_s = delta and rho_t = 0 this is the independent s^2 / n_a the rings
+convolution). With rho_s = delta and rho_t = 0 this is the independent s^2 / n_a the rings
 used before; with errors as locked to the texture as OpenPIV's (rho_t 0.8 over many pairs) 24 pairs
 weigh like a few. The matrix
 is made positive definite by clipping its correlation's eigenvalues at EIGEN_FLOOR."""
@@ -105,8 +102,26 @@ def correlations(d, pair, grid: Grid, reach: int, s2: float):
     return rho, np.minimum.accumulate(np.clip(rho_t, 0.0, 0.99))
 
 
+def deviations(r, vr, pair) -> tuple[np.ndarray, float]:
+    """(deviations, s^2): each vector's radial velocity less its pair's smooth profile, the
+    least-squares fit of a / r + b / r^2 + c / r^3 + d (the centre's, centre.py), and their
+    variance sum d^2 / (N - 4 pairs). A smooth profile, not the ring means: a ring one grid
+    step wide holds few neighbours, and deviations about its mean are anti-correlated
+    between neighbours whatever the errors are."""
+    out = np.empty(vr.size)
+    pairs = np.unique(pair)
+    for k in pairs:
+        rows = np.flatnonzero(pair == k)
+        basis = np.column_stack([1 / r[rows], r[rows] ** -2, r[rows] ** -3, np.ones(rows.size)])
+        coef, *_ = np.linalg.lstsq(basis, vr[rows], rcond=None)
+        out[rows] = vr[rows] - basis @ coef
+    dof = max(vr.size - 4 * pairs.size, 1)
+    return out, float(np.sum(out**2)) / dof
+
+
 def ring_covariance(ring, pair, grid: Grid, rho, rho_t, s2: float) -> np.ndarray:
-    """Cov of the ring means (rings 0 .. n-1; `ring` of each vector, `pair` its frame pair)."""
+    """Cov of the ring means (rings 0 .. n-1; `ring` of each vector, `pair` its frame pair),
+    s^2 the vectors' variance (`deviations`)."""
     rings = int(ring.max()) + 1
     ind = np.zeros((rings, *grid.shape))
     np.add.at(ind, (ring, grid.iy, grid.ix), 1.0)
@@ -116,10 +131,7 @@ def ring_covariance(ring, pair, grid: Grid, rho, rho_t, s2: float) -> np.ndarray
     ring_pair[ring] = np.searchsorted(np.unique(pair), pair)  # the pair's place in order
     lag = np.abs(ring_pair[:, None] - ring_pair[None, :])
     n = ind.reshape(rings, -1).sum(axis=1)
-    # s^2 from the deviations about the ring means, sum d^2 / (N - rings), is low where the
-    # errors are correlated: E sum_(g in a) d_g^2 = s^2 (n_a - raw_aa / n_a), not (n_a - 1)
-    unbiased = (n.sum() - rings) / float(np.sum(n - np.diag(raw) / n))
-    cov = unbiased * s2 * raw * rho_t[lag] / np.outer(n, n)
+    cov = s2 * raw * rho_t[lag] / np.outer(n, n)
     return _positive(cov)
 
 

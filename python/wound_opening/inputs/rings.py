@@ -149,7 +149,7 @@ def ring_profile(
     if measurement is not None and measurement.interval_s is not None:
         counts["windows touching the wound"] = touch
         counts["at the grid's border"] = rim
-        cov, corr = _ring_covariance(measurement, sel, group, vr - mean[group], s * s)
+        cov, corr = _ring_covariance(measurement, sel, group, r, vr)
         cov = cov[np.ix_(order, order)]
         extra = {"interval_s": measurement.interval_s, "window_um": measurement.window_um}
     sd = np.sqrt(np.diag(cov)) if cov is not None else s / np.sqrt(n[order])
@@ -171,14 +171,15 @@ def ring_profile(
     return profile, counts
 
 
-def _ring_covariance(measurement, sel, group, deviation, s2):
-    """(covariance of the ring means, (rho_s at one grid step, rho_t by lag))
-    (piv_errors.py)."""
+def _ring_covariance(measurement, sel, group, r, vr):
+    """(covariance of the ring means, (rho_s at one grid step, rho_t by lag)) of the vectors
+    `sel` (piv_errors.py)."""
     m = measurement
     grid = piv_errors.grid_of(m.x_um, m.y_um, m.spacing_um)
     used = piv_errors.Grid(grid.ix[sel], grid.iy[sel], grid.shape)
     reach = max(int(math.ceil(m.side_um / m.spacing_um)) - 1, 0)
     pair = m.pair[sel]
+    deviation, s2 = piv_errors.deviations(r, vr, pair)
     rho, rho_t = piv_errors.correlations(deviation, pair, used, reach, s2)
     cov = piv_errors.ring_covariance(group, pair, used, rho, rho_t, s2)
     step = float(rho[reach, reach + 1]) if reach else 0.0
