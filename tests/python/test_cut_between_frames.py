@@ -56,7 +56,8 @@ def _covered(doc, name, value) -> bool:
 def test_after_frame_n_fits_the_cut_between_the_frames_and_covers_the_truth(table, tmp_path):
     """--cut-after-frame 3: cut_s fitted in [0, 0.25] s, its interval and every parameter's
     hold the truth, and the settings say how the cut was taken; the same data with the cut
-    taken at frame 3 (--fix cut_s=0, the rule before the nuisance) miss R0 and sigma."""
+    taken at frame 3 (--fix cut_s=0, the rule before the nuisance) miss sigma (and R0 where
+    the outline's offset is held at 0: its default prior, one pixel, absorbs R0's share)."""
     doc = _fit(table, tmp_path, "--cut-after-frame", str(N))
     cut = doc["parameters"]["cut_s"]
     assert cut["bounds"] == [0.0, DT], cut
@@ -66,7 +67,13 @@ def test_after_frame_n_fits_the_cut_between_the_frames_and_covers_the_truth(tabl
     assert "fitted between frames 3 and 4" in doc["settings"]["cut"]
     at_frame = _fit(table, tmp_path, "--cut-after-frame", str(N), "--fix", "cut_s=0")
     missed = [n for n, v in TRUTH.items() if not _covered(at_frame, n, v)]
-    assert missed == ["R0_um", "sigma"], {n: at_frame["parameters"][n]["ci95"] for n in TRUTH}
+    assert missed == ["sigma"], {n: at_frame["parameters"][n]["ci95"] for n in TRUTH}
+    held = _fit(
+        table, tmp_path, "--cut-after-frame", str(N), "--fix", "cut_s=0", "--fix",
+        "outline_offset_um=0",
+    )  # fmt: skip
+    missed = [n for n, v in TRUTH.items() if not _covered(held, n, v)]
+    assert missed == ["R0_um", "sigma"], {n: held["parameters"][n]["ci95"] for n in TRUTH}
     assert "cut_s as the options give it" in at_frame["settings"]["cut"]
 
 

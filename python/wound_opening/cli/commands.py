@@ -66,7 +66,7 @@ def fit_command(args) -> None:
     radius, profile = prepare(args, radius, profiles[0] if profiles else None)
     names = wound_coordinates(outer[0], NUISANCES)  # a nuisance named joins the fit
     fix, bound = cut_options(args, lab)
-    params = from_options(names, fix, bound, args.prior)
+    params = from_options(names, fix, bound, outline_prior(args))
     result = fit(radius, profile, outer_radius_um=outer[0], loss=args.loss, params=params)
     result.settings = settings_of(args, series=(radius, profile), lab=lab)
     print(result.summary())
@@ -100,9 +100,25 @@ def cut_options(args, lab) -> tuple[list, list]:
     return fix, bound
 
 
-def _names_cut(args) -> bool:
+def _names_cut(args, name: str = "cut_s") -> bool:
     options = [*args.fix, *args.bound, *args.prior]
-    return any(o.split("=")[0].strip() == "cut_s" for o in options)
+    return any(o.split("=")[0].strip() == name for o in options)
+
+
+#: The outline offset's prior standard deviation where the pixel size is not given [um].
+OUTLINE_SD_UM = 0.2
+
+
+def outline_prior(args) -> list:
+    """--prior with the outline's offset of an area table (a threshold's outline: Fiji,
+    ImageJ) added, 0 +- one pixel (OUTLINE_SD_UM without --pixel-size-um): a threshold puts
+    the edge a fraction of a pixel to a pixel off, and from the radius alone that offset moves
+    R0 unseen. The user's own --fix/--bound/--prior outline_offset_um=... wins."""
+    prior = list(args.prior)
+    if not getattr(args, "area_col", None) or _names_cut(args, "outline_offset_um"):
+        return prior
+    sd = args.pixel_size_um if args.pixel_size_um else OUTLINE_SD_UM
+    return prior + [f"outline_offset_um=0:{sd!r}"]
 
 
 def _print_cut(settings: dict) -> None:

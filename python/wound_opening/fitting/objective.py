@@ -44,6 +44,7 @@ import math
 import numpy as np
 
 from .. import _native
+from . import serial
 from .parameters import Coordinate, Coordinates, between, factor, span
 from .problem import Problem
 from .profile_model import STEP, ProfileModel
@@ -187,6 +188,11 @@ class Objective(ProfileModel, Problem):
         #: velocity at t and r
         self.interval = getattr(profile, "interval_s", None) if profile is not None else None
         self.whiten = self._whitening(profile)
+        #: the radius errors' lag-1 correlation (serial.py), estimated with their noise for
+        #: a series flagged `serial` (outlines), else 0; each point's gap in frames
+        self.serial = bool(getattr(radius, "serial", False)) and self.estimated[0]
+        self.radius_rho = 0.0
+        self.gaps = serial.gaps(self.t_sorted)
         self.half_window = 0.5 * (getattr(profile, "window_um", None) or 0.0)
         self.evaluations = 0
         self.inside_edge = 0
@@ -225,7 +231,11 @@ class Objective(ProfileModel, Problem):
     def estimate_noise(self, z, robust: bool, share: float | None = None) -> None:
         """Scale the estimated data sets' uncertainties to their residuals at z; `share`: the
         fraction of each set's points taken by the parameters (default 4 / the points)."""
-        parts = self.split(self.residuals(z))
+        parts = list(self.split(self.residuals(z)))
+        if self.serial:  # the radius's marginal scale, and its correlation, from the raw
+            raw = ((self.model(z) - self.data()) / self.sd)[: self.n_radius]
+            self.radius_rho = serial.lag1(raw, self.gaps)
+            parts[0] = raw
         scale = []
         for k, part in enumerate(parts):
             if not (self.estimated[k] and part.size):

@@ -10,7 +10,7 @@ import numpy as np
 from scipy.linalg import solve_triangular
 
 from .. import _native
-from . import piv_measure
+from . import piv_measure, serial
 
 #: Relative step of the central differences.
 STEP = 1e-4
@@ -33,11 +33,15 @@ class ProfileModel:
         return solve_triangular(lower, np.eye(sd.size), lower=True)  # L^-1, once
 
     def _whitened(self, a: np.ndarray) -> np.ndarray:
-        """`a` (residuals or Jacobian rows over sd) with its profile rows whitened."""
-        if self.whiten is None:
-            return a
-        out = a.copy()
-        out[self.n_radius :] = self.whiten @ a[self.n_radius :]
+        """`a` (residuals or Jacobian rows over sd) with its radius rows' serial correlation
+        (serial.py) and its profile rows' correlation whitened."""
+        out = a
+        if self.radius_rho:
+            out = out.copy()
+            out[: self.n_radius] = serial.whiten(a[: self.n_radius], self.radius_rho, self.gaps)
+        if self.whiten is not None:
+            out = out.copy() if out is a else out
+            out[self.n_radius :] = self.whiten @ a[self.n_radius :]
         return out
 
     def _rows(self, R0: float, edge_r: np.ndarray) -> list:

@@ -238,7 +238,9 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
         },
         tuple(notes),
     )
-    return RadiusSeries(times, radius, noise_um, source=path, lines=lines, files=(record,))
+    return RadiusSeries(
+        times, radius, noise_um, source=path, lines=lines, files=(record,), serial=True
+    )
 
 
 def _check_area(path, area_col, area, perim, lines, um, length_unit) -> None:

@@ -26,6 +26,9 @@ class RadiusSeries:
     files: tuple = ()
     #: What a selection of the recording kept and dropped (truncate.py), said in the result.
     note: str | None = None
+    #: Errors serially correlated (an outline frame after frame: fitting/serial.py); with
+    #: the noise estimated, their lag-1 correlation is estimated too.
+    serial: bool = False
 
     def __post_init__(self):
         _check_columns("radius", self.times_s, self.radius_um)
