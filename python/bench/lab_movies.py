@@ -58,9 +58,9 @@ def material(m: Movie) -> dict:
 
 
 def fit_command(out: Path, m: Movie, radius: Path, piv: Path, stem: str = "fit") -> list[str]:
-    """The documented `wound-opening fit` of the files (docs/fitting.md, "Lab files"): frames
-    1..pre_frames before the cut (the cut itself fitted between frames N and N + 1), the PIV
-    pairs from frame N + 1, one frame apart, in um and um/s."""
+    """The documented `wound-opening fit` of the files (docs/fitting.md, "Lab files: Fiji,
+    PIVlab, OpenPIV"): frames 1..pre_frames before the cut (the cut itself fitted between
+    frames N and N + 1), the PIV pairs from frame N + 1, one frame apart, in um and um/s."""
     n = m.pre_frames
     return [
         "wound-opening", "fit", str(radius),
