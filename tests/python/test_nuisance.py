@@ -150,6 +150,29 @@ def test_the_command_line_names_a_nuisance_by_its_options(tmp_path, capsys):
     assert cut["bounds"] == [0.0, 0.5] and 0.0 <= lo <= CUT and (hi is None or CUT <= hi), cut
     assert 0.0 <= cut["estimate"] <= 0.5, cut
     assert main([*argv, "--fix", "cut=0.3"]) == 2
-    assert "expected one of R0_um, sigma, lambda, T_s, outline_offset_um, cut_s, G_pa" in (
-        capsys.readouterr().err
+    assert (
+        "expected one of R0_um, sigma, lambda, T_s, outline_offset_um, cut_s, piv_gain, G_pa"
+        in (capsys.readouterr().err)
     )
+
+
+def test_the_gain_column_is_the_derivative_of_the_residuals():
+    """The PIV field's gain: with the gain g every PIV row of the model and of the other
+    columns is g times the one without it, its own column the model's value; central
+    differences of the residuals agree, with the pairs' measurement model and the cut."""
+    radius, profile = _since_frame(0.0, piv=True)
+    profile = wo.VelocityProfile(
+        profile.times_s, profile.r_um, profile.velocity_um_s, sd_um_s=np.full(24, 1e-3),
+        interval_s=0.5, window_um=2.0,
+    )  # fmt: skip
+    plain = Objective(radius, profile, OUTER, ["cut_s"])
+    data = Objective(radius, profile, OUTER, ["cut_s", "piv_gain"])
+    z = np.append(to_z((R0, SIGMA, LAM, T)), [0.2, 1.3])
+    n = radius.radius_um.size
+    np.testing.assert_allclose(data.model(z)[n:], 1.3 * plain.model(z[:5])[n:], rtol=1e-14)
+    jac, ref = data.jacobian(z), plain.jacobian(z[:5])
+    np.testing.assert_allclose(jac[:n, :5], ref[:n], rtol=1e-12)
+    np.testing.assert_allclose(jac[n:, :5], 1.3 * ref[n:], rtol=1e-12)
+    e = np.array([0, 0, 0, 0, 0, 1e-4])
+    diff = (data.residuals(z + e) - data.residuals(z - e)) / 2e-4
+    np.testing.assert_allclose(jac[:, 5], diff, rtol=1e-8, atol=1e-8 * np.abs(diff).max())

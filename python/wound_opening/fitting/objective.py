@@ -112,7 +112,14 @@ CUT = Coordinate("cut_s", "s", lower=0.0, closed=True, window=between(0.0, math.
 #: declaration here and its term in Objective.model and Objective.jacobian. A fit adds the
 #: ones the user names in its Parameters (fixed: a known value; free, bounded or with a
 #: prior: fitted).
-NUISANCES = {c.name: c for c in (OUTLINE_OFFSET, CUT)}
+#: The PIV field's gain: every modelled PIV value is gain x the model's (a PIV program's
+#: calibration: sub-pixel bias, peak locking and the window's smoothing make OpenPIV read 4 to
+#: 11 % high or 9 % low on movies rendered from the exact solution), so d/d gain = the
+#: model's value and every other PIV column is multiplied by the gain. With a prior (the
+#: command line's default 1 +- 0.1) the field keeps its shape (the viscous length) and its
+#: timing and weighs its magnitude as the program's calibration allows.
+PIV_GAIN = Coordinate("piv_gain", "1", lower=0.0, window=factor(2.0), step=0.01)
+NUISANCES = {c.name: c for c in (OUTLINE_OFFSET, CUT, PIV_GAIN)}
 
 
 def wound_coordinates(outer_radius_um: float, nuisances=()) -> Coordinates:
@@ -201,6 +208,7 @@ class Objective(ProfileModel, Problem):
         #: the outline offset's and the cut time's index in z, or None
         self.offset = names.index(OUTLINE_OFFSET.name) if OUTLINE_OFFSET.name in names else None
         self.cut = names.index(CUT.name) if CUT.name in names else None
+        self.gain = names.index(PIV_GAIN.name) if PIV_GAIN.name in names else None
 
     def _uncertainties(self, radius, profile) -> tuple[np.ndarray, list]:
         """Initial per-point uncertainties and which data sets have theirs estimated: 1 % of
@@ -303,7 +311,8 @@ class Objective(ProfileModel, Problem):
         t, times = self.since_cut(z)
         h, _ = self._h(lam, r_inf, t / T)
         radius = R0 * (1 + sigma * h) + (0.0 if self.offset is None else z[self.offset])
-        return np.concatenate([radius, self._profile(theta, r_inf, times)])
+        gain = 1.0 if self.gain is None else z[self.gain]
+        return np.concatenate([radius, gain * self._profile(theta, r_inf, times)])
 
     def residuals(self, z) -> np.ndarray:
         return self._whitened((self.model(z) - self.data()) / self.sd)
@@ -359,12 +368,22 @@ class Objective(ProfileModel, Problem):
                     ) / (2 * steps[i])
             self.inside_edge = inside  # not the differences' shifted points
             jr = np.vstack([jr, profile])
+        gain = 1.0 if self.gain is None else z[self.gain]
         if n > 4:
             jr = np.hstack([jr, np.zeros((self.size, n - 4))])
             if self.offset is not None:
                 jr[: self.n_radius, self.offset] = 1.0
             if self.cut is not None and self.cut in columns:
                 jr[:, self.cut] = self._cut_column(theta, r_inf, t, times, jr[:, 3], measured)
+            if self.gain is not None and self.groups:
+                if measured is None:
+                    inside = self.inside_edge
+                    measured = self._profile(theta, r_inf, times)
+                    self.inside_edge = inside
+                jr[self.n_radius :, self.gain] = measured  # the model's value
+        if gain != 1.0:  # every other column of the PIV rows scales with the gain
+            others = [i for i in range(n) if i != self.gain]
+            jr[self.n_radius :, others] *= gain
         jr[:, [i for i in range(n) if i not in columns]] = 0.0
         return self._whitened(jr / self.sd[:, None])
 
