@@ -385,6 +385,22 @@ wo_status wo_profile_series(wo_problem problem,
                             double *u,
                             double *v);
 
+// The displacement over a frame pair of the material point at the CURRENT radius
+// `radii[i]` (in R0) at the time `t_a[i]`, followed to `t_b[i]` (times in T, finite,
+// `0 <= t_a[i] <= t_b[i]`), for each `i < count`, into `out[i]` (in R0): with X solving
+// X + u(X, t_a) = r, `out[i] = u(X, t_b) - u(X, t_a)`, what a PIV vector times the frame
+// interval measures at a point (the model's motion is radial). Each point has its own
+// pair: a PIV field of many frame pairs is one call, the solver built once and advanced
+// through the distinct times in order. A radius inside the wound or beyond the outer edge
+// at its `t_a` is `WO_INVALID_ARGUMENT`, naming the tissue's span then; other rules as
+// `wo_series`.
+wo_status wo_pair_displacement(wo_problem problem,
+                               const double *t_a,
+                               const double *t_b,
+                               const double *radii,
+                               size_t count,
+                               double *out);
+
 // At each of `times[i]` (`i < n_times`, ascending, all > 0) of a problem with
 // `edge_stress` 0: the velocity u_t (in R0 / T) of the material point at the CURRENT
 // radius `radii[j]` (`j < n_radii`) and its derivatives with respect to sigma, lambda and

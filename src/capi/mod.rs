@@ -14,6 +14,9 @@
 //! wo_profile_sensitivities(problem, times, n_t, radii, n_r, rates, edge)  u_t at CURRENT radii and
 //!                                                         at the edge, exact derivatives in sigma, lambda, t
 //! wo_profile_rates(problem, times, n_t, radii, n_r, rates, edge)  the same and in R_inf and r
+//! wo_point_rates(problem, times, radii, n, rates)         wo_profile_rates, a time per point
+//! wo_pair_displacement(problem, t_a, t_b, radii, n, d) u(X, t_b) - u(X, t_a) of the point at
+//!                                                         CURRENT radius r_i at t_a: a PIV vector's pair
 //! wo_last_error()                                         the calling thread's last message
 //! ```
 //!
@@ -24,6 +27,7 @@
 //! both run behind the panic boundary of [`crate::boundary`], as the FMI functions do.
 
 pub mod error;
+mod pairs;
 #[cfg(test)]
 mod panic_tests;
 pub mod profile_rates;

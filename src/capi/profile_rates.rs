@@ -5,6 +5,7 @@
 //! [`super::series_c::wo_profile_rates`] (six).
 
 use super::error::Failure;
+use super::pairs::reference_points;
 use super::series::{Problem, check_radii, check_times, start, tissue_points, walk};
 use super::solver_c::zeros;
 use crate::solver::{Settings, VelocityRates, velocity_rates};
@@ -72,6 +73,60 @@ pub fn profile_rates(
     if let Some(o) = edge {
         o.copy_from_slice(&e);
     }
+    left.status()
+}
+
+/// [`profile_rates`] with a time of its own for each point: into
+/// `points[i * width..][..width]` the rates of the material point at the CURRENT radius
+/// `radii[i]` at `times[i]` (> 0, any order; a PIV field's ring points, each at its frame
+/// pair's time). The solver is built once and walked through the distinct times in
+/// ascending order; at each, the points of that time are found and differentiated side by
+/// side. A radius inside the wound or beyond the outer edge at its time is refused, naming
+/// the tissue's span then. The edge's rates come from [`profile_rates`] with no radii.
+pub fn point_rates(
+    width: usize,
+    problem: &Problem,
+    times: &[f64],
+    radii: &[f64],
+    points: &mut [f64],
+) -> Result<(), Failure> {
+    check_radii(radii)?;
+    if problem.edge_stress != 0.0 {
+        return Err(Failure::invalid(format!(
+            "edge_stress = {}: the sensitivities are those of a free edge (0)",
+            problem.edge_stress
+        )));
+    }
+    if let Some(i) = times.iter().position(|t| !(t.is_finite() && *t > 0.0)) {
+        return Err(Failure::invalid(format!(
+            "times[{i}] = {}: the sensitivities need finite times > 0",
+            times[i]
+        )));
+    }
+    let mut order: Vec<usize> = (0..times.len()).collect();
+    order.sort_by(|&a, &b| times[a].total_cmp(&times[b]));
+    let mut distinct: Vec<f64> = order.iter().map(|&i| times[i]).collect();
+    distinct.dedup();
+    let mut solver = start(problem)?;
+    let settings = Settings::for_tolerance(&problem.params, problem.tolerance)?;
+    let r_inf = problem.params.r_inf;
+    let mut p = zeros(radii.len() * width, "rates")?;
+    let mut next = 0;
+    let left = walk(&mut solver, (0.0, r_inf), &distinct, |k, s| {
+        let first = next;
+        while next < order.len() && times[order[next]] == distinct[k] {
+            next += 1;
+        }
+        let here = &order[first..next];
+        let x = reference_points(s, (radii, here), (times, "times"), r_inf)?;
+        let (rates, _) =
+            velocity_rates(&problem.params, &settings, distinct[k], &x, width > RATES)?;
+        for (&i, rate) in here.iter().zip(&rates) {
+            put(&mut p[i * width..][..width], rate);
+        }
+        Ok(())
+    })?;
+    points.copy_from_slice(&p);
     left.status()
 }
 

@@ -4,7 +4,8 @@
 #![allow(clippy::missing_safety_doc)]
 
 use super::error::{Failure, WoStatus, run};
-use super::profile_rates::{ALL_RATES, RATES, profile_rates};
+use super::pairs::pair_displacement;
+use super::profile_rates::{ALL_RATES, RATES, point_rates, profile_rates};
 use super::series::{self, Problem, ProfileOut, SeriesOut};
 use super::solver_c::{input, output};
 use crate::solver::Params;
@@ -116,6 +117,33 @@ pub unsafe extern "C" fn wo_profile_series(
     })
 }
 
+/// The displacement over a frame pair of the material point at the CURRENT radius
+/// `radii[i]` (in R0) at the time `t_a[i]`, followed to `t_b[i]` (times in T, finite,
+/// `0 <= t_a[i] <= t_b[i]`), for each `i < count`, into `out[i]` (in R0): with X solving
+/// X + u(X, t_a) = r, `out[i] = u(X, t_b) - u(X, t_a)`, what a PIV vector times the frame
+/// interval measures at a point (the model's motion is radial). Each point has its own
+/// pair: a PIV field of many frame pairs is one call, the solver built once and advanced
+/// through the distinct times in order. A radius inside the wound or beyond the outer edge
+/// at its `t_a` is `WO_INVALID_ARGUMENT`, naming the tissue's span then; other rules as
+/// `wo_series`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wo_pair_displacement(
+    problem: WoProblem,
+    t_a: *const f64,
+    t_b: *const f64,
+    radii: *const f64,
+    count: usize,
+    out: *mut f64,
+) -> WoStatus {
+    run("wo_pair_displacement", || {
+        let a = input(t_a, count, "t_a")?;
+        let b = input(t_b, count, "t_b")?;
+        let r = input(radii, count, "radii")?;
+        let o = output(out, count, "out")?;
+        pair_displacement(&problem.problem(), &a, &b, &r, o)
+    })
+}
+
 /// At each of `times[i]` (`i < n_times`, ascending, all > 0) of a problem with
 /// `edge_stress` 0: the velocity u_t (in R0 / T) of the material point at the CURRENT
 /// radius `radii[j]` (`j < n_radii`) and its derivatives with respect to sigma, lambda and
@@ -160,6 +188,31 @@ pub unsafe extern "C" fn wo_profile_rates(
 ) -> WoStatus {
     let pointers = Pointers { times, n_times, radii, n_radii, rates, edge };
     rates_shim("wo_profile_rates", ALL_RATES, problem, pointers)
+}
+
+/// `wo_profile_rates` with a time of its own for each point: into `rates[i * 6 + q]` the
+/// velocity u_t of the material point at the CURRENT radius `radii[i]` at `times[i]` (> 0,
+/// in any order) and its derivatives (q as `wo_profile_rates`), for each `i < count`: the
+/// points of a PIV field's frame pairs in one call, the solver walked once through their
+/// distinct times. The edge's rates: `wo_profile_rates` with `n_radii` 0. Other rules as
+/// `wo_profile_rates`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wo_point_rates(
+    problem: WoProblem,
+    times: *const f64,
+    radii: *const f64,
+    count: usize,
+    rates: *mut f64,
+) -> WoStatus {
+    run("wo_point_rates", || {
+        let values = count.checked_mul(ALL_RATES).ok_or_else(|| {
+            Failure::new(WoStatus::WoInvalidArgument, format!("count = {count} overflows"))
+        })?;
+        let t = input(times, count, "times")?;
+        let r = input(radii, count, "radii")?;
+        let out = output(rates, values, "rates")?;
+        point_rates(ALL_RATES, &problem.problem(), &t, &r, out)
+    })
 }
 
 /// The arguments of the two profile-rate shims.
