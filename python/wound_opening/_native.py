@@ -93,11 +93,22 @@ def _load():
             _DOUBLES
         ] * 4
         lib.wo_profile_rates.argtypes = lib.wo_profile_series.argtypes
+        lib.wo_pair_displacement.argtypes = (
+            [_Problem]
+            + [_DOUBLES] * 3
+            + [
+                ctypes.c_size_t,
+                _DOUBLES,
+            ]
+        )
+        lib.wo_point_rates.argtypes = [_Problem, _DOUBLES, _DOUBLES, ctypes.c_size_t, _DOUBLES]
         for f in (
             lib.wo_series,
             lib.wo_profile_series,
             lib.wo_series_sensitivities,
             lib.wo_profile_rates,
+            lib.wo_pair_displacement,
+            lib.wo_point_rates,
         ):
             f.restype = ctypes.c_int
         lib.wo_last_error.restype = ctypes.c_char_p
@@ -188,6 +199,28 @@ def profile_series(
     return u, v
 
 
+def pair_displacement(
+    lam: float,
+    sigma: float,
+    r_inf: float,
+    t_a,
+    t_b,
+    radii,
+    *,
+    tolerance: float = TOLERANCE,
+) -> np.ndarray:
+    """u(X, t_b) - u(X, t_a) of the material points at CURRENT radii `radii` at times `t_a`
+    (X + u(X, t_a) = r), each point with its own pair of times (t_a <= t_b), in one C call
+    (wo_pair_displacement): the displacement a PIV vector measures over its frame pair."""
+    lib = _load()
+    a, b, r = np.broadcast_arrays(_doubles(t_a), _doubles(t_b), _doubles(radii))
+    a, b, r = (np.ascontiguousarray(v) for v in (a, b, r))
+    out = np.empty(r.size)
+    problem = _Problem(lam, sigma, r_inf, tolerance, 0.0)
+    _check(lib, lib.wo_pair_displacement(problem, _ptr(a), _ptr(b), _ptr(r), r.size, _ptr(out)))
+    return out.reshape(r.shape)
+
+
 def profile_rates(lam: float, sigma: float, r_inf: float, times, radii, *, tolerance=TOLERANCE):
     """Velocities u_t at CURRENT radii and at the wound edge, with their exact derivatives in
     sigma, lambda, the dimensionless time, R_inf (the current radius held) and the current
@@ -206,3 +239,16 @@ def profile_rates(lam: float, sigma: float, r_inf: float, times, radii, *, toler
     )
     _check(lib, status)
     return points, edge
+
+
+def point_rates(lam: float, sigma: float, r_inf: float, times, radii, *, tolerance=TOLERANCE):
+    """`profile_rates` with a time of its own for each point (wo_point_rates): the rates of
+    the material point at CURRENT radius radii[i] at times[i] (> 0, any order), an array
+    (len(radii), 6), last axis as profile_rates'."""
+    lib = _load()
+    t, r = np.broadcast_arrays(_doubles(times), _doubles(radii))
+    t, r = np.ascontiguousarray(t), np.ascontiguousarray(r)
+    out = np.empty((r.size, 6))
+    problem = _Problem(lam, sigma, r_inf, tolerance, 0.0)
+    _check(lib, lib.wo_point_rates(problem, _ptr(t), _ptr(r), r.size, _ptr(out)))
+    return out

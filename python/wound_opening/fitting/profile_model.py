@@ -59,7 +59,7 @@ class ProfileModel:
         else the velocity (_velocity); sets `inside_edge`."""
         if self.interval is None or not self.groups:
             return self._velocity(theta, r_inf, times)
-        key = (tuple(theta), r_inf, np.asarray(times, float).tobytes())
+        key = _key(theta, r_inf, times)
         last = getattr(self, "_last_measure", None)
         if last is not None and last[0] == key:  # the Jacobian at the point just evaluated
             self.inside_edge = last[2]
@@ -78,23 +78,19 @@ class ProfileModel:
         h[order] = self._h(lam, r_inf, ends[order])[0]
         edge = 1.0 + sigma * h
         m = times.size
-        out, inside = [], 0
-        for k, (x, tissue) in enumerate(self._rows(R0, edge[:m])):
-            v = piv_measure.window_velocity(
-                abs(lam),
-                sigma,
-                r_inf,
-                ends[k],
-                ends[m + k],
-                x,
-                self.half_window / R0,
-                (edge[k], edge[m + k]),
-                tolerance=self.tolerance,
-            )
-            inside += int(np.sum(~tissue))
-            out.append(R0 / T * v)
-        self.inside_edge = inside
-        return np.concatenate(out)
+        rows = self._rows(R0, edge[:m])
+        v = piv_measure.window_velocities(
+            abs(lam),
+            sigma,
+            r_inf,
+            list(zip(ends[:m], ends[m:])),
+            [x for x, _ in rows],
+            self.half_window / R0,
+            list(zip(edge[:m], edge[m:])),
+            tolerance=self.tolerance,
+        )
+        self.inside_edge = sum(int(np.sum(~tissue)) for _, tissue in rows)
+        return R0 / T * np.concatenate(v)
 
     def _velocity(self, theta, r_inf: float, times) -> np.ndarray:
         """Model velocities [um/s] of the profile rows (group order) at the groups' `times`
@@ -143,39 +139,47 @@ class ProfileModel:
         h, dh, dh_dl, dh_dr = self._h_rates(lam, r_inf, tau)
         edge_r = 1.0 + sigma * h
         step = np.array([STEP, STEP * max(1.0, abs(sigma)), STEP * max(lam, 0.01), STEP])
+        rows = self._rows(R0, edge_r)
+        k = np.repeat(np.arange(tau.size), [x.size for x, _ in rows])  # each row's group
+        x = np.concatenate([x for x, _ in rows])
+        tissue = np.concatenate([m for _, m in rows])
+        order = np.argsort(tau, kind="stable")
+        edge = np.empty((tau.size, 2, 6))
+        edge[order] = _native.profile_rates(
+            abs(lam), sigma, r_inf, tau[order], [], tolerance=self.tolerance
+        )[1]
+        d_in = edge[k, 0]  # (V, dV/dsigma, dV/dlambda, dV/dtau, dV/dR_inf, dV/dx)
+        d_out = edge[k, 1].copy()
+        if np.any(tissue):
+            d_out[tissue] = _native.point_rates(
+                abs(lam), sigma, r_inf, tau[k][tissue], x[tissue], tolerance=self.tolerance
+            )
+        tau_k = tau[k]
 
-        def columns(d, k, x):  # (V, dV/dsigma, dV/dlambda, dV/dtau, dV/dR_inf, dV/dx) -> z
+        def columns(d):  # d V / d z
             return np.column_stack(
                 [
                     d[:, 0] - x * d[:, 5] - r_inf * d[:, 4],
                     d[:, 1],
                     d[:, 2],
-                    -(d[:, 0] + tau[k] * d[:, 3]),
+                    -(d[:, 0] + tau_k * d[:, 3]),
                 ]
             )
 
-        out = []
-        for k, (x, tissue) in enumerate(self._rows(R0, edge_r)):
-            points, edge = _native.profile_rates(
-                abs(lam), sigma, r_inf, [tau[k]], x[tissue], tolerance=self.tolerance
-            )
-            j_in = columns(np.repeat(edge[:, 0], x.size, axis=0), k, x)
-            d = np.repeat(edge[:, 1], x.size, axis=0)
-            d[tissue] = points[0]
-            j_out = columns(d, k, x)
-            j = np.where(tissue[:, None], j_out, j_in)
-            slope = np.column_stack(  # g' per row and coordinate
-                [x - r_inf * sigma * dh_dr[k]]
-                + [np.full(x.size, g) for g in (h[k], sigma * dh_dl[k], -tau[k] * sigma * dh[k])]
-            )
-            j_plus = np.where(slope > 0, j_in, j_out)
-            j_minus = np.where(slope > 0, j_out, j_in)
-            with np.errstate(divide="ignore", invalid="ignore"):  # g' = 0: never near
-                cross = -(edge_r[k] - x)[:, None] / slope
-                blend = (j_minus * (step + cross) + j_plus * (step - cross)) / (2 * step)
-            near = np.abs(cross) < step
-            out.append(np.where(near, blend, j))
-        return R0 / T * np.concatenate(out)
+        j_in, j_out = columns(d_in), columns(d_out)
+        j = np.where(tissue[:, None], j_out, j_in)
+        slope = np.column_stack(  # g' per row and coordinate
+            [x - r_inf * sigma * dh_dr[k], h[k], sigma * dh_dl[k], -tau_k * sigma * dh[k]]
+        )
+        j_plus = np.where(slope > 0, j_in, j_out)
+        j_minus = np.where(slope > 0, j_out, j_in)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # g' = 0: never near
+            cross = -(edge_r[k] - x)[:, None] / slope
+            blend = (j_minus * (step + cross) + j_plus * (step - cross)) / (2 * step)
+        near = np.abs(cross) < step
+        velocity = np.where(tissue, d_out[:, 0], d_in[:, 0])
+        self._rates_velocity = (_key(theta, r_inf, times), R0 / T * velocity)
+        return R0 / T * np.where(near, blend, j)
 
     def _measure_ratio(self, theta, r_inf, times) -> np.ndarray:
         """Per profile row, the PIV measurement over the velocity at the pair's middle and
@@ -187,8 +191,17 @@ class ProfileModel:
         ratio 1. Returns (ratio, measurement)."""
         inside = self.inside_edge
         m = self._profile(theta, r_inf, times)
-        e = self._velocity(theta, r_inf, times)
+        known = getattr(self, "_rates_velocity", None)  # from _profile_columns, at this point
+        if known is not None and known[0] == _key(theta, r_inf, times):
+            e = known[1]
+        else:
+            e = self._velocity(theta, r_inf, times)
         self.inside_edge = inside
         small = np.abs(e) <= 1e-9 * max(float(np.max(np.abs(e), initial=0.0)), 1e-300)
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(small, 1.0, m / e), m
+
+
+def _key(theta, r_inf, times) -> tuple:
+    """What the model's profile rows depend on, as a cache key."""
+    return (tuple(theta), r_inf, np.asarray(times, float).tobytes())
