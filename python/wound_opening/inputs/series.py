@@ -64,6 +64,9 @@ class VelocityProfile:
     #: The points' covariance [(um/s)^2] (inputs/piv_errors.py), when their errors are
     #: correlated; its diagonal is sd_um_s squared.
     covariance: np.ndarray | None = None
+    #: What the reading found doubtful but used (a given wound centre the flow disagrees
+    #: with): the fit's warnings.
+    warnings: tuple = ()
 
     def __post_init__(self):
         _check_columns("profile", self.times_s, self.r_um, self.velocity_um_s)
