@@ -100,6 +100,31 @@ def cut_options(args, lab) -> tuple[list, list]:
     return fix, bound
 
 
+def tissue_options(args, lab, every) -> tuple[list, list, list]:
+    """--fix, --bound and --prior of a fit of several wounds with the nuisances of the lab's
+    files (tissue.TissueNuisances `every`: the wounds that can have each) added as for one
+    wound: each wound's cut_s[NAME] (cut_options), one outline offset for the wounds' area
+    tables (one segmentation) and each field's piv_gain[NAME] (outline_prior). The user's
+    own option of a name wins."""
+    fix, bound = list(args.fix), list(args.bound)
+    cut = lab.cut if lab else None
+    for name in every.cut if cut is not None else ():
+        if _names_cut(args, f"cut_s[{name}]"):
+            continue
+        if cut.fixed_s is not None:
+            fix.append(f"cut_s[{name}]={cut.fixed_s!r}")
+        elif cut.bound_s is not None:
+            bound.append(f"cut_s[{name}]=0:{cut.bound_s!r}")
+    prior = [p for p in outline_prior(args) if not p.startswith("piv_gain=")]
+    if getattr(args, "piv", None):
+        prior += [
+            f"piv_gain[{name}]=1:{PIV_GAIN_SD!r}"
+            for name in every.gain
+            if not _names_cut(args, f"piv_gain[{name}]")
+        ]
+    return fix, bound, prior
+
+
 def _names_cut(args, name: str = "cut_s") -> bool:
     options = [*args.fix, *args.bound, *args.prior]
     return any(o.split("=")[0].strip() == name for o in options)
@@ -202,14 +227,16 @@ def _fit_wounds(args, units, outer, profiles, lab=None) -> int:
         )
     series, profiles = prepare_wounds(args, series, profiles)
     from ..fitting.parameters import from_options
+    from ..fitting.tissue import TissueNuisances
     from ..fitting.wounds import tissue_coordinates
 
     wounds = [
         Wound(s, outer[k % len(outer)], profiles[k] if profiles else None, name)
         for k, (name, s) in enumerate(series.items())
     ]
-    coordinates = tissue_coordinates(names, [w.outer_radius_um for w in wounds])
-    params = from_options(coordinates, args.fix, args.bound, args.prior)
+    every = TissueNuisances.every(names, [w.profile is not None for w in wounds])
+    coordinates = tissue_coordinates(names, [w.outer_radius_um for w in wounds], every)
+    params = from_options(coordinates, *tissue_options(args, lab, every))
     result = fit_wounds(wounds, loss=args.loss, params=params)
     result.settings = settings_of(args, names, [*series.values(), *(profiles or [])], lab)
     print(result.summary())

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 class Cut:
     """How the cut is placed on a movie's clock. The times read are counted from frame
     `origin` (n at (n - origin) x the frame interval); after it the cut is `fixed_s` (given)
-    or fitted in [0, `bound_s`] (the nuisance cut_s of a one-wound fit), or, both None, at the
+    or fitted in [0, `bound_s`] (the nuisance cut_s, each wound's of several), or, both None, at the
     origin itself; `text` says which, as the summary, the JSON and the report print it."""
 
     origin: float
@@ -150,8 +150,8 @@ def cut_of(args, several: bool) -> Cut | None:
     """The cut on the movie's clock from --cut-after-frame N (or, for a Fiji table,
     --cut-time on ImageJ's clock, frame 1 at 0 s: N = 1 + cut time / frame interval). A Fiji
     table of one wound: times from frame floor(N), the cut fitted in [0, frame interval] for
-    an integer N, else fixed at the fraction of N. Several wounds (their fit has no cut_s)
-    and a radius file with its own times: times from the cut at frame N. None without the
+    an integer N, else fixed at the fraction of N; with several wounds each wound's
+    (cut_s[NAME]). A radius file with its own times: times from the cut at frame N. None without the
     options (the readers refuse)."""
     from ..inputs.columns import InputError
 
@@ -175,17 +175,18 @@ def cut_of(args, several: bool) -> Cut | None:
         )
     n = math.floor(n_cut)
     after = (n_cut - n) * dt
-    if fiji and not several:
+    if fiji:
+        each = " for each wound (cut_s[NAME])" if several else ""
         if n_cut == n:
             return Cut(
                 n,
                 None,
                 dt,
-                f"after frame {n} ({given}): fitted between frames {n} and {n + 1} (cut_s in "
-                f"[0, {dt:g}] s after frame {n})",
+                f"after frame {n} ({given}): fitted between frames {n} and {n + 1}{each} (cut_s "
+                f"in [0, {dt:g}] s after frame {n})",
             )
-        return Cut(n, after, None, f"{given}: {after:.6g} s after frame {n} (cut_s fixed)")
-    why = "several wounds: their fit takes the cut as given" if several else "the PIV pairs"
+        return Cut(n, after, None, f"{given}: {after:.6g} s after frame {n} (cut_s fixed{each})")
+    why = "the PIV pairs"
     if n_cut == n:
         return Cut(n_cut, None, None, f"at frame {n} ({given}; {why}, not fitted)")
     return Cut(n_cut, None, None, f"{given}: {after:.6g} s after frame {n} ({why})")

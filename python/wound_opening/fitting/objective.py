@@ -118,7 +118,7 @@ CUT = Coordinate("cut_s", "s", lower=0.0, closed=True, window=between(0.0, math.
 #: model's value and every other PIV column is multiplied by the gain. With a prior (the
 #: command line's default 1 +- 0.1) the field keeps its shape (the viscous length) and its
 #: timing and weighs its magnitude as the program's calibration allows.
-PIV_GAIN = Coordinate("piv_gain", "1", lower=0.0, window=factor(2.0), step=0.01)
+PIV_GAIN = Coordinate("piv_gain", "1", lower=0.0, window=factor(2.0), step=0.01, start=1.0)
 NUISANCES = {c.name: c for c in (OUTLINE_OFFSET, CUT, PIV_GAIN)}
 
 

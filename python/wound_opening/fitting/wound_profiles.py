@@ -80,7 +80,7 @@ def shared_profiles(optimum: Optimum) -> dict:
     zeta/G fixed is the other one's profile carried over."""
     tissue = optimum.problem
     out = {}
-    for i in range(len(tissue.coordinates)):
+    for i in range(3 + wound_count(tissue)):  # the nuisances after them: not profiled
         out[SHARED[i] if i < 3 else ("R0_um", i - 3)] = optimum.profile(Target(i))
     out[ETA] = _eta_profile(optimum, out)
     return out
@@ -99,11 +99,16 @@ def _eta_profile(optimum: Optimum, walked: dict) -> Profile:
         return _scaled(walked[SHARED[2]], lambda v: l_hat**2 / 4 * v)
     if 2 in fixed:  # eta/G = (zeta/G / 4) l^2, l >= 0
         return _scaled(walked[SHARED[0]], lambda v: zg * v * v / 4)
-    l_max = LAMBDA_MAX * math.exp(max(y_hat[3:]))
+    l_max = LAMBDA_MAX * math.exp(max(y_hat[3 : 3 + wound_count(tissue)]))
     if any(c[0] <= 1e-8 * l_max for c, _ in optimum.centres(optimum.threshold)):
         return Profile(0.0, None, True)  # eta/G = 0 is allowed: not identified
     rep = EtaCoordinate(tissue)
     return optimum.profile(Target(2, rep))
+
+
+def wound_count(tissue) -> int:
+    """The wounds of a tissue problem: its R0_um[NAME] coordinates (after the shared three)."""
+    return sum(1 for c in tissue.coordinates if c.name.startswith("R0_um["))
 
 
 def _scaled(p: Profile, f) -> Profile:

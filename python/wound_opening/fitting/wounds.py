@@ -46,14 +46,16 @@ from ..results.result import ParameterReport
 from ..results.wounds import TissueFitResult
 from .gof import as_dicts, series_tests
 from .local import cost
-from .objective import LAMBDA_MAX, Objective, from_z, r0_coordinate
-from .parameters import G_NAME, Constrained, Coordinate, Coordinates, factor, span, specification
+from .objective import Objective
+from .parameters import G_NAME, Constrained, names, specification
 from .plausibility import time_scale_warnings, tissue_intervals
-from .problem import Problem
 from .recording import check_recording
 from .single import fit
 from .stages import check_loss, outliers, settle
-from .wound_profiles import LN4, EtaCoordinate, shared_profiles
+from .tissue import SINGLE_ONLY, Tissue, TissueNuisances, tissue_coordinates
+from .wound_profiles import EtaCoordinate, shared_profiles
+
+__all__ = ["SINGLE_ONLY", "Wound", "fit_wounds", "tissue_coordinates"]
 
 #: Points each wound needs: its start is a fit of its own four parameters (fitting.fit).
 MIN_POINTS = 5
@@ -68,119 +70,6 @@ class Wound:
     outer_radius_um: float
     profile: VelocityProfile | None = None
     name: str | None = None
-
-
-#: One wound's names, refused with a hint in a fit of several.
-SINGLE_ONLY = ("sigma", "lambda", "T_s", "R0_um")
-
-
-def tissue_coordinates(names, outers) -> Coordinates:
-    """The coordinates y of wounds `names` in tissues of outer radii `outers` (module
-    docstring), by name: the shared l, tension/G and zeta/G, then R0_um[NAME] of each wound
-    (also R0_um[K], K from 1). Profiles search l from 0 to LAMBDA_MAX times the largest R0,
-    sigma within 10 |sigma| + 1, zeta/G a factor 100 and each R0 a factor 3 either way."""
-
-    def l_window(centre, y_hat, i):
-        return 0.0, LAMBDA_MAX * math.exp(max(y_hat[3:]))
-
-    shared = (
-        Coordinate(
-            SHARED[0],
-            "um",
-            lower=0.0,
-            closed=True,
-            window=l_window,
-            step=lambda y_hat: 0.1 * math.exp(float(np.median(y_hat[3:]))),
-        ),
-        Coordinate(
-            SHARED[1],
-            "1 (tension / G)",
-            window=span(),
-            step=lambda y_hat: 0.05 * abs(y_hat[1]) + 0.01,
-        ),
-        Coordinate(SHARED[2], "s/um^2", log=True, lower=0.0, window=factor(1e2)),
-    )
-    radii = tuple(r0_coordinate(f"R0_um[{n}]", outer) for n, outer in zip(names, outers))
-
-    def unknown(name: str) -> str:
-        if name == ETA:
-            return (
-                f"{ETA} is not a coordinate of the fit of several wounds (eta/G = l^2 zeta/G / 4): "
-                f"constrain {SHARED[0]} or {SHARED[2]} instead"
-            )
-        hint = (
-            f" ({name} is one wound's parameter: with several wounds use "
-            f"{', '.join(SHARED)} or R0_um[NAME])"
-            if name in SINGLE_ONLY
-            else ""
-        )
-        return (
-            f"parameter {name!r} is unknown for several wounds{hint}: expected one of "
-            f"{', '.join(SHARED + (G_NAME,))}, R0_um[NAME] or R0_um[K] with NAME one of "
-            f"{', '.join(names)} (K from 1 to {len(names)})"
-        )
-
-    aliases = {f"R0_um[{k + 1}]": 3 + k for k in range(len(names))}
-    return Coordinates(shared + radii, aliases, unknown)
-
-
-class Tissue(Problem):
-    """The wounds' Objectives as one objective in y (see the module docstring)."""
-
-    def __init__(self, parts: list[Objective], names):
-        self.parts = parts
-        self.n = 3 + len(parts)
-        self.coordinates = tissue_coordinates(names, [p.outer for p in parts])
-
-    @property
-    def size(self) -> int:
-        return sum(p.size for p in self.parts)
-
-    @property
-    def evaluations(self) -> int:
-        return sum(p.evaluations for p in self.parts)
-
-    def z(self, y, k: int) -> np.ndarray:
-        """Wound k's coordinates z_k = (ln R0_k, sigma, lambda_k, ln T_k)."""
-        ln_r0 = y[3 + k]
-        return np.array([ln_r0, y[1], y[0] / math.exp(ln_r0), y[2] + 2 * ln_r0 - LN4])
-
-    def theta(self, y, k: int) -> tuple[float, float, float, float]:
-        return from_z(self.z(y, k))
-
-    def residuals(self, y) -> np.ndarray:
-        return np.concatenate([p.residuals(self.z(y, k)) for k, p in enumerate(self.parts)])
-
-    def jacobian(self, y, columns=None) -> np.ndarray:
-        """dr/dy by the chain rule, every column (`columns` is not used)."""
-        blocks = []
-        for k, p in enumerate(self.parts):
-            z = self.z(y, k)
-            a = np.zeros((4, self.n))  # d z_k / d y
-            a[0, 3 + k] = 1.0
-            a[1, 1] = 1.0
-            a[2, 0], a[2, 3 + k] = math.exp(-z[0]), -z[2]
-            a[3, 2], a[3, 3 + k] = 1.0, 2.0
-            blocks.append(p.jacobian(z) @ a)
-        return np.vstack(blocks)
-
-    def vanishing(self, y) -> list:
-        """l on its bound 0 (relative to the largest R0): its column is 0 (R depends on
-        lambda^2)."""
-        return [0] if y[0] <= 1e-8 * math.exp(max(y[3:])) else []
-
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """Each wound's bounds (Objective.bounds) on its R0 and T, carried to y: l from 0 to a
-        viscous length of LAMBDA_MAX outer radii, zeta/G over the union of the wounds' T ranges."""
-        each = [p.bounds() for p in self.parts]
-        z_lo = min(lo[3] + LN4 - 2 * hi[0] for lo, hi in each)
-        z_hi = max(hi[3] + LN4 - 2 * lo[0] for lo, hi in each)
-        lower = np.array([0.0, -np.inf, z_lo] + [lo[0] for lo, _ in each])
-        upper = np.array(
-            [LAMBDA_MAX * max(p.outer for p in self.parts), np.inf, z_hi]
-            + [hi[0] for _, hi in each]
-        )
-        return lower, upper
 
 
 def _wounds(experiments) -> list[Wound]:
@@ -228,7 +117,7 @@ def _combine(tissue: Tissue, singles, cost, count: int = 3) -> list[np.ndarray]:
         t[0] if t is not None else float(np.min(p.radius)) / (1 + sigma / 6)
         for t, p in zip(singles, tissue.inner.parts)
     ]
-    ln_r0 = [math.log(r) for r in r0]
+    ln_r0 = [math.log(r) for r in r0] + list(tissue.inner.nuisance_start())
     zg = [4 * t[3] / t[0] ** 2 for t in ok]
     ls = [t[2] * t[0] for t in ok]
     scales = [(t[0], t[3] * (1 + t[2] ** 2)) for t in ok]
@@ -278,8 +167,11 @@ def fit_wounds(
     Returns a TissueFitResult."""
     check_loss(loss)
     wounds = _wounds(experiments)
-    parts = [Objective(w.radius, w.profile, w.outer_radius_um) for w in wounds]
-    tissue = Tissue(parts, [w.name for w in wounds])
+    nuisances = _nuisances(wounds, params)
+    parts = [
+        Objective(w.radius, w.profile, w.outer_radius_um, nuisances.of(w.name)) for w in wounds
+    ]
+    tissue = Tissue(parts, [w.name for w in wounds], nuisances)
     spec = specification(params, tissue.coordinates)
     obj = Constrained(tissue, spec)
     cuts = np.cumsum([0] + [p.size for p in parts])
@@ -336,6 +228,12 @@ def fit_wounds(
         )
         for k in range(len(parts))
     ]
+    nuisance_reports = {
+        c.name: ParameterReport(c.name, float(spec.fixed.get(i, y[i])), float(se[i]), None,
+                                spec.describe(i))
+        for i, c in enumerate(tissue.coordinates)
+        if i >= 3 + len(parts)
+    }  # fmt: skip
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(np.sqrt(np.diag(cov)), np.sqrt(np.diag(cov)))
     start = 0
@@ -376,6 +274,7 @@ def fit_wounds(
         shared=shared,
         r0=r0,
         wounds=wound_rows,
+        nuisances=nuisance_reports,
         correlation=corr,
         chi2=judged.chi2,
         dof=dof,
@@ -390,6 +289,24 @@ def fit_wounds(
         plausibility=warnings,
         residual_runs=as_dicts(judged.runs),
         G=spec.G,
+    )
+
+
+def _nuisances(wounds, params) -> TissueNuisances:
+    """The nuisances `params` names (tissue.py): a name of every possible nuisance's
+    coordinate (an alias too) that params gives joins the fit."""
+    every = TissueNuisances.every([w.name for w in wounds], [w.profile is not None for w in wounds])
+    full = tissue_coordinates([w.name for w in wounds], [w.outer_radius_um for w in wounds], every)
+    named = set()
+    for name in names(params) - {None, G_NAME}:
+        try:
+            named.add(full[full.index(name)].name)
+        except ValueError:
+            pass  # refused by the specification, naming what is accepted
+    return TissueNuisances(
+        "outline_offset_um" in named,
+        tuple(w for w in every.cut if f"cut_s[{w}]" in named),
+        tuple(w for w in every.gain if f"piv_gain[{w}]" in named),
     )
 
 

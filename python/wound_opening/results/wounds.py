@@ -39,7 +39,10 @@ class TissueFitResult(Outcome):
     r0: list  # ParameterReport of each wound's R0_um
     # per wound: name, theta (R0, sigma, lambda, T), outer radius, points, chi2, noise, ...
     wounds: list
-    correlation: np.ndarray  # in y = (l, sigma, ln zeta/G, ln R0_1 ...)
+    correlation: np.ndarray  # in y = (l, sigma, ln zeta/G, ln R0_1 ..., the nuisances)
+    #: name -> ParameterReport of each nuisance fitted (fitting/tissue.py: the outline's
+    #: offset, each wound's cut and PIV gain), with its standard error (no profile)
+    nuisances: dict = field(default_factory=dict)
     _material: tuple = field(default=(None, None), repr=False, compare=False)
 
     @property
@@ -206,6 +209,7 @@ class TissueFitResult(Outcome):
             if self.advice(name):
                 shared[name]["advice"] = self.advice(name)
         order = list(SHARED[:2]) + ["ln_" + SHARED[2]] + [f"ln_R0_um[{n}]" for n in self.names]
+        order += list(self.nuisances)
         st = physical_status(self)
         return status | {
             "status": {"level": st.level, "text": st.text},
@@ -213,6 +217,7 @@ class TissueFitResult(Outcome):
             "settings": self.settings,
             "shared": shared,
             "wounds": wounds,
+            "nuisances": {name: self._report(rep) for name, rep in self.nuisances.items()},
             "delta_chi2_95": self.threshold,
             "correlation": {"order": order, "matrix": np.nan_to_num(self.correlation).tolist()},
         }
@@ -248,6 +253,15 @@ class TissueFitResult(Outcome):
                 f"{rep.estimate:>9.5g} "
                 f"{rep.stderr:>9.3g}   {self._interval(rep, 8)}        {lam:>8.4g} {T:>9.4g} "
                 f"{w['chi2']:>8.4g}"
+            )
+        if self.nuisances:
+            lines.append("nuisances (estimate +- standard error):")
+        for name, rep in self.nuisances.items():
+            said = "fixed" if rep.constraint.get("fixed") else f"+- {rep.stderr:.3g}"
+            prior = rep.constraint.get("prior")
+            lines.append(
+                f"  {name} = {rep.estimate:.5g} {said}"
+                + (f"  (prior {prior[0]:g} +- {prior[1]:g})" if prior else "")
             )
         fit = f"chi^2 = {self.chi2:.4g} for {self.dof} dof" + (
             f", p = {self.p_value:.3g}"
