@@ -435,6 +435,18 @@ wo_status wo_profile_rates(wo_problem problem,
                            double *rates,
                            double *edge);
 
+// `wo_profile_rates` with a time of its own for each point: into `rates[i * 6 + q]` the
+// velocity u_t of the material point at the CURRENT radius `radii[i]` at `times[i]` (> 0,
+// in any order) and its derivatives (q as `wo_profile_rates`), for each `i < count`: the
+// points of a PIV field's frame pairs in one call, the solver walked once through their
+// distinct times. The edge's rates: `wo_profile_rates` with `n_radii` 0. Other rules as
+// `wo_profile_rates`.
+wo_status wo_point_rates(wo_problem problem,
+                         const double *times,
+                         const double *radii,
+                         size_t count,
+                         double *rates);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

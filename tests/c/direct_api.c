@@ -12,6 +12,8 @@
  *      differences of wo_series (step 1e-4; their own checks are in the Rust and Python tests);
  *      wo_profile_rates: the velocity of wo_profile_series, its derivatives in R_inf and in
  *      the current radius against central differences of wo_profile_series;
+ *      wo_pair_displacement against the step API's displacements at the pair's two times,
+ *      wo_point_rates against wo_profile_rates at each point's time;
  *   6. huge counts (2^57, SIZE_MAX): WO_INVALID_ARGUMENT with the reason, the process alive.
  * Run under valgrind by scripts/c_tests.sh: no error, no leak.
  */
@@ -295,6 +297,26 @@ static void series(void) {
     REFUSED(wo_profile_rates((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &one, 1, &rm, 1, NULL, edge), WO_NULL_POINTER,
             "rates (with count = 6) is NULL");
 
+    /* wo_pair_displacement: the material points X at t = 1 (current radii r) followed to
+     * t = 1.5, against the step API's u(X, 1.5) - u(X, 1); wo_point_rates: each point at its
+     * own time as wo_profile_rates at that time alone. */
+    double ux2[3], t_a[3] = {1.0, 1.0, 1.0}, t_b[3] = {1.5, 1.5, 1.5}, d[3];
+    OK(wo_solver_new(1.0, 1.0, 10.0, 1e-10, &s));
+    OK(wo_solver_advance(s, 1.5, 0.0));
+    OK(wo_solver_displacement(s, x, ux2, 3));
+    OK(wo_solver_free(s));
+    OK(wo_pair_displacement((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, t_a, t_b, r, 3, d));
+    for (int j = 0; j < 3; j++)
+        CHECK(fabs(d[j] - (ux2[j] - ux[j])) < 1e-12, "pair displacement at %g: %g vs %g", r[j], d[j], ux2[j] - ux[j]);
+    double two_times[2] = {1.5, 1.0}, two_r[2] = {3.0, rm}, pr[12], alone[6];
+    OK(wo_point_rates((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, two_times, two_r, 2, pr));
+    for (int q = 0; q < 6; q++) CHECK(pr[6 + q] == rates[q], "wo_point_rates at t = 1, q = %d: %g vs %g", q, pr[6 + q], rates[q]);
+    OK(wo_profile_rates((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, &two_times[0], 1, &two_r[0], 1, alone, NULL));
+    for (int q = 0; q < 6; q++) CHECK(fabs(pr[q] - alone[q]) <= 1e-13 * fabs(alone[q]) + 1e-15, "wo_point_rates at t = 1.5, q = %d", q);
+    REFUSED(wo_pair_displacement((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, t_b, t_a, r, 3, d), WO_INVALID_ARGUMENT,
+            "t_b[0] = 1 is invalid: expected a finite time >= t_a[0] = 1.5");
+    REFUSED(wo_point_rates((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, two_times, two_r, 2, NULL), WO_NULL_POINTER, "rates");
+
     double bad_times[2] = {1.0, 0.5}, inside = 1.01;
     REFUSED(wo_series((wo_problem){1.0, 1.0, 10.0, 1e-10, 0.0}, bad_times, 2, radius, NULL), WO_INVALID_ARGUMENT,
             "times[1] = 0.5 is before times[0] = 1");
@@ -328,6 +350,10 @@ static void huge_counts(void) {
     REFUSED(wo_profile_series(problem, times, 1, r, big, out, NULL), WO_INVALID_ARGUMENT, "radii: count = 144115188075855872 is invalid");
     REFUSED(wo_profile_series(problem, times, 1, r, SIZE_MAX / 2, out, NULL), WO_INVALID_ARGUMENT, "exceed the largest array");
     REFUSED(wo_profile_rates(problem, times, 1, r, big, out, NULL), WO_INVALID_ARGUMENT, "cannot be allocated");
+    REFUSED(wo_pair_displacement(problem, times, times, r, big, out), WO_INVALID_ARGUMENT, "t_a: count = 144115188075855872 is invalid");
+    REFUSED(wo_pair_displacement(problem, times, times, r, SIZE_MAX, out), WO_INVALID_ARGUMENT, "exceed the largest array");
+    REFUSED(wo_point_rates(problem, times, r, SIZE_MAX / 4, out), WO_INVALID_ARGUMENT, "overflows");
+    REFUSED(wo_point_rates(problem, times, r, big / 8, out), WO_INVALID_ARGUMENT, "cannot be allocated");
     wo_solver *s = NULL;
     OK(wo_solver_new(1.0, 1.0, 10.0, 1e-10, &s));
     REFUSED(wo_solver_displacement(s, r, out, SIZE_MAX), WO_INVALID_ARGUMENT, "exceed the largest array the address space can hold");

@@ -94,9 +94,10 @@ def _args(**kw):
 
 
 def test_how_the_cut_is_taken_for_each_input_kind():
-    """A fraction of a frame fixes the cut after frame floor(N); several wounds and a radius
-    file with its own times (PIV pairs alone on frames) count from the cut at frame N, and say
-    so; both --cut-time and --cut-after-frame for a table, or a cut before frame 0, refused."""
+    """A fraction of a frame fixes the cut after frame floor(N); several wounds' tables fit
+    each wound's cut as one wound's; a radius file with its own times (PIV pairs alone on
+    frames) counts from the cut at frame N, and says so; both --cut-time and
+    --cut-after-frame for a table, or a cut before frame 0, refused."""
     from wound_opening.inputs.columns import InputError
 
     one = cut_of(_args(cut_after_frame=3.3), several=False)
@@ -104,9 +105,10 @@ def test_how_the_cut_is_taken_for_each_input_kind():
     fitted = cut_of(_args(cut_after_frame=3.0), several=False)
     assert (fitted.origin, fitted.fixed_s, fitted.bound_s) == (3, None, DT)
     several = cut_of(_args(cut_after_frame=3.0), several=True)
-    assert (several.origin, several.fixed_s, several.bound_s) == (3.0, None, None)
-    assert "several wounds" in several.text and "not fitted" in several.text
-    assert cut_of(_args(cut_after_frame=3.3), several=True).origin == 3.3
+    assert (several.origin, several.fixed_s, several.bound_s) == (3, None, DT)
+    assert "for each wound (cut_s[NAME])" in several.text
+    given = cut_of(_args(cut_after_frame=3.3), several=True)
+    assert given.origin == 3 and given.fixed_s == pytest.approx(CUT)
     piv_only = cut_of(_args(area_col=None, cut_after_frame=3.0), several=False)
     assert piv_only.bound_s is None and "PIV" in piv_only.text
     with pytest.raises(InputError, match="not both"):

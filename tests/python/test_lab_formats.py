@@ -205,10 +205,10 @@ def test_the_rows_of_analyze_summarize_are_skipped_and_counted(tmp_path):
 
 
 @pytest.mark.parametrize("option", ["--centre-px", "--centre-um"])
-def test_a_given_centre_the_flow_does_not_point_away_from_is_refused(option):
+def test_a_given_centre_outside_the_field_is_refused(option):
     """The README's noisy PIVlab folder with the true centre in px: used as given with
-    --centre-px; typed into --centre-um (pixels read as um, 200 um off): refused, naming the
-    axes, where it used to be projected on as given."""
+    --centre-px; typed into --centre-um (pixels read as um, 200 um off, outside the field):
+    refused, naming the axes, where it used to be projected on as given."""
     from test_lab_readers import readme_lab_command
 
     from wound_opening.cli import parser
@@ -216,10 +216,27 @@ def test_a_given_centre_the_flow_does_not_point_away_from_is_refused(option):
 
     argv = readme_lab_command().split()[1:] + [option, "{:g},{:g}".format(*lab.CENTRE_PX)]
     if option == "--centre-px":
-        assert read_lab_inputs(parser().parse_args(argv)).profiles
+        assert not read_lab_inputs(parser().parse_args(argv)).profiles[0].warnings
         return
-    with pytest.raises(InputError, match=r"2\d\d um from the centre .*other axes"):
+    with pytest.raises(InputError, match=r"outside the PIV field.*other\s+axes"):
         read_lab_inputs(parser().parse_args(argv))
+
+
+def test_a_given_centre_the_flow_disagrees_with_is_used_with_a_warning():
+    """A centre 7 um off the true one (axes shifted, or a wrong pixel size), inside the
+    field: used as given, the fit warned with the distance, never refused."""
+    from test_lab_readers import readme_lab_command
+
+    from wound_opening.cli import parser
+    from wound_opening.cli.lab import read_lab_inputs
+
+    x, y = lab.CENTRE_PX
+    off = 7.0 / lab.PIXEL_UM
+    argv = readme_lab_command().split()[1:] + ["--centre-px", f"{x + off:g},{y:g}"]
+    profile = read_lab_inputs(parser().parse_args(argv)).profiles[0]
+    (warning,) = profile.warnings
+    assert re.search(r"is [56]\.\d+ um from the centre the velocities point away from", warning)
+    assert "used as given" in warning
 
 
 def test_openpiv_lengths_in_um_read_as_px_are_refused(tmp_path):

@@ -274,6 +274,7 @@ def field_profile(
     if centre is None:
         centre = flow
     else:
+        check_in_field(centre, field, flow)
         warnings = given_centre_warnings(centre, flow)
     r, vr = radial(centre, field.x_um, field.y_um, field.u_um_s, field.v_um_s)
     files = field.files + (RawFile("(centre)", "", "wound centre", {}, (centre.describe(),)),)
@@ -340,6 +341,21 @@ def flow_centre(field, radius: RadiusSeries, outer_um: float, measurement: Measu
 #: CENTRE_FLOOR_UM) is not where the velocities point from: a warning, the centre used as
 #: given.
 CENTRE_SIGMAS, CENTRE_FLOOR_UM = 4.0, 0.5
+
+
+def check_in_field(given, field, flow) -> None:
+    """Refuse a given centre outside the field's extent: not a disagreement with the flow but
+    other lengths or axes than the files' (pixels typed into --centre-um)."""
+    x, y = np.asarray(field.x_um), np.asarray(field.y_um)
+    if x.min() <= given.x_um <= x.max() and y.min() <= given.y_um <= y.max():
+        return
+    raise InputError(
+        f"the wound centre given, ({given.x_um:.4g}, {given.y_um:.4g}) um, lies outside the PIV "
+        f"field (x {x.min():.4g} to {x.max():.4g} um, y {y.min():.4g} to {y.max():.4g} um; the "
+        f"velocities point away from ({flow.x_um:.4g}, {flow.y_um:.4g}) um): is it in other "
+        "axes or units than the PIV files' (--centre-px is pixels in the files' axes, times "
+        "--pixel-size-um; --centre-um is um in the files' axes)?"
+    )
 
 
 def given_centre_warnings(given, flow) -> tuple[str, ...]:
