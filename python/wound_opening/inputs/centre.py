@@ -19,9 +19,12 @@ together). A PIV error is mostly the texture in its window, so it persists from 
 pair at one grid point and is shared by overlapping windows: frame pairs are not
 independent (a jackknife over them stated 0.05-0.3 um where the estimate on a rendered movie
 measured by OpenPIV was 1.8 um off), tiles several windows wide are. Each tile's
-leave-out estimate is one Gauss-Newton step from the full one (c_-g = c + (J^T J -
-J_g^T J_g)^-1 J_g^T r_g, since J^T r = 0 at the optimum; J by central differences of the
-residuals): the linearised jackknife, four evaluations of the residuals in all.
+leave-out estimate is the optimum moved by H^-1 g_g, g_g the gradient of the tile's part
+of the cost and H the whole cost's Hessian, both by central differences (nine evaluations
+of the residuals serve every tile). The Gauss-Newton J^T J in H's place understated the
+spread 6-fold (the far field's noise vectors turn with the centre: the cost's curvature is
+not J^T J's); refitting every tile (some 40 evaluations each, 0.5-3 s on a field) was
+better calibrated (docs/fitting.md) but too slow.
 docs/fitting.md gives its calibration on noisy fields of the exact solution."""
 
 from __future__ import annotations
@@ -82,14 +85,23 @@ def _residuals(c, x, y, u, v, groups):
     return np.concatenate(out)
 
 
-def _fit(x, y, u, v, groups, start, scale):
+def _fit(x, y, u, v, groups, start, scale, robust: bool = False):
+    """The least-squares centre from `start`; `robust`: with the soft-L1 loss at the scale of
+    the residuals' median absolute value there (a first look, which vectors reading the
+    wound's dark, moving edge would otherwise pull)."""
     from scipy.optimize import least_squares
 
+    args = (x, y, u, v, groups)
+    f_scale = 1.0
+    if robust:
+        f_scale = max(1.4826 * float(np.median(np.abs(_residuals(start, *args)))), 1e-300)
     return least_squares(
         _residuals,
         start,
-        args=(x, y, u, v, groups),
+        args=args,
         x_scale=scale,
+        loss="soft_l1" if robust else "linear",
+        f_scale=f_scale,
         ftol=1e-14,
         xtol=1e-10,
         gtol=1e-14,
@@ -123,40 +135,48 @@ def _curvature_cov(c, args, h):
 TILES = 6
 
 
-def _tile_jackknife(fit, args, extent: float):
-    """The linearised jackknife variance of the centre over tiles (module docstring), or
-    None with fewer than 3 tiles holding vectors."""
+def _tile_jackknife(fit, args, extent: float, h: float):
+    """The jackknife variance of the centre over tiles (module docstring): leaving tile g out
+    moves the optimum by H^-1 g_g to first order, g_g the gradient of the tile's own part of
+    the cost and H the Hessian of the whole cost (both by central differences of step h: the
+    nine evaluations of the residuals serve every tile, the cost summed per tile). None
+    with fewer than 3 tiles holding vectors."""
     x, y = args[0], args[1]
     tile_x = np.minimum(((x - x.min()) / extent * TILES).astype(int), TILES - 1)
     tile_y = np.minimum(((y - y.min()) / extent * TILES).astype(int), TILES - 1)
-    tile = np.tile(tile_x * TILES + tile_y, 2)  # both residuals of a vector: its tile
-    used = np.unique(tile)
-    if used.size < 3:
-        return None
-    h = extent * 1e-6
-    jac = np.column_stack(
-        [
-            (_residuals(fit.x + e, *args) - _residuals(fit.x - e, *args)) / (2 * h)
-            for e in np.eye(2) * h
-        ]
-    )
-    full = jac.T @ jac
-    steps = []
-    for g in used:
-        rows = tile == g
-        jg = jac[rows]
-        try:
-            steps.append(np.linalg.solve(full - jg.T @ jg, jg.T @ fit.fun[rows]))
-        except np.linalg.LinAlgError:
-            return np.full(2, np.inf)
-    steps = np.array(steps)
+    used, tile = np.unique(np.tile(tile_x * TILES + tile_y, 2), return_inverse=True)
     m = used.size
+    if m < 3:
+        return None
+
+    def per_tile(c):
+        r = _residuals(np.asarray(c), *args)
+        return np.bincount(tile, r * r, minlength=m)
+
+    e = np.eye(2) * h
+    fp, fm = [per_tile(fit.x + d) for d in e], [per_tile(fit.x - d) for d in e]
+    grad = np.stack([(fp[i] - fm[i]) / (2 * h) for i in range(2)], axis=1)
+    c0 = per_tile(fit.x).sum()
+    hess = np.empty((2, 2))
+    for i in range(2):
+        hess[i, i] = (fp[i].sum() - 2 * c0 + fm[i].sum()) / h**2
+    hess[0, 1] = hess[1, 0] = (
+        per_tile(fit.x + e[0] + e[1]).sum()
+        - per_tile(fit.x + e[0] - e[1]).sum()
+        - per_tile(fit.x - e[0] + e[1]).sum()
+        + per_tile(fit.x - e[0] - e[1]).sum()
+    ) / (4 * h * h)
+    try:
+        steps = np.linalg.solve(hess, grad.T).T
+    except np.linalg.LinAlgError:
+        return np.full(2, np.inf)
     return (m - 1) / m * np.sum((steps - steps.mean(0)) ** 2, axis=0)
 
 
-def estimate_centre(x, y, u, v, pair=None) -> Centre:
+def estimate_centre(x, y, u, v, pair=None, *, check: bool = True, start=None) -> Centre:
     """The centre of the radial flow (module docstring). `pair`: the frame pair of each
-    vector (one radial profile each)."""
+    vector (one radial profile each). `check`: refuse a field that does not point away from
+    one centre (else return the best estimate, for a first look)."""
     x, y, u, v = (np.asarray(a, dtype=float) for a in (x, y, u, v))
     if x.size < 10:
         raise InputError(f"{x.size} PIV vectors: too few to estimate the wound centre, give it")
@@ -164,17 +184,20 @@ def estimate_centre(x, y, u, v, pair=None) -> Centre:
     groups = [np.flatnonzero(pair == k) for k in np.unique(pair)]
     extent = max(float(np.ptp(x)), float(np.ptp(y)), 1e-12)
     speed = np.hypot(u, v)
-    start = np.array([np.average(x, weights=speed), np.average(y, weights=speed)])
-    fit = _fit(x, y, u, v, groups, start, extent / 100)
+    if start is None:
+        start = np.array([np.average(x, weights=speed), np.average(y, weights=speed)])
+    fit = _fit(x, y, u, v, groups, start, extent / 100, robust=not check)
     dof = max(2 * x.size - 2 - 4 * len(groups), 1)
     s2 = float(fit.fun @ fit.fun) / dof
     var = np.diag(s2 * _curvature_cov(fit.x, (x, y, u, v, groups), extent / 200)).copy()
-    jack = _tile_jackknife(fit, (x, y, u, v, groups), extent)
+    jack = _tile_jackknife(fit, (x, y, u, v, groups), extent, extent / 200)
     if jack is not None:
         var = np.maximum(var, jack)
     tangential = fit.fun[: x.size]
     rms = math.sqrt(float(tangential @ tangential) / x.size)
-    if not fit.success or not np.all(np.isfinite(var)) or var.max() > (extent / 10) ** 2:
+    if check and (
+        not fit.success or not np.all(np.isfinite(var)) or var.max() > (extent / 10) ** 2
+    ):
         raise InputError(
             f"the PIV field does not point away from one centre (tangential velocity rms "
             f"{rms:.3g} um/s, median speed {float(np.median(speed)):.3g} um/s): give the "

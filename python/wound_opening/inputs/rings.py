@@ -326,15 +326,15 @@ def flow_centre(field, radius: RadiusSeries, outer_um: float, measurement: Measu
     from .centre import estimate_centre, radial
 
     args = (field.x_um, field.y_um, field.u_um_s, field.v_um_s)
-    flow = estimate_centre(*args, field.pair)
     if measurement.interval_s is None:
-        return flow
+        return estimate_centre(*args, field.pair)
+    flow = estimate_centre(*args, field.pair, check=False)  # where the wound's windows are
     r, _ = radial(flow, *args)
     ok = np.isfinite(r) & (r < outer_um)
     ok, _, _ = _measured(measurement, radius, field.time_s, r, ok)
     if np.count_nonzero(ok) < 10:
         return flow
-    return estimate_centre(*(a[ok] for a in args), field.pair[ok])
+    return estimate_centre(*(a[ok] for a in args), field.pair[ok], start=(flow.x_um, flow.y_um))
 
 
 #: A given centre this many standard errors of the flow's centre away (and over
