@@ -45,8 +45,7 @@ def test_a_nuisance_column_of_the_tissue_is_its_derivative():
     wounds = [_wound(n, 0.0, 1) for n in WOUNDS]
     nuisances = TissueNuisances(True, ("A", "B"))
     parts = [
-        wo.fitting.objective.Objective(w.radius, None, OUTER, nuisances.of(w.name))
-        for w in wounds
+        wo.fitting.objective.Objective(w.radius, None, OUTER, nuisances.of(w.name)) for w in wounds
     ]
     tissue = Tissue(parts, list(WOUNDS), nuisances)
     assert tissue.coordinates.names[-3:] == ("outline_offset_um", "cut_s[A]", "cut_s[B]")
