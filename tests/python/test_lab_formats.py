@@ -235,7 +235,15 @@ def test_a_given_centre_the_flow_disagrees_with_is_used_with_a_warning():
     argv = readme_lab_command().split()[1:] + ["--centre-px", f"{x + off:g},{y:g}"]
     profile = read_lab_inputs(parser().parse_args(argv)).profiles[0]
     (warning,) = profile.warnings
-    assert re.search(r"is [56]\.\d+ um from the centre the velocities point away from", warning)
+    # The distance is to the flow's estimate, itself off the truth within its uncertainty.
+    found = re.search(
+        r"is ([\d.]+) um from the centre the velocities point away from, "
+        r"\([\d.]+ \+- ([\d.]+), [\d.]+ \+- ([\d.]+)\)",
+        warning,
+    )
+    assert found, warning
+    distance, sd = float(found[1]), max(float(found[2]), float(found[3]))
+    assert abs(distance - 7.0) < 3 * sd, warning
     assert "used as given" in warning
 
 

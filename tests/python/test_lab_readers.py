@@ -175,7 +175,9 @@ def test_the_centre_estimate_is_within_its_uncertainty_of_the_truth(tmp_path):
     c = estimate_centre(f.x_um, f.y_um, f.u_um_s, f.v_um_s, f.pair)
     z = (np.array([c.x_um, c.y_um]) - TRUE_CENTRE_UM) / [c.sd_x_um, c.sd_y_um]
     assert np.all(np.abs(z) < 3), (c, z)
-    assert 0.05 < c.sd_x_um < 2 and 0.05 < c.sd_y_um < 2  # informative, not inflated
+    # Informative (well inside the field's 96 um), not inflated: over seeds 3-8 of this
+    # field the estimate was 0.01-3.5 um off the truth with standard errors 0.4-2.5 um.
+    assert 0.05 < c.sd_x_um < 4 and 0.05 < c.sd_y_um < 4
     interp = sum(r.counts["interpolated"] for r in f.files)
     assert interp > 0 and f.x_um.size == sum(r.counts["used"] for r in f.files)
 
