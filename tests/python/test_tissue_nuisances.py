@@ -76,7 +76,7 @@ def test_each_cut_and_the_shared_offset_are_recovered_with_the_material():
     noisy = [_wound(n, 0.05, k + 7) for k, n in enumerate(WOUNDS)]
     got = wo.fit_wounds(noisy, params=_params())
     assert got.converged, got.reasons
-    for name, value in truth.items() | {("eta_over_G_s", ETA)}:
+    for name, value in {**truth, "eta_over_G_s": ETA}.items():
         lo, hi = got.shared[name].ci95
         assert (lo is None or lo <= value) and (hi is None or value <= hi), (name, lo, hi)
     for rep, (r0, _) in zip(got.r0, WOUNDS.values()):
