@@ -58,6 +58,27 @@ def test_a_crossing_of_t_on_the_small_lambda_branch_is_tested_on_the_viscous_one
     assert any(abs(w[2] ** 2 * 1188.0 - 800.0) < 1e-6 for w in along_tau), got
 
 
+def test_a_regime_lambdas_own_interval_excludes_is_not_searched():
+    """With lambda's interval [0.05, 0.5] walked (valleys.py), the starts carried to the
+    viscous point (lambda = 10) and the friction point (lambda = 0) lie where no point is
+    under the threshold and are left out; the starts moved along tau within the branch stay.
+    An interval reaching 0 keeps the friction point, an open upper end the viscous one."""
+    from wound_opening.fitting.valleys import starts
+
+    obj = viscous_short_recording(1e-2, 0)
+    z_in, v = to_z((10.8, 0.4, 0.1, 8e4)), math.log(1188.0)
+    every = starts(obj, 3, z_in, v, -1)
+    lambdas = {float(w[2]) for _, w in every}
+    assert 10.0 in lambdas and 0.0 in lambdas, every
+    kept = starts(obj, 3, z_in, v, -1, lambda_range=(0.05, 0.5))
+    assert [w.tolist() for _, w in kept] == [
+        w.tolist() for _, w in every if w[2] not in (0.0, 10.0)
+    ], (kept, every)
+    assert any(abs(w[2] ** 2 * 1188.0 - 800.0) < 1e-6 for _, w in kept), kept  # tau kept
+    both_open = {float(w[2]) for _, w in starts(obj, 3, z_in, v, -1, lambda_range=(0.0, None))}
+    assert 10.0 in both_open and 0.0 in both_open
+
+
 def test_a_watched_fit_stops_where_its_question_is_answered():
     """local_fit's watching (what valleys.beyond and the walks' second fits use): a fit stops
     at its first point under `below`, and where it comes within NEAR of a point of `ends`,

@@ -73,7 +73,9 @@ class Walk:
     """What one profile walk holds fixed: coordinate `i` of `problem` profiled against the
     optimum's chi^2 (`chi2_min`) up to `threshold`, its first move `step` (times the
     threshold's square root) and the other coordinates' prediction `slope` (d z / d z_i, the
-    Jacobian's regression line), fits under `loss`. Built by optimum.Optimum.profile."""
+    Jacobian's regression line), fits under `loss`; `lambda_range`: lambda's own interval
+    where it is walked already at a threshold no lower (valleys.py), else None. Built by
+    optimum.Optimum.profile."""
 
     problem: Problem
     i: int
@@ -82,6 +84,7 @@ class Walk:
     step: float
     slope: np.ndarray
     loss: str = "linear"
+    lambda_range: tuple | None = None
 
 
 def walk_side(walk: Walk, z_hat, direction: int, limit: float, delta0: float = 0.0):

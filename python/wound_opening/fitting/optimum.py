@@ -21,7 +21,9 @@ For the target's coordinate w_k (with A = d w / d z, identity but for row k):
 
 and the walk (intervals.walk_side) runs from the optimum and from every alternate below the
 threshold to the search window the coordinate declares (parameters.py), narrowed to the
-problem's bounds; an end on a bound of the user's is that bound.
+problem's bounds; an end on a bound of the user's is that bound. Once lambda's own profile
+is walked, its interval (`lambda_range`, in z) goes with every later walk whose threshold is
+no higher than lambda's: the valley search then skips the regimes it excludes (valleys.py).
 """
 
 from __future__ import annotations
@@ -60,6 +62,8 @@ class Optimum:
     cov: np.ndarray
     alternates: list = field(default_factory=list)
     thresholds: dict = field(default_factory=dict)
+    #: lambda's interval (lo, hi) in z and its threshold, once its profile is walked
+    lambda_walked: tuple | None = None
 
     def target(self, name: str) -> Target:
         """The optimum's own coordinate `name`."""
@@ -105,8 +109,12 @@ class Optimum:
             limit = max(lo, box[0][k]) if side == 0 else min(hi, box[1][k])
             return limit, bool(problem.user_bound(k, direction) and limit == box[side][k])
 
-        walk = Walk(problem, k, self.chi2, threshold, step, slope, self.loss)
+        known = self.lambda_walked
+        lambda_range = known[0] if known is not None and known[1] >= threshold else None
+        walk = Walk(problem, k, self.chi2, threshold, step, slope, self.loss, lambda_range)
         lo, hi, walked, bounded = hull(walk, centres, side_limit)
+        if target.problem is None and coordinate.name == "lambda" and problem.wound_maps:
+            self.lambda_walked = ((lo, hi), threshold)
         at_bound = coordinate.closed and lo is None  # lambda, l: the interval reaches 0
         points = [(w_hat[k], 0.0)] + walked
         return Profile(

@@ -96,7 +96,13 @@ def fit(
         )
         optimum.alternates += found  # a valley at lambda ~ 0 the starts did not end in
         optimum.thresholds = near
-        profiles = {name: optimum.profile(optimum.target(name)) for name in coordinates.names}
+        # lambda first: its interval spares the others' valley search a regime (valleys.py)
+        first = [n for n in coordinates.names if n == "lambda"]
+        walked = {name: optimum.profile(optimum.target(name)) for name in first}
+        profiles = {
+            name: walked.get(name) or optimum.profile(optimum.target(name))
+            for name in coordinates.names
+        }
         if derived:
             profiles |= derived_profiles(optimum)
     reports = {
