@@ -89,25 +89,42 @@ def window_velocities(lam, sigma, r_inf, pairs, xs, half, edges, *, tolerance):
     windows of half-side `half` at distances `xs[k]` (in R0), divided by the pair's interval:
     the PIV vectors' radial components in R0 / T (module docstring), in one native call.
     `half` = 0: the window's centre alone."""
-    nodes, cos = [], []
-    for x in xs:
-        x = np.asarray(x, float)
-        if half <= 0:
-            n, c, weights = x[:, None], np.ones((x.size, 1)), np.ones(1)
-        else:
-            n, c, weights = window_nodes(x, half)
-            # a corner past the outer radius (in the data, a window at the outer radius's
-            # edge): held at the window's own distance or the outer radius, the larger
-            n = np.minimum(n, np.maximum(x[:, None], r_inf * (1 - 1e-9)))
-        nodes.append(n)
-        cos.append(c)
-    d = displacements(
-        lam, sigma, r_inf, pairs, [n.ravel() for n in nodes], edges, tolerance=tolerance
+    xs = [np.asarray(x, float).ravel() for x in xs]
+    counts = [x.size for x in xs]
+    tau_a, tau_b = np.array(pairs, float).reshape(-1, 2).T
+    edge_a, edge_b = np.array(edges, float).reshape(-1, 2).T
+    group = np.repeat(np.arange(len(xs)), counts)
+    x = np.concatenate(xs) if xs else np.empty(0)
+    v = flat_window_velocities(
+        lam, sigma, r_inf, tau_a, tau_b, x, group, half, edge_a, edge_b, tolerance=tolerance
     )
-    return [
-        (dk.reshape(n.shape) * c) @ weights / (p[1] - p[0])
-        for dk, n, c, p in zip(d, nodes, cos, pairs)
-    ]
+    return np.split(v, np.cumsum(counts)[:-1])
+
+
+def flat_window_velocities(
+    lam, sigma, r_inf, tau_a, tau_b, x, group, half, edge_a, edge_b, *, tolerance
+) -> np.ndarray:
+    """`window_velocities` of rows at distances `x` (in R0), row j of pair `group[j]`, the
+    pairs' times `tau_a`, `tau_b` and model edges `edge_a`, `edge_b` as arrays: the rows'
+    velocities in R0 / T in one native call, with no loop over the pairs (a fit's model
+    evaluation; `displacements`' rule for nodes at or inside the edge)."""
+    if half <= 0:
+        nodes, cos, weights = x[:, None], np.ones((x.size, 1)), np.ones(1)
+    else:
+        nodes, cos, weights = window_nodes(x, half)
+        # a corner past the outer radius (in the data, a window at the outer radius's
+        # edge): held at the window's own distance or the outer radius, the larger
+        nodes = np.minimum(nodes, np.maximum(x[:, None], r_inf * (1 - 1e-9)))
+    at = np.repeat(group, nodes.shape[1])  # each node's pair
+    flat = nodes.ravel()
+    d = (edge_b - edge_a)[at]
+    tissue = flat > edge_a[at] * (1 + 1e-12)
+    if np.any(tissue):
+        d[tissue] = _native.pair_displacement(
+            lam, sigma, r_inf, tau_a[at][tissue], tau_b[at][tissue], flat[tissue],
+            tolerance=tolerance,
+        )  # fmt: skip
+    return (d.reshape(nodes.shape) * cos) @ weights / (tau_b - tau_a)[group]
 
 
 def window_velocity(lam, sigma, r_inf, tau_a, tau_b, x, half, edge, *, tolerance):

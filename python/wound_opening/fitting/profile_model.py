@@ -78,19 +78,32 @@ class ProfileModel:
         h[order] = self._h(lam, r_inf, ends[order])[0]
         edge = 1.0 + sigma * h
         m = times.size
-        rows = self._rows(R0, edge[:m])
-        v = piv_measure.window_velocities(
+        r, group = self._flat_rows()
+        x = r / R0
+        v = piv_measure.flat_window_velocities(
             abs(lam),
             sigma,
             r_inf,
-            list(zip(ends[:m], ends[m:])),
-            [x for x, _ in rows],
+            ends[:m],
+            ends[m:],
+            x,
+            group,
             self.half_window / R0,
-            list(zip(edge[:m], edge[m:])),
+            edge[:m],
+            edge[m:],
             tolerance=self.tolerance,
         )
-        self.inside_edge = sum(int(np.sum(~tissue)) for _, tissue in rows)
-        return R0 / T * np.concatenate(v)
+        self.inside_edge = int(np.count_nonzero(~(x > edge[:m][group] * (1 + 1e-12))))
+        return R0 / T * v
+
+    def _flat_rows(self) -> tuple[np.ndarray, np.ndarray]:
+        """The profile rows' radii [um] in group order and each row's group, made once."""
+        known = getattr(self, "_flat", None)
+        if known is None or known[0] is not self.groups:
+            r = [np.asarray(g[1], float) for g in self.groups]
+            group = np.repeat(np.arange(len(r)), [x.size for x in r])
+            known = self._flat = (self.groups, np.concatenate(r), group)
+        return known[1], known[2]
 
     def _velocity(self, theta, r_inf: float, times) -> np.ndarray:
         """Model velocities [um/s] of the profile rows (group order) at the groups' `times`
