@@ -34,7 +34,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import fftconvolve
 
 #: Smallest eigenvalue kept in the ring means' correlation matrix.
 EIGEN_FLOOR = 1e-6
@@ -67,6 +66,23 @@ def border(grid: Grid) -> np.ndarray:
     )
 
 
+def _convolve(a: np.ndarray, b: np.ndarray, same: bool = False) -> np.ndarray:
+    """The linear convolution of the stacks a and b over their last two axes (b broadcast
+    along the first), full, or `same` as a's (centred, scipy.signal's "same" mode), by
+    numpy's real FFTs zero-padded to the full size: the sums are exact but for rounding
+    (scipy.signal.fftconvolve, whose import costs 0.7 s of every PIV fit, does the same)."""
+    full = [a.shape[k] + b.shape[k] - 1 for k in (-2, -1)]
+    out = np.fft.irfftn(
+        np.fft.rfftn(a, full, axes=(-2, -1)) * np.fft.rfftn(b, full, axes=(-2, -1)),
+        full,
+        axes=(-2, -1),
+    )
+    if not same:
+        return out
+    y0, x0 = ((b.shape[k] - 1) // 2 for k in (-2, -1))
+    return out[..., y0 : y0 + a.shape[-2], x0 : x0 + a.shape[-1]]
+
+
 def _images(values, pair, grid: Grid, pairs):
     """(values, mask) as images per pair: (len(pairs), ny, nx)."""
     img = np.zeros((len(pairs), *grid.shape))
@@ -83,8 +99,8 @@ def correlations(d, pair, grid: Grid, reach: int, s2: float):
     pairs = np.unique(pair)
     img, mask = _images(d, pair, grid, pairs)
     flip = img[:, ::-1, ::-1]
-    prod = fftconvolve(img, flip, axes=(1, 2))
-    count = fftconvolve(mask, mask[:, ::-1, ::-1], axes=(1, 2))
+    prod = _convolve(img, flip)
+    count = _convolve(mask, mask[:, ::-1, ::-1])
     cy, cx = grid.shape[0] - 1, grid.shape[1] - 1
     window = (slice(None), slice(cy - reach, cy + reach + 1), slice(cx - reach, cx + reach + 1))
     num, n = prod[window].sum(axis=0), np.rint(count[window].sum(axis=0))
@@ -125,7 +141,7 @@ def ring_covariance(ring, pair, grid: Grid, rho, rho_t, s2: float) -> np.ndarray
     rings = int(ring.max()) + 1
     ind = np.zeros((rings, *grid.shape))
     np.add.at(ind, (ring, grid.iy, grid.ix), 1.0)
-    smooth = fftconvolve(ind, rho[None, :, :], mode="same", axes=(1, 2))
+    smooth = _convolve(ind, rho[None, :, :], same=True)
     raw = ind.reshape(rings, -1) @ smooth.reshape(rings, -1).T
     ring_pair = np.zeros(rings, dtype=int)
     ring_pair[ring] = np.searchsorted(np.unique(pair), pair)  # the pair's place in order
