@@ -50,6 +50,15 @@ def robust(tmp_path_factory):
     return wo.fit(radius, outer_radius_um=OUTER, loss="soft_l1", derived=False), radius, path
 
 
+def drawn(fig):
+    """The renderer of `fig` drawn again (a figure the package returns is closed)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    return canvas.get_renderer()
+
+
 def exact_radius_um(theta, t):
     R0_, sigma, lam, T_ = theta
     t = np.asarray(t, float)
@@ -226,7 +235,12 @@ def test_a_failed_fit_of_several_wounds_draws_where_it_stopped():
     with pytest.raises(ValueError, match="did not converge"):
         result.tables()
     assert set(result.tables(stopped=True)) == {"R0 6", "R0 12"}
-    assert tissue_figure(result) is not None
+    fig = tissue_figure(result)
+    (strip,) = [t for t in fig.texts if "profile-likelihood intervals" in t.get_text()]
+    renderer = drawn(fig)  # the shared values under every panel, on no data
+    assert all(
+        strip.get_window_extent(renderer).y1 < ax.get_tightbbox(renderer).y0 for ax in fig.axes
+    )
     text = tissue_html(result, wounds, command="test")
     assert "a reason the verdict gives" in text and "where the fit stopped" in text
     assert "data:image/png" in text
@@ -256,15 +270,23 @@ def test_the_fit_figure_has_a_log_time_axis_error_bars_flags_estimates_and_fine_
 
     from wound_opening.results.plots import PROFILE_POINTS, fit_figure
 
-    result, _, _ = robust
+    result, radius, _ = robust
     fig = fit_figure(result)
     radius_ax = fig.axes[0]
     assert radius_ax.get_xscale() == "symlog" and radius_ax.get_ylabel() == "wound radius (µm)"
     assert any(isinstance(c, ErrorbarContainer) for c in radius_ax.containers)
     assert "flagged (down-weighted)" in radius_ax.get_legend_handles_labels()[1]
-    text = radius_ax.texts[0].get_text()
+    (strip,) = [t for t in fig.texts if "profile-likelihood intervals" in t.get_text()]
+    text = strip.get_text()
     for name, symbol in (("R0_um", "R₀"), ("sigma", "σ"), ("lambda", "λ"), ("T_s", "T")):
         assert f"{symbol} = {result.reports[name].estimate:.4g}" in text
+    # nothing drawn over the data: the estimates under every panel, the legend off the points
+    renderer = drawn(fig)
+    box = strip.get_window_extent(renderer)
+    assert all(box.y1 < ax.get_tightbbox(renderer).y0 for ax in fig.axes)
+    legend = radius_ax.get_legend().get_window_extent(renderer)
+    points = radius_ax.transData.transform(np.column_stack([radius.times_s, radius.radius_um]))
+    assert not any(legend.contains(x, y) for x, y in points)
     labels = [ax.get_xlabel() for ax in fig.axes]
     assert "distance from the wound centre (µm)" not in labels  # no PIV, no velocity panel
     assert all(

@@ -27,19 +27,39 @@ from matplotlib import ticker  # noqa: E402
 from .names import NAMES  # noqa: E402
 from .numbers import interval  # noqa: E402
 
+#: Height of a line of the estimates' strip (font "small", monospace) and its padding, in.
+STRIP_LINE_IN, STRIP_PAD_IN = 0.16, 0.3
 
-def text_box(ax, text: str) -> None:
-    """The estimates written in a box at the top left of a radius panel (one wound's or
-    several's)."""
-    ax.text(
-        0.02,
-        0.97,
-        text,
-        transform=ax.transAxes,
+
+def side_by_side(groups, gap: int = 5) -> str:
+    """Groups of lines as columns of one monospace text, each as wide as its longest line."""
+    widths = [max(map(len, g)) for g in groups]
+    return "\n".join(
+        (" " * gap)
+        .join(g[i].ljust(w) if i < len(g) else " " * w for g, w in zip(groups, widths))
+        .rstrip()
+        for i in range(max(map(len, groups)))
+    )
+
+
+def strip_height_in(groups) -> float:
+    """The strip's height under the panels for these groups (`side_by_side`)."""
+    return STRIP_PAD_IN + STRIP_LINE_IN * max(map(len, groups))
+
+
+def estimates_strip(fig, groups, height_in: float):
+    """The estimates under the panels, in columns (`side_by_side`), at the figure's bottom
+    left: in a box on a data panel they hid points (the first ones of a fast opening, which
+    sit high on the left of the log time axis, under a box at the top left; matplotlib's
+    "best" place found no free one in a panel of a 120-frame recording)."""
+    return fig.text(
+        0.75 / fig.get_figwidth(),
+        (height_in - 0.12) / fig.get_figheight(),
+        side_by_side(groups),
         va="top",
+        ha="left",
         fontsize="small",
         family="monospace",
-        bbox={"fc": "white", "ec": "0.7", "alpha": 0.9},
     )
 
 
@@ -80,6 +100,11 @@ def time_axis(ax, times) -> None:
 
 def estimates_text(result) -> str:
     """The estimates with their 95 % profile intervals, and the goodness of fit."""
+    return "\n".join(line for group in estimate_groups(result) for line in group)
+
+
+def estimate_groups(result) -> tuple[list, list, list]:
+    """(material values, the model's parameters, the goodness of fit): lines of text."""
     lines = []
     for name in NAMES:
         rep = result.reports[name]
@@ -96,9 +121,7 @@ def estimates_text(result) -> str:
     fit += f", p = {result.p_value:.2g}" if result.p_value is not None else " (noise estimated)"
     from .numbers import material_lines
 
-    return "\n".join(
-        material_lines(result.material) + lines + [fit, "95 % profile-likelihood intervals"]
-    )
+    return material_lines(result.material), lines, [fit, "95 % profile-likelihood intervals"]
 
 
 def errorbar_points(ax, x, y, sd, flagged, label, colour=None):
@@ -188,13 +211,15 @@ def _draw(result, profile_points: int, noise=("given", "given")):
     pts, curve = tabs["radius"], tabs["curve"]
     has_piv = "profile" in tabs
     profiles = [n for n in NAMES if result.reports[n].profile is not None]
-    height = 8.5 if profiles else 5.5
+    groups = estimate_groups(result)
+    strip = strip_height_in(groups)
+    height = (8.5 if profiles else 5.5) + strip
     fig = plt.figure(figsize=(12, height))
     grid = fig.add_gridspec(
         3 if profiles else 2,
         4,
         height_ratios=[3, 1.2, 2.4][: 3 if profiles else 2],
-        **margins(12, height, 3 if profiles else 2, 4, top=0.75 if has_piv else 0.45),
+        **margins(12, height, 3 if profiles else 2, 4, top=0.75 if has_piv else 0.45, below=strip),
     )
     width = slice(0, 2) if has_piv else slice(0, 4)
     ax = fig.add_subplot(grid[0, width])
@@ -208,8 +233,8 @@ def _draw(result, profile_points: int, noise=("given", "given")):
     ax.axhline(R0 * (1 + sigma / 6), ls=":", c="gray", lw=0.8, label="R₁ = R₀(1 + σ/6)")
     time_axis(ax, t)
     ax.set(ylabel="wound radius (µm)")
-    ax.legend(loc="lower right", fontsize="small")
-    text_box(ax, estimates_text(result))
+    ax.legend(loc="best", fontsize="small")
+    estimates_strip(fig, groups, strip)
     res = fig.add_subplot(grid[1, width], sharex=ax)
     errorbar_points(res, t, pts.residual_um.to_numpy(), pts.sd_um.to_numpy(), flagged, None)
     res.axhline(0, c="gray", lw=0.8)
@@ -261,14 +286,17 @@ def time_label(result) -> str:
     return f"time (s; the cut at {round(result.reports['cut_s'].estimate, 6):g} s)"
 
 
-def margins(width: float, height: float, rows: int, columns: int, top: float = 0.45) -> dict:
+def margins(
+    width: float, height: float, rows: int, columns: int, top: float = 0.45, below: float = 0.0
+) -> dict:
     """Gridspec margins of a figure width x height inches: 0.75 in left and 0.55 in below
-    (tick labels and an axis label), `top` in on top (a suptitle; 0.75 above a panel's
+    (tick labels and an axis label; `below` in more under them, for the estimates' strip),
+    `top` in on top (a suptitle; 0.75 above a panel's
     title, two lines of it clear of the title), 0.9 in between rows (an
     axis label and the next row's title) and 0.8 in between columns (tick labels and an axis
     label), as fractions. Fixed margins draw in one pass: a layout engine measures every text
     first (about half of this figure's drawing time)."""
-    left, right, bottom, row_gap, column_gap = 0.75, 0.15, 0.55, 0.9, 0.8
+    left, right, bottom, row_gap, column_gap = 0.75, 0.15, 0.55 + below, 0.9, 0.8
     tall = height - bottom - top
     wide = width - left - right
     return {

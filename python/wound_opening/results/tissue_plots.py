@@ -13,7 +13,7 @@ import numpy as np
 
 from .names import ETA, SHARED
 from .numbers import interval, material_lines
-from .plots import drawn_once, errorbar_points, plt, text_box, time_axis
+from .plots import drawn_once, errorbar_points, plt, side_by_side, time_axis
 from .status import status
 
 LABELS = {
@@ -25,9 +25,13 @@ LABELS = {
 
 
 def _text(result) -> str:
+    """The shared material values and the goodness of fit, side by side (plots.side_by_side):
+    the figure's bottom line, under the panels (in a box on the radius panel it hid data)."""
     fit = f"χ²/dof = {result.chi2:.3g}/{result.dof}"
     fit += f", p = {result.p_value:.2g}" if result.p_value is not None else " (noise estimated)"
-    return "\n".join(material_lines(result.material) + [fit, "95 % profile-likelihood intervals"])
+    return side_by_side(
+        [material_lines(result.material), [fit, "95 % profile-likelihood intervals"]]
+    )
 
 
 def _profile_panel(ax, result, name) -> None:
@@ -107,8 +111,8 @@ def _draw(result):
                 pax.plot(c.r_um, c.velocity_um_s, "-", c=colour, lw=1)
     time_axis(ax, np.concatenate(times))
     ax.set(ylabel="wound radius (µm)")
-    ax.legend(loc="center right", fontsize="small", title="wound (data ± noise, fit)")
-    text_box(ax, _text(result))
+    ax.legend(loc="best", fontsize="small", title="wound (data ± noise, fit)")
+    fig.supxlabel(_text(result), x=0.01, ha="left", fontsize="small", family="monospace")
     res.axhline(0, c="gray", lw=0.8)
     res.set(xlabel="time since the cut (s)", ylabel="(data − fit) / noise")
     if pax is not None:
