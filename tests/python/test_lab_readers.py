@@ -256,3 +256,47 @@ def test_a_centre_given_in_pixels_is_used_as_given():
     assert any(n.startswith("wound centre given: (50.26, 52.56) um") for n in notes), notes
     with pytest.raises(InputError, match="one for all or one each"):
         read_lab_inputs(parser().parse_args(argv + ["--centre-px", px, "--centre-px", px]))
+
+
+def _perimeters_scaled(path, rows_to_scale: int, circularity: float) -> int:
+    """Rewrite the table's first `rows_to_scale` outlines after the cut with the perimeter
+    of a shape of that circularity (4 pi A / P^2) and the same area; returns the rows."""
+    rows = path.read_text().splitlines()
+    out, done = [rows[0]], 0
+    for row in rows[1:]:
+        c = row.split(",")
+        frame, area = int(c[4]), float(c[2]) if c[2] not in ("0", "NaN") else 0.0
+        if frame > lab.CUT_AFTER and area > 0 and done < rows_to_scale:
+            c[3] = f"{math.sqrt(4 * math.pi * area / circularity):.3f}"
+            done += 1
+        out.append(",".join(c))
+    path.write_text("\n".join(out) + "\n")
+    return done
+
+
+def test_outlines_that_are_not_round_make_the_fit_amber_naming_them(tmp_path):
+    """A threshold that took in the neighbouring cells leaves outlines of circularity
+    0.3-0.6 whose radius is not the edge's (docs/fitting.md): more than half of them is a
+    warning and an amber status; a few, a note; round outlines, neither."""
+    import wound_opening as wo
+    from wound_opening.inputs.fiji import ROUND_CIRCULARITY
+    from wound_opening.results.status import status
+
+    path = tmp_path / "Results.csv"
+    lab.write_fiji(path, R0)
+    s = fiji(path)
+    assert s.warnings == () and not any("not round" in n for n in s.files[0].notes)
+    assert wo.fit(s, outer_radius_um=100.0, intervals=False).doubts == []
+    n = len(s.times_s)
+    few = _perimeters_scaled(path, n // 4, 0.5)
+    s = fiji(path)
+    assert s.warnings == ()
+    assert any(f"{few} of {n} outlines are not round" in m for m in s.files[0].notes)
+    lab.write_fiji(path, R0)
+    many = _perimeters_scaled(path, n // 2 + 1, ROUND_CIRCULARITY - 0.01)
+    (said,) = fiji(path).warnings
+    assert f"{many} of {n} outlines are not round" in said and "segment again" in said
+    result = wo.fit(fiji(path), outer_radius_um=100.0, intervals=False)
+    st = status(result)
+    assert result.converged and st.level == "amber" and "outlines are not round" in st.text
+    assert said in result.to_dict()["warnings"]

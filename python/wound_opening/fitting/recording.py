@@ -94,6 +94,7 @@ def check_recording(radius, profile=None, *, time_unit: str | None = None) -> li
         )
     if getattr(radius, "note", None):
         out.append(radius.note)
+    out += list(getattr(radius, "warnings", ()) or ())
     out += list(getattr(profile, "warnings", ()) or ())
     return out
 

@@ -148,6 +148,7 @@ def fit(
         ),
         points=data_points(data, z, judged.flagged),
         residual_runs=as_dicts(judged.runs),
+        doubts=list(getattr(radius, "warnings", ()) or ()),
         refit=optimum.profile_at if not judged.reasons else None,
     )
 

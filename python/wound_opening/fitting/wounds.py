@@ -288,6 +288,7 @@ def fit_wounds(
         evaluations=tissue.evaluations,
         plausibility=warnings,
         residual_runs=as_dicts(judged.runs),
+        doubts=[f"wound {w.name}: {m}" for w in wounds for m in getattr(w.radius, "warnings", ())],
         G=spec.G,
     )
 

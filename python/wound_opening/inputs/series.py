@@ -29,6 +29,9 @@ class RadiusSeries:
     #: Errors serially correlated (an outline frame after frame: fitting/serial.py); with
     #: the noise estimated, their lag-1 correlation is estimated too.
     serial: bool = False
+    #: What the reader found doubtful in the measurement (fiji.outline_warnings), said with
+    #: the fit's warnings.
+    warnings: tuple = ()
 
     def __post_init__(self):
         _check_columns("radius", self.times_s, self.radius_um)

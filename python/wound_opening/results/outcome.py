@@ -75,6 +75,9 @@ class Outcome:
     #: with "series", "runs", "expected", "points", "p_runs", "durbin_watson",
     #: "p_durbin_watson", "p_value" (the smaller times 2), "level" (ok, warn, fail).
     residual_runs: list = field(default_factory=list)
+    #: What the readers found doubtful in the data themselves (inputs/fiji.py: outlines that
+    #: are not round), also among the warnings: the status is amber (results/status.py).
+    doubts: list = field(default_factory=list)
     #: G [Pa] given for the absolute material values: (value, 0) fixed or (mean, sd) a prior.
     G: tuple | None = None
     #: The recording's settings (settings.py): cut, units, pixel size, frames, files; filled

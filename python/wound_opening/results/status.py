@@ -15,16 +15,21 @@ A converged fit whose estimate is forbidden is not a result: its status is red, 
 value ("physically impossible: tension/G = -5.4 <= 0 ..."). A fit whose estimate is allowed
 but one of whose 95 % intervals reaches a forbidden value is amber ("check: ..."). Otherwise
 green ("converged"). A converged fit whose residuals are systematic at the warning level
-(runs and Durbin-Watson tests, fitting/gof.py) is amber too. The fit's own verdict (`converged`) is
-left as the optimiser and chi^2 judged it: the status is what the figure and report print
-beside the values.
+(runs and Durbin-Watson tests, fitting/gof.py) is amber too, and so is one whose data a
+reader doubts (Outcome.doubts: outlines that are not round, inputs/fiji.py). The fit's own
+verdict (`converged`) is left as the optimiser and chi^2 judged it: the status is what the
+figure and report print beside the values.
 """
 
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 
 from .numbers import number
+
+#: A doubt on the data (Outcome.doubts) in the status line: its start (the warning says all).
+DOUBT_CHARS = 120
 
 #: name -> (the allowed region as text, whether a value is allowed).
 RULES = {
@@ -108,6 +113,10 @@ def status(result) -> Status:
         for r in getattr(result, "residual_runs", ())
         if r["level"] == "warn"
     ]
-    if edge or runs:
-        return Status("amber", "converged; check: " + "; ".join(edge + runs), tuple(edge + runs))
+    doubts = [
+        textwrap.shorten(d, DOUBT_CHARS, placeholder=" ...") for d in getattr(result, "doubts", ())
+    ]
+    if edge or runs or doubts:
+        said = edge + runs + doubts
+        return Status("amber", "converged; check: " + "; ".join(said), tuple(said))
     return Status("green", "converged")
