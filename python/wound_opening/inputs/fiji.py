@@ -278,7 +278,7 @@ def outline_warnings(path, frame_col, frames, area, perim) -> tuple[list, list]:
     which = frames[has_p][low]
     listed = ", ".join(f"{f:g}" for f in which[:8]) + (", ..." if which.size > 8 else "")
     said = (
-        f"{path}: {low.size} of {circ.size} outlines are not round (4 pi Area / Perim.^2 below "
+        f"{low.size} of {circ.size} outlines are not round in {path} (4 pi Area / Perim.^2 below "
         f"{ROUND_CIRCULARITY}, median {np.median(circ):.2f}; a round wound's outline is "
         f"0.85-0.95): {frame_col} {listed}"
     )
