@@ -225,8 +225,8 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
     perim = np.array([r[3] for r in used])
     _check_area(path, area_col, area, perim, lines, um, length_unit)
     radius = np.sqrt(area / math.pi) * um
-    times = (np.array([r[1] for r in used], dtype=float) - cut) * dt
     frames = np.array([r[1] for r in used], dtype=float)
+    times = (frames - cut) * dt
     doubts, round_notes = outline_warnings(path, frame_col, frames, area, perim)
     notes = [f"{path}: rows not in {frame_col} order: sorted by {frame_col}"] if unsorted else []
     notes += round_notes
@@ -264,14 +264,17 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
     )
 
 
+def circularity(area, perim) -> tuple[np.ndarray, np.ndarray]:
+    """(the rows with a perimeter, 4 pi Area / Perim.^2 of those rows)."""
+    has_p = np.isfinite(perim) & (perim > 0)
+    return has_p, 4 * math.pi * area[has_p] / perim[has_p] ** 2
+
+
 def outline_warnings(path, frame_col, frames, area, perim) -> tuple[list, list]:
     """(warnings, notes) on outlines that are not round (ROUND_CIRCULARITY): the radius
     sqrt(Area / pi) of such an outline is not the wound edge's, and its error, which
     follows the cells the threshold took in, is neither small nor a constant offset."""
-    has_p = np.isfinite(perim) & (perim > 0)
-    if not has_p.any():
-        return [], []
-    circ = 4 * math.pi * area[has_p] / perim[has_p] ** 2
+    has_p, circ = circularity(area, perim)
     low = np.flatnonzero(circ < ROUND_CIRCULARITY)
     if low.size == 0:
         return [], []
@@ -296,9 +299,8 @@ def outline_warnings(path, frame_col, frames, area, perim) -> tuple[list, list]:
 
 def _check_area(path, area_col, area, perim, lines, um, length_unit) -> None:
     """Refuse a column that holds a radius or a diameter instead of an area."""
-    has_p = np.isfinite(perim) & (perim > 0)
+    has_p, circ = circularity(area, perim)
     if np.count_nonzero(has_p) >= max(3, area.size // 2):
-        circ = 4 * math.pi * area[has_p] / perim[has_p] ** 2
         median = float(np.median(circ))
         if median < MIN_CIRCULARITY:
             r_if = float(np.median(area[has_p]))

@@ -117,11 +117,17 @@ def estimate_groups(result) -> tuple[list, list, list]:
             lo, hi = rep.ci95
             ci = interval(lo, hi, rep.estimate) + ("" if rep.identifiable else " not identified")
         lines.append(f"{symbol} = {rep.estimate:.4g}{unit}  {ci}")
-    fit = f"χ²/dof = {result.chi2:.3g}/{result.dof}"
-    fit += f", p = {result.p_value:.2g}" if result.p_value is not None else " (noise estimated)"
     from .numbers import material_lines
 
-    return material_lines(result.material), lines, [fit, "95 % profile-likelihood intervals"]
+    return material_lines(result.material), lines, goodness_lines(result)
+
+
+def goodness_lines(result) -> list:
+    """chi^2 per degree of freedom (and p where the noise is given), and what the intervals
+    are: the last column of the estimates (one wound's or several's)."""
+    fit = f"χ²/dof = {result.chi2:.3g}/{result.dof}"
+    fit += f", p = {result.p_value:.2g}" if result.p_value is not None else " (noise estimated)"
+    return [fit, "95 % profile-likelihood intervals"]
 
 
 def errorbar_points(ax, x, y, sd, flagged, label, colour=None):

@@ -13,7 +13,7 @@ import numpy as np
 
 from .names import ETA, SHARED
 from .numbers import interval, material_lines
-from .plots import drawn_once, errorbar_points, plt, side_by_side, time_axis
+from .plots import drawn_once, errorbar_points, goodness_lines, plt, side_by_side, time_axis
 from .status import status
 
 LABELS = {
@@ -27,11 +27,7 @@ LABELS = {
 def _text(result) -> str:
     """The shared material values and the goodness of fit, side by side (plots.side_by_side):
     the figure's bottom line, under the panels (in a box on the radius panel it hid data)."""
-    fit = f"χ²/dof = {result.chi2:.3g}/{result.dof}"
-    fit += f", p = {result.p_value:.2g}" if result.p_value is not None else " (noise estimated)"
-    return side_by_side(
-        [material_lines(result.material), [fit, "95 % profile-likelihood intervals"]]
-    )
+    return side_by_side([material_lines(result.material), goodness_lines(result)])
 
 
 def _profile_panel(ax, result, name) -> None:
