@@ -320,9 +320,15 @@ def flow_centre(field, radius: RadiusSeries, outer_um: float, measurement: Measu
     """The centre the field's velocities point away from (centre.py), estimated from the
     vectors that measure the tissue: a first estimate from every vector, then again from
     those whose windows touch neither the wound nor the grid's border (as the rings keep
-    them, `_measured`). The windows on the wound's moving edge read 0.6-1.5 times the
-    tissue's velocity; on a movie measured by OpenPIV they pulled the estimate 0.5 um off
-    (tangential rms 0.60 um/s against 0.04 without them)."""
+    them, `_measured`, but with the grid step as the windows' side). The windows on the
+    wound's moving edge read 0.6-1.5 times the tissue's velocity; on a movie measured by
+    OpenPIV they pulled the estimate 0.5 um off (tangential rms 0.60 um/s against 0.04
+    without them). The interrogation window's own side (32 px, four grid steps in OpenPIV's
+    tutorial) leaves out the vectors nearest the wound, the fastest and the ones whose
+    direction says most about the centre: on the 20 rendered movies of the coverage study
+    (docs/fitting.md) the centre from the vectors beyond it was 0.13-16.9 um from the true
+    one (rms 5.3 um; two fields refused), from those beyond one grid step 0.16-1.83 um (rms
+    0.74 um; none refused). The rings still leave out every window that touches the wound."""
     from .centre import estimate_centre, radial
 
     args = (field.x_um, field.y_um, field.u_um_s, field.v_um_s)
@@ -331,7 +337,7 @@ def flow_centre(field, radius: RadiusSeries, outer_um: float, measurement: Measu
     flow = estimate_centre(*args, field.pair, check=False)  # where the wound's windows are
     r, _ = radial(flow, *args)
     ok = np.isfinite(r) & (r < outer_um)
-    ok, _, _ = _measured(measurement, radius, field.time_s, r, ok)
+    ok, _, _ = _measured(replace(measurement, window_um=None), radius, field.time_s, r, ok)
     if np.count_nonzero(ok) < 10:
         return flow
     return estimate_centre(*(a[ok] for a in args), field.pair[ok], start=(flow.x_um, flow.y_um))
