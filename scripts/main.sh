@@ -7,12 +7,22 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 step() { echo "== $1"; }
-step "Python environment (.venv, created on first use)"
-source scripts/venv.sh
+mkdir -p target
+# The venv waits on the network, the builds on the CPU: the venv is made (scripts/venv.sh,
+# its log target/setup_venv.log) while the linkers are installed and the archives built.
+step "Python environment (.venv, created on first use), in the background"
+bash scripts/venv.sh >target/setup_venv.log 2>&1 &
+venv=$!
+trap 'kill "$venv" 2>/dev/null || true' EXIT  # a failed build ends the set-up too
 bash scripts/cross.sh  # the linkers of the archives' five platforms (no emulator: tests only)
 step "building the library and the five FMU archives (cargo, release; a few minutes the first time)"
 cargo run --release --quiet -- fmu
 cargo build --release --quiet
+status=0
+wait "$venv" || status=$?
+cat target/setup_venv.log
+((status == 0)) || { echo "error: the venv (target/setup_venv.log) failed: $status" >&2; exit "$status"; }
+source scripts/venv.sh  # made: this only activates it
 step "the paper's cases through fmpy"
 python python/run_paper_cases.py --fmu target/fmu/WoundOpening.fmu --out out
 step "the coupled worked example: opening, then purse-string closure"
