@@ -276,8 +276,12 @@ class Objective(ProfileModel, Problem):
         return lower, upper
 
     def vanishing(self, z) -> list:
-        """lambda on its bound 0: its column is 0 (R depends on lambda^2)."""
-        return [2] if z[2] <= 1e-8 else []
+        """lambda on its bound 0, where its column is 0 (R depends on lambda^2), or on its
+        search limit LAMBDA_MAX, where the model has reached its viscous limit: R(t) and the
+        flow depend on tau = lambda^2 T alone there (to ~1 / LAMBDA_MAX^2), so lambda's
+        column is T's times (2 T / lambda) and the Jacobian is singular although the data
+        determine R0, sigma and lambda^2 T; lambda's interval is then open above."""
+        return [2] if z[2] <= 1e-8 or z[2] >= LAMBDA_MAX * (1 - 1e-6) else []
 
     def since_cut(self, z) -> tuple[np.ndarray, np.ndarray]:
         """The radius and the PIV groups' times after the cut at z [s]."""

@@ -174,9 +174,13 @@ class Tissue(Problem):
         return np.vstack(blocks)
 
     def vanishing(self, y) -> list:
-        """l on its bound 0 (relative to the largest R0): its column is 0 (R depends on
-        lambda^2)."""
-        return [0] if y[0] <= 1e-8 * math.exp(max(y[3 : 3 + len(self.parts)])) else []
+        """l on its bound 0 (relative to the largest R0), where its column is 0 (R depends on
+        lambda^2), or on its search limit LAMBDA_MAX outer radii, where every wound has
+        reached the viscous limit (Objective.vanishing): R(t) depends on l^2 zeta/G alone
+        there and l's column is zeta/G's times a constant."""
+        top = LAMBDA_MAX * max(p.outer for p in self.parts) * (1 - 1e-6)
+        small = y[0] <= 1e-8 * math.exp(max(y[3 : 3 + len(self.parts)]))
+        return [0] if small or y[0] >= top else []
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Each wound's bounds (Objective.bounds) on its R0 and T, carried to y: l from 0 to a
