@@ -5,7 +5,9 @@ Linux and Windows binaries (what the archives carried before the macOS ones), an
 SciPy peer's best-accuracy run at lambda = 0.1 (`bench.scipy_peer`: DOP853, N = 25601,
 rtol = 1e-10, the Targets table of docs/benchmarks.md) timed in the same process, for the
 ratio the benchmarks keep (the peer's CPU time over the fmpy scenario's, >= 2,000x).
-`time.process_time`, best of `--repeats` (the peer: best of 2).
+`time.process_time`, best of `--repeats` (the peer: best of 2), with BLAS on one thread as
+in scripts/bench.sh: process_time counts every thread's CPU, and OpenBLAS's second thread
+on two cores more than doubles the peer's (32.6 s against 15.0 s, measured 2026-12-07).
 
     python -m bench.archive_platforms target/fmu/WoundOpening.fmu
 """
@@ -13,13 +15,18 @@ ratio the benchmarks keep (the peer's CPU time over the fmpy scenario's, >= 2,00
 from __future__ import annotations
 
 import argparse
+import os
 import tempfile
 import time
 import zipfile
 from pathlib import Path
 
-from bench import scipy_peer
-from bench.fmpy_whole import whole
+# Before numpy is imported (by bench.scipy_peer): the peer's CPU time on one BLAS thread.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+from bench import scipy_peer  # noqa: E402
+from bench.fmpy_whole import whole  # noqa: E402
 
 #: The binaries kept in the comparison copy (FMI 2.0 and 3.0 folder names).
 BEFORE = ("linux64", "x86_64-linux", "aarch64-linux", "win64", "x86_64-windows")
