@@ -78,7 +78,8 @@ def fit(
         "fit",
         f"the {n_free} free parameters",
     )
-    z, chi2_cost, cov_z = optimum.z, optimum.chi2, optimum.cov
+    z, chi2_cost = optimum.z, optimum.chi2
+    cov_z = judged.reported  # the coordinates on a bound held (stages.reported_cov)
     coordinates = data.coordinates
     own = [spec.fixed.get(i, v) for i, v in enumerate(from_z(z) + coordinates.own(z)[4:])]
     theta = tuple(own[:4])  # a fixed value as given, not exp(ln v)

@@ -123,6 +123,47 @@ class Verdict:
     cov: np.ndarray
     runs: tuple = ()
     warnings: tuple = ()
+    #: The covariance the standard errors are reported from (`reported_cov`): `cov` with
+    #: the coordinates that sit on a bound held there.
+    reported: np.ndarray | None = None
+
+
+#: A coordinate this close to a finite bound (relative to its range, or to 1 where the
+#: other side is open) sits on it.
+ON_BOUND = 1e-6
+
+
+def on_bound(problem: Problem, z, columns) -> list:
+    """The coordinates of `columns` that sit on a finite bound of `problem` at z."""
+    lower, upper = problem.bounds()
+    out = []
+    for i in columns:
+        lo, hi = float(lower[i]), float(upper[i])
+        span = hi - lo if math.isfinite(hi - lo) else 1.0 + abs(float(z[i]))
+        if (math.isfinite(lo) and z[i] - lo <= ON_BOUND * span) or (
+            math.isfinite(hi) and hi - z[i] <= ON_BOUND * span
+        ):
+            out.append(i)
+    return out
+
+
+def reported_cov(jac, free, pinned, cov) -> np.ndarray:
+    """The covariance of the standard errors: (J^T J)^-1 over the free columns less those on
+    a bound (`pinned`), rows and columns of the pinned nan. A coordinate on its bound has
+    no symmetric error, and where its column is nearly a combination of the others (the
+    cut time against R0 and sigma when the opening is one slow exponential: a shift in time
+    is a change of amplitude) keeping it makes the others' errors 1e5 times their profile
+    intervals; held, they are the curvature's along the bound. `cov` when none is pinned or
+    the rest is singular."""
+    kept = [i for i in free if i not in pinned]
+    if not pinned or not kept:
+        return cov
+    sv = np.linalg.svd(jac[:, kept], compute_uv=False)
+    if not sv[-1] > 1e-12 * sv[0]:
+        return cov
+    out = np.full_like(cov, np.nan)
+    out[np.ix_(kept, kept)] = np.linalg.inv(jac[:, kept].T @ jac[:, kept])
+    return out
 
 
 def verdict(
@@ -250,10 +291,12 @@ def settle(obj, parts, z_of, starts, loss: str, runs, who: str, what: str = "the
         best = refit_at_noise(obj, parts, z_of, best, loss, len(obj.free) / obj.inner.size)
     z, chi2, res = best
     residuals = obj.inner.residuals(z)
+    jac = obj.jacobian(z)
+    free = [i for i in obj.free if i not in obj.vanishing(z)]
     judged = verdict(
         residuals,
-        obj.jacobian(z),
-        [i for i in obj.free if i not in obj.vanishing(z)],
+        jac,
+        free,
         res,
         dof=max(obj.size - len(obj.free), 1),
         noise_given=not any(any(p.estimated) for p in parts),
@@ -268,5 +311,7 @@ def settle(obj, parts, z_of, starts, loss: str, runs, who: str, what: str = "the
         judged.warnings += tuple(warned)
     held = list(obj.fixed)
     judged.cov[held, :], judged.cov[:, held] = 0.0, 0.0  # no variance
+    judged.reported = reported_cov(jac, free, on_bound(obj, z, free), judged.cov)
+    judged.reported[held, :], judged.reported[:, held] = 0.0, 0.0
     others = alternates(obj, z, ends, chi2, loss)
     return Optimum(obj, z, chi2, loss, judged.threshold, judged.cov, others), judged

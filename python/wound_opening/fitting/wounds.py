@@ -192,7 +192,7 @@ def fit_wounds(
         runs,
         "fit_wounds",
     )
-    y, cov = optimum.z, optimum.cov
+    y, cov = optimum.z, judged.reported  # the coordinates on a bound held (stages.reported_cov)
     reasons, threshold, flagged = judged.reasons, judged.threshold, judged.flagged
     residuals = tissue.residuals(y)
     noise_given = not any(any(p.estimated) for p in parts)
