@@ -163,6 +163,11 @@ LONG_FIRST = (
     "test_wheel.py::test_wheel_installs_and_runs_without_rust_or_checkout",
     "test_sweep.py::test_local_processes_and_a_dask_cluster_give_the_same_table_bit_for_bit",
     "test_reference.py::test_edge_agrees_with_mpmath",
+    # a rendered movie measured and fitted (13 s), the early-times coverage sample (12 s),
+    # the centre of a rendered movie (8 s): measured 2026-12-07
+    "test_lab_viscous_limit.py::test_radius_fit_at_the_viscous_limit_gives_honest_numbers",
+    "test_fit.py::test_early_times_at_one_percent_noise_report_no_interval_that_misses_the_truth",
+    "test_lab_centre.py::test_centre_of_a_large_wound_from_openpiv_files_holds_the_truth",
 )
 
 
