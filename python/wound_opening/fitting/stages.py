@@ -158,11 +158,22 @@ def reported_cov(jac, free, pinned, cov) -> np.ndarray:
     kept = [i for i in free if i not in pinned]
     if not pinned or not kept:
         return cov
-    sv = np.linalg.svd(jac[:, kept], compute_uv=False)
-    if not sv[-1] > 1e-12 * sv[0]:
-        return cov
-    out = np.full_like(cov, np.nan)
-    out[np.ix_(kept, kept)] = np.linalg.inv(jac[:, kept].T @ jac[:, kept])
+    out = covariance(jac, kept)
+    return cov if out is None else out
+
+
+def covariance(jac, columns) -> np.ndarray | None:
+    """(J^T J)^-1 over `columns`, nan in the other rows and columns; None where J's columns
+    are singular (smallest singular value at most 1e-12 of the largest)."""
+    sv = np.linalg.svd(jac[:, columns], compute_uv=False)
+    if not (sv.size == len(columns) and sv[-1] > 1e-12 * sv[0]):
+        return None
+    n = jac.shape[1]
+    out = np.full((n, n), np.nan)
+    try:
+        out[np.ix_(columns, columns)] = np.linalg.inv(jac[:, columns].T @ jac[:, columns])
+    except np.linalg.LinAlgError:
+        return None
     return out
 
 
@@ -197,16 +208,9 @@ def verdict(
         )
     systematic, warnings = judge_series(runs)
     reasons += systematic
-    n = jac.shape[1]
-    sv = np.linalg.svd(jac[:, free], compute_uv=False)
-    cov = np.full((n, n), np.nan)
-    singular = not (sv.size == len(free) and sv[-1] > 1e-12 * sv[0])
-    if not singular:
-        try:
-            cov[np.ix_(free, free)] = np.linalg.inv(jac[:, free].T @ jac[:, free])
-        except np.linalg.LinAlgError:
-            singular = True
-    if singular:
+    cov = covariance(jac, free)
+    if cov is None:
+        cov = np.full((jac.shape[1],) * 2, np.nan)
         reasons.append(
             f"the Jacobian at the best point is singular: the data do not determine {what}"
         )
