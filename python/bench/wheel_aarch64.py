@@ -1,6 +1,6 @@
 """The manylinux_2_17 aarch64 wheel installed and run in an aarch64 Python, under qemu-user.
 
-Too slow for the test command (pip alone takes about 2 minutes under emulation), so a
+Too slow for the test command (pip alone takes about 75 s under emulation), so a
 benchmark-style check, run by `bash scripts/wheel_aarch64.sh` (docs/install.md):
 
 1. an arm64 Debian root (bookworm, Python 3.11) made by `debootstrap --foreign`, its
@@ -90,7 +90,8 @@ def debian_root(root: Path, log: Path) -> float:
 
 
 def pins() -> list[str]:
-    """The pins of python/requirements.txt, as pip constraints."""
+    """The pins of python/requirements.txt as pip constraints ("name==version", without
+    extras: constraints take none); tests/python/test_wheel.py uses them too."""
     text = (ROOT / "python" / "requirements.txt").read_text()
     return [n + v for n, v in re.findall(r"^([A-Za-z0-9_.-]+)(?:\[[^\]]*\])?(==\S+)", text, re.M)]
 

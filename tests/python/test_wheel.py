@@ -26,6 +26,7 @@ import numpy as np
 import pytest
 import wound_exact as we
 from bench.tissue_designs import TRUTH as TISSUE_TRUTH
+from bench.wheel_aarch64 import pins
 from test_cli import LAM, OUTER, R0, SIGMA, T, check_quick_start, readme_quick_start, write_radius
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -81,13 +82,8 @@ def _without_rust(path: str) -> str:
 
 def _constraints(tmp_path: Path) -> Path:
     """python/requirements.txt as a constraints file (pins only: constraints take no extras)."""
-    pins = re.findall(
-        r"^([A-Za-z0-9_.-]+)(?:\[[^\]]*\])?(==\S+)",
-        (ROOT / "python" / "requirements.txt").read_text(),
-        re.M,
-    )
     path = tmp_path / "constraints.txt"
-    path.write_text("".join(f"{name}{version}\n" for name, version in pins))
+    path.write_text("".join(f"{pin}\n" for pin in pins()))
     return path
 
 
