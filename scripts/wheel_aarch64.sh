@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The aarch64 wheel installed and run in an aarch64 Python under qemu-user
 # (python/bench/wheel_aarch64.py; docs/install.md): too slow for scripts/test.sh (about
-# 2 minutes of pip under emulation), so run on its own. Installs debootstrap and qemu-user
+# 75 s of pip under emulation), so run on its own. Installs debootstrap and qemu-user
 # (apt-get) when missing, builds the wheels (scripts/wheel.sh) when dist/ has no aarch64
 # one, keeps the arm64 Debian root in target/arm64-root for the next run.
 set -euo pipefail

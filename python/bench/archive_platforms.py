@@ -4,7 +4,7 @@ co-simulation scenario (`bench.fmpy_whole.whole`: parse, extract, instantiate, i
 Linux and Windows binaries (what the archives carried before the macOS ones), and the
 SciPy peer's best-accuracy run at lambda = 0.1 (`bench.scipy_peer`: DOP853, N = 25601,
 rtol = 1e-10, the Targets table of docs/benchmarks.md) timed in the same process, for the
-ratio the benchmarks keep (the peer's CPU time over the fmpy scenario's, >= 2,000x).
+ratio docs/install.md reports (the peer's CPU time over the fmpy scenario's).
 `time.process_time`, best of `--repeats` (the peer: best of 2), with BLAS on one thread as
 in scripts/bench.sh: process_time counts every thread's CPU, and OpenBLAS's second thread
 on two cores more than doubles the peer's (32.6 s against 15.0 s, measured 2026-12-07).

@@ -12,8 +12,8 @@ its bound (the end of the frame interval), where its column is nearly R0's and s
 (a slow opening is one exponential: a shift in time is a change of amplitude); with it in
 the covariance the standard errors of R0 and sigma were printed as 2.6e5 um and 5e4, far
 beyond their profile intervals. Held on its bound (stages.reported_cov), the cut's error is
-none and each other finite one lies within its own interval's width. About 8 s of CPU
-(render, measure, fit).
+none and each other finite one lies within its own interval's width. About 13 s
+(render, measure, fit; --durations, 2026-12-07).
 """
 
 from __future__ import annotations
