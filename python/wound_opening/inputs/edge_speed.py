@@ -9,9 +9,9 @@ px/s read as px/frame at 4 frames/s). Checked per frame pair k, before any fit:
     b_k = dR/dt at t_k, the slope at t_k of the widest parabola, through the radii within
           10, 5 or 3 frame intervals of t_k (least squares), that has two radii or more on
           either side of t_k (no extrapolation) and follows them: its residuals' rms within
-          twice the radii's noise s (1.4826 median |second difference| / sqrt 6, which the
-          opening's few steep frames and an outline's jumps do not move); no b_k where
-          none does
+          twice the radii's noise s (truncate.noise_of: from the second differences, robust,
+          so that the opening's few steep frames and an outline's jumps do not move it); no
+          b_k where none does
     q   = sum a_k b_k / sum b_k^2 over the pairs whose b_k is over 3 of its standard errors
 
 v_r r / R extrapolates the velocity to the edge as 1/r (incompressible flow about a hole).
@@ -41,6 +41,7 @@ import math
 import numpy as np
 
 from .columns import InputError
+from .truncate import noise_of
 
 EDGE_BAND_UM = 8.0
 EDGE_FRAMES = 10
@@ -49,11 +50,11 @@ EDGE_WINDOWS = (EDGE_FRAMES, 5, 3)
 EDGE_FACTOR = 2.5
 
 
-def _slope(t, R, t0, dt, frames: int, noise: float | None = None):
+def _slope(t, R, t0, dt, frames: int, noise: float):
     """(dR/dt at t0, its standard error, R at t0) of a parabola through the radii within
     `frames` frame intervals of t0, or None: fewer than six, fewer than two on either side
-    of t0 (no extrapolation), or, with the radii's `noise` given, a parabola that does not
-    follow them (residuals' rms over twice the noise: an opening faster than the window)."""
+    of t0 (no extrapolation), or a parabola that does not follow them (residuals' rms over
+    twice the radii's `noise`: an opening faster than the window)."""
     near = np.abs(t - t0) <= frames * dt
     if (
         near.sum() < 6
@@ -66,18 +67,10 @@ def _slope(t, R, t0, dt, frames: int, noise: float | None = None):
     coef, *_ = np.linalg.lstsq(A, R[near], rcond=None)
     dof = x.size - 3
     s2 = float(np.sum((R[near] - A @ coef) ** 2)) / dof
-    if noise is not None and s2 > (2 * noise) ** 2:
+    if s2 > (2 * noise) ** 2:
         return None
     cov = s2 * np.linalg.inv(A.T @ A)
     return float(coef[1]), math.sqrt(max(float(cov[1, 1]), 0.0)), float(coef[0])
-
-
-def _noise(R) -> float:
-    """The radii's noise from their second differences (robust: median; evenly spaced
-    frames)."""
-    if R.size < 3:
-        return 0.0
-    return 1.4826 * float(np.median(np.abs(np.diff(R, 2)))) / math.sqrt(6)
 
 
 def _speed(t, R, t0, dt, noise):
@@ -100,7 +93,7 @@ def edge_ratio(time_s, r, vr, radius) -> tuple[float, int, float] | None:
     dt = float(np.median(np.diff(np.unique(t)))) if np.unique(t).size > 1 else None
     if dt is None:
         return None
-    noise = _noise(R)
+    noise = noise_of(radius)
     rows = []  # (a_k, its standard error, b_k, its standard error)
     for tk in np.unique(time_s):
         got = _speed(t, R, tk, dt, noise)
@@ -125,10 +118,10 @@ def edge_ratio(time_s, r, vr, radius) -> tuple[float, int, float] | None:
 def check_edge_speed(
     time_s, r, vr, radius, units=None, frame_interval_s=None, pixel_size_um=None
 ) -> str | None:
-    """Refuse a field whose edge velocity is not the edge speed (module docstring; each pair
-    spanning `frame_interval_s`, None for a profile file), naming the option at fault where
-    q is a unit mistake's factor (unit_mistake: `units` the --piv-units read, None for files
-    that name theirs); the sentence for the report otherwise (None when unchecked)."""
+    """Refuse a field whose edge velocity is not the edge speed (module docstring), naming
+    the option at fault where q is a unit mistake's factor (unit_mistake: `units` the
+    --piv-units read, None for files that name theirs); the sentence for the report
+    otherwise (None when unchecked)."""
     got = edge_ratio(np.asarray(time_s), np.asarray(r), np.asarray(vr), radius)
     if got is None:
         return None
