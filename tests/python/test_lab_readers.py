@@ -59,19 +59,23 @@ def test_fiji_table_gives_the_exact_radius_with_skipped_rows_counted(tmp_path):
     assert any("Slice 40, 97" in n for n in record.notes)
 
 
-def test_fiji_tab_separated_with_frame_column_and_um_areas(tmp_path):
-    path = tmp_path / "Results.txt"
-    lab.write_fiji(path, R0, sep="\t")
-    text = path.read_text().replace("Slice", "Frame")
+def in_um2(text: str, sep: str = ",") -> str:
+    """An example table's Area (px^2) and Perim. (px) in um^2 and um."""
     rows = text.splitlines()
     out = [rows[0]]
-    for row in rows[1:]:  # px^2 -> um^2
-        c = row.split("\t")
+    for row in rows[1:]:
+        c = row.split(sep)
         if c[2] not in ("0", "NaN"):
             c[2] = f"{float(c[2]) * lab.PIXEL_UM**2:.6f}"
             c[3] = f"{float(c[3]) * lab.PIXEL_UM:.6f}"
-        out.append("\t".join(c))
-    path.write_text("\n".join(out) + "\n")
+        out.append(sep.join(c))
+    return "\n".join(out) + "\n"
+
+
+def test_fiji_tab_separated_with_frame_column_and_um_areas(tmp_path):
+    path = tmp_path / "Results.txt"
+    lab.write_fiji(path, R0, sep="\t")
+    path.write_text(in_um2(path.read_text().replace("Slice", "Frame"), "\t"))
     s = fiji(path, length_unit="um", pixel_size_um=None)
     np.testing.assert_allclose(s.radius_um, lab.radius(R0, s.times_s), rtol=0, atol=1e-5)
 

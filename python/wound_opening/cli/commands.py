@@ -130,8 +130,6 @@ def _names_cut(args, name: str = "cut_s") -> bool:
     return any(o.split("=")[0].strip() == name for o in options)
 
 
-#: The outline offset's prior standard deviation where the pixel size is not given [um].
-OUTLINE_SD_UM = 0.2
 #: The PIV field's gain's prior standard deviation (objective.PIV_GAIN): a PIV program's
 #: velocities are good to some 10 % (OpenPIV's tutorial read 4-11 % high, or 9 % low, on
 #: movies rendered from the exact solution).
@@ -140,7 +138,7 @@ PIV_GAIN_SD = 0.1
 
 def outline_prior(args) -> list:
     """--prior with the outline's offset of an area table (a threshold's outline: Fiji,
-    ImageJ) added, 0 +- one pixel (OUTLINE_SD_UM without --pixel-size-um): a threshold puts
+    ImageJ) added, 0 +- one pixel (fiji.PIXEL_UM without --pixel-size-um): a threshold puts
     the edge a fraction of a pixel to a pixel off, and from the radius alone that offset moves
     R0 unseen; and, with PIV files (--piv), the field's gain, 1 +- PIV_GAIN_SD. The user's
     own --fix/--bound/--prior of either name wins."""
@@ -149,7 +147,9 @@ def outline_prior(args) -> list:
         prior.append(f"piv_gain=1:{PIV_GAIN_SD!r}")
     if not getattr(args, "area_col", None) or _names_cut(args, "outline_offset_um"):
         return prior
-    sd = args.pixel_size_um if args.pixel_size_um else OUTLINE_SD_UM
+    from ..inputs.fiji import PIXEL_UM
+
+    sd = args.pixel_size_um if args.pixel_size_um else PIXEL_UM
     return prior + [f"outline_offset_um=0:{sd!r}"]
 
 

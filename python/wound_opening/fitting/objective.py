@@ -200,6 +200,8 @@ class Objective(ProfileModel, Problem):
         self.serial = bool(getattr(radius, "serial", False)) and self.estimated[0]
         self.radius_rho = 0.0
         self.gaps = serial.gaps(self.t_sorted)
+        #: the least radius noise an estimate takes [um] (RadiusSeries.noise_floor_um)
+        self.radius_floor = getattr(radius, "noise_floor_um", None) if self.estimated[0] else None
         self.half_window = 0.5 * (getattr(profile, "window_um", None) or 0.0)
         self.evaluations = 0
         self.inside_edge = 0
@@ -256,6 +258,13 @@ class Objective(ProfileModel, Problem):
                 factor = math.sqrt(float(np.sum(part**2)) / dof)
             scale.append(np.full(part.size, max(factor, 1e-300)))
         self.sd = self.sd * np.concatenate(scale)
+        if self.radius_floor:  # an outline's error: half a pixel at least (fiji.py)
+            np.maximum(self.sd[: self.n_radius], self.radius_floor, out=self.sd[: self.n_radius])
+
+    def floor_reached(self) -> bool:
+        """Whether the radius noise is the floor's (the residuals' scale is below it)."""
+        floor = self.radius_floor
+        return bool(floor) and bool(np.all(self.sd[: self.n_radius] <= floor * (1 + 1e-12)))
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Bounds in z: R0 between 1 % of the smallest radius and the outer radius / 1.001

@@ -148,6 +148,7 @@ def fit(
             intervals_of(reports, profiles) if profiles else None,
         ),
         points=data_points(data, z, judged.flagged),
+        radius_floor_um=data.radius_floor if data.floor_reached() else None,
         residual_runs=as_dicts(judged.runs),
         doubts=list(getattr(radius, "warnings", ()) or ()),
         refit=optimum.profile_at if not judged.reasons else None,

@@ -51,6 +51,14 @@ ROUND_CIRCULARITY = 0.65
 #: is a warning; fewer, a note (one outline in three took in a cell in a draw that held every
 #: value).
 NOT_ROUND_SHARE = 0.5
+#: The pixel [um] an area table in um^2 is taken to have been measured on (a laser-ablation
+#: movie's: 0.1-0.3 um): the outline offset's prior sd (cli/commands.py) and the noise floor.
+PIXEL_UM = 0.2
+#: A thresholded outline's radius error is taken as no less than this many pixels: its
+#: error is no independent noise but a slow drift plus the cells an outline takes in or lets
+#: go (0.018-0.18 um on rendered movies, docs/fitting.md "The outline's noise floor"), which
+#: the residuals of a fit whose opening spans a few frames absorb (estimated 0.008 um there).
+OUTLINE_FLOOR_PX = 0.5
 #: A wound smaller than this radius (in pixels) cannot be outlined on an image.
 MIN_RADIUS_PX = 5.0
 #: ... and smaller than this radius in um (laser cuts are microns wide).
@@ -261,7 +269,14 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
         files=(record,),
         serial=True,
         warnings=tuple(doubts),
+        noise_floor_um=None if noise_um is not None else noise_floor(um, length_unit),
     )
+
+
+def noise_floor(um_per_length: float, length_unit: str) -> float:
+    """The radius noise's floor [um]: OUTLINE_FLOOR_PX of the table's pixel (PIXEL_UM for
+    a table in um^2)."""
+    return OUTLINE_FLOOR_PX * (um_per_length if length_unit == "px" else PIXEL_UM)
 
 
 def circularity(area, perim) -> tuple[np.ndarray, np.ndarray]:

@@ -32,10 +32,16 @@ class RadiusSeries:
     #: What the reader found doubtful in the measurement (fiji.outline_warnings), said with
     #: the fit's warnings.
     warnings: tuple = ()
+    #: With the noise estimated: the least noise the fit takes [um] (an outline's error is
+    #: half a pixel at least: fiji.OUTLINE_FLOOR_PX); None: the residuals' scale alone.
+    noise_floor_um: float | None = None
 
     def __post_init__(self):
         _check_columns("radius", self.times_s, self.radius_um)
         _check_noise(self, "radius", self.noise_um, self.sd_um, np.size(self.radius_um))
+        floor = self.noise_floor_um
+        if floor is not None and not (math.isfinite(floor) and floor > 0):
+            raise ValueError(f"radius noise floor {floor!r} um: expected finite and > 0")
         bad = np.flatnonzero(~(np.asarray(self.radius_um, dtype=float) > 0))
         if bad.size:
             raise ValueError(

@@ -44,6 +44,15 @@ def fmt(x) -> str:
     return "open" if x is None else f"{x:.4g}"
 
 
+def floor_line(floor_um: float, rms_um: float) -> str:
+    """The summary's line on a radius noise set by the outline's floor."""
+    return (
+        f"radius noise {floor_um:.3g} um, the outline's floor (half a pixel), above the "
+        f"residuals' {rms_um:.3g} um: a thresholded outline's error drifts with the cells it "
+        f"takes in, which a fit's residuals absorb (--radius-noise-um sets it)"
+    )
+
+
 @dataclass
 class FitResult(Outcome):
     """The result of `fit` (one wound): Outcome's verdict and these."""
@@ -61,6 +70,9 @@ class FitResult(Outcome):
     derived_profiles: dict = field(default_factory=dict)
     #: The data in the input's order with the model, the noise used and the flags (export.py).
     points: dict = field(default_factory=dict)
+    #: The radius noise's floor [um] where it, not the residuals, set the noise (an
+    #: outline's half pixel: inputs/fiji.py), else None.
+    radius_floor_um: float | None = None
     #: (objective, z, chi^2 at the optimum, loss): for profiles at more values (profile_at).
     #: (i, values of z_i) -> delta chi^2: the profile of coordinate i by constrained fits.
     refit: object = field(default=None, repr=False, compare=False)
@@ -233,6 +245,7 @@ class FitResult(Outcome):
             "noise": {
                 "radius_um": self.noise[0],
                 "velocity_um_s": self.noise[1] if self.has_profile else None,
+                "radius_at_floor_um": self.radius_floor_um,
             },
         }
 
@@ -300,6 +313,8 @@ class FitResult(Outcome):
             f"residual rms {self.residual_rms_um:.3g} um; {fit}; optimiser: "
             f"{self.optimizer.get('message', '')}"
         )
+        if self.radius_floor_um is not None:
+            lines.append(floor_line(self.radius_floor_um, self.residual_rms_um))
         if self.has_profile:
             lines.append(
                 f"PIV vectors at or inside the model's wound edge (compared with the edge "

@@ -14,7 +14,7 @@ from ..material import RATIOS, absolute_values
 from .names import ETA, SHARED
 from .numbers import ends, material_lines
 from .outcome import Outcome, chi2_warning, outlier_warning, verdict_fields
-from .result import ParameterReport, fmt
+from .result import ParameterReport, floor_line, fmt
 from .status import judge, radii
 from .status import status as physical_status
 
@@ -194,7 +194,11 @@ class TissueFitResult(Outcome):
                     "T_s": T,
                     "chi2": w["chi2"],
                     "residual_rms_um": w["residual_rms_um"],
-                    "noise": {"radius_um": w["noise"][0], "velocity_um_s": w["noise"][1]},
+                    "noise": {
+                        "radius_um": w["noise"][0],
+                        "velocity_um_s": w["noise"][1],
+                        "radius_at_floor_um": w.get("radius_floor_um"),
+                    },
                     "outliers": w["outliers"],
                     "piv_vectors_at_edge": w["piv_vectors_at_edge"],
                 }
@@ -269,5 +273,10 @@ class TissueFitResult(Outcome):
             else " (noise estimated from the residuals)"
         )
         lines.append(f"{fit}; optimiser: {self.optimizer.get('message', '')}")
+        lines += [
+            f"wound {w['name']}: " + floor_line(w["radius_floor_um"], w["residual_rms_um"])
+            for w in self.wounds
+            if w.get("radius_floor_um") is not None
+        ]
         lines += [f"warning: {w}" for w in self.warnings]
         return "\n".join(lines)

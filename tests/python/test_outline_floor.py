@@ -1,0 +1,73 @@
+"""The outline's noise floor (inputs/fiji.py, OUTLINE_FLOOR_PX): a thresholded outline's
+radius noise, estimated from a fit's residuals, is taken as half a pixel at least, since its
+error drifts with the cells the outline takes in, which the residuals absorb. Fiji tables
+written from the EXACT solution (python/make_lab_examples.py): with no noise but the
+table's rounding the fit's radius noise is the floor, said in the summary and the JSON; with
+a noise above the floor, or a noise given, the floor plays no part."""
+
+from __future__ import annotations
+
+import json
+import shlex
+
+import make_lab_examples as lab
+import numpy as np
+import pytest
+from test_lab_readers import fiji, in_um2
+
+from wound_opening.cli import main
+from wound_opening.fitting.single import fit
+from wound_opening.inputs.fiji import OUTLINE_FLOOR_PX, PIXEL_UM
+
+R0 = 8.0
+
+
+def test_the_floor_is_half_a_pixel_of_the_table_or_none_with_a_noise_given(tmp_path):
+    path = tmp_path / "Results.csv"
+    lab.write_fiji(path, R0)
+    assert OUTLINE_FLOOR_PX == 0.5
+    assert fiji(path).noise_floor_um == pytest.approx(0.5 * lab.PIXEL_UM, rel=1e-15)
+    assert fiji(path, pixel_size_um=0.13).noise_floor_um == pytest.approx(0.065, rel=1e-15)
+    assert fiji(path, noise_um=0.01).noise_floor_um is None
+    # a table in um^2 (no pixel size can be given): PIXEL_UM's half
+    um2 = tmp_path / "um2.csv"
+    um2.write_text(in_um2(path.read_text()))
+    series = fiji(um2, length_unit="um", pixel_size_um=None)
+    assert series.noise_floor_um == pytest.approx(0.5 * PIXEL_UM, rel=1e-15)
+
+
+@pytest.mark.parametrize("noise_px, floored", [(0.0, True), (1.0, False)])
+def test_the_fit_takes_the_floor_only_where_the_residuals_are_below_it(tmp_path, noise_px, floored):
+    path = tmp_path / "Results.csv"
+    lab.write_fiji(path, R0, noise_px=noise_px)
+    series = fiji(path)
+    result = fit(series, outer_radius_um=lab.OUTER_UM, intervals=False, derived=False)
+    assert result.converged, result.reasons
+    floor = 0.5 * lab.PIXEL_UM
+    if floored:  # the table's rounding alone: residuals ~1e-6 um
+        assert result.residual_rms_um < 1e-3 * floor
+        assert result.radius_floor_um == pytest.approx(floor, rel=1e-15)
+        np.testing.assert_allclose(result.noise[0], floor, rtol=1e-15)
+    else:  # 1 px = 0.2 um of white noise: the residuals' scale, above the floor
+        assert result.radius_floor_um is None
+        assert 0.15 < result.noise[0] < 0.25, result.noise
+    assert json.loads(result.to_json())["noise"]["radius_at_floor_um"] == result.radius_floor_um
+
+
+def test_the_command_says_the_floor_and_a_given_noise_sets_it_aside(tmp_path, capsys):
+    path = tmp_path / "Results.csv"
+    lab.write_fiji(path, R0)
+    base = (
+        f"fit {path} --area-col Area --frame-interval-s {lab.FRAME_S} --cut-after-frame "
+        f"{lab.CUT_AFTER} --length-unit px --pixel-size-um {lab.PIXEL_UM} --outer-radius-um "
+        f"{lab.OUTER_UM} --fix cut_s=0 --fix outline_offset_um=0"
+    )
+    assert main(shlex.split(base + f" --json {tmp_path / 'a.json'}")) == 0
+    said = capsys.readouterr().out
+    assert "radius noise 0.1 um, the outline's floor (half a pixel)" in said
+    assert json.loads((tmp_path / "a.json").read_text())["noise"]["radius_at_floor_um"] == 0.1
+    given = base + f" --radius-noise-um 0.01 --json {tmp_path / 'b.json'}"
+    assert main(shlex.split(given)) == 0
+    assert "the outline's floor" not in capsys.readouterr().out
+    noise = json.loads((tmp_path / "b.json").read_text())["noise"]
+    assert noise == {"radius_um": 0.01, "velocity_um_s": None, "radius_at_floor_um": None}
