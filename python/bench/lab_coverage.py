@@ -12,6 +12,9 @@ docs/fitting.md ("Coverage on rendered movies"); writes every draw's truth.json 
 summary JSON under --out.
 
     cd python && python -m bench.lab_coverage --out /tmp/lab_coverage --draws 20 [--size-px 256]
+
+With --refit the draws under --out are fitted again (their files kept): the same movies and
+measurements through a changed fitter, e.g. a copy of an earlier study's folder.
 """
 
 from __future__ import annotations
@@ -70,6 +73,21 @@ def draw(seed: int, out: Path, size_px: int) -> dict:
     return record
 
 
+def refit(out: Path) -> dict:
+    """A draw's files fitted again by the fitter of this checkout (--refit): the movie's
+    measurement as written under `out` (or copied there), the fit commands' paths moved to
+    it; truth.json rewritten with the new fits."""
+    record = json.loads((out / "truth.json").read_text())
+    cmd = shlex.split(record["fit_command"])
+    old = str(Path(cmd[cmd.index("--json") + 1]).parent)
+    cmd = [c.replace(old, str(out)) for c in cmd]
+    record["fit_command"] = shlex.join(cmd)
+    record["fit"] = run_fit(out, record, cmd, "fit")
+    record["fit_radius_only"] = run_fit(out, record, radius_only(cmd), "fit_radius")
+    (out / "truth.json").write_text(json.dumps(record, indent=1) + "\n")
+    return record
+
+
 def tally(records: list, fit: str) -> dict:
     """Per key: fits with numbers, reported identified, identified and holding the truth,
     intervals (identified or not) holding it."""
@@ -109,10 +127,17 @@ def main(argv=None) -> None:
     ap.add_argument("--draws", type=int, default=20)
     ap.add_argument("--first", type=int, default=0, help="the first draw's seed")
     ap.add_argument("--size-px", type=int, default=256)
+    ap.add_argument(
+        "--refit",
+        action="store_true",
+        help="fit the draws already under --out again (a copy of an earlier study's folder): "
+        "no rendering or measuring, the same files",
+    )
     a = ap.parse_args(argv)
     records = []
     for seed in range(a.first, a.first + a.draws):
-        rec = draw(seed, a.out / f"draw_{seed:03d}", a.size_px)
+        where = a.out / f"draw_{seed:03d}"
+        rec = refit(where) if a.refit else draw(seed, where, a.size_px)
         records.append(rec)
         m = rec["movie"]
         said = []
