@@ -3,7 +3,7 @@ radius noise, estimated from a fit's residuals, is taken as half a pixel at leas
 error drifts with the cells the outline takes in, which the residuals absorb. Fiji tables
 written from the EXACT solution (python/make_lab_examples.py): with no noise but the
 table's rounding the fit's radius noise is the floor, said in the summary and the JSON; with
-a noise above the floor, or a noise given, the floor plays no part."""
+a noise above the floor, or a noise given, the floor plays no part. The report says it too."""
 
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ from test_lab_readers import fiji, in_um2
 from wound_opening.cli import main
 from wound_opening.fitting.single import fit
 from wound_opening.inputs.fiji import OUTLINE_FLOOR_PX, PIXEL_UM
+from wound_opening.results.report import write_report
 
 R0 = 8.0
 
@@ -44,6 +45,9 @@ def test_the_fit_takes_the_floor_only_where_the_residuals_are_below_it(tmp_path,
     result = fit(series, outer_radius_um=lab.OUTER_UM, intervals=False, derived=False)
     assert result.converged, result.reasons
     floor = 0.5 * lab.PIXEL_UM
+    report = write_report(tmp_path / "r.html", result, series).read_text(encoding="utf-8")
+    said = "radius 0.1 µm (the outline's floor, half a pixel, above the residuals'"
+    assert (said in report) == floored
     if floored:  # the table's rounding alone: residuals ~1e-6 um
         assert result.residual_rms_um < 1e-3 * floor
         assert result.radius_floor_um == pytest.approx(floor, rel=1e-15)

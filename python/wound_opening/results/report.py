@@ -174,7 +174,12 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     parts.append(raw_files_section(radius, profile))
     from .plots import noise_words
 
-    said = {"estimated": "estimated from the residuals", "ring scatter": "the rings' scatter"}
+    said = {
+        "estimated": "estimated from the residuals",
+        "ring scatter": "the rings' scatter",
+        "outline's floor": f"the outline's floor, half a pixel, above the residuals' "
+        f"{sig(result.residual_rms_um, 3)} µm",
+    }
     how = [said.get(w, w) for w in noise_words(result, profile)]
     noise = [f"radius {sig(result.noise[0], 4)} µm ({how[0]})"]
     if result.has_profile:

@@ -86,7 +86,12 @@ def _wound(result, k: int, wound) -> str:
     lo, hi = rep.ci95
     r = radii(R0, sigma, w["outer_radius_um"])
     n_r, n_p = w["n_points"]
-    noise = f"radius {sig(w['noise'][0], 4)} µm"
+    noise = f"radius {sig(w['noise'][0], 4)} µm" + (
+        f" (the outline's floor, half a pixel, above the residuals' "
+        f"{sig(w['residual_rms_um'], 3)} µm)"
+        if w.get("radius_floor_um") is not None
+        else ""
+    )
     if n_p:
         noise += f", velocity {sig(w['noise'][1], 4)} µm/s"
     files = [(d, f, h, str(n)) for d, f, h, n in inputs(wound.radius, wound.profile)]
