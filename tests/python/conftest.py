@@ -166,6 +166,8 @@ LONG_FIRST = (
     # a rendered movie measured and fitted (13 s), the early-times coverage sample (12 s),
     # the centre of a rendered movie (8 s): measured 2026-12-07
     "test_lab_viscous_limit.py::test_radius_fit_at_the_viscous_limit_gives_honest_numbers",
+    # a rendered movie measured and fitted at the outline's floor (10 s): 2026-12-07
+    "test_outline_floor.py::test_a_rendered_movie_radius_fit_publishes_no_wrong_identified_value",
     "test_fit.py::test_early_times_at_one_percent_noise_report_no_interval_that_misses_the_truth",
     "test_lab_centre.py::test_centre_of_a_large_wound_from_openpiv_files_holds_the_truth",
 )

@@ -240,7 +240,8 @@ class Objective(ProfileModel, Problem):
 
     def estimate_noise(self, z, robust: bool, share: float | None = None) -> None:
         """Scale the estimated data sets' uncertainties to their residuals at z; `share`: the
-        fraction of each set's points taken by the parameters (default 4 / the points)."""
+        fraction of each set's points taken by the parameters (default 4 / the points). The
+        radius's no lower than its floor (`radius_floor`: an outline's half pixel)."""
         parts = list(self.split(self.residuals(z)))
         if self.serial:  # the radius's marginal scale, and its correlation, from the raw
             raw = ((self.model(z) - self.data()) / self.sd)[: self.n_radius]
