@@ -53,6 +53,11 @@ def sig(x, digits: int = 5) -> str:
     return "—" if x is None else f"{x:.{digits}g}"
 
 
+def floor_said(rms_um: float) -> str:
+    """How a report says the outline's floor set the radius noise (inputs/fiji.py)."""
+    return f"the outline's floor, half a pixel, above the residuals' {sig(rms_um, 3)} µm"
+
+
 def html_table(header, rows) -> str:
     head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
     body = "".join(
@@ -177,8 +182,7 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     said = {
         "estimated": "estimated from the residuals",
         "ring scatter": "the rings' scatter",
-        "outline's floor": f"the outline's floor, half a pixel, above the residuals' "
-        f"{sig(result.residual_rms_um, 3)} µm",
+        "outline's floor": floor_said(result.residual_rms_um),
     }
     how = [said.get(w, w) for w in noise_words(result, profile)]
     noise = [f"radius {sig(result.noise[0], 4)} µm ({how[0]})"]

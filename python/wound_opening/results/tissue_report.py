@@ -25,6 +25,7 @@ from .report import (
     document,
     end_cell,
     figure_html,
+    floor_said,
     html_table,
     inputs,
     material_html,
@@ -87,10 +88,7 @@ def _wound(result, k: int, wound) -> str:
     r = radii(R0, sigma, w["outer_radius_um"])
     n_r, n_p = w["n_points"]
     noise = f"radius {sig(w['noise'][0], 4)} µm" + (
-        f" (the outline's floor, half a pixel, above the residuals' "
-        f"{sig(w['residual_rms_um'], 3)} µm)"
-        if w.get("radius_floor_um") is not None
-        else ""
+        f" ({floor_said(w['residual_rms_um'])})" if w.get("radius_floor_um") is not None else ""
     )
     if n_p:
         noise += f", velocity {sig(w['noise'][1], 4)} µm/s"
