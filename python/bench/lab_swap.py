@@ -30,19 +30,29 @@ from bench.lab_movies import run_fit
 from bench.lab_render import Movie, render
 
 
-def exact_radius(draw: Path, out: Path, rec: dict, noise_um: float, seed: int) -> Path:
-    """The draw's Fiji table with each row's area and perimeter those of the exact radius
-    plus noise."""
-    rng = np.random.default_rng([seed, 1])
+def outline_table(draw: Path, rec: dict):
+    """The draw's Fiji table: (its header line, column names, each row's cells, the exact
+    radius at each row's frame [um])."""
     lines = (draw / "radius.csv").read_text().splitlines()
     head = lines[0].split(",")
-    area, perim, frame = head.index("Area"), head.index("Perim."), head.index("Slice")
-    rows = [lines[0]]
-    for line in lines[1:]:
-        cells = line.split(",")
-        r = rec["radius_exact_um"][int(cells[frame]) - 1] + rng.normal(0.0, noise_um)
-        cells[area], cells[perim] = f"{math.pi * r * r:.3f}", f"{2 * math.pi * r:.3f}"
-        rows.append(",".join(cells))
+    cells = [line.split(",") for line in lines[1:]]
+    frame = head.index("Slice")
+    exact = np.array([rec["radius_exact_um"][int(c[frame]) - 1] for c in cells])
+    return lines[0], head, cells, exact
+
+
+def exact_radius(table, out: Path, noise_um: float, seed: int) -> Path:
+    """The draw's Fiji table (outline_table) with each row's area and perimeter those of the
+    exact radius plus noise."""
+    rng = np.random.default_rng([seed, 1])
+    header, head, cells, exact = table
+    area, perim = head.index("Area"), head.index("Perim.")
+    rows = [header]
+    for row, r_exact in zip(cells, exact):
+        cells_out = list(row)
+        r = r_exact + rng.normal(0.0, noise_um)
+        cells_out[area], cells_out[perim] = f"{math.pi * r * r:.3f}", f"{2 * math.pi * r:.3f}"
+        rows.append(",".join(cells_out))
     path = out / "radius_exact.csv"
     path.write_text("\n".join(rows) + "\n")
     return path
@@ -70,15 +80,14 @@ def exact_field(draw: Path, out: Path, rec: dict, noise_um_s: float, seed: int) 
     return folder
 
 
-def leak_regression(draw: Path, rec: dict) -> dict:
-    """The outline's error against its excess perimeter x (module docstring): the slope,
-    the correlation, and the error's spread before and after the regression [um]."""
-    lines = (draw / "radius.csv").read_text().splitlines()
-    head = lines[0].split(",")
-    cells = [line.split(",") for line in lines[1:]]
+def leak_regression(table) -> dict:
+    """The outline's error against its excess perimeter x = Perim. / 2 pi - r / sqrt(the
+    largest circularity) (r = sqrt(Area / pi): zero for the roundest outline) over the
+    draw's table (outline_table): the slope, the correlation, and the error's spread before
+    and after the regression [um]."""
+    _, head, cells, exact = table
     area = np.array([float(c[head.index("Area")]) for c in cells])
     perim = np.array([float(c[head.index("Perim.")]) for c in cells])
-    exact = np.array([rec["radius_exact_um"][int(c[head.index("Slice")]) - 1] for c in cells])
     r = np.sqrt(area / math.pi)
     circ = 4 * math.pi * area / perim**2
     x = perim / (2 * math.pi) - r / math.sqrt(circ.max())
@@ -105,15 +114,16 @@ def main(argv=None) -> None:
     a = ap.parse_args(argv)
     a.out.mkdir(parents=True, exist_ok=True)
     rec = json.loads((a.draw / "truth.json").read_text())
+    table = outline_table(a.draw, rec)
     radius = {
         "measured": a.draw / "radius.csv",
-        "exact": exact_radius(a.draw, a.out, rec, a.radius_noise_um, a.seed),
+        "exact": exact_radius(table, a.out, a.radius_noise_um, a.seed),
     }
     field = {
         "measured": a.draw / "piv",
         "exact": exact_field(a.draw, a.out, rec, a.velocity_noise_um_s, a.seed),
     }
-    leak = leak_regression(a.draw, rec)
+    leak = leak_regression(table)
     print(
         f"outline error on its excess perimeter: slope {leak['slope']:.3f}, correlation "
         f"{leak['correlation']:.2f}, sd {leak['error_sd_um']:.3f} -> {leak['after_sd_um']:.3f}"
