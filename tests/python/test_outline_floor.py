@@ -21,7 +21,9 @@ from test_lab_readers import fiji, in_um2
 
 from wound_opening.cli import main
 from wound_opening.fitting.single import fit
+from wound_opening.fitting.wounds import Wound, fit_wounds
 from wound_opening.inputs.fiji import OUTLINE_FLOOR_PX, PIXEL_UM
+from wound_opening.inputs.series import RadiusSeries
 from wound_opening.results.report import write_report
 
 R0 = 8.0
@@ -97,3 +99,27 @@ def test_a_rendered_movie_radius_fit_publishes_no_wrong_identified_value(tmp_pat
         assert res["estimates"][key]["covers"], (key, res["estimates"][key])
     noise = json.loads((tmp_path / "fit_radius.json").read_text())["noise"]
     assert noise["radius_at_floor_um"] == pytest.approx(0.1, rel=1e-12), noise
+
+
+def test_a_floor_that_is_no_noise_is_refused():
+    t, r = np.linspace(0.25, 30, 50), np.full(50, 8.0)
+    for bad in (0.0, -0.1, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="radius noise floor .* expected finite and > 0"):
+            RadiusSeries(t, r, noise_floor_um=bad)
+
+
+def test_a_several_wound_fit_says_the_floor_per_wound(tmp_path):
+    wounds = []
+    # white noise below the floor (0.2 px = 0.04 um) and above it (1 px = 0.2 um)
+    for R, noise_px in ((4.0, 0.2), (8.0, 1.0)):
+        path = tmp_path / f"Results_{R:g}.csv"
+        lab.write_fiji(path, R, noise_px=noise_px)
+        wounds.append(Wound(fiji(path), lab.OUTER_UM, name=f"R{R:g}"))
+    result = fit_wounds(wounds, intervals=False)
+    assert result.converged, result.reasons
+    rows = {w["name"]: w for w in json.loads(result.to_json())["wounds"]}
+    assert rows["R4"]["noise"]["radius_at_floor_um"] == pytest.approx(0.1, rel=1e-12)
+    assert rows["R8"]["noise"]["radius_at_floor_um"] is None
+    assert rows["R8"]["noise"]["radius_um"] > 0.15, rows["R8"]["noise"]
+    lines = [s for s in result.summary().splitlines() if "the outline's floor" in s]
+    assert len(lines) == 1 and lines[0].startswith("wound R4: radius noise 0.1 um"), lines
