@@ -94,3 +94,28 @@ def test_the_named_mistake_is_the_one_made():
     assert "--piv-units px,px/frame" in unit_mistake(0.8 * 0.25, px, 0.25, 0.2)
     assert unit_mistake(0.8, px, 0.25, 0.2) is None
     assert unit_mistake(0.8 * 0.25, None, 0.25, 0.2) is None
+
+
+def test_the_fields_own_interval_names_a_per_frame_mistake(files):
+    """Through the Python API, a field read with its frames' clock and profiled without
+    repeating the frame interval: the refusal still names the per-frame mistake, from the
+    interval the field carries (rings.field_profile's Measurement)."""
+    from wound_opening.inputs.columns import InputError
+    from wound_opening.inputs.fiji import read_fiji
+    from wound_opening.inputs.piv import Frames, read_field
+    from wound_opening.inputs.rings import field_profile
+
+    units = ("px", "px/frame")
+    radius = read_fiji(
+        files / "Results_px.csv",
+        area_col="Area",
+        frame_interval_s=lab.FRAME_S,
+        cut_after_frame=lab.CUT_AFTER,
+        length_unit="px",
+        pixel_size_um=lab.PIXEL_UM,
+    )
+    frames = Frames(lab.FRAME_S, lab.CUT_AFTER, lab.PIV_FIRST, lab.PIV_STEP)
+    field = read_field(files / "px", frames, pixel_size_um=lab.PIXEL_UM, units=units)
+    with pytest.raises(InputError) as refused:
+        field_profile(field, radius, 100.0, units=units, pixel_size_um=lab.PIXEL_UM)
+    assert "give --piv-units px,px/s" in str(refused.value), refused.value

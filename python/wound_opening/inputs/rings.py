@@ -279,7 +279,9 @@ def field_profile(
     r, vr = radial(centre, field.x_um, field.y_um, field.u_um_s, field.v_um_s)
     files = field.files + (RawFile("(centre)", "", "wound centre", {}, (centre.describe(),)),)
     keep(radius, outer_um, field.time_s, r)  # a field mostly inside the wound: refused first
-    edge = check_edge_speed(field.time_s, r, vr, radius, units, frame_interval_s, pixel_size_um)
+    edge = check_edge_speed(
+        field.time_s, r, vr, radius, units, measurement.interval_s, pixel_size_um
+    )
     if edge:
         files += (RawFile("(edge)", "", "edge speed", {}, (edge,)),)
     if likelihood == "vectors":
