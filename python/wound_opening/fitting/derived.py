@@ -94,6 +94,10 @@ class Reparametrised(Problem):
         z[k] = math.exp(y) if k == 2 else y
         return z
 
+    def from_w(self, w):
+        """The objective's z of w (optimum.profile maps a walk's point back with it)."""
+        return self.to_z(w)
+
     def to_w(self, z):
         w = np.array(z, dtype=float)
         w[self.k] = math.log(self.value(z))

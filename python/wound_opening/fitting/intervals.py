@@ -25,6 +25,10 @@ estimate on such a bound gives that end. Parameters the user holds fixed are not
 A crossing stands only if no fit beyond it from the other branch (valleys.py: along
 lambda^2 T = const and zeta = const) falls back under the threshold; else the walk goes on
 from that fit.
+A walk's fit that lands BETTER or more below the optimum's chi^2 has found a better optimum:
+where the fit allows it (`Walk.restart`) the walk stops with BetterOptimum, and the fit
+settles again from there (optimum.profiled) rather than measure the intervals against a
+minimum that is not one.
 """
 
 from __future__ import annotations
@@ -56,6 +60,19 @@ REFINE = 16
 #: of a fit whose cut sits at frame N) can land far beyond the crossing, where the fits
 #: are unsure though the data are not.
 UNSURE_RETRIES = 3
+#: A walk's fit whose chi^2 lies this far or more below the optimum's found a better optimum
+#: than the fit's (a start in another valley, a fit that stopped short): the intervals are
+#: then walked again from it (BetterOptimum), not measured against a minimum that is not one.
+BETTER = 0.05
+
+
+class BetterOptimum(Exception):
+    """A profile walk's fit below the optimum's chi^2 by BETTER or more: `z` (in the walked
+    problem's coordinates) and its `chi2`. Raised where the walk allows it (Walk.restart)."""
+
+    def __init__(self, z: np.ndarray, chi2: float):
+        super().__init__(f"a profile fit reached chi^2 {chi2:.6g}, below the optimum's")
+        self.z, self.chi2 = np.asarray(z, dtype=float), float(chi2)
 
 
 def _on_search_bound(obj, z: np.ndarray, fixed: int) -> bool:
@@ -85,6 +102,13 @@ class Walk:
     slope: np.ndarray
     loss: str = "linear"
     lambda_range: tuple | None = None
+    #: raise BetterOptimum where a fit falls BETTER below chi2_min (else it counts as 0)
+    restart: bool = False
+
+    def below(self, z, chi2: float) -> None:
+        """Raise BetterOptimum if the fit at z lies BETTER or more below the optimum."""
+        if self.restart and chi2 < self.chi2_min - BETTER:
+            raise BetterOptimum(z, chi2)
 
 
 def walk_side(walk: Walk, z_hat, direction: int, limit: float, delta0: float = 0.0):
@@ -153,6 +177,7 @@ def walk_side(walk: Walk, z_hat, direction: int, limit: float, delta0: float = 0
                 if chi2 - chi2_min < threshold or res3.status > 0 or drop < CONFIRM:
                     break
             unsure = res.status == 0
+        walk.below(z, chi2)
         return z, max(chi2 - chi2_min, 0.0), unsure or _on_search_bound(obj, z, i)
 
     def refused_open(v, bracket=None):  # a point the solver refuses ends the walk, open
@@ -185,6 +210,7 @@ def walk_side(walk: Walk, z_hat, direction: int, limit: float, delta0: float = 0
                 return crossing(
                     refused_open, points, prev_v, prev_s - root, v, s - root, root, ends
                 )
+            walk.below(found[1], found[2])
             v, z, delta = found[0], found[1], max(found[2] - chi2_min, 0.0)
             points.append((v, delta))
             if direction * (v - limit) >= 0:  # a valley at or past the search limit: open

@@ -34,8 +34,27 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..results.profiles import Profile
-from .intervals import Walk, hull, profile_at
+from .intervals import BetterOptimum, Walk, hull, profile_at
 from .problem import Problem
+
+#: Times a fit settles again from a better optimum its walks found, at most.
+RESTARTS = 2
+
+
+def profiled(settle_at, profile_all, starts):
+    """(optimum, verdict, profiles) of a fit: `settle_at(starts)` gives (Optimum, Verdict)
+    (stages.settle), `profile_all(optimum, verdict)` the profiles. Where a walk finds a fit
+    below the optimum (intervals.BetterOptimum), the fit settles again from that point and the
+    previous optimum, and every interval is walked again from the new optimum, at most
+    RESTARTS times; the last round's walks count a lower fit as delta chi^2 = 0."""
+    for left in range(RESTARTS, -1, -1):
+        optimum, judged = settle_at(starts)
+        optimum.restart = left > 0
+        try:
+            return optimum, judged, profile_all(optimum, judged)
+        except BetterOptimum as better:
+            starts = [better.z, optimum.z]
+    raise AssertionError("unreachable: the last round does not restart")
 
 
 @dataclass(frozen=True)
@@ -64,6 +83,9 @@ class Optimum:
     thresholds: dict = field(default_factory=dict)
     #: lambda's interval (lo, hi) in z and its threshold, once its profile is walked
     lambda_walked: tuple | None = None
+    #: a walk's fit below chi2 (intervals.BETTER) raises BetterOptimum (z in this problem's
+    #: coordinates): the fit settles again from there (`profiled`)
+    restart: bool = False
 
     def target(self, name: str) -> Target:
         """The optimum's own coordinate `name`."""
@@ -111,8 +133,15 @@ class Optimum:
 
         known = self.lambda_walked
         lambda_range = known[0] if known is not None and known[1] >= threshold else None
-        walk = Walk(problem, k, self.chi2, threshold, step, slope, self.loss, lambda_range)
-        lo, hi, walked, bounded = hull(walk, centres, side_limit)
+        walk = Walk(
+            problem, k, self.chi2, threshold, step, slope, self.loss, lambda_range, self.restart
+        )
+        try:
+            lo, hi, walked, bounded = hull(walk, centres, side_limit)
+        except BetterOptimum as better:
+            if mapped:
+                better.z = problem.from_w(better.z)
+            raise
         if target.problem is None and coordinate.name == "lambda" and problem.wound_maps:
             self.lambda_walked = ((lo, hi), threshold)
         at_bound = coordinate.closed and lo is None  # lambda, l: the interval reaches 0

@@ -32,6 +32,7 @@ from .derived import derived_profiles
 from .gof import as_dicts, series_tests
 from .local import cost
 from .objective import NUISANCES, Objective, from_z, wound_coordinates
+from .optimum import profiled
 from .parameters import Constrained, names, specification
 from .plausibility import intervals_of, time_scale_warnings
 from .recording import check_recording
@@ -68,32 +69,26 @@ def fit(
             f"fit: {data.size} data points for {n_free} free parameters: need at least {n_free + 1}"
         )
     obj = Constrained(data, spec)  # the data with the priors, bounds and fixed parameters
-    optimum, judged = settle(
-        obj,
-        [data],
-        lambda k, z: z,
-        _starts(obj, data, spec, loss),
-        loss,
-        lambda residuals: series_tests(data, residuals),
-        "fit",
-        f"the {n_free} free parameters",
-    )
-    z, chi2_cost = optimum.z, optimum.chi2
-    cov_z = judged.reported  # the coordinates on a bound held (stages.reported_cov)
     coordinates = data.coordinates
-    own = [spec.fixed.get(i, v) for i, v in enumerate(from_z(z) + coordinates.own(z)[4:])]
-    theta = tuple(own[:4])  # a fixed value as given, not exp(ln v)
-    scale = np.array([c.d_own(v) for c, v in zip(coordinates, z)])  # d value / d z
-    cov = cov_z * np.outer(scale, scale)
-    with np.errstate(invalid="ignore"):
-        se = np.sqrt(np.diag(cov))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        corr = cov / np.outer(se, se)
-    profiles = {}
-    if intervals and not judged.reasons:
+
+    def settle_at(starts):
+        return settle(
+            obj,
+            [data],
+            lambda k, z: z,
+            starts,
+            loss,
+            lambda residuals: series_tests(data, residuals),
+            "fit",
+            f"the {n_free} free parameters",
+        )
+
+    def profile_all(optimum, judged) -> dict:
+        if not intervals or judged.reasons:
+            return {}
         dof = max(obj.size - n_free, 1)
         near, found = bound_thresholds(
-            obj, z, chi2_cost, loss, not any(data.estimated), dof, optimum.alternates
+            obj, optimum.z, optimum.chi2, loss, not any(data.estimated), dof, optimum.alternates
         )
         optimum.alternates += found  # a valley at lambda ~ 0 the starts did not end in
         optimum.thresholds = near
@@ -106,6 +101,20 @@ def fit(
         }
         if derived:
             profiles |= derived_profiles(optimum)
+        return profiles
+
+    # a walk that finds a better optimum settles the fit again from it (optimum.profiled)
+    optimum, judged, profiles = profiled(settle_at, profile_all, _starts(obj, data, spec, loss))
+    z = optimum.z
+    cov_z = judged.reported  # the coordinates on a bound held (stages.reported_cov)
+    own = [spec.fixed.get(i, v) for i, v in enumerate(from_z(z) + coordinates.own(z)[4:])]
+    theta = tuple(own[:4])  # a fixed value as given, not exp(ln v)
+    scale = np.array([c.d_own(v) for c, v in zip(coordinates, z)])  # d value / d z
+    cov = cov_z * np.outer(scale, scale)
+    with np.errstate(invalid="ignore"):
+        se = np.sqrt(np.diag(cov))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(se, se)
     reports = {
         name: ParameterReport(name, own[i], float(se[i]), profiles.get(name), spec.describe(i))
         for i, name in enumerate(coordinates.names)

@@ -48,6 +48,10 @@ class EtaCoordinate(Problem):
         w[2] = y[2] + 2 * math.log(y[0]) - LN4
         return w
 
+    def from_w(self, w):
+        """The tissue's y of w (optimum.profile maps a walk's point back with it)."""
+        return self.to_y(w)
+
     @staticmethod
     def gradient(y) -> np.ndarray:
         """d w_2 / d y."""

@@ -47,6 +47,7 @@ from ..results.wounds import TissueFitResult
 from .gof import as_dicts, series_tests
 from .local import cost
 from .objective import Objective
+from .optimum import profiled
 from .parameters import G_NAME, Constrained, names, specification
 from .plausibility import time_scale_warnings, tissue_intervals
 from .recording import check_recording
@@ -183,21 +184,19 @@ def fit_wounds(
             for t in series_tests(p, residuals[cuts[k] : cuts[k + 1]], f"wound {w.name}: ")
         ]
 
-    optimum, judged = settle(
-        obj,
-        parts,
-        lambda k, y: tissue.z(y, k),
-        _starts(obj, wounds, loss),
-        loss,
-        runs,
-        "fit_wounds",
-    )
+    def settle_at(starts):
+        return settle(obj, parts, lambda k, y: tissue.z(y, k), starts, loss, runs, "fit_wounds")
+
+    def profile_all(optimum, judged) -> dict:
+        return shared_profiles(optimum) if intervals and not judged.reasons else {}
+
+    # a walk that finds a better optimum settles the fit again from it (optimum.profiled)
+    optimum, judged, profiles = profiled(settle_at, profile_all, _starts(obj, wounds, loss))
     y, cov = optimum.z, judged.reported  # the coordinates on a bound held (stages.reported_cov)
     reasons, threshold, flagged = judged.reasons, judged.threshold, judged.flagged
     residuals = tissue.residuals(y)
     noise_given = not any(any(p.estimated) for p in parts)
     dof = max(obj.size - len(obj.free), 1)
-    profiles = shared_profiles(optimum) if intervals and not reasons else {}
     # standard errors in each quantity's own units: d quantity / d y_i
     own = np.array([c.d_own(v) for c, v in zip(tissue.coordinates, y)])
     with np.errstate(invalid="ignore"):
