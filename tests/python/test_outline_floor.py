@@ -8,6 +8,7 @@ And a decisive sample of the coverage study on rendered movies (docs/fitting.md)
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import shlex
 
@@ -52,7 +53,7 @@ def test_the_fit_takes_the_floor_only_where_the_residuals_are_below_it(tmp_path,
     assert result.converged, result.reasons
     floor = 0.5 * lab.PIXEL_UM
     report = write_report(tmp_path / "r.html", result, series).read_text(encoding="utf-8")
-    said = "radius 0.1 µm (the outline's floor, half a pixel, above the residuals'"
+    said = "radius 0.1 µm (the outline's floor of half a pixel, above the residuals'"
     assert (said in report) == floored
     if floored:  # the table's rounding alone: residuals ~1e-6 um
         assert result.residual_rms_um < 1e-3 * floor
@@ -74,7 +75,7 @@ def test_the_command_says_the_floor_and_a_given_noise_sets_it_aside(tmp_path, ca
     )
     assert main(shlex.split(base + f" --json {tmp_path / 'a.json'}")) == 0
     said = capsys.readouterr().out
-    assert "radius noise 0.1 um, the outline's floor (half a pixel)" in said
+    assert "radius noise 0.1 um, the outline's floor of half a pixel" in said
     assert json.loads((tmp_path / "a.json").read_text())["noise"]["radius_at_floor_um"] == 0.1
     given = base + f" --radius-noise-um 0.01 --json {tmp_path / 'b.json'}"
     assert main(shlex.split(given)) == 0
@@ -123,3 +124,20 @@ def test_a_several_wound_fit_says_the_floor_per_wound(tmp_path):
     assert rows["R8"]["noise"]["radius_um"] > 0.15, rows["R8"]["noise"]
     lines = [s for s in result.summary().splitlines() if "the outline's floor" in s]
     assert len(lines) == 1 and lines[0].startswith("wound R4: radius noise 0.1 um"), lines
+
+
+def test_a_floor_set_by_hand_is_not_called_half_a_pixel(tmp_path):
+    """A Python caller's own floor (RadiusSeries.noise_floor_um, 0.3 um here) is named as
+    given, in the summary and the report: only the readers' floor is half a pixel."""
+    path = tmp_path / "Results.csv"
+    lab.write_fiji(path, R0)
+    read = fiji(path)
+    assert read.noise_floor_said == "half a pixel"
+    series = dataclasses.replace(read, noise_floor_um=0.3, noise_floor_said="")
+    result = fit(series, outer_radius_um=lab.OUTER_UM, intervals=False, derived=False)
+    assert result.radius_floor_um == pytest.approx(0.3, rel=1e-15)
+    summary = result.summary()
+    assert "radius noise 0.3 um, the floor given as noise_floor_um, above" in summary, summary
+    report = write_report(tmp_path / "r.html", result, series).read_text(encoding="utf-8")
+    assert "radius 0.3 µm (the floor given as noise_floor_um, above the residuals'" in report
+    assert "half a pixel" not in summary + report

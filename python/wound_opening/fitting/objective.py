@@ -202,6 +202,7 @@ class Objective(ProfileModel, Problem):
         self.gaps = serial.gaps(self.t_sorted)
         #: the least radius noise an estimate takes [um] (RadiusSeries.noise_floor_um)
         self.radius_floor = getattr(radius, "noise_floor_um", None) if self.estimated[0] else None
+        self.radius_floor_said = getattr(radius, "noise_floor_said", "")
         self.half_window = 0.5 * (getattr(profile, "window_um", None) or 0.0)
         self.evaluations = 0
         self.inside_edge = 0

@@ -158,6 +158,7 @@ def fit(
         ),
         points=data_points(data, z, judged.flagged),
         radius_floor_um=data.radius_floor if data.floor_reached() else None,
+        radius_floor_said=data.radius_floor_said,
         residual_runs=as_dicts(judged.runs),
         doubts=list(getattr(radius, "warnings", ()) or ()),
         refit=optimum.profile_at if not judged.reasons else None,

@@ -265,6 +265,7 @@ def fit_wounds(
                 ),
                 "residual_rms_um": float(np.sqrt(np.mean(radius_res**2))),
                 "radius_floor_um": p.radius_floor if p.floor_reached() else None,
+                "radius_floor_said": p.radius_floor_said,
                 "outliers": outliers(p, mine),
                 "piv_vectors_at_edge": p.inside_edge,
                 "points": data_points(p, tissue.z(y, k), mine),

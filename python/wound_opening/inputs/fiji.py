@@ -270,6 +270,7 @@ def _series(path, data, rows, area_col, frame_col, dt, cut, um, length_unit, noi
         serial=True,
         warnings=tuple(doubts),
         noise_floor_um=None if noise_um is not None else noise_floor(um, length_unit),
+        noise_floor_said="half a pixel",
     )
 
 

@@ -35,6 +35,9 @@ class RadiusSeries:
     #: With the noise estimated: the least noise the fit takes [um] (an outline's error is
     #: half a pixel at least: fiji.OUTLINE_FLOOR_PX); None: the residuals' scale alone.
     noise_floor_um: float | None = None
+    #: How the floor was set, for the summary and report ("half a pixel": the readers'
+    #: outline floor); "" for a floor given by hand.
+    noise_floor_said: str = ""
 
     def __post_init__(self):
         _check_columns("radius", self.times_s, self.radius_um)

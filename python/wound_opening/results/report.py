@@ -30,6 +30,7 @@ import scipy
 from .._native import library_path
 from .names import NAMES
 from .numbers import end, own_digits
+from .result import floor_name
 from .settings import file_rows
 from .settings import rows as setting_rows
 from .status import status
@@ -53,9 +54,9 @@ def sig(x, digits: int = 5) -> str:
     return "—" if x is None else f"{x:.{digits}g}"
 
 
-def floor_said(rms_um: float) -> str:
-    """How a report says the outline's floor set the radius noise (inputs/fiji.py)."""
-    return f"the outline's floor, half a pixel, above the residuals' {sig(rms_um, 3)} µm"
+def floor_said(rms_um: float, said: str = "") -> str:
+    """How a report says the radius noise's floor set it (result.floor_name)."""
+    return f"{floor_name(said)}, above the residuals' {sig(rms_um, 3)} µm"
 
 
 def html_table(header, rows) -> str:
@@ -182,7 +183,7 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     said = {
         "estimated": "estimated from the residuals",
         "ring scatter": "the rings' scatter",
-        "outline's floor": floor_said(result.residual_rms_um),
+        "outline's floor": floor_said(result.residual_rms_um, result.radius_floor_said),
     }
     how = [said.get(w, w) for w in noise_words(result, profile)]
     noise = [f"radius {sig(result.noise[0], 4)} µm ({how[0]})"]

@@ -44,10 +44,16 @@ def fmt(x) -> str:
     return "open" if x is None else f"{x:.4g}"
 
 
-def floor_line(floor_um: float, rms_um: float) -> str:
-    """The summary's line on a radius noise set by the outline's floor."""
+def floor_name(said: str = "") -> str:
+    """The floor of a radius noise, named by how it was set (RadiusSeries.noise_floor_said:
+    the readers' "half a pixel"; "" a floor given by hand)."""
+    return f"the outline's floor of {said}" if said else "the floor given as noise_floor_um"
+
+
+def floor_line(floor_um: float, rms_um: float, said: str = "") -> str:
+    """The summary's line on a radius noise set by its floor (floor_name)."""
     return (
-        f"radius noise {floor_um:.3g} um, the outline's floor (half a pixel), above the "
+        f"radius noise {floor_um:.3g} um, {floor_name(said)}, above the "
         f"residuals' {rms_um:.3g} um: a thresholded outline's error drifts with the cells it "
         f"takes in, which a fit's residuals absorb (--radius-noise-um sets it)"
     )
@@ -73,6 +79,8 @@ class FitResult(Outcome):
     #: The radius noise's floor [um] where it, not the residuals, set the noise (an
     #: outline's half pixel: inputs/fiji.py), else None.
     radius_floor_um: float | None = None
+    #: How that floor was set (RadiusSeries.noise_floor_said).
+    radius_floor_said: str = ""
     #: (objective, z, chi^2 at the optimum, loss): for profiles at more values (profile_at).
     #: (i, values of z_i) -> delta chi^2: the profile of coordinate i by constrained fits.
     refit: object = field(default=None, repr=False, compare=False)
@@ -314,7 +322,9 @@ class FitResult(Outcome):
             f"{self.optimizer.get('message', '')}"
         )
         if self.radius_floor_um is not None:
-            lines.append(floor_line(self.radius_floor_um, self.residual_rms_um))
+            lines.append(
+                floor_line(self.radius_floor_um, self.residual_rms_um, self.radius_floor_said)
+            )
         if self.has_profile:
             lines.append(
                 f"PIV vectors at or inside the model's wound edge (compared with the edge "

@@ -88,7 +88,9 @@ def _wound(result, k: int, wound) -> str:
     r = radii(R0, sigma, w["outer_radius_um"])
     n_r, n_p = w["n_points"]
     noise = f"radius {sig(w['noise'][0], 4)} µm" + (
-        f" ({floor_said(w['residual_rms_um'])})" if w.get("radius_floor_um") is not None else ""
+        f" ({floor_said(w['residual_rms_um'], w.get('radius_floor_said', ''))})"
+        if w.get("radius_floor_um") is not None
+        else ""
     )
     if n_p:
         noise += f", velocity {sig(w['noise'][1], 4)} µm/s"

@@ -274,7 +274,8 @@ class TissueFitResult(Outcome):
         )
         lines.append(f"{fit}; optimiser: {self.optimizer.get('message', '')}")
         lines += [
-            f"wound {w['name']}: " + floor_line(w["radius_floor_um"], w["residual_rms_um"])
+            f"wound {w['name']}: "
+            + floor_line(w["radius_floor_um"], w["residual_rms_um"], w.get("radius_floor_said", ""))
             for w in self.wounds
             if w.get("radius_floor_um") is not None
         ]
