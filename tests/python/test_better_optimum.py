@@ -78,3 +78,21 @@ def test_the_fit_settles_again_from_the_better_point_and_the_previous_optimum():
         np.testing.assert_array_equal(settled[k][0], [k + 0.5, 0.5])
         np.testing.assert_array_equal(settled[k][1], [k, 0.0])
     assert optimum.z[0] == RESTARTS + 1
+
+
+def test_a_reparametrised_walks_point_maps_back_to_the_fits_coordinates():
+    """A better point found walking a derived value (tau, zeta/G, the viscous length; eta/G of
+    several wounds) returns to the optimum's coordinates through from_w, the inverse of
+    to_w, so the fit settles again from the very point the walk fitted."""
+    from wound_opening.fitting.derived import MONOMIALS, Reparametrised
+    from wound_opening.fitting.wound_profiles import EtaCoordinate
+
+    obj, z, _, _ = _local_optimum(8)
+    z = z.copy()
+    z[2] = 0.7  # lambda > 0: every monomial defined
+    for kind in MONOMIALS:
+        rep = Reparametrised(obj, kind)
+        np.testing.assert_allclose(rep.from_w(rep.to_w(z)), z, rtol=1e-14, atol=1e-14)
+    eta = EtaCoordinate.__new__(EtaCoordinate)  # its maps need no tissue
+    y = np.array([4.0, 0.8, math.log(0.1), math.log(8.0)])  # l, sigma, ln zeta/G, ln R0
+    np.testing.assert_allclose(eta.from_w(eta.to_w(y)), y, rtol=1e-14, atol=1e-14)
