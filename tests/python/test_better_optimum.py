@@ -53,11 +53,13 @@ def test_a_walk_below_the_optimum_stops_with_the_better_fit(seed, i, direction):
 class _Fake:
     def __init__(self, z):
         self.z, self.restart = np.asarray(z, dtype=float), None
+        self.alternates = [(self.z + 10.0, 1.0)]  # another local optimum, 1 above
 
 
 def test_the_fit_settles_again_from_the_better_point_and_the_previous_optimum():
-    """Each BetterOptimum settles the fit again from [its point, the previous optimum]; after
-    RESTARTS the walks may no longer restart, so the fit always ends with its profiles."""
+    """Each BetterOptimum settles the fit again from [its point, the previous optimum, the
+    previous optimum's alternates]; after RESTARTS the walks may no longer restart, so the
+    fit always ends with its profiles."""
     settled, rounds = [], []
 
     def settle_at(starts):
@@ -77,6 +79,8 @@ def test_the_fit_settles_again_from_the_better_point_and_the_previous_optimum():
     for k in range(1, RESTARTS + 1):  # from the better fit of round k, and round k's optimum
         np.testing.assert_array_equal(settled[k][0], [k + 0.5, 0.5])
         np.testing.assert_array_equal(settled[k][1], [k, 0.0])
+        np.testing.assert_array_equal(settled[k][2], [k + 10.0, 10.0])
+        assert len(settled[k]) == 3
     assert optimum.z[0] == RESTARTS + 1
 
 

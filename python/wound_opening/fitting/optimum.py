@@ -46,14 +46,16 @@ def profiled(settle_at, profile_all, starts):
     (stages.settle), `profile_all(optimum, verdict)` the profiles. Where a walk finds a fit
     below the optimum (intervals.BetterOptimum), the fit settles again from that point and the
     previous optimum, and every interval is walked again from the new optimum, at most
-    RESTARTS times; the last round's walks count a lower fit as delta chi^2 = 0."""
+    RESTARTS times; the last round's walks count a lower fit as delta chi^2 = 0. The previous
+    optimum's other local optima (alternates) are starts again too, so that a valley the first
+    starts found stays one the walks start from."""
     for left in range(RESTARTS, -1, -1):
         optimum, judged = settle_at(starts)
         optimum.restart = left > 0
         try:
             return optimum, judged, profile_all(optimum, judged)
         except BetterOptimum as better:
-            starts = [better.z, optimum.z]
+            starts = [better.z, optimum.z, *(a for a, _ in optimum.alternates)]
     raise AssertionError("unreachable: the last round does not restart")
 
 
