@@ -141,3 +141,8 @@ def test_a_floor_set_by_hand_is_not_called_half_a_pixel(tmp_path):
     report = write_report(tmp_path / "r.html", result, series).read_text(encoding="utf-8")
     assert "radius 0.3 µm (the floor given as noise_floor_um, above the residuals'" in report
     assert "half a pixel" not in summary + report
+    from wound_opening.results.plots import noise_words
+
+    assert noise_words(result)[0] == "floor given"  # the figure's legend
+    floored = fit(read, outer_radius_um=lab.OUTER_UM, intervals=False, derived=False)
+    assert noise_words(floored)[0] == "outline's floor"

@@ -242,7 +242,8 @@ class Objective(ProfileModel, Problem):
     def estimate_noise(self, z, robust: bool, share: float | None = None) -> None:
         """Scale the estimated data sets' uncertainties to their residuals at z; `share`: the
         fraction of each set's points taken by the parameters (default 4 / the points). The
-        radius's no lower than its floor (`radius_floor`: an outline's half pixel)."""
+        radius's no lower than its floor (`radius_floor`: RadiusSeries.noise_floor_um, the
+        readers' half pixel)."""
         parts = list(self.split(self.residuals(z)))
         if self.serial:  # the radius's marginal scale, and its correlation, from the raw
             raw = ((self.model(z) - self.data()) / self.sd)[: self.n_radius]
@@ -260,7 +261,7 @@ class Objective(ProfileModel, Problem):
                 factor = math.sqrt(float(np.sum(part**2)) / dof)
             scale.append(np.full(part.size, max(factor, 1e-300)))
         self.sd = self.sd * np.concatenate(scale)
-        if self.radius_floor:  # an outline's error: half a pixel at least (fiji.py)
+        if self.radius_floor:  # an outline's error: the series' floor at least (fiji.py)
             np.maximum(self.sd[: self.n_radius], self.radius_floor, out=self.sd[: self.n_radius])
 
     def floor_reached(self) -> bool:

@@ -165,14 +165,15 @@ def fit_figure(
 
 def noise_words(result, profile=None) -> tuple[str, str]:
     """How each data set's noise was had, as the figure and report say it: "estimated" (from
-    the residuals), "outline's floor" (estimated below an outline's half pixel, which set
-    it: inputs/fiji.py), "ring scatter" (a PIV field's rings: the scatter of their vectors,
+    the residuals), "outline's floor" (estimated below the readers' half pixel, which set it:
+    inputs/fiji.py), "floor given" (below a floor a caller set: RadiusSeries.noise_floor_um),
+    "ring scatter" (a PIV field's rings: the scatter of their vectors,
     not a noise given) or "given"."""
     estimated = result.points.get("noise_estimated", (not result.noise_given,) * 2)
     rings = any(f.kind == "ring averages" for f in getattr(profile, "files", ()))
     words = ["estimated" if e else "given" for e in estimated]
     if getattr(result, "radius_floor_um", None) is not None:
-        words[0] = "outline's floor"
+        words[0] = "outline's floor" if getattr(result, "radius_floor_said", "") else "floor given"
     if rings and not estimated[1]:
         words[1] = "ring scatter"
     return words[0], words[1]

@@ -180,10 +180,12 @@ def render(result, radius, profile=None, *, command: str | None = None, now=None
     parts.append(raw_files_section(radius, profile))
     from .plots import noise_words
 
+    floor = floor_said(result.residual_rms_um, result.radius_floor_said)
     said = {
         "estimated": "estimated from the residuals",
         "ring scatter": "the rings' scatter",
-        "outline's floor": floor_said(result.residual_rms_um, result.radius_floor_said),
+        "outline's floor": floor,
+        "floor given": floor,
     }
     how = [said.get(w, w) for w in noise_words(result, profile)]
     noise = [f"radius {sig(result.noise[0], 4)} µm ({how[0]})"]
