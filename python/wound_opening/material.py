@@ -294,7 +294,7 @@ def absolute_values(ratios: dict, profiles: dict, G: tuple, threshold: float) ->
         out[name] = {
             "estimate": q * mu,
             "ci95": [lo, hi],
-            "identifiable": lo is not None and hi is not None,
+            "identifiable": lo is not None and hi is not None and not getattr(profile, "doubt", ""),
             "unit": unit,
             "interval_computed": ratios[ratio]["interval_computed"],
         }

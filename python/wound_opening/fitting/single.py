@@ -26,6 +26,7 @@ import numpy as np
 
 from ..inputs.series import RadiusSeries, VelocityProfile, check_against
 from ..results.export import data_points
+from ..results.profiles import doubted
 from ..results.result import FitResult, ParameterReport
 from .bounds import thresholds as bound_thresholds
 from .derived import derived_profiles
@@ -105,6 +106,8 @@ def fit(
 
     # a walk that finds a better optimum settles the fit again from it (optimum.profiled)
     optimum, judged, profiles = profiled(settle_at, profile_all, _starts(obj, data, spec, loss))
+    doubts = list(getattr(radius, "warnings", ()) or ())
+    profiles = doubted(profiles, doubts)  # a reader's warning: no interval vouched for
     z = optimum.z
     cov_z = judged.reported  # the coordinates on a bound held (stages.reported_cov)
     own = [spec.fixed.get(i, v) for i, v in enumerate(from_z(z) + coordinates.own(z)[4:])]
@@ -160,7 +163,7 @@ def fit(
         radius_floor_um=data.radius_floor if data.floor_reached() else None,
         radius_floor_said=data.radius_floor_said,
         residual_runs=as_dicts(judged.runs),
-        doubts=list(getattr(radius, "warnings", ()) or ()),
+        doubts=doubts,
         refit=optimum.profile_at if not judged.reasons else None,
     )
 

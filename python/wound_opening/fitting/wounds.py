@@ -42,6 +42,7 @@ from .._native import SolverError
 from ..inputs.series import RadiusSeries, VelocityProfile, check_against
 from ..results.export import data_points
 from ..results.names import ETA, SHARED
+from ..results.profiles import doubted
 from ..results.result import ParameterReport
 from ..results.wounds import TissueFitResult
 from .gof import as_dicts, series_tests
@@ -192,6 +193,8 @@ def fit_wounds(
 
     # a walk that finds a better optimum settles the fit again from it (optimum.profiled)
     optimum, judged, profiles = profiled(settle_at, profile_all, _starts(obj, wounds, loss))
+    doubts = [f"wound {w.name}: {m}" for w in wounds for m in getattr(w.radius, "warnings", ())]
+    profiles = doubted(profiles, doubts)  # one wound's doubt biases the shared values too
     y, cov = optimum.z, judged.reported  # the coordinates on a bound held (stages.reported_cov)
     reasons, threshold, flagged = judged.reasons, judged.threshold, judged.flagged
     residuals = tissue.residuals(y)
@@ -289,7 +292,7 @@ def fit_wounds(
         evaluations=tissue.evaluations,
         plausibility=warnings,
         residual_runs=as_dicts(judged.runs),
-        doubts=[f"wound {w.name}: {m}" for w in wounds for m in getattr(w.radius, "warnings", ())],
+        doubts=doubts,
         G=spec.G,
     )
 

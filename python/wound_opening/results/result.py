@@ -161,6 +161,8 @@ class FitResult(Outcome):
             return ""
         lo, hi = rep.ci95
         flat = f"{name}: not identified (95 % interval [{fmt(lo)}, {fmt(hi)}])"
+        if rep.profile.doubt:
+            return f"{flat}: {rep.profile.doubt}"
         if any(rep.profile.bounded):
             return (
                 f"{flat}: the interval ends at the bound you set, not where the data exclude values"

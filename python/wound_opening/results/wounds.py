@@ -154,7 +154,8 @@ class TissueFitResult(Outcome):
         if rep.identifiable or rep.profile is None:
             return ""
         lo, hi = rep.ci95
-        return f"{name}: not identified (95 % interval [{fmt(lo)}, {fmt(hi)}]); {ADVICE[name]}"
+        why = rep.profile.doubt or ADVICE[name]
+        return f"{name}: not identified (95 % interval [{fmt(lo)}, {fmt(hi)}]); {why}"
 
     @staticmethod
     def _report(rep: ParameterReport) -> dict:
