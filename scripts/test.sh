@@ -46,8 +46,9 @@ ruff format --check python tests/python setup.py
 ruff check python tests/python setup.py
 # Two worker processes (pytest-xdist): the Python tests are independent of each other. They
 # run beside the C programs under valgrind and the cross binaries under Wine and qemu (one
-# process at a time, ~30 s), their output kept in target/pytest.log and shown after.
-python -m pytest -q -n 2 tests/python >target/pytest.log 2>&1 &
+# process at a time, ~30 s), their output kept in target/pytest.log and shown after, with
+# the 20 slowest tests (the command's 8-minute budget: tests/python/conftest.py LONG_FIRST).
+python -m pytest -q -n 2 --durations=20 tests/python >target/pytest.log 2>&1 &
 pytest=$!
 trap 'kill "$venv" "$debian" "$pytest" 2>/dev/null || true' EXIT
 bash scripts/c_tests.sh

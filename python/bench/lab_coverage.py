@@ -14,7 +14,8 @@ summary JSON under --out.
     cd python && python -m bench.lab_coverage --out /tmp/lab_coverage --draws 20 [--size-px 256]
 
 With --refit the draws under --out are fitted again (their files kept): the same movies and
-measurements through a changed fitter, e.g. a copy of an earlier study's folder.
+measurements through a changed fitter, e.g. a copy of an earlier study's folder; with
+--tally they are only counted again (the table from the fits written).
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bench.lab_movies import measure, radius_only, run_fit
+from bench.lab_movies import measure, outlines_round, radius_only, run_fit
 from bench.lab_render import Movie, render
 
 KEYS = (
@@ -88,19 +89,35 @@ def refit(out: Path) -> dict:
     return record
 
 
+def recount(out: Path) -> dict:
+    """A draw's record as written (--tally), each fit's outlines_round read from its JSON."""
+    record = json.loads((out / "truth.json").read_text())
+    for fit, name in (("fit", "fit"), ("fit_radius_only", "fit_radius")):
+        try:
+            said = json.loads((out / f"{name}.json").read_text())
+        except (OSError, ValueError):
+            continue
+        record[fit]["outlines_round"] = outlines_round(said)
+    return record
+
+
 def tally(records: list, fit: str) -> dict:
     """Per key: fits with numbers, reported identified, identified and holding the truth,
-    intervals (identified or not) holding it."""
+    intervals (identified or not) holding it; and the fits whose outlines the reader did not
+    warn about (lab_movies.outlines_round) and their intervals holding it."""
     out = {}
     for key in KEYS:
-        rows = [r[fit].get("estimates", {}).get(key) for r in records]
-        rows = [row for row in rows if row and row.get("truth") is not None]
-        ident = [row for row in rows if row.get("identified")]
+        rows = [(r[fit].get("estimates", {}).get(key), r[fit]) for r in records]
+        rows = [(row, f) for row, f in rows if row and row.get("truth") is not None]
+        ident = [row for row, _ in rows if row.get("identified")]
+        round_ = [row for row, f in rows if f.get("outlines_round", True)]
         out[key] = {
             "fits": len(rows),
             "identified": len(ident),
             "identified_covering": sum(bool(row.get("covers")) for row in ident),
-            "covering": sum(bool(row.get("covers")) for row in rows),
+            "covering": sum(bool(row.get("covers")) for row, _ in rows),
+            "round_fits": len(round_),
+            "round_covering": sum(bool(row.get("covers")) for row in round_),
         }
     return out
 
@@ -108,15 +125,16 @@ def tally(records: list, fit: str) -> dict:
 def table(summary: dict, draws: int) -> str:
     lines = [
         "| value | fit | numbers | identified | identified and holding the truth | "
-        "95 % interval holding the truth |",
-        "|---|---|---|---|---|---|",
+        "95 % interval holding the truth | the same, outlines round |",
+        "|---|---|---|---|---|---|---|",
     ]
     for key in KEYS:
         for fit, label in (("fit", "radius + PIV"), ("fit_radius_only", "radius alone")):
             c = summary[fit][key]
             lines.append(
                 f"| {key} | {label} | {c['fits']} of {draws} | {c['identified']} | "
-                f"{c['identified_covering']} | {c['covering']} of {c['fits']} |"
+                f"{c['identified_covering']} | {c['covering']} of {c['fits']} | "
+                f"{c['round_covering']} of {c['round_fits']} |"
             )
     return "\n".join(lines)
 
@@ -133,11 +151,20 @@ def main(argv=None) -> None:
         help="fit the draws already under --out again (a copy of an earlier study's folder): "
         "no rendering or measuring, the same files",
     )
+    ap.add_argument(
+        "--tally",
+        action="store_true",
+        help="count the draws already fitted under --out again (their truth.json and fit "
+        "JSON): no fit",
+    )
     a = ap.parse_args(argv)
     records = []
     for seed in range(a.first, a.first + a.draws):
         where = a.out / f"draw_{seed:03d}"
-        rec = refit(where) if a.refit else draw(seed, where, a.size_px)
+        if a.tally:
+            rec = recount(where)
+        else:
+            rec = refit(where) if a.refit else draw(seed, where, a.size_px)
         records.append(rec)
         m = rec["movie"]
         said = []

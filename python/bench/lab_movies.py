@@ -143,6 +143,12 @@ def radius_only(cmd: list[str]) -> list[str]:
     return out
 
 
+def outlines_round(fit: dict) -> bool:
+    """Whether a fit's JSON carries no reader's warning that the outlines are not round
+    (inputs/fiji.outline_warnings): such a fit reports nothing identified."""
+    return not any("outlines are not round" in w for w in fit.get("warnings") or [])
+
+
 def run_fit(out: Path, record: dict, cmd: list[str], name: str) -> dict:
     """A fit command run in this interpreter's environment (its output in DIR/NAME.txt); its
     estimates, intervals and verdicts against the truth."""
@@ -161,6 +167,7 @@ def run_fit(out: Path, record: dict, cmd: list[str], name: str) -> dict:
     res["converged"] = fit.get("converged")
     res["reasons"] = fit.get("reasons")
     res["status"] = fit.get("status")
+    res["outlines_round"] = outlines_round(fit)
     truth = {**record["parameters"], **record["material"], "cut_s": record["cut_offset_s"]}
     rows = {}
     for key, value in (fit.get("estimate_at_stop") or {}).items():

@@ -71,4 +71,5 @@ def test_one_wound_with_outlines_not_round_withdraws_the_shared_values(tmp_path)
         if rep.profile is not None:
             assert bad.advice(name).endswith(DOUBT), name
     assert not any(rep.identifiable for rep in bad.r0)
+    assert not any(m.get("identifiable") for m in bad.material.values()), bad.material
     assert math.isfinite(bad.chi2) and bad.chi2 == pytest.approx(good.chi2, rel=1e-12)
