@@ -100,3 +100,20 @@ def test_a_reparametrised_walks_point_maps_back_to_the_fits_coordinates():
     eta = EtaCoordinate.__new__(EtaCoordinate)  # its maps need no tissue
     y = np.array([4.0, 0.8, math.log(0.1), math.log(8.0)])  # l, sigma, ln zeta/G, ln R0
     np.testing.assert_allclose(eta.from_w(eta.to_w(y)), y, rtol=1e-14, atol=1e-14)
+
+
+def test_the_fit_at_lambda_zero_below_the_optimum_settles_the_fit_again():
+    """bounds.thresholds fits lambda = 0 held (is lambda's bound within reach?): seed 8's
+    small-lambda optimum (lambda 0.15) lies 1.6 above that fit, so with restart the fit is
+    handed back as a better optimum, as a walk's would be; without, thresholds are given."""
+    from wound_opening.fitting.bounds import thresholds
+
+    obj, z, chi2, _ = _local_optimum(8)
+    args = (obj, z, chi2, "linear", True, obj.size - 4)
+    with pytest.raises(BetterOptimum) as found:
+        thresholds(*args, restart=True)
+    better = found.value
+    assert better.chi2 < chi2 - 1.0 and better.z[2] == 0.0, (better.chi2, better.z)
+    assert float(np.sum(obj.residuals(better.z) ** 2)) == pytest.approx(better.chi2, rel=1e-12)
+    near, _ = thresholds(*args)
+    assert set(near) >= {"R0_um", "sigma", "T_s"}, near

@@ -60,6 +60,7 @@ import numpy as np
 from scipy import optimize, special
 
 from .._native import SolverError
+from .intervals import BETTER, BetterOptimum
 from .local import local_fit
 from .valley_law import correlation, padded, psi_jacobian, valley_thresholds
 
@@ -162,7 +163,14 @@ GRADIENTS = {
 
 
 def thresholds(
-    problem, z, chi2_min: float, loss: str, noise_given: bool, dof: int, others=()
+    problem,
+    z,
+    chi2_min: float,
+    loss: str,
+    noise_given: bool,
+    dof: int,
+    others=(),
+    restart: bool = False,
 ) -> tuple[dict, list]:
     """name -> the threshold of its 95 % interval where it is not `regular` (module
     docstring): lambda's where its estimate is 0; the others' q(rho) wherever lambda's
@@ -172,7 +180,9 @@ def thresholds(
     `others`: the fit's other optima, (z, delta chi^2)), the larger of that and the several
     valleys' law (valley_law.py; least squares only). Nothing with lambda held fixed or
     bounded above 0 by the user (the bound is then the user's). Returns (the thresholds,
-    the valleys found beyond `others`: (z, delta chi^2), for the walks to start from)."""
+    the valleys found beyond `others`: (z, delta chi^2), for the walks to start from).
+    With `restart`, either fit landing BETTER or more below chi2_min raises BetterOptimum,
+    as a profile walk's does (intervals.Walk.below): the fit settles again from there."""
     if 2 in problem.fixed or problem.bounds()[0][2] > 0:
         return {}, []
     base = regular(noise_given, dof)
@@ -188,6 +198,8 @@ def thresholds(
             )
         except SolverError:
             start, held, res = None, chi2_min, None
+        if restart and held < chi2_min - BETTER:  # lambda = 0 fits better than the optimum
+            raise BetterOptimum(start, held)
         reaches = held - chi2_min < base or res is None or res.status == 0  # unsure: reached
         if not reaches and held - chi2_min >= VALLEYS * base:
             return out, []
@@ -198,6 +210,8 @@ def thresholds(
     if loss != "linear":
         return out, []
     found = _free_valley(problem, start, chi2_min)
+    if restart and found and found[0][1] <= -BETTER:
+        raise BetterOptimum(found[0][0], chi2_min + found[0][1])
     valleys = _valleys(z, found + list(others), VALLEYS * base)
     if len(valleys) > 1:
         law = valley_thresholds(problem, valleys, GRADIENTS, nuisance_quantile)

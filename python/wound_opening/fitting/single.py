@@ -89,7 +89,14 @@ def fit(
             return {}
         dof = max(obj.size - n_free, 1)
         near, found = bound_thresholds(
-            obj, optimum.z, optimum.chi2, loss, not any(data.estimated), dof, optimum.alternates
+            obj,
+            optimum.z,
+            optimum.chi2,
+            loss,
+            not any(data.estimated),
+            dof,
+            optimum.alternates,
+            restart=optimum.restart,  # a fit of its below the optimum settles it again
         )
         optimum.alternates += found  # a valley at lambda ~ 0 the starts did not end in
         optimum.thresholds = near
