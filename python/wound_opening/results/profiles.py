@@ -42,8 +42,9 @@ class Profile:
 #: Profile.doubt of a fit whose radius series carries a reader's warning (inputs/fiji.py:
 #: outlines that are not round). On the rendered movies of docs/fitting.md ("Coverage on
 #: rendered movies") such outlines sat 0.2-1 um outside the edge, by an amount that follows
-#: the cells the threshold took in, and the values those fits reported identified missed
-#: the truth in three of the four: their intervals are kept, none is said to identify.
+#: the cells the threshold took in, and with the field those four fits reported four values
+#: identified that missed the truth (of five such misses in twenty draws): their intervals
+#: are kept, none is said to identify.
 DOUBT = (
     "not vouched for: the outlines are not round (their warning), so the radius is not the "
     "edge's and the value is biased by more than its interval shows"
