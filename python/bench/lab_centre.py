@@ -3,7 +3,8 @@ laser's target (lab_render.py) moved by the 4 px by which OpenPIV's tutorial sta
 positions off the windows it correlated. Reads the draws that lab_coverage.py wrote (their
 files and truth.json; no fit) and prints, per draw and over all, (estimate - truth) / sd
 for both coordinates: calibrated standard errors give an rms of 1 and about one coordinate
-in 20 beyond 2. The numbers of docs/fitting.md, "Lab files: Fiji, PIVlab, OpenPIV" (the wound centre):
+in 20 beyond 2. The numbers of docs/fitting.md, "Lab files: Fiji, PIVlab, OpenPIV" (the
+wound centre):
 
     cd python && python -m bench.lab_centre --out /tmp/lab_cov
 """
