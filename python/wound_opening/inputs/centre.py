@@ -188,20 +188,19 @@ def _tile_jackknife(fit, args, extent: float, h: float):
     steps[good] = np.linalg.solve(rest[good], grad[good][:, :, None])[:, :, 0]
     far = ~good | (np.hypot(*(steps - first).T) > 0.25 * np.hypot(*first.T))
     for g in np.flatnonzero(far):
-        steps[g] = _refit_without(fit, args, tile[: x.size] == g, first[g]) - fit.x
+        steps[g] = _refit_without(fit, args, tile[: x.size] == g, first[g], extent)
     return (m - 1) / m * np.sum((steps - steps.mean(0)) ** 2, axis=0)
 
 
-def _refit_without(fit, args, out, step):
-    """The centre refitted without the vectors `out` (a tile), from the first-order step."""
+def _refit_without(fit, args, out, step, extent: float, tol: float = 1e-8):
+    """The step of the centre refitted without the vectors `out` (a tile), from `step`."""
     x, y, u, v, groups = args
     keep = ~out
     index = np.cumsum(keep) - 1
     sub = [index[rows[keep[rows]]] for rows in groups]
     sub = [rows for rows in sub if rows.size > 4]
-    extent = max(float(np.ptp(x)), float(np.ptp(y)), 1e-12)
-    got = _fit(x[keep], y[keep], u[keep], v[keep], sub, fit.x + step, extent / 100, tol=1e-8)
-    return got.x
+    got = _fit(x[keep], y[keep], u[keep], v[keep], sub, fit.x + step, extent / 100, tol=tol)
+    return got.x - fit.x
 
 
 def estimate_centre(x, y, u, v, pair=None, *, check: bool = True, start=None) -> Centre:
